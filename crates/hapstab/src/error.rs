@@ -1,0 +1,74 @@
+//! Typed errors of the hapstab library.
+
+use thiserror::Error;
+
+/// Everything that can go wrong when building or analysing a model.
+///
+/// Each variant names the parameter and the offending value so that a front end can print
+/// one clear line.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum Error {
+    /// A parameter is NaN or infinite.
+    #[error("{name} must be a finite number (got {value})")]
+    NotFinite { name: &'static str, value: f64 },
+    /// A parameter that must be strictly positive is not.
+    #[error("{name} must be > 0 (got {value})")]
+    NotPositive { name: &'static str, value: f64 },
+    /// A parameter that must be non-negative is negative.
+    #[error("{name} must be >= 0 (got {value})")]
+    Negative { name: &'static str, value: f64 },
+    /// The delay time is not a whole number of sampling periods.
+    #[error(
+        "delay time t_d = {delay_time} s is not a whole number of sampling periods T = {period} s (t_d/T = {ratio})"
+    )]
+    FractionalDelay {
+        delay_time: f64,
+        period: f64,
+        ratio: f64,
+    },
+    /// A delay (in samples) above the supported maximum.
+    #[error("delay d must be at most {max} samples (got {value})")]
+    DelayTooLarge { value: f64, max: usize },
+    /// A parameter lies outside a documented range.
+    #[error("{name} must be in {range} (got {value})")]
+    OutOfRange {
+        name: &'static str,
+        value: f64,
+        range: &'static str,
+    },
+    /// A numerical routine did not converge.
+    #[error("numerical failure: {0}")]
+    Numerical(String),
+}
+
+/// Result type of the library.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NotFinite { name, value })
+    }
+}
+
+/// Checks that `value` is finite and > 0.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
+    finite(name, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::NotPositive { name, value })
+    }
+}
+
+/// Checks that `value` is finite and >= 0.
+pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
+    finite(name, value)?;
+    if value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::Negative { name, value })
+    }
+}

@@ -1,0 +1,33 @@
+//! # hapstab
+//!
+//! Exact stability analysis of a virtual wall rendered by an impedance-type haptic device
+//! held by a human operator, after Hulin, Preusche and Hirzinger, "Stability Boundary for
+//! Haptic Rendering: Influence of Human Operator" (IROS 2008).
+//!
+//! Modules follow the paper:
+//!
+//! | module | paper |
+//! |---|---|
+//! | [`params`] | Section II, eq. (1), Table I |
+//! | [`plant`] | Section III, eq. (2)–(6), (10) |
+//! | [`closed_loop`] | eq. (7)–(9) |
+//! | [`stability`] | Section V (roots inside the unit circle) |
+//!
+//! ```
+//! use hapstab::{Normalized, Analysis, Verdict};
+//! // Pure mass, no delay: (α, β) = (0.1, 0.5) lies inside α < 2β(2 − β)/(2 + β).
+//! let a = Analysis::new(Normalized::new(0.1, 0.5, 0.0, 0.0, 0).unwrap()).unwrap();
+//! assert_eq!(a.verdict, Verdict::Stable);
+//! ```
+
+pub mod closed_loop;
+pub mod error;
+pub mod params;
+pub mod plant;
+pub mod stability;
+
+pub use closed_loop::{ClosedLoop, PolyFamily};
+pub use error::{Error, Result};
+pub use params::{Arm, Device, Effective, Normalized, Physical, PlantParams, Sampling, Wall};
+pub use plant::DiscretePlant;
+pub use stability::{Analysis, Verdict, classify, is_stable, schur_stable};

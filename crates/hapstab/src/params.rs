@@ -1,0 +1,322 @@
+//! Model parameters: the physical ones of Section II / eq. (1) and the dimensionless ones of
+//! Table I, with validation and conversions both ways.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result, finite, non_negative, positive};
+
+/// Largest supported delay in samples. A delay of 2000 samples is two seconds at 1 kHz, far
+/// beyond any haptic loop; the bound keeps every analysis within memory and time.
+pub const MAX_DELAY: usize = 2000;
+
+/// The haptic device: a single mass `m_L` with viscous damping `b_L` (Section II).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Device {
+    /// Device mass m_L in kg (>= 0).
+    pub mass: f64,
+    /// Device damping b_L in Ns/m (>= 0).
+    pub damping: f64,
+}
+
+/// The human arm as a mass-spring-damper (Section II, Fig. 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Arm {
+    /// Arm mass m_H in kg (>= 0).
+    pub mass: f64,
+    /// Arm damping b_H in Ns/m (>= 0).
+    pub damping: f64,
+    /// Arm stiffness k_H in N/m (>= 0).
+    pub stiffness: f64,
+}
+
+impl Arm {
+    /// An ungrabbed device: k_H = b_H = m_H = 0 (Section IV permits this case).
+    pub const NONE: Arm = Arm {
+        mass: 0.0,
+        damping: 0.0,
+        stiffness: 0.0,
+    };
+}
+
+/// The virtual wall: a discrete spring K and damper B (Section II, Fig. 3).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Wall {
+    /// Virtual stiffness K in N/m (any finite value).
+    pub stiffness: f64,
+    /// Virtual damping B in Ns/m (any finite value).
+    pub damping: f64,
+}
+
+/// The effective plant m, b, k of eq. (1): m = m_L + m_H, b = b_L + b_H, k = k_H.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Effective {
+    /// Effective mass m in kg (> 0).
+    pub mass: f64,
+    /// Effective damping b in Ns/m (>= 0).
+    pub damping: f64,
+    /// Effective stiffness k in N/m (>= 0).
+    pub stiffness: f64,
+}
+
+impl Effective {
+    /// Builds and validates an effective plant directly (m > 0, b >= 0, k >= 0).
+    pub fn new(mass: f64, damping: f64, stiffness: f64) -> Result<Self> {
+        Ok(Self {
+            mass: positive("mass m", mass)?,
+            damping: non_negative("damping b", damping)?,
+            stiffness: non_negative("stiffness k", stiffness)?,
+        })
+    }
+
+    /// Combines device and arm by eq. (1).
+    pub fn combine(device: Device, arm: Arm) -> Result<Self> {
+        non_negative("device mass m_L", device.mass)?;
+        non_negative("device damping b_L", device.damping)?;
+        non_negative("arm mass m_H", arm.mass)?;
+        non_negative("arm damping b_H", arm.damping)?;
+        non_negative("arm stiffness k_H", arm.stiffness)?;
+        Self::new(
+            device.mass + arm.mass,
+            device.damping + arm.damping,
+            arm.stiffness,
+        )
+    }
+}
+
+/// Sampling: period T and a delay of d whole samples (t_d = d·T).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Sampling {
+    /// Sampling period T in s (> 0).
+    pub period: f64,
+    /// Delay d in whole samples.
+    pub delay: usize,
+}
+
+impl Sampling {
+    /// Validates T > 0 and d <= [`MAX_DELAY`].
+    pub fn new(period: f64, delay: usize) -> Result<Self> {
+        positive("sampling period T", period)?;
+        check_delay(delay)?;
+        Ok(Self { period, delay })
+    }
+
+    /// Builds the sampling from a delay time t_d in seconds, which must be a whole number of
+    /// periods (Table I: d = t_d / T).
+    pub fn from_delay_time(period: f64, delay_time: f64) -> Result<Self> {
+        positive("sampling period T", period)?;
+        non_negative("delay time t_d", delay_time)?;
+        let ratio = delay_time / period;
+        let d = ratio.round();
+        if (ratio - d).abs() > 1e-9 * d.max(1.0) {
+            return Err(Error::FractionalDelay {
+                delay_time,
+                period,
+                ratio,
+            });
+        }
+        if d > MAX_DELAY as f64 {
+            return Err(Error::DelayTooLarge {
+                value: d,
+                max: MAX_DELAY,
+            });
+        }
+        Self::new(period, d as usize)
+    }
+
+    /// The delay time t_d = d·T in seconds.
+    pub fn delay_time(&self) -> f64 {
+        self.delay as f64 * self.period
+    }
+}
+
+/// Checks a delay in samples against [`MAX_DELAY`].
+pub fn check_delay(delay: usize) -> Result<usize> {
+    if delay > MAX_DELAY {
+        Err(Error::DelayTooLarge {
+            value: delay as f64,
+            max: MAX_DELAY,
+        })
+    } else {
+        Ok(delay)
+    }
+}
+
+/// A complete physical description: device, arm, wall and sampling.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Physical {
+    /// The effective plant of eq. (1).
+    pub plant: Effective,
+    /// The virtual wall.
+    pub wall: Wall,
+    /// Sampling period and delay.
+    pub sampling: Sampling,
+}
+
+impl Physical {
+    /// Validates and bundles the parts.
+    pub fn new(plant: Effective, wall: Wall, sampling: Sampling) -> Result<Self> {
+        let plant = Effective::new(plant.mass, plant.damping, plant.stiffness)?;
+        finite("wall stiffness K", wall.stiffness)?;
+        finite("wall damping B", wall.damping)?;
+        let sampling = Sampling::new(sampling.period, sampling.delay)?;
+        Ok(Self {
+            plant,
+            wall,
+            sampling,
+        })
+    }
+
+    /// The dimensionless parameters of Table I.
+    pub fn normalized(&self) -> Result<Normalized> {
+        let (m, t) = (self.plant.mass, self.sampling.period);
+        Normalized::new(
+            self.wall.stiffness * t * t / m,
+            self.wall.damping * t / m,
+            self.plant.stiffness * t * t / m,
+            self.plant.damping * t / m,
+            self.sampling.delay,
+        )
+    }
+}
+
+/// The plant part of the normalized parameters: γ = kT²/m (eq. 4) and δ = bT/m (Table I).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PlantParams {
+    /// Normalized physical stiffness γ = kT²/m (>= 0).
+    pub gamma: f64,
+    /// Normalized physical damping δ = bT/m (>= 0).
+    pub delta: f64,
+}
+
+impl PlantParams {
+    /// Validates γ >= 0 and δ >= 0, both finite.
+    pub fn new(gamma: f64, delta: f64) -> Result<Self> {
+        Ok(Self {
+            gamma: non_negative("gamma", gamma)?,
+            delta: non_negative("delta", delta)?,
+        })
+    }
+
+    /// γ and δ of an effective plant sampled with period T (Table I, eq. 4).
+    pub fn from_physical(plant: &Effective, period: f64) -> Result<Self> {
+        positive("sampling period T", period)?;
+        Self::new(
+            plant.stiffness * period * period / plant.mass,
+            plant.damping * period / plant.mass,
+        )
+    }
+}
+
+/// The five dimensionless parameters of Table I: α = KT²/m, β = BT/m, γ = kT²/m, δ = bT/m,
+/// d = t_d/T.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Normalized {
+    /// Normalized virtual stiffness α = KT²/m (any finite value).
+    pub alpha: f64,
+    /// Normalized virtual damping β = BT/m (any finite value).
+    pub beta: f64,
+    /// Normalized physical stiffness γ = kT²/m (>= 0).
+    pub gamma: f64,
+    /// Normalized physical damping δ = bT/m (>= 0).
+    pub delta: f64,
+    /// Delay in samples d = t_d/T.
+    pub d: usize,
+}
+
+impl Normalized {
+    /// Validates: α, β finite; γ, δ finite and >= 0; d <= [`MAX_DELAY`].
+    pub fn new(alpha: f64, beta: f64, gamma: f64, delta: f64, d: usize) -> Result<Self> {
+        finite("alpha", alpha)?;
+        finite("beta", beta)?;
+        let plant = PlantParams::new(gamma, delta)?;
+        check_delay(d)?;
+        Ok(Self {
+            alpha,
+            beta,
+            gamma: plant.gamma,
+            delta: plant.delta,
+            d,
+        })
+    }
+
+    /// The plant part (γ, δ).
+    pub fn plant(&self) -> PlantParams {
+        PlantParams {
+            gamma: self.gamma,
+            delta: self.delta,
+        }
+    }
+
+    /// Converts back to physical units for a given effective mass m and period T (Table I
+    /// inverted): K = αm/T², B = βm/T, k = γm/T², b = δm/T, t_d = dT.
+    pub fn to_physical(&self, mass: f64, period: f64) -> Result<Physical> {
+        positive("mass m", mass)?;
+        positive("sampling period T", period)?;
+        let t2 = period * period;
+        Physical::new(
+            Effective::new(mass, self.delta * mass / period, self.gamma * mass / t2)?,
+            Wall {
+                stiffness: self.alpha * mass / t2,
+                damping: self.beta * mass / period,
+            },
+            Sampling::new(period, self.d)?,
+        )
+    }
+}
+
+/// Converts a normalized (α, β) pair to a physical wall (K, B) for mass m and period T.
+pub fn wall_from_normalized(alpha: f64, beta: f64, mass: f64, period: f64) -> Wall {
+    Wall {
+        stiffness: alpha * mass / (period * period),
+        damping: beta * mass / period,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip_physical_normalized() {
+        let p = Physical::new(
+            Effective::combine(
+                Device {
+                    mass: 0.1,
+                    damping: 1.5,
+                },
+                Arm {
+                    mass: 0.9,
+                    damping: 5.0,
+                    stiffness: 300.0,
+                },
+            )
+            .unwrap(),
+            Wall {
+                stiffness: 2000.0,
+                damping: 3.0,
+            },
+            Sampling::new(1e-3, 2).unwrap(),
+        )
+        .unwrap();
+        let n = p.normalized().unwrap();
+        assert!((n.alpha - 2000.0 * 1e-6 / 1.0).abs() < 1e-18);
+        assert!((n.delta - 6.5e-3).abs() < 1e-18);
+        let back = n.to_physical(1.0, 1e-3).unwrap();
+        assert!((back.wall.stiffness - 2000.0).abs() < 1e-9);
+        assert!((back.plant.stiffness - 300.0).abs() < 1e-9);
+        assert_eq!(back.sampling.delay, 2);
+    }
+
+    #[test]
+    fn validation_errors_name_the_parameter() {
+        let e = Effective::new(-1.0, 0.0, 0.0).unwrap_err();
+        assert!(e.to_string().contains("mass m"), "{e}");
+        assert!(e.to_string().contains("-1"), "{e}");
+        assert!(Sampling::new(0.0, 0).is_err());
+        assert!(Normalized::new(f64::NAN, 0.0, 0.0, 0.0, 0).is_err());
+        assert!(Normalized::new(0.0, 0.0, -1.0, 0.0, 0).is_err());
+        let e = Sampling::from_delay_time(1e-3, 1.5e-3).unwrap_err();
+        assert!(matches!(e, Error::FractionalDelay { .. }), "{e}");
+        assert_eq!(Sampling::from_delay_time(1e-3, 3e-3).unwrap().delay, 3);
+    }
+}

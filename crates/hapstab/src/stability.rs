@@ -1,0 +1,266 @@
+//! The stability test of Section V: stable iff every root of p(z) lies strictly inside the
+//! unit circle.
+//!
+//! Two independent methods: the Schur–Cohn recursion (an algebraic test, no roots, O(n²)),
+//! used as the fast path and for the verdict, and the roots themselves (eigenvalues of the
+//! companion matrix, polished by Newton steps) for the spectral radius.
+
+use nalgebra::{DMatrix, Schur};
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::closed_loop::ClosedLoop;
+use crate::error::{Error, Result};
+use crate::params::Normalized;
+
+/// Half-width of the marginal band in spectral radius: a point is `Marginal` when the
+/// spectral radius lies in [1 − MARGINAL_BAND, 1 + MARGINAL_BAND), so the band is 1e-10 wide.
+pub const MARGINAL_BAND: f64 = 5e-11;
+
+/// Stability verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// All roots strictly inside the circle of radius 1 − [`MARGINAL_BAND`].
+    Stable,
+    /// Some root on the unit circle within [`MARGINAL_BAND`].
+    Marginal,
+    /// Some root outside the circle of radius 1 + [`MARGINAL_BAND`].
+    Unstable,
+}
+
+impl Verdict {
+    /// The lowercase name used in JSON.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Verdict::Stable => "stable",
+            Verdict::Marginal => "marginal",
+            Verdict::Unstable => "unstable",
+        }
+    }
+}
+
+const STACK: usize = 64;
+
+/// Schur–Cohn test on ascending coefficients `c` (degree n = c.len() − 1, c[n] ≠ 0): true iff
+/// every root lies strictly inside the unit circle. Each step divides out one reflection
+/// coefficient k = c0/cn (|k| < 1 is necessary) and keeps (cn·c(z) − c0·c*(z))/z.
+pub fn schur_stable(c: &[f64]) -> bool {
+    schur_stable_scaled(c, 1.0)
+}
+
+/// Schur–Cohn test of c(r·z): true iff every root of c lies strictly inside |z| < r.
+pub fn schur_stable_scaled(c: &[f64], r: f64) -> bool {
+    let n = c.len();
+    if n <= STACK {
+        let mut a = [0.0_f64; STACK];
+        let mut b = [0.0_f64; STACK];
+        schur_core(c, r, &mut a[..n], &mut b[..n])
+    } else {
+        let mut a = vec![0.0; n];
+        let mut b = vec![0.0; n];
+        schur_core(c, r, &mut a, &mut b)
+    }
+}
+
+fn schur_core(c: &[f64], r: f64, a: &mut [f64], b: &mut [f64]) -> bool {
+    let mut scale = 1.0;
+    for (ai, ci) in a.iter_mut().zip(c) {
+        *ai = ci * scale;
+        scale *= r;
+    }
+    let mut n = c.len() - 1;
+    let (mut a, mut b) = (a, b);
+    while n > 0 {
+        let an = a[n];
+        if !an.is_finite() || an == 0.0 {
+            return false;
+        }
+        let k = a[0] / an;
+        if !(k.abs() < 1.0) {
+            return false;
+        }
+        for j in 0..n {
+            b[j] = a[j + 1] - k * a[n - 1 - j];
+        }
+        std::mem::swap(&mut a, &mut b);
+        n -= 1;
+    }
+    true
+}
+
+/// Verdict from the algebraic test alone, with the marginal band of [`MARGINAL_BAND`].
+pub fn classify(c: &[f64]) -> Verdict {
+    if schur_stable_scaled(c, 1.0 - MARGINAL_BAND) {
+        Verdict::Stable
+    } else if schur_stable_scaled(c, 1.0 + MARGINAL_BAND) {
+        Verdict::Marginal
+    } else {
+        Verdict::Unstable
+    }
+}
+
+/// Spectral radius by bisection on the Schur–Cohn test of c(r z), with no root finding:
+/// the smallest r for which every root lies inside |z| < r, to about 1e-15 relative.
+pub fn spectral_radius_schur(c: &[f64]) -> f64 {
+    let n = c.len() - 1;
+    let lead = c[n].abs();
+    let mut hi = 1.0 + c[..n].iter().map(|x| (x / lead).abs()).fold(0.0, f64::max);
+    let mut lo = 0.0;
+    while hi - lo > 1e-15 * hi {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if schur_stable_scaled(c, mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+/// Horner evaluation of p and p' at z for ascending real coefficients.
+fn horner(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
+    let mut p = Complex64::new(0.0, 0.0);
+    let mut dp = Complex64::new(0.0, 0.0);
+    for &ci in c.iter().rev() {
+        dp = dp * z + p;
+        p = p * z + ci;
+    }
+    (p, dp)
+}
+
+/// All complex roots of the polynomial with ascending real coefficients `c` (leading ≠ 0):
+/// eigenvalues of the companion matrix by nalgebra's real Schur decomposition, each polished
+/// by Newton steps that are kept only while they reduce |p|.
+pub fn roots(c: &[f64]) -> Result<Vec<Complex64>> {
+    let n = c.len() - 1;
+    if n == 0 {
+        return Ok(Vec::new());
+    }
+    let lead = c[n];
+    if lead == 0.0 || !lead.is_finite() {
+        return Err(Error::Numerical("leading coefficient is zero".into()));
+    }
+    let mut m = DMatrix::<f64>::zeros(n, n);
+    for j in 0..n {
+        m[(0, j)] = -c[n - 1 - j] / lead;
+    }
+    for i in 1..n {
+        m[(i, i - 1)] = 1.0;
+    }
+    let schur = Schur::try_new(m, f64::EPSILON, 10_000 * n.max(10))
+        .ok_or_else(|| Error::Numerical("companion-matrix eigenvalues did not converge".into()))?;
+    let mut r: Vec<Complex64> = schur
+        .complex_eigenvalues()
+        .iter()
+        .map(|z| Complex64::new(z.re, z.im))
+        .collect();
+    for z in r.iter_mut() {
+        *z = polish(c, *z);
+    }
+    r.sort_by(|a, b| b.norm().total_cmp(&a.norm()).then(b.im.total_cmp(&a.im)));
+    Ok(r)
+}
+
+fn polish(c: &[f64], mut z: Complex64) -> Complex64 {
+    let (mut p, _) = horner(c, z);
+    for _ in 0..4 {
+        let (_, dp) = horner(c, z);
+        if dp.norm() == 0.0 {
+            break;
+        }
+        let cand = z - p / dp;
+        let (pc, _) = horner(c, cand);
+        if pc.norm() < p.norm() {
+            z = cand;
+            p = pc;
+        } else {
+            break;
+        }
+    }
+    z
+}
+
+/// The full answer of the stability test of Section V for one parameter set.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Analysis {
+    /// Stable / marginal / unstable (from the Schur–Cohn test with the marginal band).
+    pub verdict: Verdict,
+    /// Largest root modulus of p(z) (from the roots).
+    pub spectral_radius: f64,
+    /// Roots of p(z), largest modulus first.
+    pub roots: Vec<Complex64>,
+}
+
+impl Analysis {
+    /// Runs the algebraic test and the root finder on the closed loop of `params`.
+    pub fn new(params: Normalized) -> Result<Self> {
+        let cl = ClosedLoop::new(params)?;
+        Self::of_poly(&cl.poly)
+    }
+
+    /// As [`Analysis::new`] for given ascending coefficients.
+    pub fn of_poly(c: &[f64]) -> Result<Self> {
+        let verdict = classify(c);
+        let roots = roots(c)?;
+        let spectral_radius = roots.iter().map(|z| z.norm()).fold(0.0, f64::max);
+        Ok(Self {
+            verdict,
+            spectral_radius,
+            roots,
+        })
+    }
+
+    /// True iff the verdict is `Stable`.
+    pub fn stable(&self) -> bool {
+        self.verdict == Verdict::Stable
+    }
+}
+
+/// Fast stability check of one normalized parameter set by the Schur–Cohn test (strict:
+/// every root inside |z| < 1).
+pub fn is_stable(params: &Normalized) -> Result<bool> {
+    let cl = ClosedLoop::new(*params)?;
+    Ok(schur_stable(&cl.poly))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly_from_roots(rs: &[f64]) -> Vec<f64> {
+        let mut c = vec![1.0];
+        for &r in rs {
+            let mut n = vec![0.0; c.len() + 1];
+            for (i, ci) in c.iter().enumerate() {
+                n[i + 1] += ci;
+                n[i] -= r * ci;
+            }
+            c = n;
+        }
+        c
+    }
+
+    #[test]
+    fn schur_on_known_roots() {
+        assert!(schur_stable(&poly_from_roots(&[0.5, -0.9, 0.99])));
+        assert!(!schur_stable(&poly_from_roots(&[0.5, -1.01, 0.2])));
+        assert!(!schur_stable(&poly_from_roots(&[0.5, 1.0, 0.2])));
+        assert_eq!(classify(&poly_from_roots(&[0.5, 1.0 + 1e-8])), Verdict::Unstable);
+        assert_eq!(classify(&poly_from_roots(&[0.5, 1.0 - 1e-8])), Verdict::Stable);
+        assert_eq!(classify(&poly_from_roots(&[0.5, 1.0])), Verdict::Marginal);
+        let rho = spectral_radius_schur(&poly_from_roots(&[0.3, -0.7, 0.25]));
+        assert!((rho - 0.7).abs() < 1e-14, "{rho}");
+    }
+
+    #[test]
+    fn roots_of_known_polynomial() {
+        let r = roots(&poly_from_roots(&[0.5, -0.25, 0.75])).unwrap();
+        let mut re: Vec<f64> = r.iter().map(|z| z.re).collect();
+        re.sort_by(f64::total_cmp);
+        assert!((re[0] + 0.25).abs() < 1e-15 && (re[2] - 0.75).abs() < 1e-15);
+    }
+}
