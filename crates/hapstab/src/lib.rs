@@ -20,10 +20,12 @@
 //! assert_eq!(a.verdict, Verdict::Stable);
 //! ```
 
+pub mod boundary;
 pub mod closed_loop;
 pub mod error;
 pub mod params;
 pub mod plant;
+pub mod simulation;
 pub mod stability;
 
 pub use closed_loop::{ClosedLoop, PolyFamily};
