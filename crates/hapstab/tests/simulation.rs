@@ -6,7 +6,7 @@ use hapstab::simulation::{
     BoundarySearch, Config, Contact, Effects, Friction, HumanForce, Model, Outcome, StableWhen,
     empirical_boundary, linear_alpha_limit, linear_growth, simulate,
 };
-use hapstab::{Analysis, Error, Normalized, PlantParams};
+use hapstab::{Analysis, ClosedLoop, Error, Normalized, PlantParams};
 
 /// SplitMix64: a seeded generator, so the "random" points are the same on every run.
 struct SplitMix(u64);
@@ -94,12 +94,58 @@ fn linear_growth_equals_spectral_radius_at_random_points() {
         big_state += (d + 3 > 6) as usize;
     }
     // The sample must cover both verdicts, complex pairs and iterated (not exact) blocks.
-    assert!(stable >= 10 && stable <= 40, "stable points: {stable}");
+    assert!((10..=40).contains(&stable), "stable points: {stable}");
     assert!(
         complex_dominant >= 10,
         "complex dominant pairs: {complex_dominant}"
     );
     assert!(big_state >= 5, "states larger than the block: {big_state}");
+}
+
+/// The run loop itself (ring-buffer delay line, wall law, ZOH step) reproduces eq. (9): by
+/// Cayley–Hamilton every trajectory of the unforced linear loop satisfies the recurrence
+/// Σ c_i x[k+i] = 0 with the coefficients c of p(z) from `ClosedLoop` (eq. 7–9).
+#[test]
+fn run_satisfies_the_characteristic_recurrence() {
+    for &(alpha, beta, gamma, delta, d) in &[
+        (0.1, 0.3, 0.0, 0.0, 0),
+        (0.05, 0.1, 1e-3, 0.015, 1),
+        (0.3, 0.2, 0.2, 0.5, 2),
+        (0.9, 0.05, 1e-4, 0.0, 4),
+    ] {
+        let p = Normalized::new(alpha, beta, gamma, delta, d).unwrap();
+        let c = ClosedLoop::new(p).unwrap().poly;
+        let mut cfg = Config::new(Model::new(p, M, T).unwrap(), 300);
+        cfg.initial.position = 1e-3;
+        cfg.initial.velocity = -0.02;
+        let x = traced(cfg).position;
+        for k in 0..x.len() - c.len() {
+            let (mut sum, mut scale) = (0.0, 0.0);
+            for (i, ci) in c.iter().enumerate() {
+                sum += ci * x[k + i];
+                scale += (ci * x[k + i]).abs();
+            }
+            assert!(sum.abs() <= 1e-12 * scale, "{p:?} k={k}: {sum} vs {scale}");
+        }
+    }
+}
+
+/// A stable linear run pushed with F_H settles where K(x − x_w) + k x = F_H.
+#[test]
+fn stable_run_settles_at_the_static_equilibrium() {
+    let (alpha, beta, gamma, delta, d) = (0.05, 0.2, 1e-3, 0.01, 1);
+    let (kw, ka) = (alpha * M / (T * T), gamma * M / (T * T));
+    let mut cfg = Config::new(model(alpha, beta, gamma, delta, d), 20_000);
+    cfg.effects.wall_position = 0.01;
+    cfg.human = HumanForce::Constant(2.0);
+    let r = simulate(&cfg).unwrap();
+    let expect = (2.0 + kw * 0.01) / (kw + ka);
+    assert!(
+        rel(r.final_position, expect) < 1e-9,
+        "{} vs {expect}",
+        r.final_position
+    );
+    assert_eq!(r.verdict, Outcome::Decaying);
 }
 
 /// The dominant mode's frequency from the simulator is |arg λ|/(2πT) of the dominant root.
