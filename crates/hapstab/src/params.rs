@@ -18,6 +18,14 @@ pub struct Device {
     pub damping: f64,
 }
 
+impl Device {
+    /// A PHANToM-like device as in Remark 4: m_L = 0.1 kg, b_L = 1.5 Ns/m.
+    pub const PHANTOM_LIKE: Device = Device {
+        mass: 0.1,
+        damping: 1.5,
+    };
+}
+
 /// The human arm as a mass-spring-damper (Section II, Fig. 1).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Arm {
@@ -30,6 +38,14 @@ pub struct Arm {
 }
 
 impl Arm {
+    /// A typical grasping arm inside the ranges of eq. (11): m_H = 1 kg, b_H = 6 Ns/m
+    /// (b_H/m_H = 6 s⁻¹ < 12.6 s⁻¹), k_H = 350 N/m (k_H/m_H = 350 s⁻² < 710 s⁻²).
+    pub const TYPICAL: Arm = Arm {
+        mass: 1.0,
+        damping: 6.0,
+        stiffness: 350.0,
+    };
+
     /// An ungrabbed device: k_H = b_H = m_H = 0 (Section IV permits this case).
     pub const NONE: Arm = Arm {
         mass: 0.0,
