@@ -103,7 +103,11 @@ pub fn alpha_crossings(fam: &PolyFamily, beta: f64) -> Vec<f64> {
     let mut prev_t = 1e-9 * h;
     let mut prev = f(prev_t);
     for i in 1..=m {
-        let t = if i == m { std::f64::consts::PI * (1.0 - 1e-12) } else { i as f64 * h };
+        let t = if i == m {
+            std::f64::consts::PI * (1.0 - 1e-12)
+        } else {
+            i as f64 * h
+        };
         let v = f(t);
         if v == 0.0 || (v > 0.0) != (prev > 0.0) {
             let tr = if v == 0.0 { t } else { bisect(prev_t, t, f) };
@@ -188,7 +192,10 @@ mod tests {
         for t in [0.01, 0.5, 1.0, 2.0, 3.0] {
             let p = curve_point(&fam, t).unwrap();
             let v = fam.eval(p.alpha, p.beta, Complex64::from_polar(1.0, t));
-            assert!(v.norm() < 1e-14 * (1.0 + p.alpha.abs() + p.beta.abs()), "{v}");
+            assert!(
+                v.norm() < 1e-14 * (1.0 + p.alpha.abs() + p.beta.abs()),
+                "{v}"
+            );
         }
     }
 }

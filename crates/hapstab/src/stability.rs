@@ -249,8 +249,14 @@ mod tests {
         assert!(schur_stable(&poly_from_roots(&[0.5, -0.9, 0.99])));
         assert!(!schur_stable(&poly_from_roots(&[0.5, -1.01, 0.2])));
         assert!(!schur_stable(&poly_from_roots(&[0.5, 1.0, 0.2])));
-        assert_eq!(classify(&poly_from_roots(&[0.5, 1.0 + 1e-8])), Verdict::Unstable);
-        assert_eq!(classify(&poly_from_roots(&[0.5, 1.0 - 1e-8])), Verdict::Stable);
+        assert_eq!(
+            classify(&poly_from_roots(&[0.5, 1.0 + 1e-8])),
+            Verdict::Unstable
+        );
+        assert_eq!(
+            classify(&poly_from_roots(&[0.5, 1.0 - 1e-8])),
+            Verdict::Stable
+        );
         assert_eq!(classify(&poly_from_roots(&[0.5, 1.0])), Verdict::Marginal);
         let rho = spectral_radius_schur(&poly_from_roots(&[0.3, -0.7, 0.25]));
         assert!((rho - 0.7).abs() < 1e-14, "{rho}");

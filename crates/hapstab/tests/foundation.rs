@@ -3,9 +3,7 @@
 
 use hapstab::closed_loop::PolyFamily;
 use hapstab::plant::{DiscretePlant, eq10_coefficients};
-use hapstab::stability::{
-    Analysis, Verdict, classify, roots, schur_stable, spectral_radius_schur,
-};
+use hapstab::stability::{Analysis, Verdict, classify, roots, schur_stable, spectral_radius_schur};
 use hapstab::{Normalized, PlantParams};
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -32,8 +30,16 @@ fn pure_mass_boundary_closed_form() {
     let beta_star = 2.0 * 2f64.sqrt() - 2.0;
     for &beta in &[0.05, 0.3, beta_star, 1.0, 1.5, 1.9] {
         let a = pure_mass_alpha(beta);
-        assert_eq!(verdict(a * (1.0 - 1e-6), beta, 0.0, 0.0, 0), Verdict::Stable, "β={beta}");
-        assert_eq!(verdict(a * (1.0 + 1e-6), beta, 0.0, 0.0, 0), Verdict::Unstable, "β={beta}");
+        assert_eq!(
+            verdict(a * (1.0 - 1e-6), beta, 0.0, 0.0, 0),
+            Verdict::Stable,
+            "β={beta}"
+        );
+        assert_eq!(
+            verdict(a * (1.0 + 1e-6), beta, 0.0, 0.0, 0),
+            Verdict::Unstable,
+            "β={beta}"
+        );
         // the left boundary is α = 0 (= −γ)
         assert_eq!(verdict(1e-6 * a, beta, 0.0, 0.0, 0), Verdict::Stable);
         assert_eq!(verdict(-1e-6 * a, beta, 0.0, 0.0, 0), Verdict::Unstable);
@@ -47,12 +53,22 @@ fn pure_mass_boundary_closed_form() {
 
 #[test]
 fn zero_order_hold_keeps_dc_gain() {
-    for &(g, d) in &[(1e-3, 0.0), (1e-3, 0.015), (0.1, 0.5), (2.0, 1.0), (9.0, 0.0), (30.0, 4.0)] {
+    for &(g, d) in &[
+        (1e-3, 0.0),
+        (1e-3, 0.015),
+        (0.1, 0.5),
+        (2.0, 1.0),
+        (9.0, 0.0),
+        (30.0, 4.0),
+    ] {
         let p = DiscretePlant::new(g, d).unwrap();
         let n1 = p.n1 + p.n0;
         let d1 = 1.0 - p.a1 + p.a0;
         // D(1) from the coefficients loses ~|log10 γ| digits to cancellation.
-        assert!(rel(n1 / d1, 1.0 / g) < 1e-15 / g.min(1.0) * 10.0, "γ={g} δ={d}");
+        assert!(
+            rel(n1 / d1, 1.0 / g) < 1e-15 / g.min(1.0) * 10.0,
+            "γ={g} δ={d}"
+        );
         assert!(rel(p.numerator_at_one(), n1) < 1e-14);
         // a root at z = 1 appears exactly at α = −γ
         for dd in [0usize, 1, 3] {
@@ -61,7 +77,10 @@ fn zero_order_hold_keeps_dc_gain() {
             let p1: f64 = c.iter().sum();
             assert!(p1.abs() < 1e-14, "p(1) = {p1}");
             let r = roots(&c).unwrap();
-            let closest = r.iter().map(|z| (z - 1.0).norm()).fold(f64::INFINITY, f64::min);
+            let closest = r
+                .iter()
+                .map(|z| (z - 1.0).norm())
+                .fold(f64::INFINITY, f64::min);
             assert!(closest < 1e-9, "γ={g} δ={d} d={dd}: {closest}");
             assert_eq!(fam.value_at_one(-g), 0.0);
         }
@@ -181,15 +200,29 @@ fn algebraic_test_agrees_with_roots_on_100k_points() {
         },
         TestRng::deterministic_rng(RngAlgorithm::ChaCha),
     );
-    let strat = (0usize..=20, 0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0);
+    let strat = (
+        0usize..=20,
+        0.0f64..1.0,
+        0.0f64..1.0,
+        0.0f64..1.0,
+        0.0f64..1.0,
+    );
     runner
         .run(&strat, |(d, ua, ub, ug, ud)| {
             // Scale α with the delay so that both verdicts are common.
             let t = d as f64 + 0.5;
             let alpha = -0.01 + ua * 0.4 / t;
             let beta = -0.05 + ub * 1.2 / t.sqrt();
-            let gamma = if ug < 0.3 { 0.0 } else { 10f64.powf(-6.0 + 6.0 * ug) };
-            let delta = if ud < 0.3 { 0.0 } else { 10f64.powf(-4.0 + 4.0 * ud) };
+            let gamma = if ug < 0.3 {
+                0.0
+            } else {
+                10f64.powf(-6.0 + 6.0 * ug)
+            };
+            let delta = if ud < 0.3 {
+                0.0
+            } else {
+                10f64.powf(-4.0 + 4.0 * ud)
+            };
             let c = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
                 .unwrap()
                 .coefficients(alpha, beta);
@@ -199,7 +232,17 @@ fn algebraic_test_agrees_with_roots_on_100k_points() {
                 return Ok(());
             }
             counted.set(counted.get() + 1);
-            prop_assert_eq!(schur_stable(&c), rho < 1.0, "d={} α={} β={} γ={} δ={} ρ={}", d, alpha, beta, gamma, delta, rho);
+            prop_assert_eq!(
+                schur_stable(&c),
+                rho < 1.0,
+                "d={} α={} β={} γ={} δ={} ρ={}",
+                d,
+                alpha,
+                beta,
+                gamma,
+                delta,
+                rho
+            );
             if rho < 1.0 {
                 stable.set(stable.get() + 1);
             }
@@ -208,7 +251,10 @@ fn algebraic_test_agrees_with_roots_on_100k_points() {
         .unwrap();
     let (n, s) = (counted.get(), stable.get());
     assert!(n >= 100_000, "only {n} points compared");
-    assert!(s > n / 10 && s < n * 9 / 10, "unbalanced sample: {s} stable of {n}");
+    assert!(
+        s > n / 10 && s < n * 9 / 10,
+        "unbalanced sample: {s} stable of {n}"
+    );
 }
 
 #[test]
@@ -217,15 +263,30 @@ fn spectral_radius_two_ways() {
         Config::with_cases(3000),
         TestRng::deterministic_rng(RngAlgorithm::ChaCha),
     );
-    let strat = (0usize..=10, -0.1f64..1.0, -0.3f64..2.0, 0.0f64..0.01, 0.0f64..0.1);
+    let strat = (
+        0usize..=10,
+        -0.1f64..1.0,
+        -0.3f64..2.0,
+        0.0f64..0.01,
+        0.0f64..0.1,
+    );
     runner
         .run(&strat, |(d, alpha, beta, gamma, delta)| {
             let c = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
                 .unwrap()
                 .coefficients(alpha, beta);
-            let rho_roots = roots(&c).unwrap().iter().map(|z| z.norm()).fold(0.0, f64::max);
+            let rho_roots = roots(&c)
+                .unwrap()
+                .iter()
+                .map(|z| z.norm())
+                .fold(0.0, f64::max);
             let rho_schur = spectral_radius_schur(&c);
-            prop_assert!((rho_roots - rho_schur).abs() < 1e-9 * rho_schur.max(1.0), "{} vs {}", rho_roots, rho_schur);
+            prop_assert!(
+                (rho_roots - rho_schur).abs() < 1e-9 * rho_schur.max(1.0),
+                "{} vs {}",
+                rho_roots,
+                rho_schur
+            );
             Ok(())
         })
         .unwrap();
@@ -240,12 +301,23 @@ fn marginal_band_is_narrow() {
     let a0 = pure_mass_alpha(beta);
     let rho = |a: f64| spectral_radius_schur(&fam.coefficients(a, beta));
     assert_eq!(classify(&fam.coefficients(a0, beta)), Verdict::Marginal);
-    for (target, want) in [(1.0 + 1e-8, Verdict::Unstable), (1.0 - 1e-8, Verdict::Stable)] {
+    for (target, want) in [
+        (1.0 + 1e-8, Verdict::Unstable),
+        (1.0 - 1e-8, Verdict::Stable),
+    ] {
         // bisection on α for ρ(α) = target
-        let (mut lo, mut hi) = if want == Verdict::Unstable { (a0, a0 * 1.1) } else { (a0 * 0.9, a0) };
+        let (mut lo, mut hi) = if want == Verdict::Unstable {
+            (a0, a0 * 1.1)
+        } else {
+            (a0 * 0.9, a0)
+        };
         for _ in 0..80 {
             let mid = 0.5 * (lo + hi);
-            if rho(mid) < target { lo = mid } else { hi = mid }
+            if rho(mid) < target {
+                lo = mid
+            } else {
+                hi = mid
+            }
         }
         let c = fam.coefficients(0.5 * (lo + hi), beta);
         assert!((rho(0.5 * (lo + hi)) - target).abs() < 1e-12);
@@ -271,7 +343,12 @@ fn large_delay_up_to_1000() {
             }
             let a = Analysis::of_poly(c).unwrap();
             assert_eq!(a.roots.len(), d + 3);
-            assert_eq!(a.spectral_radius < 1.0, want_stable, "d={d} ρ={}", a.spectral_radius);
+            assert_eq!(
+                a.spectral_radius < 1.0,
+                want_stable,
+                "d={d} ρ={}",
+                a.spectral_radius
+            );
             assert!((a.spectral_radius - spectral_radius_schur(c)).abs() < 1e-9);
         }
     }
