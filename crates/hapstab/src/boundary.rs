@@ -52,7 +52,7 @@ pub fn minus_one_line(fam: &PolyFamily) -> Option<(f64, f64)> {
         return None;
     }
     let dm1 = 1.0 + pl.a1 + pl.a0;
-    let sign = if (fam.d + 1) % 2 == 0 { 1.0 } else { -1.0 };
+    let sign = if (fam.d + 1).is_multiple_of(2) { 1.0 } else { -1.0 };
     Some((2.0, sign * dm1 / n))
 }
 

@@ -210,8 +210,8 @@ mod tests {
     #[test]
     fn undamped_oscillator_closed_form() {
         // δ = 0: n1 = n0 = (1 − cos ω)/ω² = 2 sin²(ω/2)/ω², a1 = 2 cos ω, a0 = 1.
-        for &g in &[1e-8, 1e-3, 0.3, 2.0, 9.0, 30.0] {
-            let w: f64 = (g as f64).sqrt();
+        for &g in &[1e-8_f64, 1e-3, 0.3, 2.0, 9.0, 30.0] {
+            let w: f64 = g.sqrt();
             let expect = 2.0 * (w / 2.0).sin().powi(2) / g;
             let p = DiscretePlant::new(g, 0.0).unwrap();
             assert!(rel(p.n1, expect) < 1e-14, "g={g} n1 {} vs {}", p.n1, expect);

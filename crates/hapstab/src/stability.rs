@@ -77,7 +77,7 @@ fn schur_core(c: &[f64], r: f64, a: &mut [f64], b: &mut [f64]) -> bool {
             return false;
         }
         let k = a[0] / an;
-        if !(k.abs() < 1.0) {
+        if k.is_nan() || k.abs() >= 1.0 {
             return false;
         }
         for j in 0..n {
