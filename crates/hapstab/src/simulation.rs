@@ -587,7 +587,8 @@ struct Stats {
 
 impl Stats {
     fn new(planned: usize, windows: usize) -> Self {
-        let window = planned.div_ceil(windows).max(1);
+        // At least 4 samples per window, so that a window's half-range means something.
+        let window = planned.div_ceil(windows).max(4);
         Self {
             window,
             cur: Window::empty(0),
@@ -639,7 +640,9 @@ impl Stats {
 }
 
 /// The time-domain simulator of Fig. 3 (see the module documentation). Stepping is
-/// allocation-free: the delay line is a ring buffer of sensed positions.
+/// allocation-free: the delay line is a ring buffer of sensed positions and the envelope
+/// statistics are preallocated for `Config::samples` (advancing beyond that only appends
+/// more envelope windows); a trace, if requested, is preallocated too.
 #[derive(Debug, Clone)]
 pub struct Simulator {
     kernel: Kernel,
@@ -982,7 +985,7 @@ fn envelope_fit(
         .filter(|r| r.is_finite())
         .fold(0.0, f64::max);
     let floor = 1e-9 * peak;
-    let half = &ws[ws.len().min(ws.len() / 2)..];
+    let half = &ws[ws.len() / 2..];
     let half = if half.len() < 2 { &ws[..] } else { half };
     let fit = log_slope(half, floor);
     let growth = fit.map(|(s, _)| s.exp());
