@@ -23,8 +23,10 @@
 pub mod boundary;
 pub mod closed_loop;
 pub mod error;
+pub mod linear;
 pub mod params;
 pub mod plant;
+pub mod ranges;
 pub mod simulation;
 pub mod stability;
 

@@ -1,0 +1,392 @@
+//! The linear stability condition (Section VI, eq. 16–23) and its validity against the exact
+//! boundary (Section VII, eq. 24, Fig. 7).
+//!
+//! Approximating sample-and-hold by half a sample of delay and e^{−t_r s} ≈ 1/(1 + t_r s),
+//! t_r = t_d + T/2, turns the loop into the cubic of eq. (17),
+//!
+//! ```text
+//! m t_r s³ + (b t_r + m) s² + (k t_r + b + B) s + k + K = 0,
+//! ```
+//!
+//! whose Routh–Hurwitz conditions are (18)–(20). Dropping the small term ε of eq. (21) gives
+//! the linear condition (22) K < (b + B)/t_r, in normalized form (23) α < (β + δ)/(d + 1/2),
+//! together with the lower bound (19) K > −k, α > −γ.
+
+use serde::Serialize;
+
+use crate::boundary::stable_alpha_intervals;
+use crate::closed_loop::PolyFamily;
+use crate::error::{Error, Result, finite};
+use crate::params::{Normalized, Physical, PlantParams, check_delay};
+
+/// The cubic a3 s³ + a2 s² + a1 s + a0 of eq. (17).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Cubic {
+    /// Coefficient of s³: m t_r.
+    pub a3: f64,
+    /// Coefficient of s²: b t_r + m.
+    pub a2: f64,
+    /// Coefficient of s: k t_r + b + B.
+    pub a1: f64,
+    /// Constant: k + K.
+    pub a0: f64,
+}
+
+/// The cubic of eq. (17) in physical units (s in 1/s), from the approximation of eq. (16)
+/// with t_r = t_d + T/2 and e^{−t_r s} ≈ 1/(1 + t_r s) (Section VI).
+pub fn continuous_cubic(p: &Physical) -> Cubic {
+    let (m, b, k) = (p.plant.mass, p.plant.damping, p.plant.stiffness);
+    let (kw, bw) = (p.wall.stiffness, p.wall.damping);
+    let tr = effective_delay(p);
+    Cubic {
+        a3: m * tr,
+        a2: b * tr + m,
+        a1: k * tr + b + bw,
+        a0: k + kw,
+    }
+}
+
+/// The cubic of eq. (17) in normalized units (time unit T, divided by m/T²): with
+/// t_r/T = d + 1/2 it reads (d + ½) s³ + (δ(d + ½) + 1) s² + (γ(d + ½) + δ + β) s + γ + α
+/// (Section VI with Table I).
+pub fn continuous_cubic_normalized(n: &Normalized) -> Cubic {
+    let tr = n.d as f64 + 0.5;
+    Cubic {
+        a3: tr,
+        a2: n.delta * tr + 1.0,
+        a1: n.gamma * tr + n.delta + n.beta,
+        a0: n.gamma + n.alpha,
+    }
+}
+
+/// The effective delay t_r = t_d + T/2 of eq. (16)–(17) in seconds.
+pub fn effective_delay(p: &Physical) -> f64 {
+    p.sampling.delay_time() + p.sampling.period / 2.0
+}
+
+/// One inequality `lhs > rhs`, reported with its margin lhs − rhs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Inequality {
+    /// Left-hand side.
+    pub lhs: f64,
+    /// Right-hand side.
+    pub rhs: f64,
+    /// lhs − rhs.
+    pub margin: f64,
+    /// lhs > rhs.
+    pub holds: bool,
+}
+
+impl Inequality {
+    fn new(lhs: f64, rhs: f64) -> Self {
+        Self {
+            lhs,
+            rhs,
+            margin: lhs - rhs,
+            holds: lhs > rhs,
+        }
+    }
+}
+
+/// The Routh–Hurwitz conditions (18)–(20) of the cubic (17) for positive m, T, t_d, b, k
+/// (Section VI). The fourth condition of a cubic, a2 = b t_r + m > 0, holds for every
+/// physical plant.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RouthHurwitz {
+    /// Eq. (18): b + B > −k t_r (a1 > 0).
+    pub eq18: Inequality,
+    /// Eq. (19): K > −k (a0 > 0).
+    pub eq19: Inequality,
+    /// Eq. (20): b t_r (b + B + k t_r) + m (b + B − K t_r) > 0 (a2 a1 > a3 a0).
+    pub eq20: Inequality,
+    /// All three hold: the cubic (17) is Hurwitz.
+    pub stable: bool,
+}
+
+/// Eq. (18)–(20) for a physical parameter set (Section VI).
+pub fn routh_hurwitz(p: &Physical) -> RouthHurwitz {
+    let (m, b, k) = (p.plant.mass, p.plant.damping, p.plant.stiffness);
+    let (kw, bw) = (p.wall.stiffness, p.wall.damping);
+    let tr = effective_delay(p);
+    rh_from(m, b, k, kw, bw, tr)
+}
+
+/// Eq. (18)–(20) in normalized units (m = T = 1, t_r = d + ½, K → α, B → β, k → γ, b → δ)
+/// (Section VI with Table I).
+pub fn routh_hurwitz_normalized(n: &Normalized) -> RouthHurwitz {
+    rh_from(1.0, n.delta, n.gamma, n.alpha, n.beta, n.d as f64 + 0.5)
+}
+
+fn rh_from(m: f64, b: f64, k: f64, kw: f64, bw: f64, tr: f64) -> RouthHurwitz {
+    let eq18 = Inequality::new(b + bw, -k * tr);
+    let eq19 = Inequality::new(kw, -k);
+    let eq20 = Inequality::new(b * tr * (b + bw + k * tr) + m * (b + bw - kw * tr), 0.0);
+    RouthHurwitz {
+        eq18,
+        eq19,
+        eq20,
+        stable: eq18.holds && eq19.holds && eq20.holds,
+    }
+}
+
+/// The term ε = b t_r (b + B + k t_r)/m of eq. (21) that the linear condition (22) neglects.
+pub fn epsilon(p: &Physical) -> f64 {
+    let (m, b, k) = (p.plant.mass, p.plant.damping, p.plant.stiffness);
+    let tr = effective_delay(p);
+    b * tr * (b + p.wall.damping + k * tr) / m
+}
+
+/// The linear condition (22): the largest virtual stiffness K = (b + B)/(t_d + T/2) in N/m.
+pub fn linear_stiffness_limit(p: &Physical) -> f64 {
+    (p.plant.damping + p.wall.damping) / effective_delay(p)
+}
+
+/// The lower bound (19): K > −k, in N/m.
+pub fn lower_stiffness_limit(p: &Physical) -> f64 {
+    -p.plant.stiffness
+}
+
+/// The normalized linear condition (23): α_lin = (β + δ)/(d + 1/2), the upper end.
+pub fn linear_alpha_limit(beta: f64, delta: f64, d: usize) -> f64 {
+    (beta + delta) / (d as f64 + 0.5)
+}
+
+/// The normalized lower bound (19): α > −γ.
+pub fn lower_alpha_limit(gamma: f64) -> f64 {
+    -gamma
+}
+
+/// The linear conditions (19) and (22)/(23) for one parameter set.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LinearCheck {
+    /// Lower bound of α from (19): −γ.
+    pub alpha_lower: f64,
+    /// Upper bound of α from (23): (β + δ)/(d + ½).
+    pub alpha_upper: f64,
+    /// −γ < α < (β + δ)/(d + ½).
+    pub satisfied: bool,
+}
+
+/// Checks (19) and (23) for normalized parameters (Sections VI–VII).
+pub fn linear_check(n: &Normalized) -> LinearCheck {
+    let alpha_lower = lower_alpha_limit(n.gamma);
+    let alpha_upper = linear_alpha_limit(n.beta, n.delta, n.d);
+    LinearCheck {
+        alpha_lower,
+        alpha_upper,
+        satisfied: alpha_lower < n.alpha && n.alpha < alpha_upper,
+    }
+}
+
+/// The upper end of the exact stable α-interval at β that starts on the left boundary
+/// α = −γ (Section V, Fig. 5), from the D-decomposition of
+/// [`crate::boundary::stable_alpha_intervals`]; None when no stable interval starts at −γ.
+pub fn exact_upper_alpha(fam: &PolyFamily, beta: f64) -> Option<f64> {
+    let g = fam.plant.gamma;
+    let tol = 1e-12 * g.max(1e-300) + 1e-300;
+    stable_alpha_intervals(fam, beta)
+        .into_iter()
+        .find(|iv| iv.lo <= -g + tol && iv.hi > -g)
+        .map(|iv| iv.hi)
+}
+
+/// The relative error of eq. (24), |(α_lin − α)/(α + γ)|, at β: α on the exact upper
+/// boundary ([`exact_upper_alpha`]) and α_lin from (23) (Section VII). None where no stable
+/// interval starts at α = −γ.
+pub fn relative_error(fam: &PolyFamily, beta: f64) -> Option<f64> {
+    let a = exact_upper_alpha(fam, beta)?;
+    let lin = linear_alpha_limit(beta, fam.plant.delta, fam.d);
+    Some(((lin - a) / (a + fam.plant.gamma)).abs())
+}
+
+/// A point of the exact boundary where the error (24) first reaches a level (Fig. 7).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ValidityPoint {
+    /// The error level, e.g. 0.02.
+    pub level: f64,
+    /// α on the exact upper boundary at `beta`.
+    pub alpha: f64,
+    /// The smallest β > 0 at which the error (24) reaches `level`.
+    pub beta: f64,
+    /// α_lin of (23) at `beta`.
+    pub alpha_linear: f64,
+    /// The error (24) at `beta` (equals `level` up to the tolerance).
+    pub error: f64,
+    /// True when the error is at or above `level` already at the first sample β₀ > 0
+    /// ([`VALIDITY_BETA_START`]): the linear condition never holds to this level.
+    pub at_start: bool,
+}
+
+/// First β of the scan for the validity points: the scan starts at β₀ = 1e-7 (β = 0⁺).
+pub const VALIDITY_BETA_START: f64 = 1e-7;
+/// Ratio of the geometric β scan that brackets a level before bisection.
+const SCAN_RATIO: f64 = 1.01;
+/// Relative tolerance on β of the bisection (well below the required 1e-9).
+const BETA_TOL: f64 = 1e-13;
+
+/// The β and α at which the relative error (24) first reaches each level, going up from
+/// β = 0⁺ (Section VII, Fig. 7 circles and squares).
+///
+/// The error is sampled on a geometric grid β₀·1.01ᵏ from β₀ = [`VALIDITY_BETA_START`]
+/// (the error grows roughly linearly in β from its value at 0⁺, so a geometric grid resolves
+/// it uniformly), the first sample at or above the level brackets the crossing with the
+/// previous one, and bisection refines β to 1e-13 relative. Where the stable interval at −γ
+/// ends (β beyond the region) the error counts as infinite. Every α(β) is exact by
+/// D-decomposition. Levels must be finite and > 0.
+pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<ValidityPoint>> {
+    check_delay(d)?;
+    for &l in levels {
+        finite("level", l)?;
+        if l <= 0.0 {
+            return Err(Error::NotPositive {
+                name: "level",
+                value: l,
+            });
+        }
+    }
+    let fam = PolyFamily::new(pp, d)?;
+    let err = |b: f64| relative_error(&fam, b).unwrap_or(f64::INFINITY);
+    // The region ends where the closed-form z = −1 bound and the Schur bound |β| < 1/|n0|
+    // make it; stop the scan well beyond (no stable region at β ≥ 1/|n0|: |p(0)| = |n0 β|).
+    let beta_cap = if fam.plant.n0.abs() > 0.0 {
+        1.0 / fam.plant.n0.abs()
+    } else {
+        f64::INFINITY
+    };
+    let mut out = Vec::with_capacity(levels.len());
+    for &level in levels {
+        let b0 = VALIDITY_BETA_START;
+        let e0 = err(b0);
+        if e0 >= level {
+            out.push(point(&fam, level, b0, true));
+            continue;
+        }
+        let mut lo = b0;
+        let mut hi = b0;
+        let mut found = false;
+        while hi < beta_cap * 1.01 {
+            hi = lo * SCAN_RATIO;
+            if err(hi) >= level {
+                found = true;
+                break;
+            }
+            lo = hi;
+        }
+        if !found {
+            return Err(Error::Numerical(format!(
+                "relative error (24) never reaches {level} below beta = {beta_cap}"
+            )));
+        }
+        while hi - lo > BETA_TOL * hi {
+            let m = 0.5 * (lo + hi);
+            if m <= lo || m >= hi {
+                break;
+            }
+            if err(m) >= level {
+                hi = m;
+            } else {
+                lo = m;
+            }
+        }
+        // The last point below the level, where α is finite and on the boundary; at the
+        // tolerance both ends agree to 1e-13 relative.
+        let p = point(&fam, level, lo, false);
+        let miss = (p.error - level).abs();
+        if miss.is_nan() || miss > 1e-6 * level {
+            return Err(Error::Numerical(format!(
+                "relative error (24) jumps across {level} at beta = {lo} (the stable interval at -gamma ends there)"
+            )));
+        }
+        out.push(p);
+    }
+    Ok(out)
+}
+
+fn point(fam: &PolyFamily, level: f64, beta: f64, at_start: bool) -> ValidityPoint {
+    let alpha = exact_upper_alpha(fam, beta).unwrap_or(f64::NAN);
+    let alpha_linear = linear_alpha_limit(beta, fam.plant.delta, fam.d);
+    ValidityPoint {
+        level,
+        alpha,
+        beta,
+        alpha_linear,
+        error: ((alpha_linear - alpha) / (alpha + fam.plant.gamma)).abs(),
+        at_start,
+    }
+}
+
+/// One sample of the error curve (24) as a function of β (Section VII).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ErrorSample {
+    /// β.
+    pub beta: f64,
+    /// Exact upper α (None outside the stable region).
+    pub alpha: Option<f64>,
+    /// α_lin of (23).
+    pub alpha_linear: f64,
+    /// The error (24) (None outside the stable region).
+    pub error: Option<f64>,
+}
+
+/// The error (24) sampled at the given β values (Section VII).
+pub fn error_curve(pp: PlantParams, d: usize, betas: &[f64]) -> Result<Vec<ErrorSample>> {
+    let fam = PolyFamily::new(pp, d)?;
+    betas
+        .iter()
+        .map(|&b| {
+            finite("beta", b)?;
+            let alpha = exact_upper_alpha(&fam, b);
+            let alpha_linear = linear_alpha_limit(b, pp.delta, d);
+            Ok(ErrorSample {
+                beta: b,
+                alpha,
+                alpha_linear,
+                error: alpha.map(|a| ((alpha_linear - a) / (a + pp.gamma)).abs()),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::{Effective, Sampling, Wall};
+
+    #[test]
+    fn cubic_scales_to_normalized() {
+        let (m, t) = (1.3, 1e-3);
+        let n = Normalized::new(0.02, 0.3, 1e-3, 0.01, 2).unwrap();
+        let p = n.to_physical(m, t).unwrap();
+        let c = continuous_cubic(&p);
+        let cn = continuous_cubic_normalized(&n);
+        // s = s'/T, multiplied by T²/m
+        let k = t * t / m;
+        let rel = |a: f64, b: f64| ((a - b) / b).abs();
+        assert!(rel(c.a3 * k / t.powi(3), cn.a3) < 1e-12);
+        assert!(rel(c.a2 * k / t.powi(2), cn.a2) < 1e-12);
+        assert!(rel(c.a1 * k / t, cn.a1) < 1e-12);
+        assert!(rel(c.a0 * k, cn.a0) < 1e-12);
+    }
+
+    #[test]
+    fn rh_eq20_is_hurwitz_determinant() {
+        let p = Physical::new(
+            Effective::new(1.1, 7.5, 350.0).unwrap(),
+            Wall {
+                stiffness: 2e4,
+                damping: 10.0,
+            },
+            Sampling::new(1e-3, 1).unwrap(),
+        )
+        .unwrap();
+        let c = continuous_cubic(&p);
+        let rh = routh_hurwitz(&p);
+        let det = c.a2 * c.a1 - c.a3 * c.a0;
+        assert!((rh.eq20.margin - det).abs() < 1e-9 * det.abs());
+        assert!((rh.eq18.margin - c.a1).abs() < 1e-12 * c.a1);
+        assert!((rh.eq19.margin - c.a0).abs() < 1e-9);
+        // ε of (21) closes the gap between (20)/m and (22)
+        let lhs = p.plant.damping + p.wall.damping + epsilon(&p);
+        assert!((lhs - p.wall.stiffness * effective_delay(&p) - rh.eq20.margin / 1.1).abs() < 1e-9);
+    }
+}
