@@ -1,0 +1,236 @@
+//! Grid maps over two of α, β, γ, δ — the paper's own method (Section V: "two parameters of
+//! p(z) are gridded, and all the others are fixed") — computed in parallel with the
+//! Schur–Cohn test, as a fast cross-check of the exact regions.
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::closed_loop::PolyFamily;
+use crate::error::{Error, Result};
+use crate::params::{Normalized, PlantParams};
+use crate::stability::{schur_stable, spectral_radius_schur};
+
+/// A gridded parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    /// Normalized virtual stiffness α.
+    Alpha,
+    /// Normalized virtual damping β.
+    Beta,
+    /// Normalized physical stiffness γ.
+    Gamma,
+    /// Normalized physical damping δ.
+    Delta,
+}
+
+impl std::str::FromStr for Axis {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "alpha" => Ok(Axis::Alpha),
+            "beta" => Ok(Axis::Beta),
+            "gamma" => Ok(Axis::Gamma),
+            "delta" => Ok(Axis::Delta),
+            _ => Err(Error::OutOfRange {
+                name: "axis",
+                value: f64::NAN,
+                range: "{alpha, beta, gamma, delta}",
+            }),
+        }
+    }
+}
+
+/// One axis of a grid: n points from lo to hi inclusive.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AxisRange {
+    /// Which parameter.
+    pub axis: Axis,
+    /// First value.
+    pub lo: f64,
+    /// Last value.
+    pub hi: f64,
+    /// Number of points (>= 2).
+    pub n: usize,
+}
+
+/// Largest number of grid points in a map (1e8; 800 MB of radius values).
+pub const MAX_POINTS: usize = 100_000_000;
+
+impl AxisRange {
+    /// Validates a range: finite ends, lo < hi, 2 <= n.
+    pub fn new(axis: Axis, lo: f64, hi: f64, n: usize) -> Result<Self> {
+        crate::error::finite("axis lower end", lo)?;
+        crate::error::finite("axis upper end", hi)?;
+        if lo >= hi {
+            return Err(Error::OutOfRange {
+                name: "axis upper end",
+                value: hi,
+                range: "(lo, inf)",
+            });
+        }
+        if n < 2 {
+            return Err(Error::OutOfRange {
+                name: "axis points",
+                value: n as f64,
+                range: "[2, 1e8]",
+            });
+        }
+        Ok(Self { axis, lo, hi, n })
+    }
+
+    /// The i-th grid value.
+    pub fn value(&self, i: usize) -> f64 {
+        self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64
+    }
+
+    /// Grid spacing.
+    pub fn step(&self) -> f64 {
+        (self.hi - self.lo) / (self.n - 1) as f64
+    }
+}
+
+/// A map specification: two axes and the fixed values of the other parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MapSpec {
+    /// Horizontal axis.
+    pub x: AxisRange,
+    /// Vertical axis.
+    pub y: AxisRange,
+    /// Values of the parameters not gridded (the gridded ones are ignored).
+    pub base: Normalized,
+}
+
+/// What a map holds per point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MapKind {
+    /// Stable (true) or not, by the Schur–Cohn test.
+    Stability,
+    /// Spectral radius, by bisection on the Schur–Cohn test of p(rz).
+    SpectralRadius,
+}
+
+/// A computed map, row-major: value (ix, iy) at index iy·nx + ix.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Map {
+    /// The specification.
+    pub spec: MapSpec,
+    /// Stable flag per point.
+    pub stable: Vec<bool>,
+    /// Spectral radius per point (only for `MapKind::SpectralRadius`).
+    pub radius: Option<Vec<f64>>,
+}
+
+impl Map {
+    /// Stable flag at grid indices.
+    pub fn is_stable(&self, ix: usize, iy: usize) -> bool {
+        self.stable[iy * self.spec.x.n + ix]
+    }
+}
+
+impl MapSpec {
+    /// Validates the specification (distinct axes, point count, base parameters).
+    pub fn new(x: AxisRange, y: AxisRange, base: Normalized) -> Result<Self> {
+        if x.axis == y.axis {
+            return Err(Error::OutOfRange {
+                name: "map axes",
+                value: f64::NAN,
+                range: "two different parameters",
+            });
+        }
+        if x.n.saturating_mul(y.n) > MAX_POINTS {
+            return Err(Error::OutOfRange {
+                name: "map points",
+                value: (x.n as f64) * (y.n as f64),
+                range: "[4, 1e8]",
+            });
+        }
+        for r in [x, y] {
+            if matches!(r.axis, Axis::Gamma | Axis::Delta) && r.lo < 0.0 {
+                return Err(Error::Negative {
+                    name: if r.axis == Axis::Gamma { "gamma" } else { "delta" },
+                    value: r.lo,
+                });
+            }
+        }
+        let base = Normalized::new(base.alpha, base.beta, base.gamma, base.delta, base.d)?;
+        Ok(Self { x, y, base })
+    }
+
+    fn point(&self, ix: usize, iy: usize) -> Normalized {
+        let mut p = self.base;
+        for (r, i) in [(self.x, ix), (self.y, iy)] {
+            let v = r.value(i);
+            match r.axis {
+                Axis::Alpha => p.alpha = v,
+                Axis::Beta => p.beta = v,
+                Axis::Gamma => p.gamma = v,
+                Axis::Delta => p.delta = v,
+            }
+        }
+        p
+    }
+
+    fn plant_fixed(&self) -> bool {
+        [self.x.axis, self.y.axis]
+            .iter()
+            .all(|a| matches!(a, Axis::Alpha | Axis::Beta))
+    }
+}
+
+/// Computes a map in parallel over rows (rayon). `progress` is called with the number of
+/// rows finished so far (from any thread).
+pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sync)) -> Map {
+    let (nx, ny) = (spec.x.n, spec.y.n);
+    let deg = spec.base.d + 3;
+    let fixed = if spec.plant_fixed() {
+        PolyFamily::new(spec.base.plant(), spec.base.d).ok()
+    } else {
+        None
+    };
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let rows: Vec<(Vec<bool>, Vec<f64>)> = (0..ny)
+        .into_par_iter()
+        .map(|iy| {
+            let mut c = vec![0.0; deg + 1];
+            let mut st = Vec::with_capacity(nx);
+            let mut rad = Vec::new();
+            for ix in 0..nx {
+                let p = spec.point(ix, iy);
+                match &fixed {
+                    Some(fam) => fam.coefficients_into(p.alpha, p.beta, &mut c),
+                    None => PolyFamily {
+                        plant: crate::plant::DiscretePlant::from_params(PlantParams {
+                            gamma: p.gamma,
+                            delta: p.delta,
+                        }),
+                        d: p.d,
+                    }
+                    .coefficients_into(p.alpha, p.beta, &mut c),
+                }
+                match kind {
+                    MapKind::Stability => st.push(schur_stable(&c)),
+                    MapKind::SpectralRadius => {
+                        let r = spectral_radius_schur(&c);
+                        st.push(r < 1.0);
+                        rad.push(r);
+                    }
+                }
+            }
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(k);
+            (st, rad)
+        })
+        .collect();
+    let mut stable = Vec::with_capacity(nx * ny);
+    let mut radius = Vec::new();
+    for (s, r) in rows {
+        stable.extend(s);
+        radius.extend(r);
+    }
+    Map {
+        spec: *spec,
+        stable,
+        radius: (kind == MapKind::SpectralRadius).then_some(radius),
+    }
+}
