@@ -24,6 +24,7 @@ pub mod boundary;
 pub mod closed_loop;
 pub mod error;
 pub mod linear;
+pub mod nyquist;
 pub mod map;
 pub mod params;
 pub mod plant;
