@@ -148,7 +148,11 @@ impl MapSpec {
         for r in [x, y] {
             if matches!(r.axis, Axis::Gamma | Axis::Delta) && r.lo < 0.0 {
                 return Err(Error::Negative {
-                    name: if r.axis == Axis::Gamma { "gamma" } else { "delta" },
+                    name: if r.axis == Axis::Gamma {
+                        "gamma"
+                    } else {
+                        "delta"
+                    },
                     value: r.lo,
                 });
             }

@@ -159,7 +159,11 @@ fn r_and_derivative(fam: &PolyFamily, z: f64) -> Option<(f64, f64)> {
     let dz = z * z - pl.a1 * z + pl.a0;
     let ddz = 2.0 * z - pl.a1;
     let zd = z.powi(d);
-    let zd1 = if d == 0 { 0.0 } else { d as f64 * z.powi(d - 1) };
+    let zd1 = if d == 0 {
+        0.0
+    } else {
+        d as f64 * z.powi(d - 1)
+    };
     let r = zd * dz / n;
     let rp = (zd1 * dz + zd * ddz) / n - zd * dz * pl.n1 / (n * n);
     Some((r, rp))
@@ -202,8 +206,11 @@ fn sample(
     let tm = 0.5 * (t0 + t1);
     // Coarse passes (finite maxlen) only refine near the |β| < band of possible stability.
     let relevant = maxlen.is_infinite() || p0.y.abs().min(p1.y.abs()) <= maxlen * 30.0;
-    if depth < 48 && relevant {
-        if let Some(pm) = point(fam, tm) {
+    if depth < 48
+        && relevant
+        && let Some(pm) = point(fam, tm)
+    {
+        {
             let ch = sub(p1, p0);
             let len = ch.x.hypot(ch.y);
             let dev = if len > 0.0 {
@@ -226,7 +233,11 @@ fn sample(
                 }
                 let (mut ta, mut pa) = (t0, p0);
                 for i in 1..=k {
-                    let tb = if i == k { t1 } else { t0 + (t1 - t0) * i as f64 / k as f64 };
+                    let tb = if i == k {
+                        t1
+                    } else {
+                        t0 + (t1 - t0) * i as f64 / k as f64
+                    };
                     let pb = if i == k { Some(p1) } else { point(fam, tb) };
                     let Some(pb) = pb else { break };
                     sample(fam, ta, pa, tb, pb, tol, maxlen, depth + 1, out);
@@ -386,10 +397,13 @@ fn refine_cl(fam: &PolyFamily, a: &Seg, h: &HalfPlane) -> (P, f64) {
 /// A cut on a segment: parameter along it, vertex id, θ (curve) or NaN.
 type Cut = (f64, usize, f64);
 
+/// Graph edge: end vertex ids, polyline (θ, point) and kind.
+type GraphEdge = (usize, usize, Vec<(f64, P)>, EdgeKind);
+
 struct Graph {
     verts: Vec<P>,
     /// Edges: vertex ids, polyline (with θ for curve points), kind.
-    edges: Vec<(usize, usize, Vec<(f64, P)>, EdgeKind)>,
+    edges: Vec<GraphEdge>,
 }
 
 /// Computes the stable region of p(z) for fixed (γ, δ, d) (Section V; Figs. 4–6).
@@ -428,20 +442,29 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
         }
     }
     let mline = minus_one_line(fam);
-    // α extent of the window: the region's boundary is made of curve points with |β| < bmax
-    // and of the two lines.
+    // α extent of the window. Every boundary point of the region with |β| < bmax is a curve
+    // point or a crossing of the curve with a line, so the coarse curve bounds it (plus a
+    // margin). A rigorous cap: a monic Schur-stable polynomial has |c_k| < C(n, k), so the
+    // z² coefficient bounds |α + β| < (C(n, 2) + |a0| + |a1|)/|n1|.
+    let nn = fam.degree() as f64;
+    let pl = &fam.plant;
+    let a_rig =
+        (nn * (nn - 1.0) / 2.0 + pl.a0.abs() + pl.a1.abs()) / pl.n1.abs().max(1e-300) + bmax;
     let mut amax = -gamma;
     for (_, p) in &coarse {
         if p.y.abs() <= 1.05 * bmax && p.x.is_finite() {
             amax = amax.max(p.x);
         }
     }
-    if let Some((a, c)) = mline {
-        amax = amax.max(c + a * bmax).max(c - a * bmax);
-    }
+    let amax = amax.min(a_rig);
     let size = (amax + gamma).max(2.0 * bmax).max(1e-300);
     let margin = 0.05 * size;
-    let (x0, x1, y0, y1) = (-gamma - margin, amax + margin, -bmax - margin, bmax + margin);
+    let (x0, x1, y0, y1) = (
+        -gamma - margin,
+        amax + margin,
+        -bmax - margin,
+        bmax + margin,
+    );
     let mut window: Vec<(P, EdgeKind)> = vec![
         (P { x: x0, y: y0 }, EdgeKind::Window),
         (P { x: x1, y: y0 }, EdgeKind::Window),
@@ -458,7 +481,11 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     if let Some((a, c)) = mline {
         let pl = &fam.plant;
         let nm1 = pl.n0 - pl.n1;
-        let s = if (fam.d + 1).is_multiple_of(2) { nm1 } else { -nm1 };
+        let s = if (fam.d + 1).is_multiple_of(2) {
+            nm1
+        } else {
+            -nm1
+        };
         // s(α + 2β) < D(−1)·sign: α + aβ < c when s > 0, > c when s < 0.
         let h = if s > 0.0 {
             HalfPlane {
@@ -500,7 +527,10 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     let mut cur: Vec<(f64, P)> = Vec::new();
     let mut last_t = -1.0;
     for &(t, p) in &coarse {
-        let ok = p.x.is_finite() && p.y.is_finite() && p.x.abs() < big + x1.abs() && p.y.abs() < big + bmax;
+        let ok = p.x.is_finite()
+            && p.y.is_finite()
+            && p.x.abs() < big + x1.abs()
+            && p.y.abs() < big + bmax;
         let contiguous = last_t < 0.0 || (t - last_t) < 2.0 * pi / m as f64;
         if !ok || !contiguous {
             if cur.len() >= 2 {
@@ -561,7 +591,10 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     // Chain ends lying on a window edge become cuts of that edge.
     let nseg_curve = segs.len() - nw;
     for (ci, ch) in chains.iter().enumerate() {
-        for (end, vid) in [(ch[0].1, chain_ends[ci].0), (ch[ch.len() - 1].1, chain_ends[ci].1)] {
+        for (end, vid) in [
+            (ch[0].1, chain_ends[ci].0),
+            (ch[ch.len() - 1].1, chain_ends[ci].1),
+        ] {
             for k in 0..nw {
                 let s = &segs[nseg_curve + k];
                 let d = sub(s.q, s.p);
@@ -665,7 +698,8 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
             cs.sort_by(|a, b| a.0.total_cmp(&b.0));
             for (_, v, th) in cs {
                 poly.push((th, g.verts[v]));
-                g.edges.push((start, v, std::mem::take(&mut poly), EdgeKind::Window));
+                g.edges
+                    .push((start, v, std::mem::take(&mut poly), EdgeKind::Window));
                 start = v;
                 poly.push((th, g.verts[v]));
             }
@@ -683,11 +717,21 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
         cs.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut start = k;
         for (_, v, _) in cs {
-            g.edges.push((start, v, vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[v])], s.kind));
+            g.edges.push((
+                start,
+                v,
+                vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[v])],
+                s.kind,
+            ));
             start = v;
         }
         let end = (k + 1) % nw;
-        g.edges.push((start, end, vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[end])], s.kind));
+        g.edges.push((
+            start,
+            end,
+            vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[end])],
+            s.kind,
+        ));
     }
     // Label curve edges and drop those outside K.
     let slack = 1e-9 * size;
@@ -741,7 +785,12 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
         stable_faces.push((f, pts));
     }
     // Size of the stable region (bounding box of the coarse faces) sets the fine tolerance.
-    let (mut bx0, mut bx1, mut by0, mut by1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut bx0, mut bx1, mut by0, mut by1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for (_, pts) in &stable_faces {
         for p in pts {
             bx0 = bx0.min(p.alpha);
@@ -881,7 +930,17 @@ fn refine_face(fam: &PolyFamily, g: &Graph, f: &[(usize, bool)], tol: f64) -> Po
                     .par_windows(2)
                     .map(|w| {
                         let mut out = Vec::new();
-                        sample(fam, w[0].0, w[0].1, w[1].0, w[1].1, tol, f64::INFINITY, 0, &mut out);
+                        sample(
+                            fam,
+                            w[0].0,
+                            w[0].1,
+                            w[1].0,
+                            w[1].1,
+                            tol,
+                            f64::INFINITY,
+                            0,
+                            &mut out,
+                        );
                         out
                     })
                     .collect();
@@ -907,7 +966,10 @@ fn refine_face(fam: &PolyFamily, g: &Graph, f: &[(usize, bool)], tol: f64) -> Po
                     .edges
                     .iter()
                     .find_map(|(x, y, pl, kk)| match kk {
-                        EdgeKind::Complex { theta_start, theta_end } => {
+                        EdgeKind::Complex {
+                            theta_start,
+                            theta_end,
+                        } => {
                             if *x == va {
                                 Some(*theta_start)
                             } else if *y == va {
@@ -957,13 +1019,13 @@ fn alpha_max_of(fam: &PolyFamily, polys: &[Polygon]) -> (f64, f64) {
     let mut best = (f64::NAN, f64::NAN);
     for poly in polys {
         let n = poly.vertices.len();
-        let (imax, _) = poly
-            .vertices
-            .iter()
-            .enumerate()
-            .fold((0, f64::NEG_INFINITY), |(bi, bv), (i, p)| {
-                if p.alpha > bv { (i, p.alpha) } else { (bi, bv) }
-            });
+        let (imax, _) =
+            poly.vertices
+                .iter()
+                .enumerate()
+                .fold((0, f64::NEG_INFINITY), |(bi, bv), (i, p)| {
+                    if p.alpha > bv { (i, p.alpha) } else { (bi, bv) }
+                });
         let mut cand = (poly.vertices[imax].alpha, poly.vertices[imax].beta);
         let corner = poly.edges.iter().any(|e| e.start == imax);
         if !corner {
@@ -973,10 +1035,10 @@ fn alpha_max_of(fam: &PolyFamily, polys: &[Polygon]) -> (f64, f64) {
                 let (ga, gb) = (dalpha(fam, a), dalpha(fam, b));
                 if ga.signum() != gb.signum() {
                     let t = crate::boundary::bisect(a, b, |t| dalpha(fam, t));
-                    if let Some(p) = curve_point(fam, t) {
-                        if p.alpha >= cand.0 {
-                            cand = (p.alpha, p.beta);
-                        }
+                    if let Some(p) = curve_point(fam, t)
+                        && p.alpha >= cand.0
+                    {
+                        cand = (p.alpha, p.beta);
                     }
                 }
             }

@@ -1,0 +1,282 @@
+//! Acceptance tests of the exact stable regions (issue 3). Expected values come from closed
+//! forms (pure mass), from the roots (spectral radius at vertices) and from the independent
+//! grid method.
+
+use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
+use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map};
+use hapstab::region::{EdgeKind, StableRegion, stable_region};
+use hapstab::stability::{schur_stable, spectral_radius_schur};
+use hapstab::{Normalized, PlantParams, PolyFamily};
+
+fn region(g: f64, dl: f64, d: usize) -> (PolyFamily, StableRegion) {
+    let fam = PolyFamily::new(PlantParams::new(g, dl).unwrap(), d).unwrap();
+    let r = stable_region(&fam);
+    (fam, r)
+}
+
+const CASES: &[(f64, f64, usize)] = &[
+    (0.0, 0.0, 0),
+    (0.001, 0.0, 0),
+    (0.0, 0.015, 0),
+    (0.001, 0.015, 0),
+    (0.001, 0.015, 1),
+    (0.0, 0.0, 2),
+    (0.001, 0.015, 2),
+    (0.001, 0.015, 10),
+    (2.0, 1.0, 0),
+    (1.0, 0.5, 1),
+];
+
+#[test]
+fn vertices_lie_on_the_boundary() {
+    for &(g, dl, d) in CASES {
+        let (fam, r) = region(g, dl, d);
+        assert!(!r.polygons.is_empty(), "γ={g} δ={dl} d={d}: empty");
+        for poly in &r.polygons {
+            assert!(poly.area() > 0.0);
+            assert!(poly.edges.iter().all(|e| e.kind != EdgeKind::Window));
+            let v = &poly.vertices;
+            let n = v.len();
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for p in v {
+                lo = lo.min(p.alpha.min(p.beta));
+                hi = hi.max(p.alpha.max(p.beta));
+            }
+            let size = hi - lo;
+            let corners: Vec<AlphaBeta> = poly.corners().iter().map(|&i| v[i]).collect();
+            let step = (n / 300).max(1);
+            let mut c = vec![0.0; d + 4];
+            let mut checked = 0;
+            for &i in &poly.corners() {
+                // Corners: p(e^{iθ}) = 0 at the vertex's θ. Where several roots meet on the
+                // circle (e.g. the pure mass's double root at z = 1 at the origin) the
+                // spectral radius is ill-conditioned (≈ ε^{1/2}), so check the residual.
+                let p = v[i];
+                let th = poly.thetas[i];
+                let z = if th.is_nan() {
+                    num_complex::Complex64::new(1.0, 0.0)
+                } else {
+                    num_complex::Complex64::from_polar(1.0, th)
+                };
+                let res = fam.eval(p.alpha, p.beta, z).norm();
+                assert!(res < 1e-12, "γ={g} δ={dl} d={d} corner {i}: |p| = {res}");
+            }
+            for i in (1..n).step_by(step) {
+                let p = v[i];
+                if poly.corners().contains(&i) {
+                    continue;
+                }
+                fam.coefficients_into(p.alpha, p.beta, &mut c);
+                let rho = spectral_radius_schur(&c);
+                assert!(
+                    (rho - 1.0).abs() < 1e-9,
+                    "γ={g} δ={dl} d={d} vertex {i}: ρ = {rho}"
+                );
+                // inward/outward by 1e-6 of the size along the normal, away from corners
+                let near_corner = corners
+                    .iter()
+                    .any(|q| (q.alpha - p.alpha).hypot(q.beta - p.beta) < 1e-4 * size);
+                if near_corner {
+                    continue;
+                }
+                let (a, b) = (v[(i + n - 1) % n], v[(i + 1) % n]);
+                let (tx, ty) = (b.alpha - a.alpha, b.beta - a.beta);
+                let l = tx.hypot(ty);
+                let (nx, ny) = (-ty / l, tx / l); // left normal = inward for ccw
+                let h = 1e-6 * size;
+                fam.coefficients_into(p.alpha + h * nx, p.beta + h * ny, &mut c);
+                assert!(
+                    schur_stable(&c),
+                    "γ={g} δ={dl} d={d} vertex {i}: inward unstable"
+                );
+                fam.coefficients_into(p.alpha - h * nx, p.beta - h * ny, &mut c);
+                assert!(
+                    !schur_stable(&c),
+                    "γ={g} δ={dl} d={d} vertex {i}: outward stable"
+                );
+                checked += 1;
+            }
+            assert!(checked > 100, "{checked}");
+        }
+    }
+}
+
+#[test]
+fn alpha_max_pure_mass_closed_form() {
+    let (_, r) = region(0.0, 0.0, 0);
+    let beta = 2.0 * 2f64.sqrt() - 2.0;
+    let alpha = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
+    assert!(
+        (r.alpha_max - alpha).abs() < 1e-12 * alpha,
+        "{} vs {alpha}",
+        r.alpha_max
+    );
+    assert!(
+        (r.beta_at_alpha_max - beta).abs() < 1e-12 * beta,
+        "{} vs {beta}",
+        r.beta_at_alpha_max
+    );
+    // area: ∫₀² 2β(2 − β)/(2 + β) dβ = 12 − 16 ln 2
+    let area = 12.0 - 16.0 * 2f64.ln();
+    assert!((r.area - area).abs() < 1e-8 * area, "{} vs {area}", r.area);
+}
+
+#[test]
+fn alpha_max_is_a_maximum_of_the_intervals() {
+    // α_max agrees with the exact interval at its β, and no interval at nearby β exceeds it.
+    for &(g, dl, d) in CASES {
+        let (fam, r) = region(g, dl, d);
+        let iv = stable_alpha_intervals(&fam, r.beta_at_alpha_max);
+        let hi = iv.iter().map(|i| i.hi).fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (hi - r.alpha_max).abs() < 1e-10 * r.alpha_max.abs().max(1e-12),
+            "γ={g} δ={dl} d={d}: {hi} vs {}",
+            r.alpha_max
+        );
+        for k in 1..=20 {
+            let db = r.beta_at_alpha_max.abs().max(1e-3) * 0.02 * k as f64;
+            for b in [r.beta_at_alpha_max - db, r.beta_at_alpha_max + db] {
+                for i in stable_alpha_intervals(&fam, b) {
+                    assert!(
+                        i.hi <= r.alpha_max * (1.0 + 1e-12) + 1e-300,
+                        "β={b}: {} > {}",
+                        i.hi,
+                        r.alpha_max
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn alpha_max_shrinks_with_delay_and_grows_with_damping() {
+    for &g in &[0.0, 0.001] {
+        for &dl in &[0.0, 0.005, 0.015, 0.1] {
+            let am: Vec<f64> = (0..5).map(|d| region(g, dl, d).1.alpha_max).collect();
+            assert!(am.windows(2).all(|w| w[1] < w[0]), "γ={g} δ={dl}: {am:?}");
+        }
+        for d in 0..4 {
+            let am: Vec<f64> = [0.0, 0.005, 0.015, 0.1]
+                .iter()
+                .map(|&dl| region(g, dl, d).1.alpha_max)
+                .collect();
+            assert!(am.windows(2).all(|w| w[1] > w[0]), "γ={g} d={d}: {am:?}");
+        }
+    }
+}
+
+#[test]
+fn grid_map_agrees_with_polygons() {
+    for &(g, dl, d) in &[
+        (0.001, 0.015, 0),
+        (0.001, 0.015, 1),
+        (0.0, 0.0, 2),
+        (2.0, 1.0, 0),
+    ] {
+        let (_, r) = region(g, dl, d);
+        let (mut a0, mut a1, mut b0, mut b1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for p in r.polygons.iter().flat_map(|p| &p.vertices) {
+            a0 = a0.min(p.alpha);
+            a1 = a1.max(p.alpha);
+            b0 = b0.min(p.beta);
+            b1 = b1.max(p.beta);
+        }
+        let (pa, pb) = (0.1 * (a1 - a0), 0.1 * (b1 - b0));
+        let n = 200;
+        let spec = MapSpec::new(
+            AxisRange::new(Axis::Alpha, a0 - pa, a1 + pa, n).unwrap(),
+            AxisRange::new(Axis::Beta, b0 - pb, b1 + pb, n).unwrap(),
+            Normalized::new(0.0, 0.0, g, dl, d).unwrap(),
+        )
+        .unwrap();
+        let m = compute_map(&spec, MapKind::Stability, &|_| {});
+        // Polygon membership per grid row by scanline (even-odd rule on sorted crossings).
+        let rows: Vec<Vec<f64>> = (0..n)
+            .map(|iy| {
+                let b = spec.y.value(iy);
+                let mut xs = Vec::new();
+                for poly in &r.polygons {
+                    let v = &poly.vertices;
+                    for k in 0..v.len() {
+                        let (p, q) = (v[k], v[(k + 1) % v.len()]);
+                        if (p.beta > b) != (q.beta > b) {
+                            xs.push(
+                                p.alpha + (b - p.beta) / (q.beta - p.beta) * (q.alpha - p.alpha),
+                            );
+                        }
+                    }
+                }
+                xs.sort_by(f64::total_cmp);
+                xs
+            })
+            .collect();
+        let inside = |ix: i64, iy: i64| -> Option<bool> {
+            if ix < 0 || iy < 0 || ix >= n as i64 || iy >= n as i64 {
+                return None;
+            }
+            let a = spec.x.value(ix as usize);
+            Some(rows[iy as usize].iter().filter(|&&x| x > a).count() % 2 == 1)
+        };
+        let mut compared = 0;
+        for iy in 0..n as i64 {
+            for ix in 0..n as i64 {
+                let here = inside(ix, iy).unwrap_or(false);
+                // skip cells within one cell of the boundary: any neighbour disagrees
+                let near = (-1..=1).any(|dy| {
+                    (-1..=1).any(|dx| inside(ix + dx, iy + dy).is_some_and(|o| o != here))
+                });
+                if near {
+                    continue;
+                }
+                compared += 1;
+                let p = AlphaBeta {
+                    alpha: spec.x.value(ix as usize),
+                    beta: spec.y.value(iy as usize),
+                };
+                assert_eq!(
+                    m.is_stable(ix as usize, iy as usize),
+                    here,
+                    "γ={g} δ={dl} d={d} at {p:?}"
+                );
+            }
+        }
+        assert!(compared > n * n * 8 / 10, "{compared}");
+    }
+}
+
+#[test]
+fn paper_range_and_large_delay() {
+    for &g in &[0.0, 0.001] {
+        for &dl in &[0.0, 0.015] {
+            for d in 0..=2 {
+                let (_, r) = region(g, dl, d);
+                assert_eq!(r.polygons.len(), 1, "γ={g} δ={dl} d={d}");
+                // the left boundary is the z = 1 line α = −γ
+                let p = &r.polygons[0];
+                assert!(p.edges.iter().any(|e| e.kind == EdgeKind::ZPlusOne));
+                let amin = p
+                    .vertices
+                    .iter()
+                    .map(|v| v.alpha)
+                    .fold(f64::INFINITY, f64::min);
+                assert!((amin + g).abs() < 1e-15, "{amin}");
+            }
+        }
+    }
+    let t = std::time::Instant::now();
+    let (fam, r) = region(0.001, 0.015, 1000);
+    let el = t.elapsed();
+    assert!(el.as_secs_f64() < 2.0, "d = 1000 took {el:?}");
+    assert!(r.alpha_max > 0.0 && r.alpha_max < 1e-3);
+    let iv = stable_alpha_intervals(&fam, r.beta_at_alpha_max);
+    assert!(
+        iv.iter()
+            .any(|i| (i.hi - r.alpha_max).abs() < 1e-9 * r.alpha_max)
+    );
+}
