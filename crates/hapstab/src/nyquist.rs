@@ -99,8 +99,18 @@ pub fn nyquist_stiffness(mass: f64, damping: f64, period: f64) -> Result<Nyquist
     })
 }
 
+/// Relative distance of √γ from jπ (δ = 0) within which a plant counts as degenerate. Closer
+/// than this the pole and the zero at z = ±1 cancel to fewer than about half the digits and
+/// the D-decomposition loses its accuracy (at 1e-8 the computed regions are visibly wrong,
+/// at 1e-6 they still agree with the limit triangle to 1e-5).
+pub const DEGENERATE_TOL: f64 = 1e-7;
+
+/// Relative offset from a degenerate γ at which [`robust_region`] takes the limit region.
+pub const DEGENERATE_OFFSET: f64 = 1e-6;
+
 /// If every p(z) of the family has a root on the unit circle whatever (α, β) — δ = 0 and
-/// √γ = jπ within 1e-9 relative — the angle of that root (π for odd j, 0 for even j)
+/// √γ = jπ within [`DEGENERATE_TOL`] relative — the angle of that root (π for odd j, 0 for
+/// even j)
 /// (Section VIII-B: a pole at z = −1 for γ = π², δ = 0).
 pub fn unit_circle_pole(pp: PlantParams) -> Option<f64> {
     if pp.delta != 0.0 || pp.gamma <= 0.0 {
@@ -108,7 +118,7 @@ pub fn unit_circle_pole(pp: PlantParams) -> Option<f64> {
     }
     let w = pp.gamma.sqrt();
     let j = (w / PI).round();
-    if j >= 1.0 && (w - j * PI).abs() <= 1e-9 * w {
+    if j >= 1.0 && (w - j * PI).abs() <= DEGENERATE_TOL * w {
         Some(if j % 2.0 == 1.0 { PI } else { 0.0 })
     } else {
         None
@@ -493,7 +503,7 @@ pub struct RobustRegion {
     /// Upper end of the γ interval.
     pub gamma_hi: f64,
     /// γ samples at which every (α, β) is limit stable (δ = 0, γ = (jπ)²); there the stable
-    /// region of the limit from inside the interval (γ·(1 ∓ 1e-9)) is used.
+    /// region of the limit from inside the interval (γ·(1 ∓ [`DEGENERATE_OFFSET`])) is used.
     pub degenerate_gammas: Vec<f64>,
     /// Non-empty slices, ascending in β.
     pub slices: Vec<RobustSlice>,
@@ -542,9 +552,9 @@ fn gamma_samples(lo: f64, hi: f64, n: usize, delta: f64) -> (Vec<f64>, Vec<f64>)
             degenerate.push(g);
             // the limit from inside the interval
             g = if g > lo {
-                g * (1.0 - 1e-9)
+                g * (1.0 - DEGENERATE_OFFSET)
             } else {
-                g * (1.0 + 1e-9)
+                g * (1.0 + DEGENERATE_OFFSET)
             };
         }
         gs.push(g);

@@ -1,0 +1,501 @@
+//! Acceptance tests of issue 4: the paper's analyses of Sections IV, VI, VII and VIII.
+//!
+//! Expected values come from the paper's statements or from closed forms derived by hand
+//! (pure-mass boundary, the factorization of p(z) at the Nyquist frequency), never from
+//! program output.
+
+use std::f64::consts::PI;
+
+use hapstab::boundary::stable_alpha_intervals;
+use hapstab::linear::{
+    continuous_cubic_normalized, linear_alpha_limit, relative_error, routh_hurwitz,
+    routh_hurwitz_normalized, validity_points,
+};
+use hapstab::nyquist::{
+    BoxOptions, PlantBox, RobustOptions, beta_bound, gamma_sweep, nyquist_gamma, nyquist_stiffness,
+    passive_inside_robust, passive_region, region_summary, robust_kmax, robust_region,
+};
+use hapstab::params::{Effective, Physical, Sampling, Wall};
+use hapstab::ranges::ranges;
+use hapstab::stability::{Verdict, classify, roots, schur_stable};
+use hapstab::{Normalized, PlantParams, PolyFamily};
+
+const PI2: f64 = PI * PI;
+
+fn fam(gamma: f64, delta: f64, d: usize) -> PolyFamily {
+    PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
+}
+
+fn stable(f: &PolyFamily, alpha: f64, beta: f64) -> bool {
+    schur_stable(&f.coefficients(alpha, beta))
+}
+
+/// Deterministic uniform numbers in [0, 1) (splitmix64).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+// ---------------------------------------------------------------- Section IV
+
+/// Eq. (14) for T = 1 ms: γ < 710·10⁻⁶, δ < 13.225·10⁻³, inside the extended range (15);
+/// the bounds scale with T² and T.
+#[test]
+fn parameter_ranges_eq14_eq15() {
+    let r = ranges(1e-3).unwrap();
+    assert!((r.gamma_max - 7.1e-4).abs() < 1e-15);
+    assert!((r.delta_max - 0.013225).abs() < 1e-15);
+    assert!(r.within_extended && r.gamma_max < 1e-3 && r.delta_max < 15e-3);
+    let h = ranges(0.5e-3).unwrap();
+    assert!((h.gamma_max - 710.0 * 0.25e-6).abs() < 1e-15);
+    assert!((h.delta_max - 13.225 * 0.5e-3).abs() < 1e-15);
+    // at 2 ms the arm range leaves (15): the paper's T ≤ 1 ms assumption matters
+    assert!(!ranges(2e-3).unwrap().within_extended);
+    assert!(ranges(-1e-3).is_err());
+}
+
+// ---------------------------------------------------------------- Section VI
+
+/// Eq. (18) is implied by (19) and (22): over random physical plants and walls, every
+/// sample that satisfies (19) and (22) satisfies (18). The sample is drawn wide enough that
+/// (18) fails for some samples, and (22) is checked to be what (20) becomes without ε.
+#[test]
+fn eq18_implied_by_eq19_and_eq22() {
+    let mut rng = Rng(7);
+    let (mut both, mut fails18) = (0, 0);
+    for _ in 0..200_000 {
+        let m = rng.range(0.01, 5.0);
+        let b = rng.range(0.0, 20.0);
+        let k = rng.range(0.0, 2000.0);
+        let t = rng.range(1e-4, 2e-3);
+        let d = (rng.next() * 4.0) as usize;
+        let kw = rng.range(-3000.0, 3e4);
+        let bw = rng.range(-40.0, 40.0);
+        let p = Physical::new(
+            Effective::new(m, b, k).unwrap(),
+            Wall {
+                stiffness: kw,
+                damping: bw,
+            },
+            Sampling::new(t, d).unwrap(),
+        )
+        .unwrap();
+        let rh = routh_hurwitz(&p);
+        let tr = d as f64 * t + t / 2.0;
+        let eq22 = kw < (b + bw) / tr;
+        if !rh.eq18.holds {
+            fails18 += 1;
+        }
+        if rh.eq19.holds && eq22 {
+            both += 1;
+            assert!(rh.eq18.holds, "(18) fails at {p:?}");
+        }
+    }
+    assert!(both > 10_000 && fails18 > 10_000, "{both} {fails18}");
+}
+
+/// The normalized cubic (17) is Hurwitz exactly when (18)–(20) hold, and at ε → 0 (δ = 0,
+/// γ = 0) the condition (20) is (23): α < β/(d + ½).
+#[test]
+fn routh_hurwitz_normalized_matches_cubic_roots() {
+    let mut rng = Rng(11);
+    for _ in 0..2000 {
+        let n = Normalized::new(
+            rng.range(-0.2, 1.0),
+            rng.range(-0.5, 1.5),
+            rng.range(0.0, 0.01),
+            rng.range(0.0, 0.05),
+            (rng.next() * 3.0) as usize,
+        )
+        .unwrap();
+        let c = continuous_cubic_normalized(&n);
+        // Hurwitz via the roots of the cubic (companion matrix on s)
+        let r = roots(&[c.a0, c.a1, c.a2, c.a3]).unwrap();
+        let hurwitz = r.iter().all(|z| z.re < -1e-12);
+        let rh = routh_hurwitz_normalized(&n);
+        let margin = rh
+            .eq18
+            .margin
+            .abs()
+            .min(rh.eq19.margin.abs())
+            .min(rh.eq20.margin.abs());
+        if margin > 1e-9 {
+            assert_eq!(hurwitz, rh.stable, "{n:?}");
+        }
+    }
+    let n = Normalized::new(0.3, 0.2, 0.0, 0.0, 1).unwrap();
+    let rh = routh_hurwitz_normalized(&n);
+    // (20) with b = k = 0: m(B − K t_r) > 0
+    assert!((rh.eq20.margin - (0.2 - 0.3 * 1.5)).abs() < 1e-15);
+    assert_eq!(linear_alpha_limit(0.2, 0.0, 1), 0.2 / 1.5);
+}
+
+// ---------------------------------------------------------------- Section VII
+
+const FIG7_DELTAS: [f64; 4] = [0.0, 0.005, 0.01, 0.015];
+
+/// The 2 % and 5 % points of Fig. 7 for all 16 settings: each α is on the exact boundary
+/// (stable just below, unstable just above by the Schur–Cohn test), β is located to 1e-9
+/// relative (the error straddles the level within ±1e-9·β), and the level is not reached
+/// earlier on a fine β grid. For γ = δ = d = 0 the points match the closed form of the
+/// pure-mass boundary α = 2β(2 − β)/(2 + β): with α_lin = 2β the error is 2β/(2 − β), so
+/// β = 2L/(2 + L). Finally the paper's claim: α differs by less than 0.2 % between γ = 0 and
+/// γ = 0.001.
+#[test]
+fn fig7_validity_points() {
+    let levels = [0.02, 0.05];
+    let mut table = Vec::new();
+    for d in [0usize, 1] {
+        for &delta in &FIG7_DELTAS {
+            for gamma in [0.0, 0.001] {
+                let pts =
+                    validity_points(PlantParams::new(gamma, delta).unwrap(), d, &levels).unwrap();
+                let f = fam(gamma, delta, d);
+                for p in &pts {
+                    assert!(!p.at_start);
+                    assert!(stable(&f, p.alpha * (1.0 - 1e-9), p.beta), "{p:?}");
+                    assert!(!stable(&f, p.alpha * (1.0 + 1e-9), p.beta), "{p:?}");
+                    let below = relative_error(&f, p.beta * (1.0 - 1e-9)).unwrap();
+                    let above = relative_error(&f, p.beta * (1.0 + 1e-9)).unwrap();
+                    assert!(below < p.level && p.level < above, "{p:?} {below} {above}");
+                    for i in 1..200 {
+                        let b = p.beta * i as f64 / 200.0;
+                        assert!(relative_error(&f, b).unwrap() < p.level, "{p:?} at {b}");
+                    }
+                }
+                table.push((d, delta, gamma, pts));
+            }
+        }
+    }
+    // closed form for γ = δ = d = 0
+    let (_, _, _, pts) = &table[0];
+    for p in pts {
+        let beta = 2.0 * p.level / (2.0 + p.level);
+        let alpha = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
+        assert!(
+            ((p.beta - beta) / beta).abs() < 1e-9,
+            "{} vs {beta}",
+            p.beta
+        );
+        assert!(
+            ((p.alpha - alpha) / alpha).abs() < 1e-9,
+            "{} vs {alpha}",
+            p.alpha
+        );
+    }
+    // γ = 0 versus γ = 0.001: "differ less than 0.2 %" (Section VII)
+    for pair in table.chunks(2) {
+        let (d, delta, _, a) = &pair[0];
+        let (_, _, _, b) = &pair[1];
+        for (p, q) in a.iter().zip(b) {
+            let rel = ((p.alpha - q.alpha) / p.alpha).abs();
+            assert!(rel < 2e-3, "d={d} δ={delta} level={}: {rel}", p.level);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- Section VIII
+
+/// Remark 4: k = π² m/T² + b²/(4m) ≈ 987.0 kN/m for m = 0.1 kg, T = 1 ms, b = 1.5 Ns/m.
+#[test]
+fn remark4_nyquist_stiffness() {
+    let r = nyquist_stiffness(0.1, 1.5, 1e-3).unwrap();
+    assert!((r.stiffness - (PI2 * 1e5 + 5.625)).abs() < 1e-6);
+    assert_eq!(format!("{:.1}", r.stiffness / 1e3), "987.0");
+    assert!((r.gamma - (PI2 + (1.5e-3 / 0.1f64).powi(2) / 4.0)).abs() < 1e-12);
+    assert!((nyquist_gamma(1.0) - (PI2 + 0.25)).abs() < 1e-15);
+}
+
+/// δ = 0, d = 0, γ = π²/4 (half the Nyquist frequency): every stable point has α ≤ 0
+/// (Fig. 8 left). Control: at 0.9·π²/4 some stable point still has α > 0.
+#[test]
+fn half_nyquist_region_in_left_half_plane_d0() {
+    let s = region_summary(PlantParams::new(PI2 / 4.0, 0.0).unwrap(), 0, 401).unwrap();
+    assert!(!s.empty && s.alpha_max <= 1e-12, "{s:?}");
+    let f = fam(PI2 / 4.0, 0.0, 0);
+    let bb = beta_bound(&f);
+    for i in 0..=2000 {
+        let b = -bb + 2.0 * bb * i as f64 / 2000.0;
+        for iv in stable_alpha_intervals(&f, b) {
+            assert!(iv.hi <= 1e-12, "β={b}: {iv:?}");
+        }
+    }
+    let c = region_summary(PlantParams::new(0.9 * PI2 / 4.0, 0.0).unwrap(), 0, 401).unwrap();
+    assert!(c.alpha_max > 1e-3, "{c:?}");
+}
+
+/// δ = 0, d = 1, γ = (π/4)²: the region lies in α ≤ 0 (Fig. 10 top). Control at 0.9·γ.
+#[test]
+fn quarter_nyquist_region_in_left_half_plane_d1() {
+    let g = (PI / 4.0).powi(2);
+    let s = region_summary(PlantParams::new(g, 0.0).unwrap(), 1, 401).unwrap();
+    assert!(!s.empty && s.alpha_max <= 1e-12, "{s:?}");
+    let f = fam(g, 0.0, 1);
+    let bb = beta_bound(&f);
+    for i in 0..=2000 {
+        let b = -bb + 2.0 * bb * i as f64 / 2000.0;
+        for iv in stable_alpha_intervals(&f, b) {
+            assert!(iv.hi <= 1e-12, "β={b}: {iv:?}");
+        }
+    }
+    let c = region_summary(PlantParams::new(0.9 * g, 0.0).unwrap(), 1, 401).unwrap();
+    assert!(c.alpha_max > 1e-4, "{c:?}");
+}
+
+/// δ = 0, γ = π²: N(z) = (2/π²)(z + 1) and D(z) = (z + 1)², so p(z) = (z + 1)·q(z) for every
+/// (α, β) and every d: a pole at z = −1, limit stable at best (Section VIII-B).
+#[test]
+fn pole_at_minus_one_at_nyquist() {
+    let mut rng = Rng(3);
+    for d in [0usize, 1, 2, 5] {
+        let f = fam(PI2, 0.0, d);
+        for _ in 0..50 {
+            let (a, b) = (rng.range(-10.0, 10.0), rng.range(-5.0, 5.0));
+            let c = f.coefficients(a, b);
+            let r = roots(&c).unwrap();
+            let near = r
+                .iter()
+                .map(|z| (z + 1.0).norm())
+                .fold(f64::INFINITY, f64::min);
+            assert!(near < 1e-9, "d={d} (α, β)=({a}, {b}): {r:?}");
+            assert_ne!(classify(&c), Verdict::Stable);
+        }
+    }
+    let s = region_summary(PlantParams::new(PI2, 0.0).unwrap(), 0, 101).unwrap();
+    assert!(s.degenerate && s.empty);
+}
+
+/// δ = 0, d = 0: as γ → π² the stable region tends to the triangle of the limit
+/// p = (z + 1)(z² + (1 + c(α + β))z − cβ), c = 2/π²: −π² < α < −2β, β > −π²/2 (Fig. 8
+/// right). At each β the interval is (−γ, hi) and hi → −2β; the deviation shrinks with
+/// π² − γ.
+#[test]
+fn nyquist_triangle_limit_d0() {
+    let mut prev = f64::INFINITY;
+    for e in [1e-2, 1e-3, 1e-4, 1e-5] {
+        let g = PI2 * (1.0 - e);
+        let f = fam(g, 0.0, 0);
+        let mut dev: f64 = 0.0;
+        for i in 0..=100 {
+            let b = 0.98 * PI2 / 2.0 * (2.0 * i as f64 / 100.0 - 1.0);
+            let iv = stable_alpha_intervals(&f, b);
+            assert_eq!(iv.len(), 1, "γ={g} β={b}: {iv:?}");
+            assert_eq!(iv[0].lo, -g);
+            dev = dev.max((iv[0].hi + 2.0 * b).abs());
+        }
+        assert!(dev < prev, "e={e}: {dev} !< {prev}");
+        prev = dev;
+    }
+    assert!(prev < 1e-3, "{prev}");
+    // nothing beyond the triangle's β range
+    let f = fam(PI2 * (1.0 - 1e-5), 0.0, 0);
+    assert!(stable_alpha_intervals(&f, -PI2 / 2.0 * 1.001).is_empty());
+    assert!(stable_alpha_intervals(&f, PI2 / 2.0 * 1.001).is_empty());
+}
+
+/// δ = 0, d = 0: the robustly stable region over γ ∈ [0, π²] is only the origin (Section
+/// VIII-A): no slice of the intersection is non-empty, yet every region of the sweep comes
+/// within 2·10⁻³ of the origin (the origin is in the closure of each).
+#[test]
+fn robust_region_only_origin_delta0() {
+    let opts = RobustOptions {
+        gamma_samples: 17,
+        beta_samples: 81,
+        ..Default::default()
+    };
+    let r = robust_region(0.0, 0, 0.0, PI2, opts).unwrap();
+    assert!(r.empty, "{:?}", &r.slices[..r.slices.len().min(5)]);
+    assert_eq!(r.degenerate_gammas, vec![PI2]);
+    for i in 0..=16 {
+        let g = PI2 * i as f64 / 16.0 * (1.0 - 1e-6);
+        let f = fam(g, 0.0, 0);
+        let near = [-1e-3, 1e-3].iter().any(|&b| {
+            stable_alpha_intervals(&f, b)
+                .iter()
+                .any(|iv| iv.lo < 1e-3 && iv.hi > -1e-3)
+        });
+        assert!(near, "γ={g}");
+    }
+}
+
+/// δ = 1, d = 0: Colgate's passive triangle (28) lies inside the robust region over
+/// γ ∈ [0, π² + 1/4] (Fig. 9). Controls: the passive vertex scaled by 1.3, (2.6, 0), is not
+/// robustly stable, and at γ_N the region is the triangle of the closed form
+/// p = (z + e^{−1/2})(z² + (e^{−1/2} + v(α + β))z − vβ), v = (1 + e^{−1/2})/(π² + 1/4):
+/// α > −γ, α + 2β < γ tanh(1/4), β > −1/v.
+#[test]
+fn passive_inside_robust_delta1() {
+    let opts = RobustOptions {
+        gamma_samples: 33,
+        ..Default::default()
+    };
+    let gn = PI2 + 0.25;
+    let c = passive_inside_robust(1.0, 0, 0.0, gn, 41, opts).unwrap();
+    assert!(c.inside && c.min_right_margin > 0.0, "{c:?}");
+    let r = robust_region(
+        1.0,
+        0,
+        0.0,
+        gn,
+        RobustOptions {
+            gamma_samples: 33,
+            beta_samples: 61,
+            refine_beta_rounds: 1,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let p = passive_region(1.0).unwrap();
+    assert!(r.area > p.area(), "{} vs {}", r.area, p.area());
+    assert!(r.alpha_max > 2.0 && r.alpha_max < 2.6, "{}", r.alpha_max);
+    let v = (1.0 + (-0.5f64).exp()) / gn;
+    let f = fam(gn, 1.0, 0);
+    for b in [-6.0, -3.0, -1.0, 0.0, 1.0, 3.0, 6.0] {
+        let iv = stable_alpha_intervals(&f, b);
+        let hi = gn * 0.25f64.tanh() - 2.0 * b;
+        assert_eq!(iv.len(), 1);
+        assert!(
+            (iv[0].lo + gn).abs() < 1e-12 && (iv[0].hi - hi).abs() < 1e-9,
+            "{iv:?} {hi}"
+        );
+    }
+    assert!(stable_alpha_intervals(&f, -1.0 / v * 1.001).is_empty());
+    assert!(!stable_alpha_intervals(&f, -1.0 / v * 0.999).is_empty());
+}
+
+/// Stable regions along the γ sweep of Fig. 8: the area grows with γ and the lower α-bound
+/// is −γ (Fig. 5).
+#[test]
+fn gamma_sweep_fig8() {
+    let s = gamma_sweep(0.0, 0, 0.75, 3, 201).unwrap();
+    assert_eq!(s.len(), 4);
+    for w in s.windows(2) {
+        assert!(w[1].area > w[0].area, "{:?}", w);
+    }
+    for r in &s {
+        assert!((r.alpha_min + r.gamma).abs() < 1e-12, "{r:?}");
+    }
+    // pure mass: α_max = 12 − 8√2 at β = 2√2 − 2 (maximum of 2β(2 − β)/(2 + β))
+    assert!((s[0].alpha_max - (12.0 - 8.0 * 2f64.sqrt())).abs() < 1e-9);
+    assert!((s[0].beta_at_alpha_max - (2.0 * 2f64.sqrt() - 2.0)).abs() < 1e-5);
+}
+
+// ---------------------------------------------------------------- robust design
+
+/// In the human range of eq. (15) the stable interval grows with δ: at every sampled (γ, β),
+/// hi is non-decreasing along δ ∈ [0, 0.015], so the worst damping of a box is its lower end.
+#[test]
+fn stable_interval_monotone_in_delta() {
+    for d in [0usize, 1] {
+        for gi in 0..=4 {
+            let g = 1e-3 * gi as f64 / 4.0;
+            for bi in 1..=12 {
+                let b = 0.08 * bi as f64;
+                let mut prev = f64::NEG_INFINITY;
+                for di in 0..=15 {
+                    let f = fam(g, 1e-3 * di as f64, d);
+                    let hi = stable_alpha_intervals(&f, b)
+                        .iter()
+                        .map(|iv| iv.hi)
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    assert!(hi >= prev, "d={d} γ={g} β={b} δ={}", 1e-3 * di as f64);
+                    prev = hi;
+                }
+            }
+        }
+    }
+}
+
+/// Robust K_max over the box (15), d = 0: it equals α_max of the worst corner (γ = 10⁻³,
+/// δ = 0), and (α_max(1 − 10⁻⁶), β*) is stable on a dense 21 × 21 grid of the box while
+/// α_max(1 + 10⁻⁶) is not.
+#[test]
+fn robust_kmax_human_box() {
+    let pb = PlantBox::normalized([0.0, 1e-3], [0.0, 0.015], 0).unwrap();
+    let opts = BoxOptions {
+        stiffness_samples: 9,
+        beta_samples: 49,
+        ..Default::default()
+    };
+    let r = robust_kmax(&pb, opts).unwrap();
+    let corner = region_summary(PlantParams::new(1e-3, 0.0).unwrap(), 0, 401).unwrap();
+    assert!(
+        ((r.stiffness_max - corner.alpha_max) / corner.alpha_max).abs() < 1e-8,
+        "{r:?} vs {corner:?}"
+    );
+    let (a, b) = (r.stiffness_max, r.damping_at_max);
+    let mut all = true;
+    let mut any_unstable_above = false;
+    for gi in 0..=20 {
+        for di in 0..=20 {
+            let f = fam(1e-3 * gi as f64 / 20.0, 0.015 * di as f64 / 20.0, 0);
+            all &= stable(&f, a * (1.0 - 1e-6), b);
+            any_unstable_above |= !stable(&f, a * (1.0 + 1e-6), b);
+        }
+    }
+    assert!(all && any_unstable_above);
+}
+
+/// Corners are not enough: for δ = 0.5, d = 1, γ ∈ [0, 2.5] the stable interval's upper end
+/// at fixed β is smallest at an interior γ. The box search (fine γ samples + refinement)
+/// matches a dense γ grid, and is well below what the two corners alone give.
+#[test]
+fn robust_kmax_interior_worst_gamma() {
+    let pb = PlantBox::normalized([0.0, 2.5], [0.5, 0.5], 1).unwrap();
+    let opts = BoxOptions {
+        stiffness_samples: 17,
+        beta_samples: 41,
+        ..Default::default()
+    };
+    let r = robust_kmax(&pb, opts).unwrap();
+    assert!(r.worst_plant[2] > 0.05 && r.worst_plant[2] < 2.45, "{r:?}");
+    // dense γ grid at the optimum β
+    let dense = (0..=400)
+        .map(|i| {
+            let f = fam(2.5 * i as f64 / 400.0, 0.5, 1);
+            stable_alpha_intervals(&f, r.damping_at_max)
+                .iter()
+                .map(|iv| iv.hi)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        r.stiffness_max <= dense + 1e-12,
+        "{} vs {dense}",
+        r.stiffness_max
+    );
+    assert!(
+        dense - r.stiffness_max < 1e-4 * dense,
+        "{} vs {dense}",
+        r.stiffness_max
+    );
+    // the corners alone: max over β of min(hi(γ = 0), hi(γ = 2.5)) is larger
+    let corners = (0..=200)
+        .map(|i| {
+            let b = 1.2 * i as f64 / 200.0;
+            [0.0, 2.5]
+                .iter()
+                .map(|&g| {
+                    stable_alpha_intervals(&fam(g, 0.5, 1), b)
+                        .iter()
+                        .map(|iv| iv.hi)
+                        .fold(f64::NEG_INFINITY, f64::max)
+                })
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(
+        corners > r.stiffness_max * 1.01,
+        "{corners} vs {}",
+        r.stiffness_max
+    );
+}
