@@ -2,8 +2,14 @@
 //! the library and formats output; every analysis lives in the `hapstab` crate.
 
 mod check;
+mod linear;
 mod model;
+mod nyquist;
 mod output;
+mod ranges;
+// `run_robust` is wired into `hapstab kmax --robust` by kmax.rs.
+#[allow(dead_code)]
+mod robust;
 
 use clap::{Parser, Subcommand};
 
@@ -19,11 +25,20 @@ struct Cli {
 enum Command {
     /// Is this virtual wall stable, and how stiff may it be? (Sections III and V)
     Check(check::CheckArgs),
+    /// The γ and δ ranges of real haptic systems for a sampling period (Section IV, eq. 11–15)
+    Ranges(ranges::RangesArgs),
+    /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
+    Linear(linear::LinearArgs),
+    /// Regions up to the Nyquist frequency, robust region, passivity; Remark 4 (Section VIII)
+    Nyquist(nyquist::NyquistArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Check(a) => check::run(&a),
+        Command::Ranges(a) => ranges::run(&a),
+        Command::Linear(a) => linear::run(&a),
+        Command::Nyquist(a) => nyquist::run(&a),
     }
 }
 

@@ -1,0 +1,126 @@
+//! `hapstab linear`: the linear stability condition (22)/(23) and where its relative error
+//! (24) along the exact boundary first reaches given levels (Sections VI–VII, Fig. 7).
+
+use anyhow::{Result, bail};
+use clap::Args;
+use hapstab::PlantParams;
+use hapstab::linear::validity_points;
+use serde::Serialize;
+
+use crate::model::PlantArgs;
+use crate::output::{print_json, sig};
+
+/// Arguments of `hapstab linear`.
+#[derive(Args, Debug)]
+pub struct LinearArgs {
+    #[command(flatten)]
+    plant: PlantArgs,
+    /// Error levels of eq. (24), comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0.02,0.05",
+        allow_hyphen_values = true
+    )]
+    levels: Vec<f64>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct PointOut {
+    level: f64,
+    alpha: f64,
+    beta: f64,
+    /// α_lin of (23) at the same β.
+    alpha_linear: f64,
+    /// The error (24) at the point.
+    error: f64,
+    /// K and B in N/m and Ns/m (physical mode only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_stiffness: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_damping: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct LinearOut {
+    gamma: f64,
+    delta: f64,
+    d: usize,
+    /// Condition (23): α < (β + δ)/(d + 1/2), as slope and intercept in β.
+    linear_slope: f64,
+    linear_intercept: f64,
+    /// Lower bound (19): α > −γ.
+    alpha_lower: f64,
+    points: Vec<PointOut>,
+}
+
+/// Runs `hapstab linear`.
+pub fn run(a: &LinearArgs) -> Result<()> {
+    if a.levels.is_empty() {
+        bail!("--levels needs at least one value");
+    }
+    let pm = a.plant.resolve()?;
+    let pts = validity_points(PlantParams::new(pm.gamma, pm.delta)?, pm.d, &a.levels)?;
+    let scale = pm
+        .physical
+        .map(|(eff, s)| (eff.mass / (s.period * s.period), eff.mass / s.period));
+    let tr = pm.d as f64 + 0.5;
+    let out = LinearOut {
+        gamma: pm.gamma,
+        delta: pm.delta,
+        d: pm.d,
+        linear_slope: 1.0 / tr,
+        linear_intercept: pm.delta / tr,
+        alpha_lower: -pm.gamma,
+        points: pts
+            .iter()
+            .map(|p| PointOut {
+                level: p.level,
+                alpha: p.alpha,
+                beta: p.beta,
+                alpha_linear: p.alpha_linear,
+                error: p.error,
+                wall_stiffness: scale.map(|(k, _)| p.alpha * k),
+                wall_damping: scale.map(|(_, b)| p.beta * b),
+            })
+            .collect(),
+    };
+    if a.json {
+        return print_json(&out);
+    }
+    println!(
+        "plant       γ = {}, δ = {}, d = {}",
+        sig(out.gamma, 8),
+        sig(out.delta, 8),
+        out.d
+    );
+    println!(
+        "linear      (23): α < (β + δ)/(d + 1/2) = {}·β + {};  (19): α > {}",
+        sig(out.linear_slope, 8),
+        sig(out.linear_intercept, 8),
+        sig(out.alpha_lower, 8)
+    );
+    println!("error (24) first reaches, going up from β = 0⁺ (α on the exact boundary):");
+    for (p, q) in out.points.iter().zip(&pts) {
+        let phys = match (p.wall_stiffness, p.wall_damping) {
+            (Some(k), Some(b)) => format!("   (K = {} N/m, B = {} Ns/m)", sig(k, 8), sig(b, 8)),
+            _ => String::new(),
+        };
+        let note = if q.at_start {
+            "   (already at β = 0⁺)"
+        } else {
+            ""
+        };
+        println!(
+            "  {:>5} %   β = {}   α = {}   α_lin = {}{phys}{note}",
+            sig(p.level * 100.0, 4),
+            sig(p.beta, 12),
+            sig(p.alpha, 12),
+            sig(p.alpha_linear, 12)
+        );
+    }
+    Ok(())
+}
