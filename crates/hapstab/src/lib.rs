@@ -24,12 +24,12 @@ pub mod boundary;
 pub mod closed_loop;
 pub mod error;
 pub mod linear;
-pub mod nyquist;
 pub mod map;
+pub mod nyquist;
 pub mod params;
 pub mod plant;
-pub mod region;
 pub mod ranges;
+pub mod region;
 pub mod simulation;
 pub mod stability;
 
