@@ -29,14 +29,19 @@ pub struct AlphaBeta {
 /// The boundary point for a complex root pair at angle θ ∈ (0, π): the (α, β) for which
 /// p(e^{iθ}) = 0 (D-decomposition, Section V). None where N(e^{iθ}) = 0.
 pub fn curve_point(fam: &PolyFamily, theta: f64) -> Option<AlphaBeta> {
-    let z = Complex64::from_polar(1.0, theta);
+    let (s, c) = theta.sin_cos();
+    let z = Complex64::new(c, s);
     let n = fam.plant.numerator(z);
-    if n.norm() == 0.0 {
+    if n.norm_sqr() == 0.0 {
         return None;
     }
-    let zd = Complex64::from_polar(1.0, theta * fam.d as f64);
+    // z^d by repeated squaring (exact enough: a few roundings) for small d, polar for large d
+    let zd = if fam.d <= 64 {
+        z.powu(fam.d as u32)
+    } else {
+        Complex64::from_polar(1.0, theta * fam.d as f64)
+    };
     let r = zd * fam.plant.denominator(z) / n;
-    let s = theta.sin();
     Some(AlphaBeta {
         alpha: (r * (1.0 - z)).im / s,
         beta: -r.im / s,
@@ -52,7 +57,11 @@ pub fn minus_one_line(fam: &PolyFamily) -> Option<(f64, f64)> {
         return None;
     }
     let dm1 = 1.0 + pl.a1 + pl.a0;
-    let sign = if (fam.d + 1).is_multiple_of(2) { 1.0 } else { -1.0 };
+    let sign = if (fam.d + 1).is_multiple_of(2) {
+        1.0
+    } else {
+        -1.0
+    };
     Some((2.0, sign * dm1 / n))
 }
 

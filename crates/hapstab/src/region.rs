@@ -190,7 +190,8 @@ fn point(fam: &PolyFamily, theta: f64) -> Option<P> {
 }
 
 /// Adaptive sampling of the curve on [t0, t1]: bisect until the midpoint lies within `tol` of
-/// the chord and the chord is shorter than `maxlen`. Appends points after t0 (t1 included).
+/// the chord; coarse passes (finite `maxlen`) refine only where |β| <= maxlen. Appends points
+/// after t0 (t1 included).
 #[allow(clippy::too_many_arguments)]
 fn sample(
     fam: &PolyFamily,
@@ -205,7 +206,7 @@ fn sample(
 ) {
     let tm = 0.5 * (t0 + t1);
     // Coarse passes (finite maxlen) only refine near the |β| < band of possible stability.
-    let relevant = maxlen.is_infinite() || p0.y.abs().min(p1.y.abs()) <= maxlen * 30.0;
+    let relevant = maxlen.is_infinite() || p0.y.abs().min(p1.y.abs()) <= maxlen;
     if depth < 48
         && relevant
         && let Some(pm) = point(fam, tm)
@@ -219,9 +220,9 @@ fn sample(
                 sub(pm, p0).x.hypot(sub(pm, p0).y)
             };
             let far = sub(pm, p0).x.hypot(sub(pm, p0).y) + sub(pm, p1).x.hypot(sub(pm, p1).y);
-            if dev > tol || len > maxlen || far > 1.5 * len + tol {
+            if dev > tol || far > 1.5 * len + tol {
                 // Split into k parts so that each chord's deviation (∝ length²) meets tol.
-                let k = if far > 1.5 * len + tol || len > maxlen || depth > 8 {
+                let k = if far > 1.5 * len + tol || depth > 8 {
                     2
                 } else {
                     ((dev / tol).sqrt().ceil() as usize).clamp(2, 64)
@@ -429,7 +430,7 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
         let t = pi * i as f64 / m as f64;
         match (point(fam, t), prev) {
             (Some(p), Some((t0, p0))) => {
-                sample(fam, t0, p0, t, p, 1e-3 * bmax, 0.05 * bmax, 0, &mut coarse);
+                sample(fam, t0, p0, t, p, 1e-3 * bmax, 1.5 * bmax, 0, &mut coarse);
                 prev = Some((t, p));
             }
             (Some(p), None) => {
@@ -802,7 +803,7 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     let rsize = (bx1 - bx0).max(by1 - by0);
     let polygons: Vec<Polygon> = stable_faces
         .iter()
-        .map(|(f, _)| refine_face(fam, &g, f, rel_tol * rsize))
+        .map(|(f, _)| refine_face(fam, &g, f, 0.9 * rel_tol * rsize))
         .collect();
     let area = polygons.iter().map(|p| p.area()).sum();
     let (alpha_max, beta_at_alpha_max) = alpha_max_of(fam, &polygons);

@@ -280,3 +280,52 @@ fn paper_range_and_large_delay() {
             .any(|i| (i.hi - r.alpha_max).abs() < 1e-9 * r.alpha_max)
     );
 }
+
+#[test]
+fn chords_follow_the_curve_to_1e9_of_the_size() {
+    // Between two consecutive vertices of a complex-pair arc, the curve point at the middle
+    // angle lies within 1e-9 × (region size) of the chord.
+    for &(g, dl, d) in CASES {
+        let (fam, r) = region(g, dl, d);
+        for poly in &r.polygons {
+            let v = &poly.vertices;
+            let ext = |f: fn(&AlphaBeta) -> f64| {
+                let (lo, hi) = v
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                        (l.min(f(p)), h.max(f(p)))
+                    });
+                hi - lo
+            };
+            let size = ext(|p| p.alpha).max(ext(|p| p.beta));
+            let corners = poly.corners();
+            let mut worst: f64 = 0.0;
+            for i in 0..v.len() {
+                let j = (i + 1) % v.len();
+                let (ta, tb) = (poly.thetas[i], poly.thetas[j]);
+                // both ends on the same arc (a line edge starts at a corner with a line kind)
+                let on_line = poly
+                    .edges
+                    .iter()
+                    .any(|e| e.start == i && !matches!(e.kind, EdgeKind::Complex { .. }));
+                if on_line || !ta.is_finite() || !tb.is_finite() || (corners.contains(&j) && j == 0)
+                {
+                    continue;
+                }
+                let m = hapstab::boundary::curve_point(&fam, 0.5 * (ta + tb)).unwrap();
+                let (a, b) = (v[i], v[j]);
+                let (tx, ty) = (b.alpha - a.alpha, b.beta - a.beta);
+                let l = tx.hypot(ty);
+                if l == 0.0 {
+                    continue;
+                }
+                let dev = ((m.alpha - a.alpha) * ty - (m.beta - a.beta) * tx).abs() / l;
+                worst = worst.max(dev / size);
+            }
+            assert!(
+                worst <= 1e-9,
+                "γ={g} δ={dl} d={d}: chord deviation {worst:e} of the size"
+            );
+        }
+    }
+}

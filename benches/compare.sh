@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Measures the 1000×1000 stability map with hapstab (criterion) and with numpy.roots point by
+# point (benches/baseline/numpy_map.py) in one run, and prints the ratio per point.
+# Usage: bash benches/compare.sh        (installs numpy into a venv under target/ if needed)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+venv=target/baseline-venv
+if [ ! -x "$venv/bin/python" ]; then
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install --quiet numpy
+fi
+cargo bench -p hapstab --bench map -- --noplot >/dev/null
+for d in 0 10; do
+  est=target/criterion/map_1000x1000/schur/$d/new/estimates.json
+  rust_ns=$(python3 -c "import json;print(json.load(open('$est'))['mean']['point_estimate'])")
+  # OPENBLAS_CORETYPE/OPENBLAS_L2_SIZE slow a current numpy; unset both for the baseline only.
+  py=$(env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE "$venv/bin/python" benches/baseline/numpy_map.py $d 10)
+  python3 - "$rust_ns" "$py" <<'PY'
+import json, sys
+rust_total_ns = float(sys.argv[1]); py = json.loads(sys.argv[2])
+rust_pp = rust_total_ns / 1e6
+print(f"d={py['d']}: hapstab {rust_total_ns/1e6:.1f} ms per 1e6-point map ({rust_pp:.1f} ns/point); "
+      f"numpy.roots {py['ns_per_point']/1e3:.1f} us/point ({py['points_timed']} points timed, "
+      f"{py['ns_per_point']*1e6/1e9:.1f} s per map); ratio {py['ns_per_point']/rust_pp:.0f}x")
+PY
+done
