@@ -152,30 +152,36 @@ const FIG7_DELTAS: [f64; 4] = [0.0, 0.005, 0.01, 0.015];
 /// γ = 0.001.
 #[test]
 fn fig7_validity_points() {
+    use rayon::prelude::*;
     let levels = [0.02, 0.05];
-    let mut table = Vec::new();
-    for d in [0usize, 1] {
-        for &delta in &FIG7_DELTAS {
-            for gamma in [0.0, 0.001] {
-                let pts =
-                    validity_points(PlantParams::new(gamma, delta).unwrap(), d, &levels).unwrap();
-                let f = fam(gamma, delta, d);
-                for p in &pts {
-                    assert!(!p.at_start);
-                    assert!(stable(&f, p.alpha * (1.0 - 1e-9), p.beta), "{p:?}");
-                    assert!(!stable(&f, p.alpha * (1.0 + 1e-9), p.beta), "{p:?}");
-                    let below = relative_error(&f, p.beta * (1.0 - 1e-9)).unwrap();
-                    let above = relative_error(&f, p.beta * (1.0 + 1e-9)).unwrap();
-                    assert!(below < p.level && p.level < above, "{p:?} {below} {above}");
-                    for i in 1..200 {
-                        let b = p.beta * i as f64 / 200.0;
-                        assert!(relative_error(&f, b).unwrap() < p.level, "{p:?} at {b}");
-                    }
+    let settings: Vec<(usize, f64, f64)> = [0usize, 1]
+        .iter()
+        .flat_map(|&d| {
+            FIG7_DELTAS
+                .iter()
+                .flat_map(move |&delta| [0.0, 0.001].map(|gamma| (d, delta, gamma)))
+        })
+        .collect();
+    let table: Vec<_> = settings
+        .par_iter()
+        .map(|&(d, delta, gamma)| {
+            let pts = validity_points(PlantParams::new(gamma, delta).unwrap(), d, &levels).unwrap();
+            let f = fam(gamma, delta, d);
+            for p in &pts {
+                assert!(!p.at_start);
+                assert!(stable(&f, p.alpha * (1.0 - 1e-9), p.beta), "{p:?}");
+                assert!(!stable(&f, p.alpha * (1.0 + 1e-9), p.beta), "{p:?}");
+                let below = relative_error(&f, p.beta * (1.0 - 1e-9)).unwrap();
+                let above = relative_error(&f, p.beta * (1.0 + 1e-9)).unwrap();
+                assert!(below < p.level && p.level < above, "{p:?} {below} {above}");
+                for i in 1..100 {
+                    let b = p.beta * i as f64 / 100.0;
+                    assert!(relative_error(&f, b).unwrap() < p.level, "{p:?} at {b}");
                 }
-                table.push((d, delta, gamma, pts));
             }
-        }
-    }
+            (d, delta, gamma, pts)
+        })
+        .collect();
     // closed form for γ = δ = d = 0
     let (_, _, _, pts) = &table[0];
     for p in pts {
