@@ -6,6 +6,7 @@ mod linear;
 mod model;
 mod nyquist;
 mod output;
+mod plot;
 mod ranges;
 // `run_robust` is wired into `hapstab kmax --robust` by kmax.rs.
 #[allow(dead_code)]
