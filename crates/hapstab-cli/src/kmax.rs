@@ -18,6 +18,12 @@ pub struct KmaxArgs {
     /// Virtual damping B in Ns/m; without it, the overall K_max and the B that reaches it.
     #[arg(long, allow_hyphen_values = true)]
     wall_damping: Option<f64>,
+    /// Robust design (beyond the paper): K_max stable for every plant in a box, by default
+    /// from the ungrabbed device to the device held by the arm (see --box-* flags).
+    #[arg(long)]
+    robust: bool,
+    #[command(flatten)]
+    robust_box: crate::robust::RobustArgs,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -48,6 +54,9 @@ struct KmaxOut {
 
 /// Runs `hapstab kmax`.
 pub fn run(a: &KmaxArgs) -> Result<()> {
+    if a.robust {
+        return crate::robust::run_robust(&a.plant, &a.robust_box, a.json);
+    }
     let pm = a.plant.resolve()?;
     let Some((eff, s)) = pm.physical else {
         bail!("kmax works in physical units; for normalized parameters use `hapstab boundary`");

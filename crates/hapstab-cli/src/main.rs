@@ -1,15 +1,16 @@
 //! `hapstab`: command-line front end of the hapstab library. It only parses arguments, calls
 //! the library and formats output; every analysis lives in the `hapstab` crate.
 
+mod boundary;
 mod check;
+mod kmax;
 mod linear;
+mod map;
 mod model;
 mod nyquist;
 mod output;
 mod plot;
 mod ranges;
-// `run_robust` is wired into `hapstab kmax --robust` by kmax.rs.
-#[allow(dead_code)]
 mod robust;
 
 use clap::{Parser, Subcommand};
@@ -26,6 +27,12 @@ struct Cli {
 enum Command {
     /// Is this virtual wall stable, and how stiff may it be? (Sections III and V)
     Check(check::CheckArgs),
+    /// The exact stable region in the (α, β)-plane, α_max and area (Section V, Figs. 4–6)
+    Boundary(boundary::BoundaryArgs),
+    /// Largest stable virtual stiffness K in N/m, beside the linear condition (22)
+    Kmax(kmax::KmaxArgs),
+    /// Grid map of stability over two of α, β, γ, δ (the paper's method), in parallel
+    Map(map::MapArgs),
     /// The γ and δ ranges of real haptic systems for a sampling period (Section IV, eq. 11–15)
     Ranges(ranges::RangesArgs),
     /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
@@ -37,6 +44,9 @@ enum Command {
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Check(a) => check::run(&a),
+        Command::Boundary(a) => boundary::run(&a),
+        Command::Kmax(a) => kmax::run(&a),
+        Command::Map(a) => map::run(&a),
         Command::Ranges(a) => ranges::run(&a),
         Command::Linear(a) => linear::run(&a),
         Command::Nyquist(a) => nyquist::run(&a),
@@ -44,6 +54,13 @@ fn run(cli: Cli) -> anyhow::Result<()> {
 }
 
 fn main() {
+    // Die quietly like other Unix tools when stdout is closed (`hapstab ... | head`), instead
+    // of panicking in println!.
+    #[cfg(unix)]
+    // SAFETY: restoring the default disposition of SIGPIPE before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {

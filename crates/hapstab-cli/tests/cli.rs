@@ -97,3 +97,76 @@ fn bad_input_is_one_line_and_exit_2() {
     bad(&["check", "--gamma", "0.001"], "--alpha");
     bad(&["check", "--delay", "100000"], "delay");
 }
+
+#[test]
+fn boundary_json_pure_mass_closed_form() {
+    let v = json(&["boundary", "--gamma", "0", "--delta", "0", "--delay", "0"]);
+    let beta = 2.0 * 2f64.sqrt() - 2.0;
+    let alpha = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
+    assert!((v["alpha_max"].as_f64().unwrap() - alpha).abs() < 1e-12 * alpha);
+    assert!((v["beta_at_alpha_max"].as_f64().unwrap() - beta).abs() < 1e-12 * beta);
+    assert!((v["area"].as_f64().unwrap() - (12.0 - 16.0 * 2f64.ln())).abs() < 1e-8);
+    let polys = v["polygons"].as_array().unwrap();
+    assert_eq!(polys.len(), 1);
+    // every vertex satisfies 0 <= α <= 2β(2 − β)/(2 + β) (up to rounding)
+    for p in polys[0].as_array().unwrap() {
+        let (a, b) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
+        assert!(a >= -1e-15 && a <= 2.0 * b * (2.0 - b) / (2.0 + b) + 1e-12, "({a}, {b})");
+    }
+}
+
+#[test]
+fn boundary_csv_and_map_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let b = dir.path().join("b.csv");
+    hapstab()
+        .args(["boundary", "--gamma", "0.001", "--delta", "0.015", "--delay", "1", "--csv"])
+        .arg(&b)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&b).unwrap();
+    assert!(text.starts_with("polygon,vertex,alpha,beta,theta,edge"));
+    assert!(text.lines().count() > 1000);
+    let m = dir.path().join("m.csv");
+    let out = hapstab()
+        .args(["map", "--x", "alpha:-0.05:0.7:40", "--y", "beta:-0.1:2.1:30", "--out"])
+        .arg(&m)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let rows: Vec<String> = std::fs::read_to_string(&m).unwrap().lines().map(String::from).collect();
+    assert_eq!(rows[0], "alpha,beta,stable");
+    assert_eq!(rows.len(), 1 + 40 * 30);
+    // pure mass: stable iff 0 < α < 2β(2 − β)/(2 + β), away from the boundary
+    for r in &rows[1..] {
+        let f: Vec<f64> = r.split(',').map(|x| x.parse().unwrap()).collect();
+        let (a, b, s) = (f[0], f[1], f[2] == 1.0);
+        if b > 0.0 && b < 2.0 {
+            let hi = 2.0 * b * (2.0 - b) / (2.0 + b);
+            if a > 1e-9 && a < hi - 1e-9 {
+                assert!(s, "({a}, {b})");
+            }
+        }
+        if a < -1e-9 || b < -1e-9 || b > 2.0 + 1e-9 {
+            assert!(!s, "({a}, {b})");
+        }
+    }
+}
+
+#[test]
+fn kmax_physical_units() {
+    // PHANToM-like device, no arm, T = 1 ms, d = 0: K = α m/T², B = β m/T.
+    let v = json(&["kmax", "--device-mass", "0.1", "--device-damping", "1.5", "--no-arm"]);
+    let (kmax, b) = (v["k_max"].as_f64().unwrap(), v["b_at_k_max"].as_f64().unwrap());
+    let alpha = v["alpha_max"].as_f64().unwrap();
+    assert!((kmax - alpha * 0.1 / 1e-6).abs() < 1e-9 * kmax);
+    // linear condition (22) at that B: (b + B)/(T/2)
+    assert!((v["k_linear"].as_f64().unwrap() - (1.5 + b) / 0.0005).abs() < 1e-6 * kmax);
+    // with B given: K interval from −k = 0 to the exact boundary, below the linear estimate
+    let v = json(&["kmax", "--no-arm", "--wall-damping", "5", "--delay", "1"]);
+    let k = v["k_max"].as_f64().unwrap();
+    let lin = v["k_linear"].as_f64().unwrap();
+    assert!((lin - 6.5 / 0.0015).abs() < 1e-9);
+    assert!(k > 0.9 * lin && k < 1.1 * lin, "{k} vs {lin}");
+}
