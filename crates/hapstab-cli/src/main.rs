@@ -12,6 +12,7 @@ mod output;
 mod plot;
 mod ranges;
 mod robust;
+mod simulate;
 
 use clap::{Parser, Subcommand};
 
@@ -25,6 +26,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Time-domain simulation with nonlinear effects: verdict, CSV trace and plot (issue 6)
+    Simulate(simulate::SimulateArgs),
+    /// Empirical stability boundary of a nonlinear setting by simulation (issue 6)
+    Simboundary(simulate::SimboundaryArgs),
     /// Is this virtual wall stable, and how stiff may it be? (Sections III and V)
     Check(check::CheckArgs),
     /// The exact stable region in the (α, β)-plane, α_max and area (Section V, Figs. 4–6)
@@ -43,6 +48,8 @@ enum Command {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Command::Simulate(a) => simulate::run_simulate(&a),
+        Command::Simboundary(a) => simulate::run_simboundary(&a),
         Command::Check(a) => check::run(&a),
         Command::Boundary(a) => boundary::run(&a),
         Command::Kmax(a) => kmax::run(&a),

@@ -419,7 +419,8 @@ impl Figure {
             .x_label_area_size(px(80.0))
             .y_label_area_size(px(120.0));
         if !self.title.is_empty() {
-            builder.caption(&self.title, (FONT, px(34.0)).into_font());
+            let size = fit_font(34.0 * s, &self.title, area.dim_in_pixel().0);
+            builder.caption(&self.title, (FONT, size).into_font());
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
         let xfmt = tick_formatter(x1 - x0);
@@ -440,6 +441,15 @@ impl Figure {
             .axis_style(BLACK.stroke_width(2))
             .draw()?;
         let bounds = Rect { x0, x1, y0, y1 };
+        let (pw, ph) = chart.plotting_area().dim_in_pixel();
+        let px_scale = (pw as f64 / (x1 - x0), ph as f64 / (y1 - y0));
+        // Clip, then simplify to 0.4 px (see `thin`).
+        let pieces_of = |pts: &[(f64, f64)]| -> Vec<Vec<(f64, f64)>> {
+            clip_polyline(pts, &bounds)
+                .into_iter()
+                .map(|p| thin(&p, px_scale, 0.4))
+                .collect()
+        };
         let mut labelled = false;
         for (i, series) in self.series.iter().enumerate() {
             let color = series
@@ -449,7 +459,7 @@ impl Figure {
             let line_style = color.stroke_width(w);
             match series.kind {
                 Kind::Line { dashed: false } => {
-                    let pieces = clip_polyline(&series.points, &bounds);
+                    let pieces = pieces_of(&series.points);
                     let a = chart
                         .draw_series(pieces.into_iter().map(|p| PathElement::new(p, line_style)))?;
                     if let Some(l) = &series.label {
@@ -460,7 +470,7 @@ impl Figure {
                     }
                 }
                 Kind::Line { dashed: true } => {
-                    let pieces = clip_polyline(&series.points, &bounds);
+                    let pieces = pieces_of(&series.points);
                     let (dash, gap) = ((4 * w + 6) as i32, (2 * w + 5) as i32);
                     let a = chart.draw_series(
                         pieces
@@ -480,7 +490,7 @@ impl Figure {
                     }
                 }
                 Kind::Polygon { alpha, outline } => {
-                    let poly = clip_polygon(&series.points, &bounds);
+                    let poly = thin(&clip_polygon(&series.points, &bounds), px_scale, 0.4);
                     if poly.len() < 3 {
                         continue;
                     }
@@ -504,7 +514,7 @@ impl Figure {
                         // Outline only along the true edges, not along the clip window.
                         let mut ring = series.points.clone();
                         ring.push(series.points[0]);
-                        let pieces = clip_polyline(&ring, &bounds);
+                        let pieces = pieces_of(&ring);
                         chart.draw_series(
                             pieces.into_iter().map(|p| PathElement::new(p, line_style)),
                         )?;
@@ -683,7 +693,8 @@ impl Render for Grid {
         let body = if self.title.is_empty() {
             root.clone()
         } else {
-            root.titled(&self.title, (FONT, 40).into_font())?
+            let size = fit_font(40.0, &self.title, root.dim_in_pixel().0);
+            root.titled(&self.title, (FONT, size).into_font())?
         };
         let areas = body.split_evenly((self.rows(), self.cols));
         for (panel, area) in self.panels.iter().zip(areas.iter()) {
@@ -743,6 +754,15 @@ fn save_both<R: Render>(r: &R, stem: &Path) -> Result<Saved> {
         }
     }
     Ok(Saved { svg, png })
+}
+
+/// The nominal font size for a one-line title: `nominal`, shrunk (not below 23, i.e. 18.5 px) so that
+/// the text fits into `width` px (DejaVu Sans averages about 0.58 em per character; plotters
+/// renders nominal/1.24 px).
+fn fit_font(nominal: f64, text: &str, width: u32) -> f64 {
+    let chars = text.chars().count().max(1) as f64;
+    let fit = (width as f64 - 40.0).max(1.0) * 1.24 / (0.58 * chars);
+    nominal.min(fit).max(23.0).round()
 }
 
 fn padded(lo: f64, hi: f64) -> (f64, f64) {
@@ -850,6 +870,52 @@ fn clip_polyline(points: &[(f64, f64)], r: &Rect) -> Vec<Vec<(f64, f64)>> {
     }
     flush(&mut cur, &mut out);
     out
+}
+
+/// Ramer–Douglas–Peucker simplification in pixel space: drops points within `tol_px` pixels
+/// of the chord that replaces them (first and last kept). plotters rounds vertices to whole
+/// pixels, so a dense curve would otherwise zig-zag and its thick-line joins would fringe.
+fn thin(points: &[(f64, f64)], (sx, sy): (f64, f64), tol_px: f64) -> Vec<(f64, f64)> {
+    let n = points.len();
+    if n <= 2 {
+        return points.to_vec();
+    }
+    let px = |p: (f64, f64)| (p.0 * sx, p.1 * sy);
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j <= i + 1 {
+            continue;
+        }
+        let (a, b) = (px(points[i]), px(points[j]));
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let len = dx.hypot(dy);
+        let (mut worst, mut at) = (-1.0, i);
+        for (k, &p) in points.iter().enumerate().take(j).skip(i + 1) {
+            let q = px(p);
+            let d = if len > 0.0 {
+                ((q.0 - a.0) * dy - (q.1 - a.1) * dx).abs() / len
+            } else {
+                (q.0 - a.0).hypot(q.1 - a.1)
+            };
+            if d > worst {
+                worst = d;
+                at = k;
+            }
+        }
+        if worst > tol_px {
+            keep[at] = true;
+            stack.push((i, at));
+            stack.push((at, j));
+        }
+    }
+    points
+        .iter()
+        .zip(keep)
+        .filter_map(|(&p, k)| k.then_some(p))
+        .collect()
 }
 
 /// Liang–Barsky: the visible part of segment a→b, and whether its end was cut.

@@ -1,0 +1,1086 @@
+//! `hapstab simulate` and `hapstab simboundary` (issue 6): the sampled-data loop of Fig. 3 in
+//! the time domain with the nonlinear effects the paper leaves to future work (Remark 1,
+//! Section IX): unilateral wall, Coulomb/static friction, encoder quantization, actuator
+//! saturation. All simulation lives in `hapstab::simulation`; this module parses flags,
+//! writes the CSV trace and the plots, and formats the verdicts.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use hapstab::boundary::AlphaBeta;
+use hapstab::region::stable_region;
+use hapstab::simulation::{
+    BoundarySearch, Config, Contact, Effects, EmpiricalPoint, Friction, HumanForce, Initial, Model,
+    Outcome, RunResult, StableWhen, Trace, empirical_boundary, samples_for_duration, simulate,
+};
+use hapstab::stability::Analysis;
+use hapstab::{Normalized, PolyFamily};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::model::{PlantArgs, PlantModel, WallArgs, resolve_point};
+use crate::output::{print_json, sig};
+use crate::plot::{Figure, Grid, Legend, Marker, Saved, Series, palette};
+
+/// Longest run accepted (samples): 10⁹ samples take about a minute per core.
+const MAX_SAMPLES: f64 = 1e9;
+/// Default run length: 10 s at the physical period, 10 000 samples in normalized mode.
+const DEFAULT_SAMPLES: usize = 10_000;
+/// Default initial penetration x(0) in m.
+const DEFAULT_X0: f64 = 1e-3;
+/// Points per plotted curve (min-max decimated).
+const PLOT_BUCKETS: usize = 2_000;
+
+/// Nonlinear effects, human force, initial state and run length, shared by both commands.
+#[derive(Args, Debug, Clone, Default)]
+pub struct RunArgs {
+    /// Unilateral wall: force only while the sensed position penetrates it (Remark 1).
+    #[arg(long)]
+    pub unilateral: bool,
+    /// With --unilateral: the wall never pulls (F_wall >= 0; the damper cannot hold the device).
+    #[arg(long, requires = "unilateral")]
+    pub no_pull: bool,
+    /// Wall position x_w in m: the spring's rest position and the unilateral surface [default 0].
+    #[arg(long, allow_hyphen_values = true, value_name = "M")]
+    pub wall_position: Option<f64>,
+    /// Coulomb (sliding) friction F_c of the device in N.
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
+    pub coulomb: Option<f64>,
+    /// Static (breakaway) friction F_s >= F_c in N [default: F_c].
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
+    pub stiction: Option<f64>,
+    /// Position-encoder resolution q in m: the wall sees round(x/q)·q.
+    #[arg(long, allow_hyphen_values = true, value_name = "M")]
+    pub quantization: Option<f64>,
+    /// Actuator force limit F_max in N: |F_wall| <= F_max.
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
+    pub saturation: Option<f64>,
+    /// Constant human force F_H in N, positive into the wall [default 0].
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
+    pub push: Option<f64>,
+    /// Initial position x(0) in m, positive into the wall [default 0.001].
+    #[arg(long, allow_hyphen_values = true, value_name = "M")]
+    pub initial_position: Option<f64>,
+    /// Initial velocity ẋ(0) in m/s [default 0].
+    #[arg(long, allow_hyphen_values = true, value_name = "M/S")]
+    pub initial_velocity: Option<f64>,
+    /// Run length in seconds (physical mode) [default 10 s].
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "S",
+        conflicts_with = "duration_samples"
+    )]
+    pub duration: Option<f64>,
+    /// Run length in samples [default 10000].
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
+    pub duration_samples: Option<f64>,
+}
+
+/// The resolved run settings (everything but the wall).
+#[derive(Debug, Clone, Copy, Serialize)]
+struct RunSettings {
+    effects: Effects,
+    human_force: f64,
+    initial: Initial,
+    samples: usize,
+}
+
+impl RunArgs {
+    fn resolve(&self, physical: bool, period: f64) -> Result<RunSettings> {
+        let finite = |name: &str, v: Option<f64>| -> Result<Option<f64>> {
+            match v {
+                Some(x) if !x.is_finite() => bail!("{name} must be a finite number (got {x})"),
+                _ => Ok(v),
+            }
+        };
+        let friction = match (
+            finite("--coulomb", self.coulomb)?,
+            finite("--stiction", self.stiction)?,
+        ) {
+            (None, None) => None,
+            (c, s) => {
+                let coulomb = c.unwrap_or(0.0);
+                Some(Friction {
+                    coulomb,
+                    stiction: s.unwrap_or(coulomb),
+                })
+            }
+        };
+        let effects = Effects {
+            contact: match (self.unilateral, self.no_pull) {
+                (false, _) => Contact::Bilateral,
+                (true, false) => Contact::Unilateral,
+                (true, true) => Contact::UnilateralNoPull,
+            },
+            wall_position: finite("--wall-position", self.wall_position)?.unwrap_or(0.0),
+            friction,
+            quantization: finite("--quantization", self.quantization)?,
+            saturation: finite("--saturation", self.saturation)?,
+        };
+        effects.validate()?;
+        let samples = match (self.duration, self.duration_samples) {
+            (Some(_), _) if !physical => bail!(
+                "normalized mode counts time in samples (T = 1): use --duration-samples instead of --duration"
+            ),
+            (Some(s), _) => {
+                if !s.is_finite() || s <= 0.0 {
+                    bail!("--duration must be a positive number of seconds (got {s})");
+                }
+                if s / period > MAX_SAMPLES {
+                    bail!(
+                        "--duration {s} s is {} samples; at most {MAX_SAMPLES:e} are allowed",
+                        sig(s / period, 4)
+                    );
+                }
+                samples_for_duration(s, period)?
+            }
+            (None, Some(n)) => {
+                if !n.is_finite() || n < 2.0 || n.fract() != 0.0 {
+                    bail!("--duration-samples must be a whole number >= 2 (got {n})");
+                }
+                if n > MAX_SAMPLES {
+                    bail!("--duration-samples must be at most {MAX_SAMPLES:e} (got {n})");
+                }
+                n as usize
+            }
+            (None, None) => DEFAULT_SAMPLES,
+        };
+        Ok(RunSettings {
+            effects,
+            human_force: finite("--push", self.push)?.unwrap_or(0.0),
+            initial: Initial {
+                position: finite("--initial-position", self.initial_position)?
+                    .unwrap_or(DEFAULT_X0),
+                velocity: finite("--initial-velocity", self.initial_velocity)?.unwrap_or(0.0),
+            },
+            samples,
+        })
+    }
+
+    fn config(&self, model: Model, physical: bool) -> Result<(Config, RunSettings)> {
+        let s = self.resolve(physical, model.period)?;
+        let mut cfg = Config::new(model, s.samples);
+        cfg.effects = s.effects;
+        cfg.human = HumanForce::Constant(s.human_force);
+        cfg.initial = s.initial;
+        cfg.validate()?;
+        Ok((cfg, s))
+    }
+}
+
+/// Human-readable list of the active nonlinear effects.
+fn describe_effects(s: &RunSettings, force_unit: &str) -> String {
+    let e = &s.effects;
+    let mut parts = Vec::new();
+    match e.contact {
+        Contact::Bilateral => {}
+        Contact::Unilateral => parts.push("unilateral wall".to_string()),
+        Contact::UnilateralNoPull => parts.push("unilateral wall that never pulls".to_string()),
+    }
+    if e.wall_position != 0.0 {
+        parts.push(format!("wall at x_w = {} m", sig(e.wall_position, 6)));
+    }
+    if let Some(f) = e.friction {
+        parts.push(format!(
+            "friction F_c = {} {force_unit}, F_s = {} {force_unit}",
+            sig(f.coulomb, 6),
+            sig(f.stiction, 6)
+        ));
+    }
+    if let Some(q) = e.quantization {
+        parts.push(format!("quantization q = {} m", sig(q, 6)));
+    }
+    if let Some(f) = e.saturation {
+        parts.push(format!("saturation F_max = {} {force_unit}", sig(f, 6)));
+    }
+    if s.human_force != 0.0 {
+        parts.push(format!(
+            "human push F_H = {} {force_unit}",
+            sig(s.human_force, 6)
+        ));
+    }
+    if parts.is_empty() {
+        "none: the paper's linear bilateral loop".to_string()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// Units of a run: physical (s, N) or normalized (samples, T²F/m).
+#[derive(Debug, Clone, Copy)]
+struct Units {
+    physical: bool,
+}
+
+impl Units {
+    fn name(&self) -> &'static str {
+        if self.physical {
+            "physical"
+        } else {
+            "normalized"
+        }
+    }
+    fn time(&self) -> &'static str {
+        if self.physical { "s" } else { "samples" }
+    }
+    fn force(&self) -> &'static str {
+        if self.physical { "N" } else { "T²F/m (m)" }
+    }
+    fn velocity(&self) -> &'static str {
+        if self.physical { "m/s" } else { "m/sample" }
+    }
+    fn frequency(&self) -> &'static str {
+        if self.physical { "Hz" } else { "cycles/sample" }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// hapstab simulate
+// ---------------------------------------------------------------------------------------
+
+/// Arguments of `hapstab simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    plant: PlantArgs,
+    #[command(flatten)]
+    wall: WallArgs,
+    #[command(flatten)]
+    run: RunArgs,
+    /// CSV trace with columns t, x, v, F (F: wall force, positive pushing out of the wall).
+    #[arg(long, value_name = "FILE", default_value = "simulate.csv")]
+    csv: PathBuf,
+    /// Plot of position and force over time: writes STEM.svg and STEM.png.
+    #[arg(long, value_name = "STEM", default_value = "simulate")]
+    plot: PathBuf,
+    /// Most CSV rows; longer runs record every n-th sample.
+    #[arg(long, value_name = "N", default_value_t = 100_000)]
+    max_rows: usize,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct Files {
+    csv: PathBuf,
+    svg: PathBuf,
+    png: PathBuf,
+    rows: usize,
+    record_every: usize,
+}
+
+#[derive(Serialize)]
+struct SimulateOut {
+    verdict: &'static str,
+    growth_per_sample: f64,
+    growth_method: hapstab::simulation::GrowthMethod,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    amplitude: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    frequency_hz: Option<f64>,
+    /// Spectral radius of p(z) from the linear analysis (Section V), for comparison.
+    spectral_radius: f64,
+    /// The linear analysis' verdict for the same (α, β, γ, δ, d).
+    linear_verdict: &'static str,
+    run_envelope_growth: Option<f64>,
+    samples: usize,
+    duration: f64,
+    blown_up: bool,
+    final_position: f64,
+    final_velocity: f64,
+    units: &'static str,
+    mass: f64,
+    period: f64,
+    normalized: Normalized,
+    effects: Effects,
+    human_force: f64,
+    initial: Initial,
+    files: Files,
+}
+
+/// Runs `hapstab simulate`.
+pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
+    if a.max_rows < 2 {
+        bail!("--max-rows must be at least 2 (got {})", a.max_rows);
+    }
+    let pm = resolve_point(&a.plant, &a.wall)?;
+    let units = Units {
+        physical: pm.physical.is_some(),
+    };
+    let model = match &pm.physical {
+        Some(p) => Model::from_physical(p)?,
+        None => Model::unit(pm.normalized)?,
+    };
+    let (mut cfg, settings) = a.run.config(model, units.physical)?;
+    cfg.record_every = cfg.samples.div_ceil(a.max_rows - 1).max(1);
+    let analysis = Analysis::new(model.params)?;
+    let mut result = simulate(&cfg)?;
+    let trace = result.trace.take().unwrap_or_default();
+    let rows = write_trace_csv(&a.csv, &trace)?;
+    let saved = trace_plot(&trace, &result, &cfg, &settings, units)
+        .save(&a.plot)
+        .with_context(|| format!("plot {}", a.plot.display()))?;
+    let out = SimulateOut {
+        verdict: result.verdict.as_str(),
+        growth_per_sample: result.growth_per_sample,
+        growth_method: result.growth_method,
+        amplitude: result.amplitude,
+        frequency_hz: result.frequency_hz,
+        spectral_radius: analysis.spectral_radius,
+        linear_verdict: analysis.verdict.as_str(),
+        run_envelope_growth: result.run_envelope_growth,
+        samples: result.samples,
+        duration: result.samples as f64 * model.period,
+        blown_up: result.blown_up,
+        final_position: result.final_position,
+        final_velocity: result.final_velocity,
+        units: units.name(),
+        mass: model.mass,
+        period: model.period,
+        normalized: model.params,
+        effects: settings.effects,
+        human_force: settings.human_force,
+        initial: settings.initial,
+        files: Files {
+            csv: a.csv.clone(),
+            svg: saved.svg.clone(),
+            png: saved.png.clone(),
+            rows,
+            record_every: cfg.record_every,
+        },
+    };
+    if a.json {
+        return print_json(&out);
+    }
+    print_simulate(&out, &settings, units);
+    Ok(())
+}
+
+fn write_trace_csv(path: &Path, tr: &Trace) -> Result<usize> {
+    let mut w = csv::Writer::from_path(path)
+        .with_context(|| format!("cannot write CSV {}", path.display()))?;
+    w.write_record(["t", "x", "v", "F"])?;
+    for i in 0..tr.time.len() {
+        w.write_record([
+            num(tr.time[i]),
+            num(tr.position[i]),
+            num(tr.velocity[i]),
+            num(tr.wall_force[i]),
+        ])?;
+    }
+    w.flush()
+        .with_context(|| format!("cannot write CSV {}", path.display()))?;
+    Ok(tr.time.len())
+}
+
+/// A unit prefix for values up to `max_abs` in base unit `unit`: (factor, label).
+fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
+    if unit != "m" && unit != "N" {
+        return (1.0, unit.to_string());
+    }
+    let (f, p) = if !(max_abs.is_finite() && max_abs > 0.0) || max_abs >= 1.0 {
+        (1.0, "")
+    } else if max_abs >= 1e-3 {
+        (1e3, "m")
+    } else if max_abs >= 1e-6 {
+        (1e6, "µ")
+    } else {
+        (1e9, "n")
+    };
+    (f, format!("{p}{unit}"))
+}
+
+fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: Units) -> Grid {
+    let p = cfg.model.params;
+    let verdict = match r.verdict {
+        Outcome::Decaying => "decaying".to_string(),
+        Outcome::Growing => "growing".to_string(),
+        Outcome::LimitCycle => match r.amplitude {
+            Some(a) => {
+                let (f, u) = scaled_unit(a, "m");
+                let freq = r
+                    .frequency_hz
+                    .map(|hz| format!(" at {} {}", sig(hz, 3), units.frequency()))
+                    .unwrap_or_default();
+                format!("limit cycle, amplitude {} {u}{freq}", sig(a * f, 3))
+            }
+            None => "limit cycle".to_string(),
+        },
+    };
+    let params = format!(
+        "α = {}, β = {}, γ = {}, δ = {}, d = {}",
+        sig(p.alpha, 4),
+        sig(p.beta, 4),
+        sig(p.gamma, 3),
+        sig(p.delta, 3),
+        p.d
+    );
+    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let xw = cfg.effects.wall_position;
+    let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
+    let fu = if units.physical { "N" } else { "" };
+    let (fs, funit) = scaled_unit(max_abs(&tr.wall_force), fu);
+    let series = |v: &[f64], scale: f64, from: f64| -> Vec<(f64, f64)> {
+        let pts: Vec<(f64, f64)> = tr
+            .time
+            .iter()
+            .zip(v)
+            .filter(|(t, _)| **t >= from)
+            .map(|(&t, &y)| (t, y * scale))
+            .collect();
+        crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
+    };
+    let t_end = tr.time.last().copied().unwrap_or(1.0).max(cfg.model.period);
+    let tlabel = format!("time t ({})", units.time());
+    let mut pos = Figure::new(params)
+        .x_label(&tlabel)
+        .y_label(format!("position x ({xunit})"))
+        .x_range(0.0, t_end)
+        .legend(Legend::UpperRight);
+    pos.add(
+        Series::line(series(&tr.position, xs, 0.0))
+            .color(palette::BLUE)
+            .width(2)
+            .label("position x"),
+    );
+    let wall_line = cfg.effects.contact != Contact::Bilateral || xw != 0.0;
+    if wall_line {
+        pos.add(
+            Series::dashed([(0.0, xw * xs), (t_end, xw * xs)])
+                .color(palette::GREY)
+                .width(2)
+                .label("wall surface x_w"),
+        );
+    }
+    let flabel = if units.physical {
+        format!("wall force F ({funit})")
+    } else {
+        "wall force T²F/m".to_string()
+    };
+    let effects = describe_effects(s, units.force());
+    let effects = effects
+        .strip_prefix("none: ")
+        .unwrap_or(&effects)
+        .to_string();
+    let mut force = Figure::new(effects)
+        .x_label(&tlabel)
+        .y_label(flabel)
+        .x_range(0.0, t_end)
+        .legend(Legend::UpperRight);
+    force.add(
+        Series::line(series(&tr.wall_force, fs, 0.0))
+            .color(palette::VERMILLION)
+            .width(2)
+            .label("wall force F"),
+    );
+    if let Some(fmax) = cfg.effects.saturation {
+        let (hi, lo) = (fmax * fs, -fmax * fs);
+        force.add(
+            Series::dashed([
+                (0.0, hi),
+                (t_end, hi),
+                (f64::NAN, 0.0),
+                (0.0, lo),
+                (t_end, lo),
+            ])
+            .color(palette::GREY)
+            .width(2)
+            .label("saturation ±F_max"),
+        );
+    }
+    if s.human_force != 0.0 {
+        let fh = s.human_force * fs;
+        force.add(
+            Series::dashed([(0.0, fh), (t_end, fh)])
+                .color(palette::GREEN)
+                .width(2)
+                .label("human push F_H"),
+        );
+    }
+    let mut g = Grid::new(format!("Simulation: {verdict}"), 1).panel_size(1000, 520);
+    g.push(pos);
+    g.push(force);
+    // A limit cycle: zoom on its last periods.
+    if r.verdict == Outcome::LimitCycle && tr.time.len() > 16 {
+        let span = r
+            .frequency_hz
+            .filter(|f| *f > 0.0)
+            .map_or(t_end / 8.0, |f| 8.0 / f)
+            .min(t_end / 4.0);
+        let from = t_end - span;
+        let tail: Vec<f64> = tr
+            .time
+            .iter()
+            .zip(&tr.position)
+            .filter(|(t, _)| **t >= from)
+            .map(|(_, x)| *x)
+            .collect();
+        let (zs, zunit) = scaled_unit(max_abs(&tail).max(xw.abs()), "m");
+        let mut zoom = Figure::new("Limit cycle: the last periods")
+            .x_label(&tlabel)
+            .y_label(format!("position x ({zunit})"))
+            .x_range(from, t_end)
+            .legend(Legend::UpperRight);
+        zoom.add(
+            Series::line(series(&tr.position, zs, from))
+                .color(palette::BLUE)
+                .width(3)
+                .label("position x"),
+        );
+        if let Some(q) = cfg.effects.quantization {
+            // The encoder levels around the cycle.
+            let (lo, hi) = tail
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            // Thresholds (k + 1/2)·q from just below the cycle to just above it.
+            let (k0, k1) = ((lo / q - 0.5).floor() as i64, (hi / q - 0.5).ceil() as i64);
+            if k1 - k0 <= 40 {
+                let mut levels = Vec::new();
+                for k in k0..=k1 {
+                    let y = (k as f64 + 0.5) * q * zs;
+                    levels.extend([(from, y), (t_end, y), (f64::NAN, 0.0)]);
+                }
+                zoom.add(
+                    Series::dashed(levels)
+                        .color(palette::GREY)
+                        .width(1)
+                        .label("encoder thresholds"),
+                );
+            }
+        }
+        g.push(zoom);
+    }
+    g
+}
+
+fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
+    let n = &o.normalized;
+    println!(
+        "model       α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
+        sig(n.alpha, 8),
+        sig(n.beta, 8),
+        sig(n.gamma, 8),
+        sig(n.delta, 8),
+        n.d,
+        if units.physical {
+            format!(
+                " (m = {} kg, T = {} ms)",
+                sig(o.mass, 6),
+                sig(o.period * 1e3, 6)
+            )
+        } else {
+            " (normalized: time in samples, forces as T²F/m)".to_string()
+        }
+    );
+    println!("effects     {}", describe_effects(s, units.force()));
+    println!(
+        "run         {} samples ({} {}) from x(0) = {} m, ẋ(0) = {} {}{}",
+        o.samples,
+        sig(o.duration, 6),
+        units.time(),
+        sig(o.initial.position, 6),
+        sig(o.initial.velocity, 6),
+        units.velocity(),
+        if o.blown_up {
+            " (stopped: the state blew up)"
+        } else {
+            ""
+        }
+    );
+    let detail = match (o.amplitude, o.frequency_hz) {
+        (Some(a), Some(f)) => format!(
+            ": amplitude {} m, frequency {} {}",
+            sig(a, 4),
+            sig(f, 4),
+            units.frequency()
+        ),
+        (Some(a), None) => format!(": amplitude {} m", sig(a, 4)),
+        _ => String::new(),
+    };
+    println!(
+        "verdict     {}{detail}",
+        o.verdict.replace('_', " ").to_uppercase()
+    );
+    println!(
+        "growth      {} per sample ({}); linear analysis: spectral radius {} ({})",
+        sig(o.growth_per_sample, 12),
+        match o.growth_method {
+            hapstab::simulation::GrowthMethod::SubspaceIteration => "subspace iteration",
+            hapstab::simulation::GrowthMethod::EnvelopeFit => "envelope fit",
+        },
+        sig(o.spectral_radius, 12),
+        o.linear_verdict
+    );
+    println!(
+        "files       {} ({} rows: t, x, v, F), {}, {}",
+        o.files.csv.display(),
+        o.files.rows,
+        o.files.svg.display(),
+        o.files.png.display()
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// hapstab simboundary
+// ---------------------------------------------------------------------------------------
+
+/// Arguments of `hapstab simboundary`.
+#[derive(Args, Debug)]
+pub struct SimboundaryArgs {
+    #[command(flatten)]
+    plant: PlantArgs,
+    #[command(flatten)]
+    run: RunArgs,
+    /// Smallest normalized damping β = BT/m [default: 10 % of the exact region's top].
+    #[arg(long, allow_hyphen_values = true)]
+    beta_min: Option<f64>,
+    /// Largest β [default: 90 % of the exact region's top].
+    #[arg(long, allow_hyphen_values = true)]
+    beta_max: Option<f64>,
+    /// Number of β values, evenly spaced.
+    #[arg(long, value_name = "N", default_value_t = 8)]
+    beta_count: usize,
+    /// Upper end of the α scan [default: 3× the exact linear boundary at each β].
+    #[arg(long, allow_hyphen_values = true)]
+    alpha_max: Option<f64>,
+    /// Coarse α scan points before bisection.
+    #[arg(long, value_name = "N", default_value_t = 12)]
+    grid: usize,
+    /// Bisection stops when the bracket is below this fraction of α.
+    #[arg(
+        long,
+        value_name = "REL",
+        default_value_t = 1e-3,
+        allow_hyphen_values = true
+    )]
+    rel_tol: f64,
+    /// Count limit cycles of amplitude below M metres as stable [default: only decaying runs].
+    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    stable_amplitude: Option<f64>,
+    /// Write the table as CSV.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// Plot of the exact linear region and the simulated boundary: STEM.svg and STEM.png.
+    #[arg(long, value_name = "STEM", default_value = "simboundary")]
+    plot: PathBuf,
+    /// Print one JSON object instead of text (no progress bar).
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct BoundaryRow {
+    #[serde(flatten)]
+    point: EmpiricalPoint,
+    /// α_simulated / α_linear.
+    ratio: Option<f64>,
+    /// Physical mode: B, K_linear and K_simulated in Ns/m and N/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_damping: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_linear: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_simulated: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct SimboundaryOut {
+    gamma: f64,
+    delta: f64,
+    d: usize,
+    units: &'static str,
+    mass: f64,
+    period: f64,
+    effects: Effects,
+    human_force: f64,
+    initial: Initial,
+    samples: usize,
+    stable_when: StableWhen,
+    grid: usize,
+    rel_tol: f64,
+    /// α_max of the exact linear stable region (Section V) and the β where it is reached.
+    exact_alpha_max: f64,
+    exact_beta_at_alpha_max: f64,
+    points: Vec<BoundaryRow>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    csv: Option<PathBuf>,
+    plot: Saved,
+}
+
+fn model_of(pm: &PlantModel) -> Result<Model> {
+    let n = Normalized::new(0.0, 0.0, pm.gamma, pm.delta, pm.d)?;
+    Ok(match pm.physical {
+        Some((eff, s)) => Model::new(n, eff.mass, s.period)?,
+        None => Model::unit(n)?,
+    })
+}
+
+/// Runs `hapstab simboundary`.
+pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
+    let pm = a.plant.resolve()?;
+    let units = Units {
+        physical: pm.physical.is_some(),
+    };
+    let model = model_of(&pm)?;
+    let (template, settings) = a.run.config(model, units.physical)?;
+    if a.beta_count == 0 || a.beta_count > 10_000 {
+        bail!("--beta-count must be in [1, 10000] (got {})", a.beta_count);
+    }
+    if a.grid < 2 || a.grid > 10_000 {
+        bail!("--grid must be in [2, 10000] (got {})", a.grid);
+    }
+    if !(a.rel_tol.is_finite() && a.rel_tol > 0.0 && a.rel_tol < 1.0) {
+        bail!("--rel-tol must be in (0, 1) (got {})", a.rel_tol);
+    }
+    if let Some(m) = a.alpha_max
+        && !(m.is_finite() && m > 0.0)
+    {
+        bail!("--alpha-max must be a positive number (got {m})");
+    }
+    let stable_when = match a.stable_amplitude {
+        None => StableWhen::Decaying,
+        Some(m) if m.is_finite() && m > 0.0 => StableWhen::AmplitudeBelow(m),
+        Some(m) => bail!("--stable-amplitude must be a positive number of metres (got {m})"),
+    };
+    let fam = PolyFamily::new(model.params.plant(), pm.d)?;
+    let region = stable_region(&fam);
+    let betas = beta_values(a, &region)?;
+    let bar = if a.json || !std::io::stdout().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        let b = ProgressBar::new(betas.len() as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} β values, {elapsed} {msg}")
+        {
+            b.set_style(style);
+        }
+        b
+    };
+    let points: Vec<EmpiricalPoint> = betas
+        .par_iter()
+        .map(|&beta| {
+            let search = BoundarySearch {
+                template: template.clone(),
+                betas: vec![beta],
+                alpha_max: a.alpha_max,
+                grid: a.grid,
+                rel_tolerance: a.rel_tol,
+                stable_when,
+            };
+            let r = empirical_boundary(&search).map(|v| v[0]);
+            bar.inc(1);
+            r
+        })
+        .collect::<hapstab::Result<_>>()?;
+    bar.finish_and_clear();
+    let rows: Vec<BoundaryRow> = points
+        .iter()
+        .map(|p| {
+            let ratio = match (p.alpha_simulated, p.alpha_linear) {
+                (Some(s), Some(l)) if l.is_finite() && l > 0.0 => Some(s / l),
+                _ => None,
+            };
+            let (kb, k) = match pm.physical {
+                Some((eff, s)) => (eff.mass / s.period, eff.mass / (s.period * s.period)),
+                None => (f64::NAN, f64::NAN),
+            };
+            let phys = units.physical;
+            BoundaryRow {
+                point: *p,
+                ratio,
+                wall_damping: phys.then_some(p.beta * kb),
+                k_linear: if phys {
+                    p.alpha_linear.map(|x| x * k)
+                } else {
+                    None
+                },
+                k_simulated: if phys {
+                    p.alpha_simulated.map(|x| x * k)
+                } else {
+                    None
+                },
+            }
+        })
+        .collect();
+    if let Some(path) = &a.csv {
+        write_boundary_csv(path, &rows)?;
+    }
+    let saved = boundary_plot(&region, &points, &model.params, &settings, units)
+        .save(&a.plot)
+        .with_context(|| format!("plot {}", a.plot.display()))?;
+    let out = SimboundaryOut {
+        gamma: pm.gamma,
+        delta: pm.delta,
+        d: pm.d,
+        units: units.name(),
+        mass: model.mass,
+        period: model.period,
+        effects: settings.effects,
+        human_force: settings.human_force,
+        initial: settings.initial,
+        samples: settings.samples,
+        stable_when,
+        grid: a.grid,
+        rel_tol: a.rel_tol,
+        exact_alpha_max: region.alpha_max,
+        exact_beta_at_alpha_max: region.beta_at_alpha_max,
+        points: rows,
+        csv: a.csv.clone(),
+        plot: saved,
+    };
+    if a.json {
+        return print_json(&out);
+    }
+    print_simboundary(&out, &settings, units);
+    Ok(())
+}
+
+/// The β values: the flags, or 10 %–90 % of the exact region's β extent above 0.
+fn beta_values(a: &SimboundaryArgs, region: &hapstab::region::StableRegion) -> Result<Vec<f64>> {
+    let top = region
+        .polygons
+        .iter()
+        .flat_map(|p| p.vertices.iter().map(|v| v.beta))
+        .filter(|b| b.is_finite())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let top = if top.is_finite() && top > 0.0 {
+        top
+    } else {
+        1.0
+    };
+    let lo = a.beta_min.unwrap_or(0.1 * top);
+    let hi = a.beta_max.unwrap_or(0.9 * top);
+    if !(lo.is_finite() && hi.is_finite()) {
+        bail!("--beta-min/--beta-max must be finite (got {lo}, {hi})");
+    }
+    if hi < lo {
+        bail!("--beta-max ({hi}) must be >= --beta-min ({lo})");
+    }
+    let n = a.beta_count;
+    Ok(if n == 1 {
+        vec![lo]
+    } else {
+        (0..n)
+            .map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
+            .collect()
+    })
+}
+
+/// Shortest round-trip text of a number, in exponent form when very large or small.
+fn num(v: f64) -> String {
+    format!("{v:?}")
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or_else(String::new, num)
+}
+
+fn write_boundary_csv(path: &Path, rows: &[BoundaryRow]) -> Result<()> {
+    let mut w = csv::Writer::from_path(path)
+        .with_context(|| format!("cannot write CSV {}", path.display()))?;
+    w.write_record([
+        "beta",
+        "alpha_linear",
+        "alpha_simulated",
+        "alpha_unstable",
+        "ratio",
+        "censored",
+        "alpha_max",
+        "runs",
+    ])?;
+    for r in rows {
+        let p = &r.point;
+        w.write_record([
+            num(p.beta),
+            opt(p.alpha_linear),
+            opt(p.alpha_simulated),
+            opt(p.alpha_unstable),
+            opt(r.ratio),
+            p.censored.to_string(),
+            num(p.alpha_max),
+            p.runs.to_string(),
+        ])?;
+    }
+    w.flush()
+        .with_context(|| format!("cannot write CSV {}", path.display()))?;
+    Ok(())
+}
+
+fn boundary_plot(
+    region: &hapstab::region::StableRegion,
+    points: &[EmpiricalPoint],
+    p: &Normalized,
+    s: &RunSettings,
+    units: Units,
+) -> Figure {
+    let title = format!(
+        "Simulated vs exact linear boundary (γ = {}, δ = {}, d = {})",
+        sig(p.gamma, 3),
+        sig(p.delta, 3),
+        p.d
+    );
+    let mut f = Figure::new(title)
+        .x_label("virtual stiffness α = KT²/m")
+        .y_label("virtual damping β = BT/m")
+        .legend(Legend::UpperRight);
+    for (i, poly) in region.polygons.iter().enumerate() {
+        let pts = poly.vertices.iter().map(|v: &AlphaBeta| (v.alpha, v.beta));
+        let mut s = Series::polygon(pts).color(palette::BLUE).alpha(0.18);
+        if i == 0 {
+            s = s.label("exact linear stable region");
+        }
+        f.add(s);
+    }
+    let found: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| !p.censored)
+        .filter_map(|p| p.alpha_simulated.map(|a| (a, p.beta)))
+        .collect();
+    let censored: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.censored)
+        .filter_map(|p| p.alpha_simulated.map(|a| (a, p.beta)))
+        .collect();
+    let none: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.alpha_simulated.is_none())
+        .filter_map(|p| p.alpha_unstable.map(|a| (a, p.beta)))
+        .collect();
+    let mut curve: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| match (p.alpha_simulated, p.censored) {
+            (Some(a), false) => (a, p.beta),
+            _ => (f64::NAN, p.beta),
+        })
+        .collect();
+    curve.sort_by(|a, b| a.1.total_cmp(&b.1));
+    f.add(Series::line(curve).color(palette::VERMILLION).width(2));
+    let effects = describe_effects(s, units.force());
+    let label = if effects.starts_with("none") {
+        "simulated (linear)".to_string()
+    } else {
+        "simulated boundary".to_string()
+    };
+    f.add(
+        Series::scatter(found, Marker::Circle)
+            .color(palette::VERMILLION)
+            .label(label),
+    );
+    if !censored.is_empty() {
+        f.add(
+            Series::scatter(censored, Marker::Triangle)
+                .color(palette::ORANGE)
+                .label("stable up to scan end"),
+        );
+    }
+    if !none.is_empty() {
+        f.add(
+            Series::scatter(none, Marker::Cross)
+                .color(palette::BLACK)
+                .label("unstable at first scan α"),
+        );
+    }
+    f
+}
+
+fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
+    println!(
+        "plant       γ = {}, δ = {}, d = {}{}",
+        sig(o.gamma, 8),
+        sig(o.delta, 8),
+        o.d,
+        if units.physical {
+            format!(
+                " (m = {} kg, T = {} ms)",
+                sig(o.mass, 6),
+                sig(o.period * 1e3, 6)
+            )
+        } else {
+            String::new()
+        }
+    );
+    println!("effects     {}", describe_effects(s, units.force()));
+    println!(
+        "runs        {} samples each from x(0) = {} m; stable = {}",
+        o.samples,
+        sig(o.initial.position, 6),
+        match o.stable_when {
+            StableWhen::Decaying => "decaying".to_string(),
+            StableWhen::AmplitudeBelow(m) =>
+                format!("decaying or limit cycle below {} m", sig(m, 4)),
+        }
+    );
+    println!(
+        "exact       α_max = {} at β = {} (linear stable region, Section V)",
+        sig(o.exact_alpha_max, 8),
+        sig(o.exact_beta_at_alpha_max, 8)
+    );
+    println!();
+    let phys = units.physical;
+    if phys {
+        println!(
+            "{:>10} {:>10} {:>14} {:>14} {:>8} {:>12} {:>12}  note",
+            "β", "B (Ns/m)", "α linear", "α simulated", "ratio", "K lin (N/m)", "K sim (N/m)"
+        );
+    } else {
+        println!(
+            "{:>10} {:>14} {:>14} {:>8}  note",
+            "β", "α linear", "α simulated", "ratio"
+        );
+    }
+    let f = |v: Option<f64>, n| v.map_or_else(|| "-".to_string(), |x| sig(x, n));
+    for r in &o.points {
+        let p = &r.point;
+        let note = if p.alpha_simulated.is_none() {
+            format!("unstable already at α = {}", f(p.alpha_unstable, 4))
+        } else if p.censored {
+            format!("stable up to scan end α = {}", sig(p.alpha_max, 4))
+        } else {
+            String::new()
+        };
+        if phys {
+            println!(
+                "{:>10} {:>10} {:>14} {:>14} {:>8} {:>12} {:>12}  {note}",
+                sig(p.beta, 6),
+                f(r.wall_damping, 5),
+                f(p.alpha_linear, 8),
+                f(p.alpha_simulated, 8),
+                f(r.ratio, 4),
+                f(r.k_linear, 6),
+                f(r.k_simulated, 6)
+            );
+        } else {
+            println!(
+                "{:>10} {:>14} {:>14} {:>8}  {note}",
+                sig(p.beta, 6),
+                f(p.alpha_linear, 8),
+                f(p.alpha_simulated, 8),
+                f(r.ratio, 4)
+            );
+        }
+    }
+    println!();
+    if s.effects.quantization.is_some()
+        && o.stable_when == StableWhen::Decaying
+        && o.points.iter().any(|r| r.point.alpha_simulated.is_none())
+    {
+        println!(
+            "note        quantized runs often settle into small limit cycles instead of decaying;\n            --stable-amplitude M counts cycles below M metres as stable"
+        );
+    }
+    if let Some(c) = &o.csv {
+        println!("csv         {}", c.display());
+    }
+    println!(
+        "plot        {}, {}",
+        o.plot.svg.display(),
+        o.plot.png.display()
+    );
+}

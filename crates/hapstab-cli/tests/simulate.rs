@@ -1,0 +1,372 @@
+//! Binary tests of `hapstab simulate` and `hapstab simboundary` (issue 6): verdicts against
+//! the linear analysis of `hapstab check`, the CSV trace, the plots, a quantization limit
+//! cycle, and bad input (exit 2, one line on stderr).
+
+use std::path::Path;
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn hapstab() -> Command {
+    Command::cargo_bin("hapstab").unwrap()
+}
+
+/// Runs with `--json`, asserting success and an empty stderr (no progress bar).
+fn json(args: &[&str]) -> Value {
+    let out = hapstab().args(args).arg("--json").output().unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// `simulate` with its CSV and plot in `dir` (named `name`).
+fn simulate(dir: &Path, name: &str, args: &[&str]) -> Value {
+    let csv = dir.join(format!("{name}.csv"));
+    let plot = dir.join(name);
+    let mut all = vec!["simulate", "--csv", csv.to_str().unwrap()];
+    all.extend(["--plot", plot.to_str().unwrap()]);
+    all.extend(args);
+    json(&all)
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+fn assert_png(path: &Path) {
+    let img = image::open(path).unwrap().to_rgb8();
+    let (w, h) = img.dimensions();
+    assert!(w >= 900 && h >= 700, "{w}x{h}");
+    let ink = img.pixels().filter(|p| p.0 != [255, 255, 255]).count();
+    assert!(ink > (w * h) as usize / 50, "blank PNG: {ink} pixels");
+}
+
+/// The linear bilateral loop: the verdict agrees with the stability test of `hapstab check`
+/// and growth_per_sample is its spectral radius (eq. 9, Section V) to 1e-6, on both sides
+/// of the boundary, in normalized and physical units and with delay.
+#[test]
+fn linear_verdict_and_growth_match_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let points: [&[&str]; 5] = [
+        // Pure mass, d = 0: stable iff α < 2β(2 − β)/(2 + β) = 0.6 at β = 0.5.
+        &["--alpha", "0.55", "--beta", "0.5"],
+        &["--alpha", "0.66", "--beta", "0.5"],
+        &[
+            "--alpha", "0.05", "--beta", "0.2", "--gamma", "0.001", "--delta", "0.015", "--delay",
+            "2",
+        ],
+        // Physical: the default arm and device, K = 10 kN/m and 900 kN/m, B = 10 Ns/m, d = 1.
+        &["--wall-stiffness", "10000", "--delay", "1"],
+        &["--wall-stiffness", "900000", "--delay", "1"],
+    ];
+    let mut verdicts = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let chk = json(&[&["check"], *p].concat());
+        let sim = simulate(
+            dir.path(),
+            &format!("p{i}"),
+            &[&["--duration-samples", "3000"], *p].concat(),
+        );
+        let rho = f(&chk["spectral_radius"]);
+        let g = f(&sim["growth_per_sample"]);
+        assert!(
+            (g - rho).abs() <= 1e-6 * rho,
+            "{p:?}: growth {g} vs spectral radius {rho}"
+        );
+        assert_eq!(f(&sim["spectral_radius"]), rho, "{p:?}");
+        let stable = chk["stable"].as_bool().unwrap();
+        let expect = if stable { "decaying" } else { "growing" };
+        assert_eq!(sim["verdict"], expect, "{p:?}");
+        assert_eq!(sim["linear_verdict"], chk["verdict"], "{p:?}");
+        assert_eq!(sim["normalized"], chk["normalized"], "{p:?}");
+        verdicts.push(stable);
+    }
+    assert_eq!(verdicts, [true, false, true, true, false]);
+}
+
+#[test]
+fn csv_trace_plot_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = simulate(
+        dir.path(),
+        "run",
+        &[
+            "--alpha",
+            "0.3",
+            "--beta",
+            "0.4",
+            "--duration-samples",
+            "500",
+        ],
+    );
+    assert_eq!(v["samples"], 500);
+    assert_eq!(v["units"], "normalized");
+    let files = &v["files"];
+    assert_eq!(files["rows"], 500);
+    assert_eq!(files["record_every"], 1);
+    let csv_path = dir.path().join("run.csv");
+    assert_eq!(files["csv"], csv_path.to_str().unwrap());
+    let text = std::fs::read_to_string(&csv_path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("t,x,v,F"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 500);
+    // Normalized units: t counts samples; x(0) = 1 mm at rest; F = α x + β (x − x_prev).
+    assert_eq!(rows[0], vec![0.0, 1e-3, 0.0, 0.3 * 1e-3]);
+    assert!(rows.windows(2).all(|w| w[1][0] == w[0][0] + 1.0));
+    for (name, ext) in [("svg", "svg"), ("png", "png")] {
+        let p = dir.path().join(format!("run.{ext}"));
+        assert_eq!(files[name], p.to_str().unwrap());
+        assert!(p.is_file(), "{} missing", p.display());
+    }
+    assert_png(&dir.path().join("run.png"));
+    let svg = std::fs::read_to_string(dir.path().join("run.svg")).unwrap();
+    for t in [
+        "position x",
+        "wall force",
+        "time t (samples)",
+        "Simulation: decaying",
+    ] {
+        assert!(svg.contains(t), "SVG lacks {t}");
+    }
+
+    // Physical units, a long run: the trace is capped at --max-rows, every n-th sample.
+    let v = simulate(
+        dir.path(),
+        "long",
+        &[
+            "--duration",
+            "2",
+            "--max-rows",
+            "300",
+            "--unilateral",
+            "--push",
+            "3",
+        ],
+    );
+    assert_eq!(v["samples"], 2000);
+    let every = v["files"]["record_every"].as_u64().unwrap();
+    let rows = v["files"]["rows"].as_u64().unwrap();
+    assert!((250..=300).contains(&rows), "{rows}");
+    assert_eq!(every, 2000u64.div_ceil(299));
+    let text = std::fs::read_to_string(dir.path().join("long.csv")).unwrap();
+    assert_eq!(text.lines().count() as u64, rows + 1);
+    let t1: f64 = text
+        .lines()
+        .nth(2)
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((t1 - every as f64 * 1e-3).abs() < 1e-12, "{t1}");
+    assert!(
+        std::fs::read_to_string(dir.path().join("long.svg"))
+            .unwrap()
+            .contains("human push F_H")
+    );
+}
+
+/// Quantization near the boundary (Diolaiti et al., the paper's [13]): a PHANToM-like device
+/// without arm (m = 0.1 kg, b = 1.5 Ns/m, δ = 0.015), 30 µm encoder, β = 0.1 and α at 90 %
+/// of the exact linear limit: linearly stable, yet the run sustains a limit cycle of about
+/// one encoder step near the frequency of the dominant linear mode.
+#[test]
+fn quantization_limit_cycle_near_the_boundary() {
+    let dir = tempfile::tempdir().unwrap();
+    let chk = json(&["check", "--no-arm", "--alpha", "0.1", "--beta", "0.1"]);
+    let lin = f(&chk["alpha_interval"][1]);
+    let alpha = format!("{}", 0.9 * lin);
+    let base = ["--no-arm", "--alpha", alpha.as_str(), "--beta", "0.1"];
+    let chk = json(&[&["check"][..], &base].concat());
+    assert_eq!(chk["stable"], true);
+    // Dominant root → frequency of the linear mode.
+    let (re, im) = (f(&chk["roots"][0][0]), f(&chk["roots"][0][1]));
+    let f_dom = im.atan2(re).abs() / (2.0 * std::f64::consts::PI * 1e-3);
+    let q = 3e-5;
+    let v = simulate(
+        dir.path(),
+        "q",
+        &[&base[..], &["--quantization", "3e-5", "--duration", "5"]].concat(),
+    );
+    assert_eq!(v["verdict"], "limit_cycle", "{v}");
+    assert_eq!(v["linear_verdict"], "stable");
+    let a = f(&v["amplitude"]);
+    assert!(a > 0.25 * q && a < 10.0 * q, "amplitude {a}");
+    let fr = f(&v["frequency_hz"]);
+    assert!(
+        (fr / f_dom - 1.0).abs() < 0.25,
+        "frequency {fr} Hz vs linear mode {f_dom} Hz"
+    );
+    assert!((f(&v["growth_per_sample"]) - 1.0).abs() < 1e-3);
+    let svg = std::fs::read_to_string(dir.path().join("q.svg")).unwrap();
+    assert!(svg.contains("Limit cycle: the last periods"));
+    assert!(svg.contains("quantization q = 3e-5 m"));
+    // The same run without quantization decays and reports no amplitude.
+    let v = simulate(
+        dir.path(),
+        "lin",
+        &[&base[..], &["--duration", "5"]].concat(),
+    );
+    assert_eq!(v["verdict"], "decaying");
+    assert!(v.get("amplitude").is_none() && v.get("frequency_hz").is_none());
+}
+
+#[test]
+fn simboundary_table_csv_plot() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("b.csv");
+    let plot = dir.path().join("b");
+    let v = json(&[
+        "simboundary",
+        "--no-arm",
+        "--quantization",
+        "3e-5",
+        "--stable-amplitude",
+        "3e-4",
+        "--beta-min",
+        "0.1",
+        "--beta-max",
+        "0.5",
+        "--beta-count",
+        "3",
+        "--duration-samples",
+        "3000",
+        "--rel-tol",
+        "1e-2",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    let pts = v["points"].as_array().unwrap();
+    assert_eq!(pts.len(), 3);
+    for (p, beta) in pts.iter().zip([0.1, 0.3, 0.5]) {
+        assert!((f(&p["beta"]) - beta).abs() < 1e-12);
+        // The exact linear limit agrees with `hapstab check` at that β.
+        let chk = json(&[
+            "check",
+            "--no-arm",
+            "--alpha",
+            "0.01",
+            "--beta",
+            &beta.to_string(),
+        ]);
+        let lin = f(&chk["alpha_interval"][1]);
+        assert!((f(&p["alpha_linear"]) / lin - 1.0).abs() < 1e-9, "{p}");
+        // Small quantization limit cycles accepted: the boundary stays near the linear one.
+        let r = f(&p["ratio"]);
+        assert!(r > 0.8 && r < 1.1, "{p}");
+        let ratio = f(&p["alpha_simulated"]) / f(&p["alpha_linear"]);
+        assert!((r - ratio).abs() < 1e-12, "{p}");
+    }
+    assert!(f(&v["exact_alpha_max"]) > 0.7 && f(&v["exact_alpha_max"]) < 0.71);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.starts_with(
+        "beta,alpha_linear,alpha_simulated,alpha_unstable,ratio,censored,alpha_max,runs\n"
+    ));
+    assert_eq!(text.lines().count(), 4);
+    assert_png(&dir.path().join("b.png"));
+    let svg = std::fs::read_to_string(dir.path().join("b.svg")).unwrap();
+    for t in [
+        "exact linear stable region",
+        "simulated boundary",
+        "virtual stiffness α",
+        "virtual damping β",
+    ] {
+        assert!(svg.contains(t), "SVG lacks {t}");
+    }
+
+    // Text mode, stdout not a terminal: the table, and no progress bar on stderr.
+    let out = hapstab()
+        .current_dir(dir.path())
+        .args([
+            "simboundary",
+            "--beta-count",
+            "2",
+            "--duration-samples",
+            "1000",
+            "--rel-tol",
+            "0.05",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("α simulated") && text.contains("K sim (N/m)"),
+        "{text}"
+    );
+    assert!(dir.path().join("simboundary.png").is_file());
+}
+
+/// Bad input exits 2 with exactly one line on stderr and nothing on stdout.
+#[test]
+fn bad_input_exits_2_with_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: &[&[&str]] = &[
+        &["simulate", "--quantization", "-1e-5"],
+        &["simulate", "--quantization", "0"],
+        &["simulate", "--duration", "0"],
+        &["simulate", "--duration", "-1"],
+        &["simulate", "--duration-samples", "0"],
+        &["simulate", "--duration-samples", "2.5"],
+        &["simulate", "--duration", "1", "--duration-samples", "100"],
+        &[
+            "simulate",
+            "--alpha",
+            "0.1",
+            "--beta",
+            "0.1",
+            "--duration",
+            "1",
+        ],
+        &["simulate", "--alpha", "NaN", "--beta", "0.1"],
+        &["simulate", "--push", "nan"],
+        &["simulate", "--initial-position", "inf"],
+        &["simulate", "--coulomb", "2", "--stiction", "1"],
+        &["simulate", "--saturation", "-3"],
+        &["simulate", "--duration", "1e9"],
+        &["simulate", "--no-pull"],
+        &["simulate", "--max-rows", "1"],
+        &["simulate", "--csv", "/nonexistent-dir/x.csv"],
+        &["simboundary", "--beta-count", "0"],
+        &["simboundary", "--rel-tol", "2"],
+        &["simboundary", "--beta-min", "0.5", "--beta-max", "0.1"],
+        &["simboundary", "--stable-amplitude", "-1"],
+        &["simboundary", "--quantization", "NaN"],
+    ];
+    for args in cases {
+        let out = hapstab()
+            .current_dir(dir.path())
+            .args(*args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    // Nothing was written by the failed runs.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
