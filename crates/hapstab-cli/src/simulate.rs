@@ -34,6 +34,11 @@ const DEFAULT_X0: f64 = 1e-3;
 /// Points per plotted curve (min-max decimated).
 const PLOT_BUCKETS: usize = 2_000;
 
+const UNITS_HELP: &str = "Units: with physical plant flags (or none: the default device and arm) \
+forces are in N and time in s. In normalized mode (--alpha/--beta, --gamma/--delta without \
+physical flags) m = 1 and T = 1: time counts samples, forces are normalized forces T²F/m \
+(in m), and the run length is given with --duration-samples.";
+
 /// Nonlinear effects, human force, initial state and run length, shared by both commands.
 #[derive(Args, Debug, Clone, Default)]
 pub struct RunArgs {
@@ -244,6 +249,7 @@ impl Units {
 
 /// Arguments of `hapstab simulate`.
 #[derive(Args, Debug)]
+#[command(after_help = UNITS_HELP)]
 pub struct SimulateArgs {
     #[command(flatten)]
     plant: PlantArgs,
@@ -633,6 +639,7 @@ fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
 
 /// Arguments of `hapstab simboundary`.
 #[derive(Args, Debug)]
+#[command(after_help = UNITS_HELP)]
 pub struct SimboundaryArgs {
     #[command(flatten)]
     plant: PlantArgs,
