@@ -1070,9 +1070,7 @@ mod tests {
         // Axes, text and a filled region: clearly not blank, clearly not all ink.
         assert!(non_white > total / 50, "{non_white} of {total}");
         assert!(non_white < total * 3 / 4, "{non_white} of {total}");
-        // The 25 % blue fill blends to about (191, 220, 236) at the circle's centre region.
-        let (w, h) = size;
-        let _ = (w, h);
+        // The 25 % blue fill blends to about (191, 220, 236).
         let colored = img
             .pixels()
             .filter(|p| p.0[2] > 200 && p.0[0] < 210 && p.0[0] > 170)
