@@ -111,7 +111,10 @@ fn boundary_json_pure_mass_closed_form() {
     // every vertex satisfies 0 <= α <= 2β(2 − β)/(2 + β) (up to rounding)
     for p in polys[0].as_array().unwrap() {
         let (a, b) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
-        assert!(a >= -1e-15 && a <= 2.0 * b * (2.0 - b) / (2.0 + b) + 1e-12, "({a}, {b})");
+        assert!(
+            a >= -1e-15 && a <= 2.0 * b * (2.0 - b) / (2.0 + b) + 1e-12,
+            "({a}, {b})"
+        );
     }
 }
 
@@ -120,7 +123,9 @@ fn boundary_csv_and_map_csv() {
     let dir = tempfile::tempdir().unwrap();
     let b = dir.path().join("b.csv");
     hapstab()
-        .args(["boundary", "--gamma", "0.001", "--delta", "0.015", "--delay", "1", "--csv"])
+        .args([
+            "boundary", "--gamma", "0.001", "--delta", "0.015", "--delay", "1", "--csv",
+        ])
         .arg(&b)
         .assert()
         .success();
@@ -129,13 +134,24 @@ fn boundary_csv_and_map_csv() {
     assert!(text.lines().count() > 1000);
     let m = dir.path().join("m.csv");
     let out = hapstab()
-        .args(["map", "--x", "alpha:-0.05:0.7:40", "--y", "beta:-0.1:2.1:30", "--out"])
+        .args([
+            "map",
+            "--x",
+            "alpha:-0.05:0.7:40",
+            "--y",
+            "beta:-0.1:2.1:30",
+            "--out",
+        ])
         .arg(&m)
         .arg("--json")
         .output()
         .unwrap();
     assert!(out.status.success());
-    let rows: Vec<String> = std::fs::read_to_string(&m).unwrap().lines().map(String::from).collect();
+    let rows: Vec<String> = std::fs::read_to_string(&m)
+        .unwrap()
+        .lines()
+        .map(String::from)
+        .collect();
     assert_eq!(rows[0], "alpha,beta,stable");
     assert_eq!(rows.len(), 1 + 40 * 30);
     // pure mass: stable iff 0 < α < 2β(2 − β)/(2 + β), away from the boundary
@@ -157,8 +173,18 @@ fn boundary_csv_and_map_csv() {
 #[test]
 fn kmax_physical_units() {
     // PHANToM-like device, no arm, T = 1 ms, d = 0: K = α m/T², B = β m/T.
-    let v = json(&["kmax", "--device-mass", "0.1", "--device-damping", "1.5", "--no-arm"]);
-    let (kmax, b) = (v["k_max"].as_f64().unwrap(), v["b_at_k_max"].as_f64().unwrap());
+    let v = json(&[
+        "kmax",
+        "--device-mass",
+        "0.1",
+        "--device-damping",
+        "1.5",
+        "--no-arm",
+    ]);
+    let (kmax, b) = (
+        v["k_max"].as_f64().unwrap(),
+        v["b_at_k_max"].as_f64().unwrap(),
+    );
     let alpha = v["alpha_max"].as_f64().unwrap();
     assert!((kmax - alpha * 0.1 / 1e-6).abs() < 1e-9 * kmax);
     // linear condition (22) at that B: (b + B)/(T/2)

@@ -220,9 +220,12 @@ fn sample(
                 sub(pm, p0).x.hypot(sub(pm, p0).y)
             };
             let far = sub(pm, p0).x.hypot(sub(pm, p0).y) + sub(pm, p1).x.hypot(sub(pm, p1).y);
-            if dev > tol || far > 1.5 * len + tol {
+            // Coarse passes also bound the chord length near the band, so that a chord to a
+            // far point (the curve runs to infinity where N(e^{iθ}) = 0) cannot hide a turn.
+            let long = maxlen.is_finite() && depth < 30 && len > 0.25 * maxlen;
+            if dev > tol || far > 1.5 * len + tol || long {
                 // Split into k parts so that each chord's deviation (∝ length²) meets tol.
-                let k = if far > 1.5 * len + tol || depth > 8 {
+                let k = if far > 1.5 * len + tol || long || depth > 8 {
                     2
                 } else {
                     ((dev / tol).sqrt().ceil() as usize).clamp(2, 64)
@@ -427,7 +430,12 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     let mut coarse: Vec<(f64, P)> = Vec::new();
     let mut prev: Option<(f64, P)> = None;
     for i in 0..=m {
-        let t = pi * i as f64 / m as f64;
+        let mut t = pi * i as f64 / m as f64;
+        // Where N(−1) = 0 (δ = 0) the curve runs to infinity as θ → π: end just short of it
+        // so that the last interval is still sampled (the far tail is cut off below).
+        if i == m && point(fam, t).is_none() {
+            t = pi * (1.0 - 1e-12);
+        }
         match (point(fam, t), prev) {
             (Some(p), Some((t0, p0))) => {
                 sample(fam, t0, p0, t, p, 1e-3 * bmax, 1.5 * bmax, 0, &mut coarse);
@@ -524,16 +532,58 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     };
     // Chains: split the coarse curve where it leaves a generous box (poles of R).
     let big = 1e3 * size;
+    let lim = P {
+        x: big + x1.abs(),
+        y: big + bmax,
+    };
+    let inside_big =
+        |p: P| p.x.is_finite() && p.y.is_finite() && p.x.abs() < lim.x && p.y.abs() < lim.y;
+    // Cut the chord p→q where it leaves the big box (q outside, p inside).
+    let exit = |(tp, p): (f64, P), (tq, q): (f64, P)| -> (f64, P) {
+        let mut s: f64 = 1.0;
+        for (a, b, l) in [(p.x, q.x, lim.x), (p.y, q.y, lim.y)] {
+            if b.is_finite() && b.abs() >= l && a != b {
+                let bound = if b > 0.0 { l } else { -l };
+                s = s.min((bound - a) / (b - a));
+            }
+        }
+        let s = if s.is_finite() {
+            s.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (
+            tp + s * (tq - tp),
+            P {
+                x: p.x + s * (q.x - p.x),
+                y: p.y + s * (q.y - p.y),
+            },
+        )
+    };
     let mut chains: Vec<Vec<(f64, P)>> = Vec::new();
     let mut cur: Vec<(f64, P)> = Vec::new();
-    let mut last_t = -1.0;
+    let mut last: Option<(f64, P)> = None;
     for &(t, p) in &coarse {
-        let ok = p.x.is_finite()
-            && p.y.is_finite()
-            && p.x.abs() < big + x1.abs()
-            && p.y.abs() < big + bmax;
-        let contiguous = last_t < 0.0 || (t - last_t) < 2.0 * pi / m as f64;
-        if !ok || !contiguous {
+        let ok = inside_big(p);
+        let contiguous = last.is_none_or(|(lt, _)| (t - lt) < 2.0 * pi / m as f64);
+        let prev_ok = last.is_some_and(|(_, lp)| inside_big(lp));
+        if !contiguous {
+            if cur.len() >= 2 {
+                chains.push(std::mem::take(&mut cur));
+            } else {
+                cur.clear();
+            }
+        } else if ok && !prev_ok && p.x.is_finite() && p.y.is_finite() {
+            // entering the big box: start at the crossing
+            if let Some(l) = last.filter(|(_, lp)| lp.x.is_finite() && lp.y.is_finite()) {
+                cur.push(exit((t, p), l));
+            }
+        } else if !ok && prev_ok {
+            if p.x.is_finite() && p.y.is_finite() {
+                if let Some(l) = last {
+                    cur.push(exit(l, (t, p)));
+                }
+            }
             if cur.len() >= 2 {
                 chains.push(std::mem::take(&mut cur));
             } else {
@@ -543,7 +593,7 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
         if ok {
             cur.push((t, p));
         }
-        last_t = t;
+        last = Some((t, p));
     }
     if cur.len() >= 2 {
         chains.push(cur);

@@ -329,3 +329,23 @@ fn chords_follow_the_curve_to_1e9_of_the_size() {
         }
     }
 }
+
+#[test]
+fn near_nyquist_tends_to_the_triangle() {
+    // δ = 0, d = 0, γ → π²: the region tends to the triangle α > −γ, α + 2β < 0, β > −γ/2
+    // (Fig. 8, right), of area γ²: its vertices are (−γ, −γ/2), (−γ, γ/2), (γ, −γ/2).
+    let pi2 = std::f64::consts::PI.powi(2);
+    let mut last = f64::INFINITY;
+    for eps in [1e-2, 1e-3, 1e-4, 1e-6] {
+        let g = pi2 * (1.0 - eps);
+        let (_, r) = region(g, 0.0, 0);
+        assert_eq!(r.polygons.len(), 1, "ε={eps}");
+        let gap = (r.area - g * g).abs() / (g * g);
+        assert!(
+            gap < last,
+            "ε={eps}: relative area gap {gap} did not shrink"
+        );
+        last = gap;
+    }
+    assert!(last < 1e-3, "{last}");
+}
