@@ -579,10 +579,11 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
                 cur.push(exit((t, p), l));
             }
         } else if !ok && prev_ok {
-            if p.x.is_finite() && p.y.is_finite() {
-                if let Some(l) = last {
-                    cur.push(exit(l, (t, p)));
-                }
+            if p.x.is_finite()
+                && p.y.is_finite()
+                && let Some(l) = last
+            {
+                cur.push(exit(l, (t, p)));
             }
             if cur.len() >= 2 {
                 chains.push(std::mem::take(&mut cur));
