@@ -164,7 +164,7 @@ fn boundary_csv_and_map_csv() {
                 assert!(s, "({a}, {b})");
             }
         }
-        if a < -1e-9 || b < -1e-9 || b > 2.0 + 1e-9 {
+        if a < -1e-9 || !(-1e-9..=2.0 + 1e-9).contains(&b) {
             assert!(!s, "({a}, {b})");
         }
     }
