@@ -1,0 +1,698 @@
+//! The computations behind the JSON API, all synchronous and panic-free: request parameters
+//! in, serializable answers out. The handlers in `mod.rs` run them on the blocking pool.
+
+use std::time::Instant;
+
+use hapstab::PolyFamily;
+use hapstab::boundary::AlphaBeta;
+use hapstab::linear::{linear_alpha_limit, linear_check};
+use hapstab::nyquist::{
+    RobustOptions, passive_region, region_summary, robust_region, unit_circle_pole,
+};
+use hapstab::params::Normalized;
+use hapstab::region::{EdgeKind, stable_region};
+use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, Model, Simulator};
+use hapstab::stability::Analysis;
+use serde::Serialize;
+
+use super::limits::*;
+use super::query::{ApiError, Params, PhysicalSpec, PlantSpec, clip, fmt, lib_error, plant_spec};
+use super::simplify::simplify_polygon;
+
+/// γ, δ, d of an answer.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct PlantOut {
+    pub gamma: f64,
+    pub delta: f64,
+    pub d: usize,
+}
+
+impl From<&PlantSpec> for PlantOut {
+    fn from(s: &PlantSpec) -> Self {
+        Self {
+            gamma: s.plant.gamma,
+            delta: s.plant.delta,
+            d: s.d,
+        }
+    }
+}
+
+/// One edge of a drawn polygon.
+#[derive(Debug, Clone, Serialize)]
+pub struct EdgeOut {
+    /// Index of the edge's first vertex in the polygon's vertex list.
+    pub start: usize,
+    /// z_plus_one (α = −γ), z_minus_one (α + 2β = c), complex (root pair e^{±iθ}) or window.
+    pub kind: &'static str,
+}
+
+/// The exact stable region (Section V) as sent to the page.
+#[derive(Debug, Clone, Serialize)]
+pub struct RegionJson {
+    /// Stable components: vertex rings of [α, β], counter-clockwise.
+    pub polygons: Vec<Vec<[f64; 2]>>,
+    /// Edges of each polygon.
+    pub edges: Vec<Vec<EdgeOut>>,
+    /// Largest stable α (the library's `StableRegion::alpha_max`; null when empty).
+    pub alpha_max: f64,
+    /// β at α_max.
+    pub beta_at_alpha_max: f64,
+    /// Area in the (α, β)-plane (of the exact polygons).
+    pub area: f64,
+    /// No stable point.
+    pub empty: bool,
+    /// Vertices of the exact polygons.
+    pub vertices_exact: usize,
+    /// Vertices sent after simplification.
+    pub vertices_sent: usize,
+    /// Simplification tolerance relative to the region's size.
+    pub tol: f64,
+}
+
+/// The linear condition (23) of Section VII: α < (β + δ)/(d + 1/2), and α > −γ (19).
+#[derive(Debug, Clone, Serialize)]
+pub struct LinearOut {
+    pub equation: &'static str,
+    /// dα/dβ along the line: 1/(d + 1/2).
+    pub slope: f64,
+    /// α of the line at β = 0: δ/(d + 1/2).
+    pub alpha_at_beta0: f64,
+    /// Lower bound of eq. (19): α > −γ.
+    pub alpha_lower: f64,
+}
+
+/// Colgate's passive region, eq. (28), for d = 0.
+#[derive(Debug, Clone, Serialize)]
+pub struct PassiveOut {
+    pub equation: &'static str,
+    /// Triangle (0, −δ), (2δ, 0), (0, δ) as [α, β].
+    pub vertices: Vec<[f64; 2]>,
+}
+
+/// The robustly stable region over a γ range (Section VIII), from
+/// `hapstab::nyquist::robust_region`.
+#[derive(Debug, Clone, Serialize)]
+pub struct RobustOut {
+    pub gamma_lo: f64,
+    pub gamma_hi: f64,
+    /// Uniform γ samples (ends included) and initial β slices.
+    pub gamma_samples: usize,
+    pub beta_samples: usize,
+    /// Golden-section refinement of the slice ends in γ.
+    pub refined: bool,
+    pub method: &'static str,
+    /// Polygon through the slice ends as [α, β], counter-clockwise.
+    pub polygon: Vec<[f64; 2]>,
+    pub alpha_max: f64,
+    pub beta_at_alpha_max: f64,
+    pub area: f64,
+    pub empty: bool,
+    /// Some slice had more than one robust α-interval.
+    pub multiple_intervals: bool,
+    /// γ samples at δ = 0, γ = (jπ)², replaced by the limit from inside the range.
+    pub degenerate_gammas: Vec<f64>,
+}
+
+/// Server-side time in milliseconds.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Timing {
+    pub region: f64,
+    pub robust: f64,
+    pub total: f64,
+}
+
+/// Answer of `/api/region`.
+#[derive(Debug, Clone, Serialize)]
+pub struct RegionOut {
+    pub params: PlantOut,
+    pub physical: Option<PhysicalSpec>,
+    pub region: RegionJson,
+    pub linear: LinearOut,
+    pub passive: Option<PassiveOut>,
+    pub robust: Option<RobustOut>,
+    pub warnings: Vec<String>,
+    pub server_ms: Timing,
+}
+
+/// Query names of `/api/region`.
+pub fn region_names() -> Vec<&'static str> {
+    let mut v: Vec<&str> = super::query::PLANT_PARAMS.to_vec();
+    v.extend([
+        "tol",
+        "robust",
+        "gamma_lo",
+        "gamma_hi",
+        "gamma_samples",
+        "beta_samples",
+        "refine",
+    ]);
+    v
+}
+
+/// A parsed region request.
+#[derive(Debug, Clone)]
+pub struct RegionReq {
+    pub spec: PlantSpec,
+    pub tol: f64,
+    pub robust: Option<RobustReq>,
+}
+
+/// A robust-region request over γ ∈ [lo, hi].
+#[derive(Debug, Clone, Copy)]
+pub struct RobustReq {
+    pub lo: f64,
+    pub hi: f64,
+    pub gamma_samples: usize,
+    pub beta_samples: usize,
+    pub refine: bool,
+}
+
+/// Validates a region request.
+pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
+    let spec = plant_spec(p)?;
+    let tol = p.num_or(
+        "tol",
+        DEFAULT_TOL,
+        MIN_TOL,
+        MAX_TOL,
+        " (drawing tolerance relative to the region's size)",
+    )?;
+    let robust = if p.flag("robust")? {
+        let lo = p.num_in("gamma_lo", 0.0, MAX_GAMMA, " (robust range, lower γ)")?;
+        let hi = p.num_in("gamma_hi", 0.0, MAX_GAMMA, " (robust range, upper γ)")?;
+        if hi < lo {
+            return Err(ApiError::param(
+                "gamma_hi",
+                &fmt(hi),
+                format!(
+                    "parameter 'gamma_hi' must be >= gamma_lo = {} (got {})",
+                    fmt(lo),
+                    fmt(hi)
+                ),
+            ));
+        }
+        if spec.d > MAX_ROBUST_D {
+            return Err(ApiError::param(
+                "d",
+                &spec.d.to_string(),
+                format!(
+                    "parameter 'd' must be at most {MAX_ROBUST_D} for the robust region (got {})",
+                    spec.d
+                ),
+            ));
+        }
+        let gs = p
+            .opt_count(
+                "gamma_samples",
+                MIN_ROBUST_GAMMA_SAMPLES,
+                MAX_ROBUST_GAMMA_SAMPLES,
+                "",
+            )?
+            .unwrap_or(DEFAULT_ROBUST_GAMMA_SAMPLES);
+        let bs = p
+            .opt_count(
+                "beta_samples",
+                MIN_ROBUST_BETA_SAMPLES,
+                MAX_ROBUST_BETA_SAMPLES,
+                "",
+            )?
+            .unwrap_or(DEFAULT_ROBUST_BETA_SAMPLES);
+        let refine = p.flag("refine")?;
+        let work = gs * bs * (spec.d + 4) * if refine { 4 } else { 1 };
+        if work > MAX_ROBUST_WORK {
+            return Err(ApiError::param(
+                "gamma_samples",
+                &gs.to_string(),
+                format!(
+                    "robust grid too large: gamma_samples × beta_samples × (d + 4){} = {gs} × {bs} × {}{} = {work} exceeds {MAX_ROBUST_WORK}",
+                    if refine { " × 4 (refine)" } else { "" },
+                    spec.d + 4,
+                    if refine { " × 4" } else { "" },
+                ),
+            ));
+        }
+        Some(RobustReq {
+            lo,
+            hi,
+            gamma_samples: gs,
+            beta_samples: bs,
+            refine,
+        })
+    } else {
+        for name in [
+            "gamma_lo",
+            "gamma_hi",
+            "gamma_samples",
+            "beta_samples",
+            "refine",
+        ] {
+            if let Some(v) = p.raw(name) {
+                return Err(ApiError::param(
+                    name,
+                    v,
+                    format!("parameter '{name}' (got '{}') needs robust=1", clip(v)),
+                ));
+            }
+        }
+        None
+    };
+    Ok(RegionReq { spec, tol, robust })
+}
+
+fn edge_kind(k: &EdgeKind) -> &'static str {
+    match k {
+        EdgeKind::ZPlusOne => "z_plus_one",
+        EdgeKind::ZMinusOne => "z_minus_one",
+        EdgeKind::Complex { .. } => "complex",
+        EdgeKind::Window => "window",
+    }
+}
+
+fn ab(p: &AlphaBeta) -> [f64; 2] {
+    [p.alpha, p.beta]
+}
+
+/// Computes the answer of `/api/region`.
+pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
+    let t0 = Instant::now();
+    let spec = &req.spec;
+    let fam = PolyFamily::new(spec.plant, spec.d).map_err(lib_error)?;
+    let r = stable_region(&fam);
+    let t_region = t0.elapsed().as_secs_f64() * 1e3;
+    let mut warnings = Vec::new();
+    // Region size for the drawing tolerance.
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for v in r.polygons.iter().flat_map(|p| p.vertices.iter()) {
+        x0 = x0.min(v.alpha);
+        x1 = x1.max(v.alpha);
+        y0 = y0.min(v.beta);
+        y1 = y1.max(v.beta);
+    }
+    let size = (x1 - x0).max(y1 - y0);
+    let abs_tol = if size.is_finite() {
+        req.tol * size
+    } else {
+        0.0
+    };
+    let mut polygons = Vec::with_capacity(r.polygons.len());
+    let mut edges = Vec::with_capacity(r.polygons.len());
+    for poly in &r.polygons {
+        let (verts, starts) = simplify_polygon(poly, abs_tol);
+        polygons.push(verts.iter().map(ab).collect::<Vec<_>>());
+        edges.push(
+            poly.edges
+                .iter()
+                .zip(starts)
+                .map(|(e, s)| EdgeOut {
+                    start: s,
+                    kind: edge_kind(&e.kind),
+                })
+                .collect::<Vec<_>>(),
+        );
+    }
+    let vertices_exact: usize = r.polygons.iter().map(|p| p.vertices.len()).sum();
+    let region = RegionJson {
+        vertices_sent: polygons.iter().map(Vec::len).sum(),
+        polygons,
+        edges,
+        alpha_max: r.alpha_max,
+        beta_at_alpha_max: r.beta_at_alpha_max,
+        area: r.area,
+        empty: r.polygons.is_empty(),
+        vertices_exact,
+        tol: req.tol,
+    };
+    if unit_circle_pole(spec.plant).is_some() {
+        warnings.push(format!(
+            "δ = 0 and γ = {} = (jπ)²: p(z) has a root on the unit circle for every (α, β) (Section VIII-B), so no point is strictly stable",
+            fmt(spec.plant.gamma)
+        ));
+    } else if region.empty {
+        // Cross-check an empty polygon result by exact per-β α-intervals.
+        let summary = region_summary(spec.plant, spec.d, 64).map_err(lib_error)?;
+        if !summary.empty {
+            warnings.push(format!(
+                "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::nyquist::region_summary) find stable points up to α = {} at β = {}",
+                fmt(summary.alpha_max),
+                fmt(summary.beta_at_alpha_max)
+            ));
+        }
+    }
+    let delta = spec.plant.delta;
+    let linear = LinearOut {
+        equation: "α < (β + δ)/(d + 1/2)  (eq. 23),  α > −γ  (eq. 19)",
+        slope: 1.0 / (spec.d as f64 + 0.5),
+        alpha_at_beta0: linear_alpha_limit(0.0, delta, spec.d),
+        alpha_lower: -spec.plant.gamma,
+    };
+    let passive = if spec.d == 0 {
+        let pr = passive_region(delta).map_err(lib_error)?;
+        Some(PassiveOut {
+            equation: "δ > α/2 + |β|, α ≥ 0  (eq. 28, d = 0)",
+            vertices: pr.vertices.iter().map(ab).collect(),
+        })
+    } else {
+        None
+    };
+    let t1 = Instant::now();
+    let robust = match req.robust {
+        Some(rr) => {
+            let opts = RobustOptions {
+                gamma_samples: rr.gamma_samples,
+                beta_samples: rr.beta_samples,
+                refine_gamma: rr.refine,
+                refine_beta_rounds: 2,
+            };
+            let r = robust_region(delta, spec.d, rr.lo, rr.hi, opts).map_err(lib_error)?;
+            Some(RobustOut {
+                gamma_lo: r.gamma_lo,
+                gamma_hi: r.gamma_hi,
+                gamma_samples: rr.gamma_samples,
+                beta_samples: rr.beta_samples,
+                refined: rr.refine,
+                method: "hapstab::nyquist::robust_region: intersection of exact per-β stable α-intervals over uniform γ samples",
+                polygon: r.polygon.iter().map(ab).collect(),
+                alpha_max: r.alpha_max,
+                beta_at_alpha_max: r.beta_at_alpha_max,
+                area: r.area,
+                empty: r.empty,
+                multiple_intervals: r.multiple_intervals,
+                degenerate_gammas: r.degenerate_gammas,
+            })
+        }
+        None => None,
+    };
+    let t_robust = t1.elapsed().as_secs_f64() * 1e3;
+    Ok(RegionOut {
+        params: PlantOut::from(spec),
+        physical: spec.physical,
+        region,
+        linear,
+        passive,
+        robust,
+        warnings,
+        server_ms: Timing {
+            region: t_region,
+            robust: t_robust,
+            total: t0.elapsed().as_secs_f64() * 1e3,
+        },
+    })
+}
+
+/// α and β of a point; in physical mode optionally given as K (N/m) and B (Ns/m).
+pub fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), ApiError> {
+    let phys_given = p.has("wall_stiffness") || p.has("wall_damping");
+    let norm_given = p.has("alpha") || p.has("beta");
+    if phys_given && norm_given {
+        return Err(ApiError::bad(
+            "give the point either as alpha/beta or as wall_stiffness/wall_damping, not both"
+                .into(),
+        ));
+    }
+    if phys_given {
+        let Some(ph) = spec.physical else {
+            return Err(ApiError::param(
+                "wall_stiffness",
+                p.raw("wall_stiffness").unwrap_or(""),
+                "wall_stiffness/wall_damping need mode=physical".into(),
+            ));
+        };
+        let k = p.num_in(
+            "wall_stiffness",
+            -MAX_WALL * ph.k_per_alpha,
+            MAX_WALL * ph.k_per_alpha,
+            " N/m",
+        )?;
+        let b = p.num_in(
+            "wall_damping",
+            -MAX_WALL * ph.b_per_beta,
+            MAX_WALL * ph.b_per_beta,
+            " Ns/m",
+        )?;
+        return Ok((k / ph.k_per_alpha, b / ph.b_per_beta));
+    }
+    let alpha = p.num_in(
+        "alpha",
+        -MAX_WALL,
+        MAX_WALL,
+        " (normalized stiffness α = KT²/m)",
+    )?;
+    let beta = p.num_in(
+        "beta",
+        -MAX_WALL,
+        MAX_WALL,
+        " (normalized damping β = BT/m)",
+    )?;
+    Ok((alpha, beta))
+}
+
+/// Query names of `/api/point`.
+pub fn point_names() -> Vec<&'static str> {
+    let mut v: Vec<&str> = super::query::PLANT_PARAMS.to_vec();
+    v.extend(["alpha", "beta", "wall_stiffness", "wall_damping"]);
+    v
+}
+
+/// The physical wall of a point.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct WallOut {
+    /// K in N/m.
+    pub stiffness: f64,
+    /// B in Ns/m.
+    pub damping: f64,
+}
+
+/// The linear condition at a point.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct PointLinear {
+    pub alpha_lower: f64,
+    pub alpha_upper: f64,
+    pub satisfied: bool,
+}
+
+/// Answer of `/api/point`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PointOut {
+    pub params: Normalized,
+    pub wall: Option<WallOut>,
+    /// stable | marginal | unstable (Schur–Cohn with a 5e-11 marginal band).
+    pub verdict: &'static str,
+    pub stable: bool,
+    /// Largest root modulus of p(z).
+    pub spectral_radius: f64,
+    /// Roots of p(z) as [re, im], largest modulus first.
+    pub roots: Vec<[f64; 2]>,
+    /// Linear condition (19), (23).
+    pub linear: PointLinear,
+    /// Inside Colgate's passive region (28) (d = 0 only).
+    pub passive: Option<bool>,
+    pub server_ms: f64,
+}
+
+/// Computes `/api/point`.
+pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiError> {
+    let t0 = Instant::now();
+    let n = Normalized::new(alpha, beta, spec.plant.gamma, spec.plant.delta, spec.d)
+        .map_err(lib_error)?;
+    let a = Analysis::new(n).map_err(lib_error)?;
+    let lc = linear_check(&n);
+    let passive = (spec.d == 0).then(|| alpha >= 0.0 && n.delta > alpha / 2.0 + beta.abs());
+    Ok(PointOut {
+        params: n,
+        wall: spec.physical.map(|ph| WallOut {
+            stiffness: alpha * ph.k_per_alpha,
+            damping: beta * ph.b_per_beta,
+        }),
+        verdict: a.verdict.as_str(),
+        stable: a.stable(),
+        spectral_radius: a.spectral_radius,
+        roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
+        linear: PointLinear {
+            alpha_lower: lc.alpha_lower,
+            alpha_upper: lc.alpha_upper,
+            satisfied: lc.satisfied,
+        },
+        passive,
+        server_ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
+}
+
+/// Query names of `/api/simulate`.
+pub fn simulate_names() -> Vec<&'static str> {
+    let mut v = point_names();
+    v.extend(["samples", "push", "velocity", "contact"]);
+    v
+}
+
+/// A parsed simulation request.
+#[derive(Debug, Clone)]
+pub struct SimReq {
+    pub spec: PlantSpec,
+    pub alpha: f64,
+    pub beta: f64,
+    pub samples: usize,
+    pub push: f64,
+    pub velocity: f64,
+    pub contact: Contact,
+}
+
+/// Validates a simulation request.
+pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
+    let spec = plant_spec(p)?;
+    let (alpha, beta) = wall_point(p, &spec)?;
+    let samples = match p.opt_count(
+        "samples",
+        MIN_SIM_SAMPLES,
+        MAX_SIM_SAMPLES,
+        " (simulated samples)",
+    )? {
+        Some(n) => n,
+        None => {
+            // about six periods of the wall's oscillation, ω ≈ √(α + γ) per sample
+            let w = (alpha + spec.plant.gamma).max(1e-8).sqrt();
+            ((6.0 * 2.0 * std::f64::consts::PI / w).ceil() as usize).clamp(300, 4000)
+        }
+    };
+    let push = p.num_or(
+        "push",
+        1.0,
+        -MAX_PUSH,
+        MAX_PUSH,
+        " N (human push into the wall)",
+    )?;
+    let velocity = p.num_or(
+        "velocity",
+        0.01,
+        -MAX_VELOCITY,
+        MAX_VELOCITY,
+        " m/s (approach velocity at the wall surface)",
+    )?;
+    let contact = match p.choice(
+        "contact",
+        &["unilateral", "unilateral_no_pull", "bilateral"],
+        "unilateral",
+    )? {
+        "bilateral" => Contact::Bilateral,
+        "unilateral_no_pull" => Contact::UnilateralNoPull,
+        _ => Contact::Unilateral,
+    };
+    Ok(SimReq {
+        spec,
+        alpha,
+        beta,
+        samples,
+        push,
+        velocity,
+        contact,
+    })
+}
+
+/// A recorded trace, decimated.
+#[derive(Debug, Clone, Serialize)]
+pub struct TraceOut {
+    /// Time in s.
+    pub time: Vec<f64>,
+    /// Position in m (positive into the wall).
+    pub position: Vec<f64>,
+    /// Wall force in N (positive pushes out).
+    pub wall_force: Vec<f64>,
+}
+
+/// Answer of `/api/simulate`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SimOut {
+    pub params: Normalized,
+    /// Mass m in kg and period T in s used for units.
+    pub mass: f64,
+    pub period: f64,
+    pub units_note: &'static str,
+    pub contact: Contact,
+    pub push: f64,
+    pub velocity: f64,
+    pub samples: usize,
+    /// decaying | limit_cycle | growing for unilateral runs (envelope fit), or the exact
+    /// verdict of p(z) for the bilateral wall.
+    pub outcome: String,
+    /// Exact verdict of the linear loop (Section V) at this point.
+    pub linear_verdict: &'static str,
+    pub blown_up: bool,
+    pub trace: TraceOut,
+    pub server_ms: f64,
+}
+
+/// Runs `/api/simulate`: the device starts at the wall surface x = 0 moving in with
+/// `velocity`, the operator pushes with a constant `push`; unilateral wall by default.
+pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
+    let t0 = Instant::now();
+    let spec = &req.spec;
+    let n = Normalized::new(
+        req.alpha,
+        req.beta,
+        spec.plant.gamma,
+        spec.plant.delta,
+        spec.d,
+    )
+    .map_err(lib_error)?;
+    let (mass, period, units_note) = match spec.physical {
+        Some(ph) => (ph.mass, ph.period, "physical units of the request"),
+        None => (
+            1.0,
+            1e-3,
+            "normalized mode: shown for m = 1 kg and T = 1 ms (only the shape depends on α, β, γ, δ, d)",
+        ),
+    };
+    let model = Model::new(n, mass, period).map_err(lib_error)?;
+    let every = req.samples.div_ceil(MAX_TRACE_POINTS).max(1);
+    let mut cfg = Config::new(model, req.samples);
+    cfg.effects = Effects {
+        contact: req.contact,
+        ..Effects::LINEAR
+    };
+    cfg.human = HumanForce::Constant(req.push);
+    cfg.initial = Initial {
+        position: 0.0,
+        velocity: req.velocity,
+    };
+    cfg.record_every = every;
+    cfg.envelope.windows = (req.samples / 8).clamp(4, 64);
+    let exact = Analysis::new(n).map_err(lib_error)?;
+    let (outcome, blown_up, trace) = if req.contact == Contact::Bilateral {
+        // The linear loop: its verdict is exact (Section V); only the trace is simulated.
+        let mut sim = Simulator::new(&cfg).map_err(lib_error)?;
+        sim.advance(req.samples).map_err(lib_error)?;
+        let outcome = match exact.verdict.as_str() {
+            "stable" => "decaying",
+            "unstable" => "growing",
+            _ => "limit_cycle",
+        };
+        (outcome.to_string(), sim.blown_up(), sim.trace().cloned())
+    } else {
+        let run = hapstab::simulation::simulate(&cfg).map_err(lib_error)?;
+        (run.verdict.as_str().to_string(), run.blown_up, run.trace)
+    };
+    let trace = trace.unwrap_or_default();
+    Ok(SimOut {
+        params: n,
+        mass,
+        period,
+        units_note,
+        contact: req.contact,
+        push: req.push,
+        velocity: req.velocity,
+        samples: req.samples,
+        outcome,
+        linear_verdict: exact.verdict.as_str(),
+        blown_up,
+        trace: TraceOut {
+            time: trace.time,
+            position: trace.position,
+            wall_force: trace.wall_force,
+        },
+        server_ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
+}

@@ -1,0 +1,336 @@
+//! `hapstab serve`: a local web explorer of the exact stable region (issue 7).
+//!
+//! One self-contained page (inline JavaScript and CSS, no network access, embedded in the
+//! binary) and a JSON API backed by the library:
+//!
+//! | endpoint | answer |
+//! |---|---|
+//! | `GET /` | the page |
+//! | `GET /api/limits` | the limits below |
+//! | `GET /api/region` | exact stable region (Section V), α_max, linear condition (23), passive region (28, d = 0), optional robust region over a γ range (Section VIII) |
+//! | `GET /api/point` | verdict, spectral radius and roots of p(z) at one (α, β) |
+//! | `GET /api/simulate` | a short simulated wall contact at one (α, β) |
+//! | `GET /api/export` | the current view as SVG, CSV or JSON |
+//!
+//! Every parameter is validated; bad input is HTTP 400 with `{"error": ...}` naming the
+//! parameter and the value. Computations run on the blocking pool, at most
+//! [`limits::MAX_JOBS`] at once, each under a time limit, so no request can stall the server.
+
+mod api;
+mod export;
+mod limits;
+mod query;
+mod simplify;
+
+use std::net::{IpAddr, SocketAddr};
+use std::sync::Arc;
+use std::time::Duration;
+
+use anyhow::{Context, Result};
+use axum::Router;
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{Query, Request, State};
+use axum::http::{HeaderValue, StatusCode, header};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::get;
+use clap::Args;
+use serde::Serialize;
+use tokio::sync::Semaphore;
+
+use query::{ApiError, Params};
+
+/// The page, embedded at build time.
+const INDEX_HTML: &str = include_str!("../../assets/serve/index.html");
+
+/// Arguments of `hapstab serve`.
+#[derive(Args, Debug)]
+pub struct ServeArgs {
+    /// TCP port to listen on (0 picks a free port; the address is printed on startup).
+    #[arg(long, default_value_t = 8717)]
+    port: u16,
+    /// Address to bind. The default serves this machine only; anything else exposes the
+    /// explorer to the network.
+    #[arg(long, default_value = "127.0.0.1")]
+    host: IpAddr,
+    /// Time limit of one computation in milliseconds (503 when exceeded).
+    #[arg(long, default_value_t = limits::COMPUTE_TIMEOUT_MS, hide = true)]
+    timeout_ms: u64,
+    /// Computations running at once.
+    #[arg(long, default_value_t = limits::MAX_JOBS, hide = true)]
+    jobs: usize,
+}
+
+/// Shared server state.
+#[derive(Clone)]
+struct AppState {
+    jobs: Arc<Semaphore>,
+    max_jobs: usize,
+    timeout: Duration,
+    queue_wait: Duration,
+    /// Bound to a loopback address: only loopback Host headers are accepted.
+    loopback: bool,
+}
+
+/// Runs `hapstab serve` until Ctrl-C.
+pub fn run(a: &ServeArgs) -> Result<()> {
+    let rt = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .max_blocking_threads(4 * a.jobs.max(1) + 4)
+        .build()
+        .context("cannot start the async runtime")?;
+    rt.block_on(serve(a))
+}
+
+async fn serve(a: &ServeArgs) -> Result<()> {
+    let addr = SocketAddr::new(a.host, a.port);
+    let listener = tokio::net::TcpListener::bind(addr)
+        .await
+        .with_context(|| format!("cannot listen on {addr}"))?;
+    let local = listener.local_addr()?;
+    let state = AppState {
+        jobs: Arc::new(Semaphore::new(a.jobs.max(1))),
+        max_jobs: a.jobs.max(1),
+        timeout: Duration::from_millis(a.timeout_ms.max(1)),
+        queue_wait: Duration::from_millis(limits::QUEUE_WAIT_MS),
+        loopback: a.host.is_loopback(),
+    };
+    let host = match local.ip() {
+        IpAddr::V6(ip) => format!("[{ip}]"),
+        IpAddr::V4(ip) => ip.to_string(),
+    };
+    println!(
+        "hapstab serve: listening on http://{host}:{}/ (Ctrl-C to stop)",
+        local.port()
+    );
+    if !a.host.is_loopback() {
+        eprintln!(
+            "warning: bound to {} — the explorer is reachable from the network",
+            a.host
+        );
+    }
+    use std::io::Write;
+    let _ = std::io::stdout().flush();
+    axum::serve(listener, router(state))
+        .with_graceful_shutdown(async {
+            let _ = tokio::signal::ctrl_c().await;
+        })
+        .await
+        .context("server error")?;
+    Ok(())
+}
+
+fn router(state: AppState) -> Router {
+    Router::new()
+        .route("/", get(index))
+        .route("/index.html", get(index))
+        .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
+        .route("/api/limits", get(api_limits))
+        .route("/api/region", get(api_region))
+        .route("/api/point", get(api_point))
+        .route("/api/simulate", get(api_simulate))
+        .route("/api/export", get(api_export))
+        .fallback(not_found)
+        .method_not_allowed_fallback(method_not_allowed)
+        .layer(middleware::from_fn_with_state(state.clone(), guard))
+        .with_state(state)
+}
+
+/// Rejects non-loopback Host headers when bound to loopback (DNS rebinding) and sets the
+/// security headers of every answer.
+async fn guard(State(st): State<AppState>, req: Request, next: Next) -> Response {
+    let host = req
+        .headers()
+        .get(header::HOST)
+        .map(|h| h.to_str().unwrap_or("?").to_string());
+    if let Some(host) = host.filter(|h| st.loopback && !loopback_host(h)) {
+        return ApiError::status(
+            StatusCode::FORBIDDEN,
+            format!(
+                "host '{}' not allowed: this server answers loopback requests only",
+                host.chars().take(60).collect::<String>()
+            ),
+        )
+        .into_response();
+    }
+    let mut resp = next.run(req).await;
+    let h = resp.headers_mut();
+    h.insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
+    );
+    h.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    resp
+}
+
+/// True for a Host header naming localhost or a loopback address (any port).
+fn loopback_host(host: &str) -> bool {
+    let name = match host.strip_prefix('[') {
+        Some(rest) => rest.split(']').next().unwrap_or(""),
+        None => host.split(':').next().unwrap_or(""),
+    };
+    name.eq_ignore_ascii_case("localhost")
+        || name.parse::<IpAddr>().is_ok_and(|ip| ip.is_loopback())
+}
+
+async fn index() -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+            (
+                header::CONTENT_SECURITY_POLICY,
+                "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data: blob:; connect-src 'self'; base-uri 'none'; form-action 'none'",
+            ),
+        ],
+        INDEX_HTML,
+    )
+        .into_response()
+}
+
+async fn not_found(req: Request) -> Response {
+    ApiError::status(
+        StatusCode::NOT_FOUND,
+        format!(
+            "no such endpoint: {} (endpoints: /, /api/limits, /api/region, /api/point, /api/simulate, /api/export)",
+            req.uri().path().chars().take(80).collect::<String>()
+        ),
+    )
+    .into_response()
+}
+
+async fn method_not_allowed() -> Response {
+    ApiError::status(
+        StatusCode::METHOD_NOT_ALLOWED,
+        "only GET is supported".into(),
+    )
+    .into_response()
+}
+
+async fn api_limits() -> Response {
+    axum::Json(limits::limits()).into_response()
+}
+
+type RawQuery = Result<Query<Vec<(String, String)>>, QueryRejection>;
+
+/// Parses the query string against the allowed names.
+fn params(q: RawQuery, allowed: &[&str]) -> Result<Params, ApiError> {
+    let Query(pairs) = q.map_err(|e| ApiError::bad(format!("malformed query string: {e}")))?;
+    Params::new(pairs, allowed)
+}
+
+/// Runs `f` on the blocking pool: waits at most `queue_wait` for one of the job slots, and
+/// answers 503 after `timeout` (the computation keeps its slot until it ends, so the number
+/// of running computations stays bounded).
+async fn run_job<T, F>(st: &AppState, f: F) -> Result<T, ApiError>
+where
+    T: Send + 'static,
+    F: FnOnce() -> Result<T, ApiError> + Send + 'static,
+{
+    let permit = tokio::time::timeout(st.queue_wait, st.jobs.clone().acquire_owned())
+        .await
+        .map_err(|_| {
+            ApiError::status(
+                StatusCode::SERVICE_UNAVAILABLE,
+                format!(
+                    "server busy: {} computations are running; try again",
+                    st.max_jobs
+                ),
+            )
+        })?
+        .map_err(|_| {
+            ApiError::status(
+                StatusCode::SERVICE_UNAVAILABLE,
+                "server shutting down".into(),
+            )
+        })?;
+    let handle = tokio::task::spawn_blocking(move || {
+        let _permit = permit;
+        f()
+    });
+    match tokio::time::timeout(st.timeout, handle).await {
+        Err(_) => Err(ApiError::status(
+            StatusCode::SERVICE_UNAVAILABLE,
+            format!(
+                "computation exceeded the time limit of {} ms",
+                st.timeout.as_millis()
+            ),
+        )),
+        Ok(Err(e)) => Err(ApiError::status(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!(
+                "internal error: the computation failed ({})",
+                if e.is_panic() { "panic" } else { "cancelled" }
+            ),
+        )),
+        Ok(Ok(r)) => r,
+    }
+}
+
+/// A JSON answer with a Server-Timing header.
+fn json_timed<T: Serialize>(v: &T, ms: f64) -> Response {
+    let mut resp = axum::Json(v).into_response();
+    if let Ok(h) = HeaderValue::from_str(&format!("compute;dur={ms:.3}")) {
+        resp.headers_mut().insert("server-timing", h);
+    }
+    resp
+}
+
+fn respond<T>(r: Result<T, ApiError>, ok: impl FnOnce(T) -> Response) -> Response {
+    match r {
+        Ok(v) => ok(v),
+        Err(e) => e.into_response(),
+    }
+}
+
+async fn api_region(State(st): State<AppState>, q: RawQuery) -> Response {
+    let r = async {
+        let p = params(q, &api::region_names())?;
+        let req = api::parse_region(&p)?;
+        run_job(&st, move || api::region(&req)).await
+    }
+    .await;
+    respond(r, |v| json_timed(&v, v.server_ms.total))
+}
+
+async fn api_point(State(st): State<AppState>, q: RawQuery) -> Response {
+    let r = async {
+        let p = params(q, &api::point_names())?;
+        let spec = query::plant_spec(&p)?;
+        let (a, b) = api::wall_point(&p, &spec)?;
+        run_job(&st, move || api::point(&spec, a, b)).await
+    }
+    .await;
+    respond(r, |v| json_timed(&v, v.server_ms))
+}
+
+async fn api_simulate(State(st): State<AppState>, q: RawQuery) -> Response {
+    let r = async {
+        let p = params(q, &api::simulate_names())?;
+        let req = api::parse_simulate(&p)?;
+        run_job(&st, move || api::simulate(&req)).await
+    }
+    .await;
+    respond(r, |v| json_timed(&v, v.server_ms))
+}
+
+async fn api_export(State(st): State<AppState>, q: RawQuery) -> Response {
+    let r = async {
+        let p = params(q, &export::export_names())?;
+        let req = export::parse_export(&p)?;
+        run_job(&st, move || export::export(&req)).await
+    }
+    .await;
+    respond(r, |(ctype, name, body)| {
+        (
+            [
+                (header::CONTENT_TYPE, ctype.to_string()),
+                (
+                    header::CONTENT_DISPOSITION,
+                    format!("attachment; filename=\"{name}\""),
+                ),
+            ],
+            body,
+        )
+            .into_response()
+    })
+}

@@ -1,0 +1,489 @@
+//! Query-string parsing and validation for the JSON API: every failure is an [`ApiError`]
+//! (HTTP 400 with `{"error": ..., "parameter": ..., "value": ...}`) naming the parameter and
+//! the offending value. Nothing here panics.
+
+use std::collections::BTreeMap;
+
+use axum::Json;
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use hapstab::params::{Arm, Device, Effective, PlantParams, Sampling};
+use serde::Serialize;
+
+use super::limits::{
+    MAX_D, MAX_DELTA, MAX_GAMMA, MAX_MASS, MAX_PERIOD, MAX_PHYS_DAMPING, MAX_PHYS_STIFFNESS,
+    MIN_PERIOD,
+};
+
+/// An API error: status code and a JSON body `{"error": message, "parameter"?, "value"?}`.
+#[derive(Debug, Clone)]
+pub struct ApiError {
+    pub status: StatusCode,
+    pub message: String,
+    pub parameter: Option<String>,
+    pub value: Option<String>,
+}
+
+#[derive(Serialize)]
+struct ErrorBody<'a> {
+    error: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    parameter: Option<&'a str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    value: Option<&'a str>,
+}
+
+impl ApiError {
+    /// A 400 about one parameter and its value.
+    pub fn param(name: &str, value: &str, message: String) -> Self {
+        Self {
+            status: StatusCode::BAD_REQUEST,
+            message,
+            parameter: Some(name.to_string()),
+            value: Some(clip(value)),
+        }
+    }
+
+    /// A 400 not tied to one parameter.
+    pub fn bad(message: String) -> Self {
+        Self {
+            status: StatusCode::BAD_REQUEST,
+            message,
+            parameter: None,
+            value: None,
+        }
+    }
+
+    /// Any other status.
+    pub fn status(status: StatusCode, message: String) -> Self {
+        Self {
+            status,
+            message,
+            parameter: None,
+            value: None,
+        }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let body = ErrorBody {
+            error: &self.message,
+            parameter: self.parameter.as_deref(),
+            value: self.value.as_deref(),
+        };
+        (self.status, Json(body)).into_response()
+    }
+}
+
+/// Error from the library (its messages already name the parameter and the value).
+pub fn lib_error(e: hapstab::Error) -> ApiError {
+    ApiError::bad(e.to_string())
+}
+
+/// At most 40 characters of a user-supplied value, for messages.
+pub fn clip(s: &str) -> String {
+    if s.chars().count() > 40 {
+        let mut t: String = s.chars().take(40).collect();
+        t.push('…');
+        t
+    } else {
+        s.to_string()
+    }
+}
+
+/// Formats a number for a message (shortest round-trip form).
+pub fn fmt(x: f64) -> String {
+    format!("{x}")
+}
+
+/// The parsed query string of one request: each name at most once, only allowed names.
+pub struct Params {
+    map: BTreeMap<String, String>,
+}
+
+impl Params {
+    /// Checks for duplicates and unknown names.
+    pub fn new(pairs: Vec<(String, String)>, allowed: &[&str]) -> Result<Self, ApiError> {
+        let mut map: BTreeMap<String, String> = BTreeMap::new();
+        for (k, v) in pairs {
+            if !allowed.contains(&k.as_str()) {
+                return Err(ApiError::param(
+                    &k,
+                    &v,
+                    format!(
+                        "unknown parameter '{}' (value '{}'; allowed: {})",
+                        clip(&k),
+                        clip(&v),
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+            if let Some(first) = map.get(&k) {
+                return Err(ApiError::param(
+                    &k,
+                    &v,
+                    format!(
+                        "parameter '{}' given more than once (values '{}' and '{}')",
+                        clip(&k),
+                        clip(first),
+                        clip(&v)
+                    ),
+                ));
+            }
+            map.insert(k, v);
+        }
+        Ok(Self { map })
+    }
+
+    /// The raw value, if present.
+    pub fn raw(&self, name: &str) -> Option<&str> {
+        self.map.get(name).map(String::as_str)
+    }
+
+    /// True if present.
+    pub fn has(&self, name: &str) -> bool {
+        self.map.contains_key(name)
+    }
+
+    /// An optional finite number.
+    pub fn opt_num(&self, name: &str) -> Result<Option<f64>, ApiError> {
+        let Some(s) = self.raw(name) else {
+            return Ok(None);
+        };
+        let t = s.trim();
+        let x: f64 = t.parse().map_err(|_| {
+            ApiError::param(
+                name,
+                s,
+                format!("parameter '{name}' must be a number (got '{}')", clip(s)),
+            )
+        })?;
+        if !x.is_finite() {
+            return Err(ApiError::param(
+                name,
+                s,
+                format!(
+                    "parameter '{name}' must be a finite number (got '{}')",
+                    clip(s)
+                ),
+            ));
+        }
+        Ok(Some(x))
+    }
+
+    /// A required finite number.
+    pub fn num(&self, name: &str) -> Result<f64, ApiError> {
+        self.opt_num(name)?.ok_or_else(|| missing(name))
+    }
+
+    /// A required number in [lo, hi].
+    pub fn num_in(&self, name: &str, lo: f64, hi: f64, why: &str) -> Result<f64, ApiError> {
+        let x = self.num(name)?;
+        self.check_range(name, x, lo, hi, why)
+    }
+
+    /// lo <= x <= hi, with the value shown as the client wrote it.
+    fn check_range(
+        &self,
+        name: &str,
+        x: f64,
+        lo: f64,
+        hi: f64,
+        why: &str,
+    ) -> Result<f64, ApiError> {
+        if x < lo || x > hi {
+            let raw = self.raw(name).map_or_else(|| fmt(x), |s| clip(s.trim()));
+            return Err(ApiError::param(
+                name,
+                &raw,
+                format!(
+                    "parameter '{name}' must be in [{}, {}]{why} (got {raw})",
+                    fmt(lo),
+                    fmt(hi),
+                ),
+            ));
+        }
+        Ok(x)
+    }
+
+    /// An optional number in [lo, hi] with a default.
+    pub fn num_or(
+        &self,
+        name: &str,
+        default: f64,
+        lo: f64,
+        hi: f64,
+        why: &str,
+    ) -> Result<f64, ApiError> {
+        match self.opt_num(name)? {
+            Some(x) => self.check_range(name, x, lo, hi, why),
+            None => Ok(default),
+        }
+    }
+
+    /// An optional whole number in [lo, hi].
+    pub fn opt_count(
+        &self,
+        name: &str,
+        lo: usize,
+        hi: usize,
+        why: &str,
+    ) -> Result<Option<usize>, ApiError> {
+        let Some(x) = self.opt_num(name)? else {
+            return Ok(None);
+        };
+        if x.fract() != 0.0 || x < lo as f64 || x > hi as f64 {
+            let raw = self.raw(name).map_or_else(|| fmt(x), |s| clip(s.trim()));
+            return Err(ApiError::param(
+                name,
+                &raw,
+                format!(
+                    "parameter '{name}' must be a whole number in [{lo}, {hi}]{why} (got {raw})"
+                ),
+            ));
+        }
+        Ok(Some(x as usize))
+    }
+
+    /// A required whole number in [lo, hi].
+    pub fn count(&self, name: &str, lo: usize, hi: usize, why: &str) -> Result<usize, ApiError> {
+        self.opt_count(name, lo, hi, why)?
+            .ok_or_else(|| missing(name))
+    }
+
+    /// An optional choice among fixed words.
+    pub fn choice<'a>(
+        &self,
+        name: &str,
+        options: &[&'a str],
+        default: &'a str,
+    ) -> Result<&'a str, ApiError> {
+        match self.raw(name) {
+            None => Ok(default),
+            Some(s) => options.iter().find(|o| **o == s).copied().ok_or_else(|| {
+                ApiError::param(
+                    name,
+                    s,
+                    format!(
+                        "parameter '{name}' must be one of {} (got '{}')",
+                        options.join(", "),
+                        clip(s)
+                    ),
+                )
+            }),
+        }
+    }
+
+    /// An optional boolean: 1/0/true/false/yes/no/on/off.
+    pub fn flag(&self, name: &str) -> Result<bool, ApiError> {
+        match self.raw(name) {
+            None => Ok(false),
+            Some(s) => match s {
+                "1" | "true" | "yes" | "on" => Ok(true),
+                "0" | "false" | "no" | "off" | "" => Ok(false),
+                _ => Err(ApiError::param(
+                    name,
+                    s,
+                    format!("parameter '{name}' must be 1 or 0 (got '{}')", clip(s)),
+                )),
+            },
+        }
+    }
+}
+
+fn missing(name: &str) -> ApiError {
+    ApiError {
+        status: StatusCode::BAD_REQUEST,
+        message: format!("missing parameter '{name}'"),
+        parameter: Some(name.to_string()),
+        value: None,
+    }
+}
+
+/// The physical description of the physical-units mode.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct PhysicalSpec {
+    pub device_mass: f64,
+    pub device_damping: f64,
+    pub arm_mass: f64,
+    pub arm_damping: f64,
+    pub arm_stiffness: f64,
+    /// Sampling period T in s.
+    pub period: f64,
+    /// Delay t_d = dT in s.
+    pub delay_time: f64,
+    /// Effective mass m = m_L + m_H (eq. 1).
+    pub mass: f64,
+    /// Effective damping b = b_L + b_H.
+    pub damping: f64,
+    /// Effective stiffness k = k_H.
+    pub stiffness: f64,
+    /// K per unit α: m/T² (Table I), N/m.
+    pub k_per_alpha: f64,
+    /// B per unit β: m/T, Ns/m.
+    pub b_per_beta: f64,
+}
+
+/// The plant (γ, δ, d) of a request, from normalized or physical parameters.
+#[derive(Debug, Clone, Copy)]
+pub struct PlantSpec {
+    pub plant: PlantParams,
+    pub d: usize,
+    pub physical: Option<PhysicalSpec>,
+}
+
+/// Parameter names of the plant (both modes).
+pub const PLANT_PARAMS: &[&str] = &[
+    "mode",
+    "gamma",
+    "delta",
+    "d",
+    "device_mass",
+    "device_damping",
+    "arm_mass",
+    "arm_damping",
+    "arm_stiffness",
+    "period",
+    "delay_time",
+];
+
+fn delay(p: &Params) -> Result<usize, ApiError> {
+    p.count(
+        "d",
+        0,
+        MAX_D,
+        " (delay in whole samples; bounded for interactive use)",
+    )
+}
+
+/// Reads `mode` (normalized | physical) and the plant parameters of that mode.
+pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
+    let mode = p.choice("mode", &["normalized", "physical"], "normalized")?;
+    if mode == "normalized" {
+        for name in [
+            "device_mass",
+            "device_damping",
+            "arm_mass",
+            "arm_damping",
+            "arm_stiffness",
+            "period",
+            "delay_time",
+        ] {
+            if let Some(v) = p.raw(name) {
+                return Err(ApiError::param(
+                    name,
+                    v,
+                    format!(
+                        "parameter '{name}' (got '{}') belongs to mode=physical",
+                        clip(v)
+                    ),
+                ));
+            }
+        }
+        let gamma = p.num_in("gamma", 0.0, MAX_GAMMA, " (normalized stiffness γ = kT²/m)")?;
+        let delta = p.num_in("delta", 0.0, MAX_DELTA, " (normalized damping δ = bT/m)")?;
+        let d = delay(p)?;
+        let plant = PlantParams::new(gamma, delta).map_err(lib_error)?;
+        return Ok(PlantSpec {
+            plant,
+            d,
+            physical: None,
+        });
+    }
+    for name in ["gamma", "delta"] {
+        if let Some(v) = p.raw(name) {
+            return Err(ApiError::param(
+                name,
+                v,
+                format!(
+                    "parameter '{name}' (got '{}') belongs to mode=normalized",
+                    clip(v)
+                ),
+            ));
+        }
+    }
+    let mass_why = " kg";
+    let device = Device {
+        mass: p.num_in("device_mass", 0.0, MAX_MASS, mass_why)?,
+        damping: p.num_in("device_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
+    };
+    let arm = Arm {
+        mass: p.num_in("arm_mass", 0.0, MAX_MASS, mass_why)?,
+        damping: p.num_in("arm_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
+        stiffness: p.num_in("arm_stiffness", 0.0, MAX_PHYS_STIFFNESS, " N/m")?,
+    };
+    let period = p.num_in("period", MIN_PERIOD, MAX_PERIOD, " s (sampling period T)")?;
+    let d = match (p.raw("d"), p.opt_num("delay_time")?) {
+        (Some(v), Some(_)) => {
+            return Err(ApiError::param(
+                "d",
+                v,
+                "give either 'd' (samples) or 'delay_time' (s), not both".into(),
+            ));
+        }
+        (Some(_), None) => delay(p)?,
+        (None, Some(td)) => {
+            let s = Sampling::from_delay_time(period, td).map_err(|e| {
+                ApiError::param(
+                    "delay_time",
+                    &fmt(td),
+                    format!("parameter 'delay_time': {e}"),
+                )
+            })?;
+            if s.delay > MAX_D {
+                return Err(ApiError::param(
+                    "delay_time",
+                    &fmt(td),
+                    format!(
+                        "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} s = {} periods)",
+                        fmt(td),
+                        s.delay
+                    ),
+                ));
+            }
+            s.delay
+        }
+        (None, None) => return Err(missing("delay_time")),
+    };
+    if device.mass + arm.mass <= 0.0 {
+        return Err(ApiError::param(
+            "device_mass",
+            &fmt(device.mass),
+            format!(
+                "the effective mass m = device_mass + arm_mass must be > 0 (got {} + {})",
+                fmt(device.mass),
+                fmt(arm.mass)
+            ),
+        ));
+    }
+    let eff = Effective::combine(device, arm).map_err(lib_error)?;
+    let plant = PlantParams::from_physical(&eff, period).map_err(lib_error)?;
+    if plant.gamma > MAX_GAMMA || plant.delta > MAX_DELTA {
+        return Err(ApiError::bad(format!(
+            "the physical parameters give γ = kT²/m = {} and δ = bT/m = {}; the explorer accepts γ <= {} and δ <= {}",
+            fmt(plant.gamma),
+            fmt(plant.delta),
+            fmt(MAX_GAMMA),
+            fmt(MAX_DELTA)
+        )));
+    }
+    Ok(PlantSpec {
+        plant,
+        d,
+        physical: Some(PhysicalSpec {
+            device_mass: device.mass,
+            device_damping: device.damping,
+            arm_mass: arm.mass,
+            arm_damping: arm.damping,
+            arm_stiffness: arm.stiffness,
+            period,
+            delay_time: d as f64 * period,
+            mass: eff.mass,
+            damping: eff.damping,
+            stiffness: eff.stiffness,
+            k_per_alpha: eff.mass / (period * period),
+            b_per_beta: eff.mass / period,
+        }),
+    })
+}

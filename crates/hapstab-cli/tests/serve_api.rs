@@ -1,0 +1,444 @@
+//! API tests of `hapstab serve` against the real server on an ephemeral loopback port:
+//! every bad input is HTTP 400 with a JSON error naming the parameter and the value; good
+//! input gives exactly the library's numbers; the page is self-contained; the server
+//! survives timeouts and bursts of concurrent requests.
+
+mod serve_support;
+
+use hapstab::region::stable_region;
+use hapstab::stability::Analysis;
+use hapstab::{Normalized, PlantParams, PolyFamily};
+use serve_support::{Server, enc, raw_number, request};
+
+const PLANT: &str = "gamma=0.001&delta=0.015&d=1";
+
+#[test]
+fn bad_input_is_400_with_a_json_error_naming_parameter_and_value() {
+    let s = Server::start(&[]);
+    // (path, parameter the message must name, value the message must show)
+    let cases: &[(&str, &str, &str)] = &[
+        // missing
+        ("/api/region?delta=0.015&d=0", "gamma", ""),
+        ("/api/region?gamma=0.001&d=0", "delta", ""),
+        ("/api/region?gamma=0.001&delta=0.015", "'d'", ""),
+        ("/api/point?gamma=0&delta=0&d=0&beta=0.5", "alpha", ""),
+        ("/api/simulate?gamma=0&delta=0&d=0&alpha=0.1", "beta", ""),
+        // NaN and infinities
+        ("/api/region?gamma=NaN&delta=0.015&d=0", "gamma", "NaN"),
+        ("/api/region?gamma=0&delta=nan&d=0", "delta", "nan"),
+        ("/api/region?gamma=inf&delta=0&d=0", "gamma", "inf"),
+        (
+            "/api/point?gamma=0&delta=0&d=0&alpha=NaN&beta=0.5",
+            "alpha",
+            "NaN",
+        ),
+        (
+            "/api/point?gamma=0&delta=0&d=0&alpha=0.1&beta=-infinity",
+            "beta",
+            "-infinity",
+        ),
+        ("/api/region?gamma=0&delta=0&d=NaN", "'d'", "NaN"),
+        // not numbers
+        ("/api/region?gamma=abc&delta=0&d=0", "gamma", "abc"),
+        ("/api/region?gamma=&delta=0&d=0", "gamma", ""),
+        // negative
+        ("/api/region?gamma=-1&delta=0.015&d=0", "gamma", "-1"),
+        ("/api/region?gamma=0&delta=-0.5&d=0", "delta", "-0.5"),
+        ("/api/region?gamma=0&delta=0&d=-1", "'d'", "-1"),
+        // huge
+        ("/api/region?gamma=0&delta=0&d=201", "'d'", "201"),
+        ("/api/region?gamma=0&delta=0&d=100000", "'d'", "100000"),
+        ("/api/region?gamma=0&delta=0&d=1e300", "'d'", "1e300"),
+        (
+            "/api/point?gamma=0&delta=0&d=5000&alpha=0.1&beta=0.1",
+            "'d'",
+            "5000",
+        ),
+        ("/api/region?gamma=1e9&delta=0&d=0", "gamma", "1e9"),
+        (
+            "/api/point?gamma=0&delta=0&d=0&alpha=1e300&beta=0.5",
+            "alpha",
+            "1e300",
+        ),
+        // fractional delay
+        ("/api/region?gamma=0&delta=0&d=1.5", "'d'", "1.5"),
+        // unknown and duplicate names
+        ("/api/region?gamma=0&delta=0&d=0&gama=1", "gama", "1"),
+        ("/api/region?gamma=0&gamma=1&delta=0&d=0", "gamma", "1"),
+        // oversized grids and sizes
+        (
+            "/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=100000",
+            "gamma_samples",
+            "100000",
+        ),
+        (
+            "/api/region?gamma=0&delta=1&d=20&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=64&beta_samples=256",
+            "gamma_samples",
+            "64",
+        ),
+        (
+            "/api/region?gamma=0&delta=1&d=60&robust=1&gamma_lo=0&gamma_hi=9",
+            "'d'",
+            "60",
+        ),
+        (
+            "/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=5&gamma_hi=1",
+            "gamma_hi",
+            "1",
+        ),
+        (
+            "/api/region?gamma=0&delta=1&d=0&gamma_lo=0",
+            "gamma_lo",
+            "0",
+        ),
+        ("/api/region?gamma=0&delta=0&d=0&tol=5", "tol", "5"),
+        (
+            "/api/simulate?gamma=0&delta=0&d=0&alpha=0.1&beta=0.5&samples=10000000",
+            "samples",
+            "10000000",
+        ),
+        (
+            "/api/simulate?gamma=0&delta=0&d=0&alpha=0.1&beta=0.5&contact=sticky",
+            "contact",
+            "sticky",
+        ),
+        (
+            "/api/export?gamma=0&delta=0&d=0&format=pdf",
+            "format",
+            "pdf",
+        ),
+        (
+            "/api/export?gamma=0&delta=0&d=0&view=1,0,0,1",
+            "view",
+            "1,0,0,1",
+        ),
+        (
+            "/api/export?gamma=0&delta=0&d=0&width=100000",
+            "width",
+            "100000",
+        ),
+        // physical mode
+        (
+            "/api/region?mode=physical&device_mass=0&device_damping=1&arm_mass=0&arm_damping=1&arm_stiffness=0&period=0.001&d=0",
+            "device_mass",
+            "0",
+        ),
+        (
+            "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=1&arm_stiffness=0&period=0.001&delay_time=0.0015",
+            "delay_time",
+            "0.0015",
+        ),
+        (
+            "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=-1&arm_stiffness=0&period=0.001&d=0",
+            "arm_damping",
+            "-1",
+        ),
+        (
+            "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=1&arm_stiffness=0&period=0&d=0",
+            "period",
+            "0",
+        ),
+        (
+            "/api/region?mode=hybrid&gamma=0&delta=0&d=0",
+            "mode",
+            "hybrid",
+        ),
+        (
+            "/api/region?gamma=0&delta=0&d=0&period=0.001",
+            "period",
+            "0.001",
+        ),
+    ];
+    for (path, name, value) in cases {
+        let r = s.get(path);
+        assert_eq!(r.status, 400, "{path}: {}", r.body);
+        assert!(
+            r.header("content-type")
+                .is_some_and(|c| c.starts_with("application/json")),
+            "{path}: {:?}",
+            r.headers
+        );
+        let j = r.json();
+        let msg = j["error"]
+            .as_str()
+            .unwrap_or_else(|| panic!("{path}: no error string in {}", r.body));
+        assert!(msg.contains(name), "{path}: '{msg}' does not name {name}");
+        assert!(
+            msg.contains(value),
+            "{path}: '{msg}' does not show the value {value}"
+        );
+    }
+    // a malformed query string is a 400 too, and the server is still alive afterwards
+    let r = s.get("/api/region?gamma=%ZZ&delta=0&d=0");
+    assert_eq!(r.status, 400, "{}", r.body);
+    assert!(r.json()["error"].is_string());
+    assert_eq!(s.get(&format!("/api/region?{PLANT}")).status, 200);
+}
+
+#[test]
+fn other_errors_are_json_too() {
+    let s = Server::start(&[]);
+    let r = s.get("/api/nowhere");
+    assert_eq!(r.status, 404);
+    assert!(r.json()["error"].as_str().unwrap().contains("/api/nowhere"));
+    let r = request(s.port, "POST", "/api/region", &[("Content-Length", "0")]);
+    assert_eq!(r.status, 405);
+    assert!(r.json()["error"].is_string());
+    // DNS-rebinding guard: a foreign Host header is refused on a loopback server
+    let r = request(s.port, "GET", "/", &[("Host", "attacker.example:80")]);
+    assert_eq!(r.status, 403);
+    assert!(
+        r.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("attacker.example")
+    );
+    let r = request(s.port, "GET", "/api/limits", &[("Host", "localhost")]);
+    assert_eq!(r.status, 200);
+}
+
+fn library_region(gamma: f64, delta: f64, d: usize) -> hapstab::region::StableRegion {
+    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
+}
+
+#[test]
+fn region_alpha_max_equals_the_library() {
+    let s = Server::start(&[]);
+    for (g, de, d) in [
+        (0.001, 0.015, 0),
+        (0.001, 0.015, 1),
+        (0.0, 0.0, 2),
+        (0.0005, 0.005, 5),
+        (0.001, 0.0, 10),
+        (5.0, 1.0, 3),
+        (0.0, 0.015, 50),
+    ] {
+        let path = format!("/api/region?gamma={g}&delta={de}&d={d}");
+        let r = s.get(&path);
+        assert_eq!(r.status, 200, "{path}: {}", r.body);
+        let lib = library_region(g, de, d);
+        let am = raw_number(&r.body, "\"region\":", "alpha_max");
+        let bm = raw_number(&r.body, "\"region\":", "beta_at_alpha_max");
+        let area = raw_number(&r.body, "\"region\":", "area");
+        assert_eq!(am, lib.alpha_max, "{path}");
+        assert_eq!(bm, lib.beta_at_alpha_max, "{path}");
+        assert_eq!(area, lib.area, "{path}");
+        let j = r.json();
+        assert_eq!(j["params"]["d"], d);
+        let polys = j["region"]["polygons"].as_array().unwrap();
+        assert_eq!(polys.len(), lib.polygons.len(), "{path}");
+        // simplified for drawing, corners kept, never more vertices than the exact polygons
+        let sent = j["region"]["vertices_sent"].as_u64().unwrap() as usize;
+        let exact: usize = lib.polygons.iter().map(|p| p.vertices.len()).sum();
+        assert_eq!(
+            j["region"]["vertices_exact"].as_u64().unwrap() as usize,
+            exact
+        );
+        assert!(
+            sent <= exact && sent >= 3 * lib.polygons.len(),
+            "{sent} of {exact}"
+        );
+        // every drawn vertex lies on the exact boundary: its neighbourhood straddles it
+        // (checked cheaply: the drawn polygon's α extent is the exact one within tolerance)
+        let amax_drawn = polys
+            .iter()
+            .flat_map(|p| p.as_array().unwrap())
+            .map(|v| v[0].as_f64().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(amax_drawn <= lib.alpha_max + 1e-12);
+        assert!(amax_drawn >= lib.alpha_max - 1e-3 * lib.alpha_max.abs().max(1e-9));
+        // overlays
+        let lin = &j["linear"];
+        assert!((lin["slope"].as_f64().unwrap() - 1.0 / (d as f64 + 0.5)).abs() < 1e-15);
+        assert!((lin["alpha_at_beta0"].as_f64().unwrap() - de / (d as f64 + 0.5)).abs() < 1e-15);
+        if d == 0 {
+            let v = &j["passive"]["vertices"];
+            assert_eq!(v[1][0].as_f64().unwrap(), 2.0 * de);
+            assert_eq!(v[2][1].as_f64().unwrap(), de);
+        } else {
+            assert!(j["passive"].is_null());
+        }
+    }
+}
+
+#[test]
+fn physical_mode_matches_the_library() {
+    let s = Server::start(&[]);
+    let path = "/api/region?mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&delay_time=0.002";
+    let r = s.get(path);
+    assert_eq!(r.status, 200, "{}", r.body);
+    let eff = hapstab::Effective::new(1.1, 7.5, 350.0).unwrap();
+    let pp = PlantParams::from_physical(&eff, 0.001).unwrap();
+    let lib = library_region(pp.gamma, pp.delta, 2);
+    assert_eq!(
+        raw_number(&r.body, "\"region\":", "alpha_max"),
+        lib.alpha_max
+    );
+    let j = r.json();
+    assert_eq!(j["params"]["d"], 2);
+    let kpa = j["physical"]["k_per_alpha"].as_f64().unwrap();
+    assert!((kpa - 1.1 / 1e-6).abs() < 1e-6);
+    assert!((j["physical"]["b_per_beta"].as_f64().unwrap() - 1100.0).abs() < 1e-9);
+}
+
+#[test]
+fn robust_region_is_inside_the_nominal_one() {
+    let s = Server::start(&[]);
+    let r = s.get("/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=0&gamma_hi=9.8696");
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    let rob = &j["robust"];
+    assert_eq!(rob["empty"], false);
+    let ram = rob["alpha_max"].as_f64().unwrap();
+    for g in [0.0, 9.8696] {
+        assert!(ram <= library_region(g, 1.0, 0).alpha_max + 1e-9);
+    }
+    // Colgate's passive triangle (0, −1), (2, 0), (0, 1) lies inside the robust region
+    // (Section VIII-A): its tip α = 2δ = 2 at β = 0 is below the robust α_max.
+    assert!(ram > 2.0, "{ram}");
+    assert!(rob["method"].as_str().unwrap().contains("robust_region"));
+}
+
+#[test]
+fn point_matches_the_library_analysis() {
+    let s = Server::start(&[]);
+    for (a, b, g, de, d) in [
+        (0.3, 0.5, 0.001, 0.015, 0),
+        (0.75, 0.5, 0.001, 0.015, 0),
+        (0.05, 0.3, 0.0, 0.0, 3),
+    ] {
+        let path = format!("/api/point?alpha={a}&beta={b}&gamma={g}&delta={de}&d={d}");
+        let r = s.get(&path);
+        assert_eq!(r.status, 200, "{}", r.body);
+        let lib = Analysis::new(Normalized::new(a, b, g, de, d).unwrap()).unwrap();
+        let j = r.json();
+        assert_eq!(j["verdict"], lib.verdict.as_str(), "{path}");
+        assert_eq!(
+            raw_number(&r.body, "\"verdict\"", "spectral_radius"),
+            lib.spectral_radius
+        );
+        let roots = j["roots"].as_array().unwrap();
+        assert_eq!(roots.len(), d + 3);
+        assert_eq!(j["passive"].is_null(), d != 0);
+    }
+}
+
+#[test]
+fn simulate_returns_a_short_contact_trace() {
+    let s = Server::start(&[]);
+    let r = s.get("/api/simulate?gamma=0.001&delta=0.015&d=0&alpha=0.3&beta=0.5");
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    assert_eq!(j["outcome"], "decaying");
+    assert_eq!(j["linear_verdict"], "stable");
+    assert_eq!(j["contact"], "unilateral");
+    let n = j["trace"]["time"].as_array().unwrap().len();
+    assert!((10..=2000).contains(&n), "{n}");
+    assert_eq!(j["trace"]["position"].as_array().unwrap().len(), n);
+    // beyond α_max the bilateral loop grows
+    let r = s.get(
+        "/api/simulate?gamma=0.001&delta=0.015&d=0&alpha=0.75&beta=0.5&contact=bilateral&samples=400",
+    );
+    let j = r.json();
+    assert_eq!(j["linear_verdict"], "unstable");
+    assert_eq!(j["outcome"], "growing");
+    // long runs are decimated to at most 2000 rows
+    let r = s.get("/api/simulate?gamma=0&delta=0.01&d=1&alpha=0.05&beta=0.2&samples=20000");
+    assert_eq!(r.status, 200, "{}", r.body);
+    assert!(r.json()["trace"]["time"].as_array().unwrap().len() <= 2000);
+}
+
+#[test]
+fn export_svg_csv_json() {
+    let s = Server::start(&[]);
+    let base = format!("/api/export?{PLANT}&alpha=0.05&beta=0.3");
+    let lib = library_region(0.001, 0.015, 1);
+    let r = s.get(&format!("{base}&format=svg"));
+    assert_eq!(r.status, 200);
+    assert_eq!(r.header("content-type"), Some("image/svg+xml"));
+    assert!(r.header("content-disposition").unwrap().contains(".svg"));
+    assert!(r.body.starts_with("<svg") && r.body.trim_end().ends_with("</svg>"));
+    assert!(r.body.contains("class=\"region\"") && r.body.contains("class=\"point\""));
+    let r = s.get(&format!("{base}&format=csv"));
+    assert_eq!(r.status, 200);
+    let mut lines = r.body.lines();
+    assert_eq!(
+        lines.next(),
+        Some("layer,polygon,vertex,alpha,beta,K_N_per_m,B_Ns_per_m")
+    );
+    let amax_row = r
+        .body
+        .lines()
+        .find(|l| l.starts_with("alpha_max,"))
+        .unwrap();
+    let am: f64 = amax_row.split(',').nth(3).unwrap().parse().unwrap();
+    assert_eq!(am, lib.alpha_max);
+    assert!(r.body.lines().any(|l| l.starts_with("point,")));
+    assert!(r.body.lines().filter(|l| l.starts_with("region,")).count() > 10);
+    let r = s.get(&format!("{base}&format=json&view=-0.01,0.2,-0.1,1.2"));
+    assert_eq!(r.status, 200);
+    assert_eq!(
+        raw_number(&r.body, "\"region\":", "alpha_max"),
+        lib.alpha_max
+    );
+    let j = r.json();
+    assert_eq!(j["view"][1].as_f64(), Some(0.2));
+    assert_eq!(j["point"]["verdict"], "stable");
+}
+
+#[test]
+fn page_is_self_contained() {
+    let s = Server::start(&[]);
+    let r = s.get("/");
+    assert_eq!(r.status, 200);
+    assert!(r.header("content-type").unwrap().starts_with("text/html"));
+    let csp = r.header("content-security-policy").unwrap();
+    assert!(csp.contains("default-src 'none'") && csp.contains("connect-src 'self'"));
+    // no external resource: the only URL is the SVG namespace
+    let urls: Vec<&str> = r
+        .body
+        .match_indices("http")
+        .map(|(i, _)| &r.body[i..(i + 40).min(r.body.len())])
+        .filter(|u| !u.starts_with("http://www.w3.org/2000/svg"))
+        .collect();
+    assert!(urls.is_empty(), "{urls:?}");
+    assert!(!r.body.contains("<script src") && !r.body.contains("<link "));
+    // the limits are stated on the page and served as JSON
+    assert!(r.body.contains("d ≤ 200"));
+    let l = s.get("/api/limits").json();
+    assert_eq!(l["d_max"], 200);
+}
+
+#[test]
+fn timeouts_and_bursts_do_not_take_the_server_down() {
+    // A 1 ms time limit: a robust region cannot finish, the request gets a 503 JSON error,
+    // and the server goes on answering.
+    let s = Server::start(&["--timeout-ms", "1", "--jobs", "2"]);
+    let r =
+        s.get("/api/region?gamma=0&delta=1&d=2&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=32");
+    assert_eq!(r.status, 503, "{}", r.body);
+    assert!(r.json()["error"].as_str().unwrap().contains("time limit"));
+    assert_eq!(s.get("/api/limits").status, 200);
+    drop(s);
+    // A burst of concurrent heavy requests: each is answered (200 or 503 busy), none hangs,
+    // and the server still answers afterwards.
+    let s = Server::start(&["--jobs", "2"]);
+    let port = s.port;
+    let handles: Vec<_> = (0..12)
+        .map(|i| {
+            std::thread::spawn(move || {
+                let path = format!(
+                    "/api/region?gamma=0&delta={}&d={}&robust=1&gamma_lo=0&gamma_hi=1&gamma_samples=8&beta_samples=32",
+                    enc(&format!("{}", 0.1 + 0.01 * i as f64)),
+                    i % 3
+                );
+                request(port, "GET", &path, &[]).status
+            })
+        })
+        .collect();
+    for h in handles {
+        let st = h.join().unwrap();
+        assert!(st == 200 || st == 503, "{st}");
+    }
+    assert_eq!(s.get(&format!("/api/region?{PLANT}")).status, 200);
+}
