@@ -24,3 +24,16 @@ print(f"d={py['d']}: hapstab {rust_total_ns/1e6:.1f} ms per 1e6-point map ({rust
       f"{py['ns_per_point']*1e6/1e9:.1f} s per map); ratio {py['ns_per_point']/rust_pp:.0f}x")
 PY
 done
+
+# Simulation: criterion bench vs a per-sample numpy loop.
+cargo bench -p hapstab --bench simulation -- --noplot linear_bilateral_d1 >/dev/null
+est=target/criterion/simulate/linear_bilateral_d1/new/estimates.json
+rust_ns=$(python3 -c "import json;print(json.load(open('$est'))['mean']['point_estimate'])")
+py=$(env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE "$venv/bin/python" benches/baseline/sim_python.py 200000)
+python3 - "$rust_ns" "$py" <<'PY'
+import json, sys
+rust_ns = float(sys.argv[1]); py = json.loads(sys.argv[2])
+rust_sps = 1e6 / (rust_ns * 1e-9)
+print(f"simulation: hapstab {rust_sps/1e6:.1f} M samples/s; numpy loop {py['samples_per_second']/1e3:.1f} k samples/s; "
+      f"ratio {rust_sps/py['samples_per_second']:.0f}x")
+PY
