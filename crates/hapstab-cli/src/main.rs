@@ -9,10 +9,10 @@ mod map;
 mod model;
 mod nyquist;
 mod output;
+mod paper;
 mod plot;
 mod ranges;
 mod robust;
-mod serve;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -39,14 +39,14 @@ enum Command {
     Kmax(kmax::KmaxArgs),
     /// Grid map of stability over two of α, β, γ, δ (the paper's method), in parallel
     Map(map::MapArgs),
-    /// Interactive explorer in the browser: local web server with the exact region (issue 7)
-    Serve(serve::ServeArgs),
     /// The γ and δ ranges of real haptic systems for a sampling period (Section IV, eq. 11–15)
     Ranges(ranges::RangesArgs),
     /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
     Linear(linear::LinearArgs),
     /// Regions up to the Nyquist frequency, robust region, passivity; Remark 4 (Section VIII)
     Nyquist(nyquist::NyquistArgs),
+    /// Reproduce the paper: Figs. 4–10 (SVG, PNG), claims C1–C11 with verdicts, α_max table
+    Paper(paper::PaperArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
@@ -57,10 +57,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Boundary(a) => boundary::run(&a),
         Command::Kmax(a) => kmax::run(&a),
         Command::Map(a) => map::run(&a),
-        Command::Serve(a) => serve::run(&a),
         Command::Ranges(a) => ranges::run(&a),
         Command::Linear(a) => linear::run(&a),
         Command::Nyquist(a) => nyquist::run(&a),
+        Command::Paper(a) => paper::run(&a),
     }
 }
 
