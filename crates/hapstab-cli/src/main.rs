@@ -13,6 +13,7 @@ mod paper;
 mod plot;
 mod ranges;
 mod robust;
+mod serve;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -39,6 +40,8 @@ enum Command {
     Kmax(kmax::KmaxArgs),
     /// Grid map of stability over two of α, β, γ, δ (the paper's method), in parallel
     Map(map::MapArgs),
+    /// Interactive explorer in the browser: local web server with the exact region (issue 7)
+    Serve(serve::ServeArgs),
     /// The γ and δ ranges of real haptic systems for a sampling period (Section IV, eq. 11–15)
     Ranges(ranges::RangesArgs),
     /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
@@ -57,6 +60,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Boundary(a) => boundary::run(&a),
         Command::Kmax(a) => kmax::run(&a),
         Command::Map(a) => map::run(&a),
+        Command::Serve(a) => serve::run(&a),
         Command::Ranges(a) => ranges::run(&a),
         Command::Linear(a) => linear::run(&a),
         Command::Nyquist(a) => nyquist::run(&a),
