@@ -70,7 +70,6 @@ use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::params::{Normalized, Physical, PlantParams};
 use crate::plant::DiscretePlant;
-use crate::stability::schur_stable;
 
 /// A position or velocity beyond this magnitude (or a non-finite one) ends a run as
 /// [`Outcome::Growing`]; it is far beyond any physical value and far below overflow.
@@ -1359,40 +1358,14 @@ pub struct EmpiricalPoint {
     pub runs: usize,
 }
 
-/// The exact linear boundary along α at fixed β (Section V): the first α above a tiny
-/// positive value where the Schur–Cohn test of p(z) fails, found by doubling and bisection
-/// to 1e-12 relative. None if the loop is already unstable at α = 1e-9; `f64::INFINITY` if
-/// still stable at α = 1e6.
-pub fn linear_alpha_limit(plant: PlantParams, d: usize, beta: f64) -> Result<Option<f64>> {
+/// The exact linear boundary along α at fixed β (Section V): the upper end of the stable
+/// α-interval that starts at α = −γ, by D-decomposition ([`crate::linear::exact_upper_alpha`]).
+/// None if no such interval exists; `f64::INFINITY` if it is unbounded.
+pub fn exact_alpha_limit(plant: PlantParams, d: usize, beta: f64) -> Result<Option<f64>> {
     finite("beta", beta)?;
     let plant = PlantParams::new(plant.gamma, plant.delta)?;
     let fam = PolyFamily::new(plant, d)?;
-    let mut buf = vec![0.0; fam.degree() + 1];
-    let mut stable = |a: f64| {
-        fam.coefficients_into(a, beta, &mut buf);
-        schur_stable(&buf)
-    };
-    let mut lo = 1e-9;
-    if !stable(lo) {
-        return Ok(None);
-    }
-    let mut hi = 1e-3;
-    while stable(hi) {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e6 {
-            return Ok(Some(f64::INFINITY));
-        }
-    }
-    while hi - lo > 1e-12 * hi {
-        let mid = 0.5 * (lo + hi);
-        if stable(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(Some(lo))
+    Ok(crate::linear::exact_upper_alpha(&fam, beta))
 }
 
 fn run_is_stable(template: &Config, alpha: f64, beta: f64, when: StableWhen) -> Result<bool> {
@@ -1409,7 +1382,7 @@ fn run_is_stable(template: &Config, alpha: f64, beta: f64, when: StableWhen) -> 
 
 fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
     let p = search.template.model.params;
-    let alpha_linear = linear_alpha_limit(p.plant(), p.d, beta)?;
+    let alpha_linear = exact_alpha_limit(p.plant(), p.d, beta)?;
     let alpha_max = match search.alpha_max {
         Some(a) => positive("alpha_max", a)?,
         None => match alpha_linear {

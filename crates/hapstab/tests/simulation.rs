@@ -4,7 +4,7 @@
 
 use hapstab::simulation::{
     BoundarySearch, Config, Contact, Effects, Friction, HumanForce, Model, Outcome, StableWhen,
-    empirical_boundary, linear_alpha_limit, linear_growth, simulate,
+    empirical_boundary, exact_alpha_limit, linear_growth, simulate,
 };
 use hapstab::{Analysis, ClosedLoop, Error, Normalized, PlantParams};
 
@@ -61,7 +61,7 @@ fn linear_growth_equals_spectral_radius_at_random_points() {
         };
         // Scatter α around the exact boundary (used only to place the points).
         let scale = 0.3 + 1.4 * rng.next_f64();
-        let alpha = match linear_alpha_limit(PlantParams::new(gamma, delta).unwrap(), d, beta) {
+        let alpha = match exact_alpha_limit(PlantParams::new(gamma, delta).unwrap(), d, beta) {
             Ok(Some(a)) if a.is_finite() => scale * a,
             _ => scale * (beta + delta).abs() / (0.5 + d as f64),
         };
@@ -165,16 +165,16 @@ fn linear_frequency_is_the_dominant_root_angle() {
 /// The exact pure-mass boundary for d = 0 (Section V with γ = δ = 0):
 /// α_max = 2β(2 − β)/(2 + β).
 #[test]
-fn linear_alpha_limit_matches_pure_mass_closed_form() {
+fn exact_alpha_limit_matches_pure_mass_closed_form() {
     for &b in &[0.05, 0.3, 1.0, 1.7] {
-        let a = linear_alpha_limit(PlantParams::new(0.0, 0.0).unwrap(), 0, b)
+        let a = exact_alpha_limit(PlantParams::new(0.0, 0.0).unwrap(), 0, b)
             .unwrap()
             .unwrap();
         let expect = 2.0 * b * (2.0 - b) / (2.0 + b);
         assert!(rel(a, expect) < 1e-9, "beta {b}: {a} vs {expect}");
     }
     assert_eq!(
-        linear_alpha_limit(PlantParams::new(0.0, 0.0).unwrap(), 0, -0.1).unwrap(),
+        exact_alpha_limit(PlantParams::new(0.0, 0.0).unwrap(), 0, -0.1).unwrap(),
         None
     );
 }
@@ -544,7 +544,7 @@ fn quantization_sustains_limit_cycles_inside_the_linear_region() {
     let mut cycles = 0;
     for d in [0, 1] {
         for beta in [0.05, 0.1, 0.2] {
-            let lin = linear_alpha_limit(PlantParams::new(0.0, delta).unwrap(), d, beta)
+            let lin = exact_alpha_limit(PlantParams::new(0.0, delta).unwrap(), d, beta)
                 .unwrap()
                 .unwrap();
             for s in [0.8, 0.9, 0.95] {
