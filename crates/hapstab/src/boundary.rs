@@ -30,18 +30,20 @@ pub struct AlphaBeta {
 /// p(e^{iθ}) = 0 (D-decomposition, Section V). None where N(e^{iθ}) = 0.
 pub fn curve_point(fam: &PolyFamily, theta: f64) -> Option<AlphaBeta> {
     let (s, c) = theta.sin_cos();
-    let z = Complex64::new(c, s);
+    curve_point_at(fam, Complex64::new(c, s))
+}
+
+/// As [`curve_point`] for z = e^{iθ} given directly (|z| = 1, Im z > 0), which lets callers
+/// that step along the circle avoid a sine and cosine per point.
+pub fn curve_point_at(fam: &PolyFamily, z: Complex64) -> Option<AlphaBeta> {
     let n = fam.plant.numerator(z);
     if n.norm_sqr() == 0.0 {
         return None;
     }
-    // z^d by repeated squaring (exact enough: a few roundings) for small d, polar for large d
-    let zd = if fam.d <= 64 {
-        z.powu(fam.d as u32)
-    } else {
-        Complex64::from_polar(1.0, theta * fam.d as f64)
-    };
+    // z^d by repeated squaring: O(log d) products, a few roundings
+    let zd = z.powu(fam.d as u32);
     let r = zd * fam.plant.denominator(z) / n;
+    let s = z.im;
     Some(AlphaBeta {
         alpha: (r * (1.0 - z)).im / s,
         beta: -r.im / s,

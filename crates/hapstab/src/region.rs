@@ -144,6 +144,11 @@ fn sub(a: P, b: P) -> P {
     }
 }
 
+/// Euclidean length (plain square root: coordinates stay far below overflow).
+fn norm(a: P) -> f64 {
+    (a.x * a.x + a.y * a.y).sqrt()
+}
+
 fn cross(a: P, b: P) -> f64 {
     a.x * b.y - a.y * b.x
 }
@@ -189,6 +194,20 @@ fn point(fam: &PolyFamily, theta: f64) -> Option<P> {
     })
 }
 
+/// The curve point at z = e^{iθ} strictly inside the upper half circle.
+fn point_at(fam: &PolyFamily, z: Complex64) -> Option<P> {
+    crate::boundary::curve_point_at(fam, z).map(|p| P {
+        x: p.alpha,
+        y: p.beta,
+    })
+}
+
+/// e^{iθ}, or the exact end points for θ = 0 and θ = π.
+fn unit(theta: f64) -> Complex64 {
+    let (s, c) = theta.sin_cos();
+    Complex64::new(c, s)
+}
+
 /// Adaptive sampling of the curve on [t0, t1]: bisect until the midpoint lies within `tol` of
 /// the chord; coarse passes (finite `maxlen`) refine only where |β| <= maxlen. Appends points
 /// after t0 (t1 included).
@@ -204,52 +223,77 @@ fn sample(
     depth: u32,
     out: &mut Vec<(f64, P)>,
 ) {
+    sample_z(
+        fam,
+        (t0, unit(t0), p0),
+        (t1, unit(t1), p1),
+        tol,
+        maxlen,
+        depth,
+        out,
+    );
+}
+
+/// [`sample`] carrying z = e^{iθ}: the midpoint of an arc is (z0 + z1)/|z0 + z1| and k equal
+/// parts are powers of e^{iΔθ}, so no sine or cosine is evaluated per point.
+fn sample_z(
+    fam: &PolyFamily,
+    a: (f64, Complex64, P),
+    b: (f64, Complex64, P),
+    tol: f64,
+    maxlen: f64,
+    depth: u32,
+    out: &mut Vec<(f64, P)>,
+) {
+    let ((t0, z0, p0), (t1, z1, p1)) = (a, b);
     let tm = 0.5 * (t0 + t1);
+    let zs = z0 + z1;
+    let zm = zs / zs.norm();
     // Coarse passes (finite maxlen) only refine near the |β| < band of possible stability.
     let relevant = maxlen.is_infinite() || p0.y.abs().min(p1.y.abs()) <= maxlen;
     if depth < 48
         && relevant
-        && let Some(pm) = point(fam, tm)
+        && zm.im > 0.0
+        && let Some(pm) = point_at(fam, zm)
     {
-        {
-            let ch = sub(p1, p0);
-            let len = ch.x.hypot(ch.y);
-            let dev = if len > 0.0 {
-                cross(ch, sub(pm, p0)).abs() / len
+        let ch = sub(p1, p0);
+        let len = norm(ch);
+        let dev = if len > 0.0 {
+            cross(ch, sub(pm, p0)).abs() / len
+        } else {
+            norm(sub(pm, p0))
+        };
+        let far = norm(sub(pm, p0)) + norm(sub(pm, p1));
+        // Coarse passes also bound the chord length near the band, so that a chord to a
+        // far point (the curve runs to infinity where N(e^{iθ}) = 0) cannot hide a turn.
+        let long = maxlen.is_finite() && depth < 30 && len > 0.25 * maxlen;
+        if dev > tol || far > 1.5 * len + tol || long {
+            // Split into k parts so that each chord's deviation (∝ length²) meets tol.
+            let k = if far > 1.5 * len + tol || long || depth > 8 {
+                2
             } else {
-                sub(pm, p0).x.hypot(sub(pm, p0).y)
+                ((dev / tol).sqrt().ceil() as usize).clamp(2, 64)
             };
-            let far = sub(pm, p0).x.hypot(sub(pm, p0).y) + sub(pm, p1).x.hypot(sub(pm, p1).y);
-            // Coarse passes also bound the chord length near the band, so that a chord to a
-            // far point (the curve runs to infinity where N(e^{iθ}) = 0) cannot hide a turn.
-            let long = maxlen.is_finite() && depth < 30 && len > 0.25 * maxlen;
-            if dev > tol || far > 1.5 * len + tol || long {
-                // Split into k parts so that each chord's deviation (∝ length²) meets tol.
-                let k = if far > 1.5 * len + tol || long || depth > 8 {
-                    2
-                } else {
-                    ((dev / tol).sqrt().ceil() as usize).clamp(2, 64)
-                };
-                if k == 2 {
-                    sample(fam, t0, p0, tm, pm, tol, maxlen, depth + 1, out);
-                    sample(fam, tm, pm, t1, p1, tol, maxlen, depth + 1, out);
-                    return;
-                }
-                let (mut ta, mut pa) = (t0, p0);
-                for i in 1..=k {
-                    let tb = if i == k {
-                        t1
-                    } else {
-                        t0 + (t1 - t0) * i as f64 / k as f64
-                    };
-                    let pb = if i == k { Some(p1) } else { point(fam, tb) };
-                    let Some(pb) = pb else { break };
-                    sample(fam, ta, pa, tb, pb, tol, maxlen, depth + 1, out);
-                    ta = tb;
-                    pa = pb;
-                }
+            if k == 2 {
+                sample_z(fam, a, (tm, zm, pm), tol, maxlen, depth + 1, out);
+                sample_z(fam, (tm, zm, pm), b, tol, maxlen, depth + 1, out);
                 return;
             }
+            let w = unit((t1 - t0) / k as f64);
+            let mut prev = a;
+            let mut z = z0;
+            for i in 1..=k {
+                let next = if i == k {
+                    b
+                } else {
+                    z *= w;
+                    let Some(p) = point_at(fam, z) else { break };
+                    (t0 + (t1 - t0) * i as f64 / k as f64, z, p)
+                };
+                sample_z(fam, prev, next, tol, maxlen, depth + 1, out);
+                prev = next;
+            }
+            return;
         }
     }
     out.push((t1, p1));
@@ -978,8 +1022,25 @@ fn refine_face(fam: &PolyFamily, g: &Graph, f: &[(usize, bool)], tol: f64) -> Po
                 knots[0].1 = g.verts[va];
                 knots[n - 1].1 = g.verts[vb];
                 let (t0, t1) = (knots[0].0, knots[n - 1].0);
-                let pieces: Vec<Vec<(f64, P)>> = knots
+                // Split every knot interval into 8 equal θ-parts first, so that the parallel
+                // refinement is balanced where the curvature concentrates in a few intervals.
+                let mut fine: Vec<(f64, P)> = Vec::with_capacity(8 * n);
+                for (k, w) in knots.windows(2).enumerate() {
+                    if k == 0 {
+                        fine.push(w[0]);
+                    }
+                    let interior = w[0].0 > 0.0 && w[1].0 < std::f64::consts::PI;
+                    for j in 1..8 {
+                        let t = w[0].0 + (w[1].0 - w[0].0) * j as f64 / 8.0;
+                        if let (true, Some(p)) = (interior, point(fam, t)) {
+                            fine.push((t, p));
+                        }
+                    }
+                    fine.push(w[1]);
+                }
+                let pieces: Vec<Vec<(f64, P)>> = fine
                     .par_windows(2)
+                    .with_min_len(4)
                     .map(|w| {
                         let mut out = Vec::new();
                         sample(
