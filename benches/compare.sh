@@ -9,7 +9,7 @@ if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
   "$venv/bin/pip" install --quiet numpy
 fi
-cargo bench -p hapstab --bench map -- --noplot >/dev/null
+cargo bench -p hapstab --bench map -- --noplot >/dev/null 2>&1
 for d in 0 10; do
   est=target/criterion/map_1000x1000/schur/$d/new/estimates.json
   rust_ns=$(python3 -c "import json;print(json.load(open('$est'))['mean']['point_estimate'])")
@@ -26,7 +26,7 @@ PY
 done
 
 # Simulation: criterion bench vs a per-sample numpy loop.
-cargo bench -p hapstab --bench simulation -- --noplot linear_bilateral_d1 >/dev/null
+cargo bench -p hapstab --bench simulation -- --noplot linear_bilateral_d1 >/dev/null 2>&1
 est=target/criterion/simulate/linear_bilateral_d1/new/estimates.json
 rust_ns=$(python3 -c "import json;print(json.load(open('$est'))['mean']['point_estimate'])")
 py=$(env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE "$venv/bin/python" benches/baseline/sim_python.py 200000)
