@@ -895,10 +895,12 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
             by1 = by1.max(p.beta);
         }
     }
+    // The coarse faces are within 1e-3·bmax of the true region, so 0.99 keeps the chord
+    // tolerance below rel_tol of the true size.
     let rsize = (bx1 - bx0).max(by1 - by0);
     let polygons: Vec<Polygon> = stable_faces
         .iter()
-        .map(|(f, _)| refine_face(fam, &g, f, 0.9 * rel_tol * rsize))
+        .map(|(f, _)| refine_face(fam, &g, f, 0.99 * rel_tol * rsize))
         .collect();
     let area = polygons.iter().map(|p| p.area()).sum();
     let (alpha_max, beta_at_alpha_max) = alpha_max_of(fam, &polygons);
