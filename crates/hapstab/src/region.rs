@@ -11,6 +11,7 @@
 //! root on the unit circle.
 
 use num_complex::Complex64;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::boundary::{AlphaBeta, curve_point, minus_one_line};
@@ -469,30 +470,46 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
     // |p(0)| = |n0 β| < 1 and p(1) > 0 and the z = −1 condition: the window K.
     let n0 = fam.plant.n0.abs().max(1e-300);
     let bmax = 1.0 / n0;
-    // Coarse curve samples.
+    // Coarse curve samples: a uniform θ grid, each interval refined adaptively (in parallel).
     let m = 64 * (fam.d + 2);
+    let knots: Vec<(f64, Option<P>)> = (0..=m)
+        .into_par_iter()
+        .map(|i| {
+            let t = pi * i as f64 / m as f64;
+            match point(fam, t) {
+                // Where N(−1) = 0 (δ = 0) the curve runs to infinity as θ → π: end just
+                // short of it so that the last interval is still sampled (the far tail is cut
+                // off below).
+                None if i == m => {
+                    let t = pi * (1.0 - 1e-12);
+                    (t, point(fam, t))
+                }
+                p => (t, p),
+            }
+        })
+        .collect();
+    let pieces: Vec<Vec<(f64, P)>> = knots
+        .par_windows(2)
+        .with_min_len(8)
+        .map(|w| {
+            let mut out = Vec::new();
+            match (w[0], w[1]) {
+                ((t0, Some(p0)), (t1, Some(p1))) => {
+                    sample(fam, t0, p0, t1, p1, 1e-3 * bmax, 1.5 * bmax, 0, &mut out)
+                }
+                // a gap (no point): the next piece starts afresh at its own first knot
+                ((_, None), (t1, Some(p1))) => out.push((t1, p1)),
+                _ => {}
+            }
+            out
+        })
+        .collect();
     let mut coarse: Vec<(f64, P)> = Vec::new();
-    let mut prev: Option<(f64, P)> = None;
-    for i in 0..=m {
-        let mut t = pi * i as f64 / m as f64;
-        // Where N(−1) = 0 (δ = 0) the curve runs to infinity as θ → π: end just short of it
-        // so that the last interval is still sampled (the far tail is cut off below).
-        if i == m && point(fam, t).is_none() {
-            t = pi * (1.0 - 1e-12);
-        }
-        match (point(fam, t), prev) {
-            (Some(p), Some((t0, p0))) => {
-                sample(fam, t0, p0, t, p, 1e-3 * bmax, 1.5 * bmax, 0, &mut coarse);
-                prev = Some((t, p));
-            }
-            (Some(p), None) => {
-                coarse.push((t, p));
-                prev = Some((t, p));
-            }
-            (None, _) => {
-                prev = None;
-            }
-        }
+    if let (t0, Some(p0)) = knots[0] {
+        coarse.push((t0, p0));
+    }
+    for piece in pieces {
+        coarse.extend(piece);
     }
     let mline = minus_one_line(fam);
     // α extent of the window. Every boundary point of the region with |β| < bmax is a curve
@@ -1005,7 +1022,6 @@ fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
 /// Rebuilds a stable face with its curve arcs resampled to the fine tolerance; the coarse
 /// knot intervals are refined in parallel.
 fn refine_face(fam: &PolyFamily, g: &Graph, f: &[(usize, bool)], tol: f64) -> Polygon {
-    use rayon::prelude::*;
     let mut vertices: Vec<AlphaBeta> = Vec::new();
     let mut thetas: Vec<f64> = Vec::new();
     let mut edges = Vec::new();
