@@ -918,6 +918,19 @@ fn thin(points: &[(f64, f64)], (sx, sy): (f64, f64), tol_px: f64) -> Vec<(f64, f
         .collect()
 }
 
+/// Does segment a–b meet the axis-aligned box [x0, x1] × [y0, y1] given as
+/// `[x0, x1, y0, y1]`? (Liang–Barsky, via [`clip_segment`]; false for non-finite ends.)
+pub fn segment_meets_box(a: Pt, b: Pt, bx: [f64; 4]) -> bool {
+    let finite = a.0.is_finite() && a.1.is_finite() && b.0.is_finite() && b.1.is_finite();
+    let r = Rect {
+        x0: bx[0],
+        x1: bx[1],
+        y0: bx[2],
+        y1: bx[3],
+    };
+    finite && clip_segment(a, b, &r).is_some()
+}
+
 /// Liang–Barsky: the visible part of segment a→b, and whether its end was cut.
 fn clip_segment(a: Pt, b: Pt, r: &Rect) -> Option<(Pt, Pt, bool)> {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);

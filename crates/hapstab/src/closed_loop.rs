@@ -101,13 +101,7 @@ pub struct ClosedLoop {
 impl ClosedLoop {
     /// Builds p(z) of eq. (9) for normalized parameters.
     pub fn new(params: Normalized) -> Result<Self> {
-        let params = Normalized::new(
-            params.alpha,
-            params.beta,
-            params.gamma,
-            params.delta,
-            params.d,
-        )?;
+        let params = params.validated()?;
         let family = PolyFamily::new(params.plant(), params.d)?;
         let poly = family.coefficients(params.alpha, params.beta);
         Ok(Self {

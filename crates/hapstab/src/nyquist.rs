@@ -394,6 +394,19 @@ struct Config {
     fam: PolyFamily,
 }
 
+/// One unscaled configuration per γ sample, at damping δ and delay d.
+fn unit_configs(gammas: &[f64], delta: f64, d: usize) -> Result<Vec<Config>> {
+    gammas
+        .iter()
+        .map(|&g| {
+            Ok(Config {
+                scale: 1.0,
+                fam: PolyFamily::new(PlantParams::new(g, delta)?, d)?,
+            })
+        })
+        .collect()
+}
+
 impl Config {
     /// Stable reference-α intervals at reference β: α_ref/s must lie in I(β_ref/s), so the
     /// set is s·I(β_ref/s).
@@ -646,15 +659,7 @@ pub fn robust_region(
         });
     }
     let (gs, degenerate_gammas) = gamma_samples(gamma_lo, gamma_hi, opts.gamma_samples, delta);
-    let configs: Vec<Config> = gs
-        .iter()
-        .map(|&g| {
-            Ok(Config {
-                scale: 1.0,
-                fam: PolyFamily::new(PlantParams::new(g, delta)?, d)?,
-            })
-        })
-        .collect::<Result<_>>()?;
+    let configs = unit_configs(&gs, delta, d)?;
     let bb = configs
         .iter()
         .map(|c| beta_bound(&c.fam))
@@ -837,15 +842,7 @@ pub fn passive_inside_robust(
     positive("delta", delta)?;
     check_delay(d)?;
     let (gs, _) = gamma_samples(gamma_lo, gamma_hi, opts.gamma_samples, delta);
-    let configs: Vec<Config> = gs
-        .iter()
-        .map(|&g| {
-            Ok(Config {
-                scale: 1.0,
-                fam: PolyFamily::new(PlantParams::new(g, delta)?, d)?,
-            })
-        })
-        .collect::<Result<_>>()?;
+    let configs = unit_configs(&gs, delta, d)?;
     let ng = gs.len();
     let neighbours = |j: usize| {
         let a = if j > 0 { gs[j - 1] } else { gs[j] };

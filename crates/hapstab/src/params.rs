@@ -255,6 +255,12 @@ impl Normalized {
         })
     }
 
+    /// Re-checks a value built field by field (public fields): the same rules as
+    /// [`Normalized::new`].
+    pub fn validated(self) -> Result<Self> {
+        Self::new(self.alpha, self.beta, self.gamma, self.delta, self.d)
+    }
+
     /// The plant part (γ, δ).
     pub fn plant(&self) -> PlantParams {
         PlantParams {

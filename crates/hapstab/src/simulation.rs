@@ -91,13 +91,7 @@ impl Model {
     /// Bundles normalized parameters with the mass m (kg) and period T (s) used to convert
     /// forces and time (Table I).
     pub fn new(params: Normalized, mass: f64, period: f64) -> Result<Self> {
-        let params = Normalized::new(
-            params.alpha,
-            params.beta,
-            params.gamma,
-            params.delta,
-            params.d,
-        )?;
+        let params = params.validated()?;
         Ok(Self {
             params,
             mass: positive("mass m", mass)?,
@@ -1232,13 +1226,7 @@ fn dominant_ritz(t: &[f64], p: usize, q: &[f64], aq: &[f64], n: usize) -> Option
 /// one trajectory. Stops when the dominant Ritz pair's relative residual is below 1e-11 or
 /// after a work budget.
 pub fn linear_growth(params: &Normalized) -> Result<LinearGrowth> {
-    let params = Normalized::new(
-        params.alpha,
-        params.beta,
-        params.gamma,
-        params.delta,
-        params.d,
-    )?;
+    let params = params.validated()?;
     let kernel = Kernel::new(&DiscretePlant::from_params(params.plant()));
     let (alpha, beta, d) = (params.alpha, params.beta, params.d);
     let n = d + 3;

@@ -143,35 +143,6 @@ fn bbox(r: &Results, keys: &[Key], pad: f64) -> Result<((f64, f64), (f64, f64))>
     ))
 }
 
-/// Does segment a–b meet the axis-aligned box [x0, x1] × [y0, y1]? (Liang–Barsky)
-fn segment_hits(a: (f64, f64), b: (f64, f64), bx: [f64; 4]) -> bool {
-    if !(a.0.is_finite() && a.1.is_finite() && b.0.is_finite() && b.1.is_finite()) {
-        return false;
-    }
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-dx, a.0 - bx[0]),
-        (dx, bx[1] - a.0),
-        (-dy, a.1 - bx[2]),
-        (dy, bx[3] - a.1),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    t0 <= t1
-}
-
 fn inside(poly: &[(f64, f64)], p: (f64, f64)) -> bool {
     let n = poly.len();
     let mut c = false;
@@ -189,10 +160,13 @@ fn inside(poly: &[(f64, f64)], p: (f64, f64)) -> bool {
 /// Does anything drawn in `f` fall inside the box?
 fn occupied(f: &Figure, bx: [f64; 4]) -> bool {
     f.series.iter().any(|s| match s.kind {
-        Kind::Line { .. } => s.points.windows(2).any(|w| segment_hits(w[0], w[1], bx)),
+        Kind::Line { .. } => s
+            .points
+            .windows(2)
+            .any(|w| crate::plot::segment_meets_box(w[0], w[1], bx)),
         Kind::Polygon { .. } => {
             let n = s.points.len();
-            (0..n).any(|i| segment_hits(s.points[i], s.points[(i + 1) % n], bx))
+            (0..n).any(|i| crate::plot::segment_meets_box(s.points[i], s.points[(i + 1) % n], bx))
                 || inside(&s.points, (0.5 * (bx[0] + bx[1]), 0.5 * (bx[2] + bx[3])))
         }
         Kind::Scatter { .. } => s
