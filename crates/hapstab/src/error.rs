@@ -10,30 +10,56 @@ use thiserror::Error;
 pub enum Error {
     /// A parameter is NaN or infinite.
     #[error("{name} must be a finite number (got {value})")]
-    NotFinite { name: &'static str, value: f64 },
+    NotFinite {
+        /// Parameter name.
+        name: &'static str,
+        /// Offending value.
+        value: f64,
+    },
     /// A parameter that must be strictly positive is not.
     #[error("{name} must be > 0 (got {value})")]
-    NotPositive { name: &'static str, value: f64 },
+    NotPositive {
+        /// Parameter name.
+        name: &'static str,
+        /// Offending value.
+        value: f64,
+    },
     /// A parameter that must be non-negative is negative.
     #[error("{name} must be >= 0 (got {value})")]
-    Negative { name: &'static str, value: f64 },
+    Negative {
+        /// Parameter name.
+        name: &'static str,
+        /// Offending value.
+        value: f64,
+    },
     /// The delay time is not a whole number of sampling periods.
     #[error(
         "delay time t_d = {delay_time} s is not a whole number of sampling periods T = {period} s (t_d/T = {ratio})"
     )]
     FractionalDelay {
+        /// Delay time t_d in s.
         delay_time: f64,
+        /// Sampling period T in s.
         period: f64,
+        /// t_d / T.
         ratio: f64,
     },
     /// A delay (in samples) above the supported maximum.
     #[error("delay d must be at most {max} samples (got {value})")]
-    DelayTooLarge { value: f64, max: usize },
+    DelayTooLarge {
+        /// Requested delay in samples.
+        value: f64,
+        /// Largest supported delay.
+        max: usize,
+    },
     /// A parameter lies outside a documented range.
     #[error("{name} must be in {range} (got {value})")]
     OutOfRange {
+        /// Parameter name.
         name: &'static str,
+        /// Offending value.
         value: f64,
+        /// The allowed range, as text.
         range: &'static str,
     },
     /// A numerical routine did not converge.

@@ -20,6 +20,8 @@
 //! assert_eq!(a.verdict, Verdict::Stable);
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod boundary;
 pub mod closed_loop;
 pub mod error;
