@@ -258,7 +258,19 @@ fn sample_z(
         && let Some(pm) = point_at(fam, zm)
     {
         let ch = sub(p1, p0);
-        let len = norm(ch);
+        // Fast accept (fine passes): deviation within tol and the midpoint projecting into
+        // [−1/4, 5/4] of the chord, tested without square roots.
+        let q = sub(pm, p0);
+        let len2 = ch.x * ch.x + ch.y * ch.y;
+        if maxlen.is_infinite() && len2 > 0.0 {
+            let c = cross(ch, q);
+            let t = (q.x * ch.x + q.y * ch.y) / len2;
+            if c * c <= tol * tol * len2 && (-0.25..=1.25).contains(&t) {
+                out.push((t1, p1));
+                return;
+            }
+        }
+        let len = len2.sqrt();
         let dev = if len > 0.0 {
             cross(ch, sub(pm, p0)).abs() / len
         } else {
