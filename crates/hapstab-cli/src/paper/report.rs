@@ -152,6 +152,23 @@ fn g(x: f64) -> String {
     if x.is_nan() { "—".into() } else { sig(x, 6) }
 }
 
+/// The cells of one robust-region row, shared by the Markdown and HTML tables.
+fn robust_cells(r: &RobustRow) -> [String; 7] {
+    [
+        r.figure.to_string(),
+        g(r.delta),
+        r.d.to_string(),
+        format!("[0, {}]", g(r.gamma_hi)),
+        if r.empty {
+            "origin only".to_string()
+        } else {
+            g(r.alpha_max)
+        },
+        g(r.beta_at_alpha_max),
+        g(r.area),
+    ]
+}
+
 fn source_text(s: Source) -> &'static str {
     match s {
         Source::Exact => "exact polygon",
@@ -264,21 +281,7 @@ fn markdown(rep: &Report) -> String {
         "| figure | δ | d | γ range | robust α_max | β at α_max | area |\n|---|---|---|---|---|---|---|"
     );
     for r in &rep.robust {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | [0, {}] | {} | {} | {} |",
-            r.figure,
-            g(r.delta),
-            r.d,
-            g(r.gamma_hi),
-            if r.empty {
-                "origin only".to_string()
-            } else {
-                g(r.alpha_max)
-            },
-            g(r.beta_at_alpha_max),
-            g(r.area)
-        );
+        let _ = writeln!(s, "| {} |", robust_cells(r).join(" | "));
     }
     let _ = writeln!(s, "\n## Notes\n");
     for n in &rep.notes {
@@ -361,18 +364,8 @@ fn html_report(dir: &Path, rep: &Report) -> Result<String> {
     for r in &rep.robust {
         let _ = writeln!(
             s,
-            "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">[0, {}]</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
-            r.figure,
-            g(r.delta),
-            r.d,
-            g(r.gamma_hi),
-            if r.empty {
-                "origin only".to_string()
-            } else {
-                g(r.alpha_max)
-            },
-            g(r.beta_at_alpha_max),
-            g(r.area)
+            "<tr><td>{}</td></tr>",
+            robust_cells(r).join("</td><td class=\"num\">")
         );
     }
     s.push_str("</table>\n<h2>Notes</h2>\n<ul>\n");

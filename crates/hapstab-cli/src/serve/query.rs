@@ -348,6 +348,9 @@ pub const PLANT_PARAMS: &[&str] = &[
     "delay_time",
 ];
 
+/// The plant parameters that only the physical mode accepts (the tail of [`PLANT_PARAMS`]).
+const PHYSICAL_ONLY: &[&str] = PLANT_PARAMS.split_at(4).1;
+
 fn delay(p: &Params) -> Result<usize, ApiError> {
     p.count(
         "d",
@@ -361,15 +364,7 @@ fn delay(p: &Params) -> Result<usize, ApiError> {
 pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     let mode = p.choice("mode", &["normalized", "physical"], "normalized")?;
     if mode == "normalized" {
-        for name in [
-            "device_mass",
-            "device_damping",
-            "arm_mass",
-            "arm_damping",
-            "arm_stiffness",
-            "period",
-            "delay_time",
-        ] {
+        for &name in PHYSICAL_ONLY {
             if let Some(v) = p.raw(name) {
                 return Err(ApiError::param(
                     name,
