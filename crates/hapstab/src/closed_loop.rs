@@ -1,83 +1,218 @@
-//! The closed loop of Fig. 3: characteristic polynomial p(z) (eq. 7–9) and the transfer
-//! function G_x(z) from force to position (eq. 7).
+//! The closed loop of Fig. 3: the characteristic polynomial p(z) (eq. 7–9), affine in the
+//! wall, and the transfer function G_x(z) from force to position (eq. 7).
 //!
-//! With the plant N(z)/D(z) of [`crate::plant`] and the controller α + β(z − 1)/z delayed by
-//! z^{−d}, the loop closes on
+//! With the plant H(z) = N(z)/(z^k D(z)) of [`crate::zoh`] (k = d, or d + 1 with a fractional
+//! delay), the velocity estimator T·V(z) = Vn(z)/Vd(z) and the wall F = K·y + B·v, the loop
+//! closes on 1 + H(z)(K + B·V(z)) = 0, i.e. in wall units (a, b) = (K/k_u, B/(k_u T)):
 //!
 //! ```text
-//! p(z) = z^{d+1} D(z) + N(z) ((α + β) z − β),      degree d + 3, monic,
+//! p(z) = P0(z) + a·PK(z) + b·PB(z),
+//! P0 = z^k D Vd,   PK = N Vd,   PB = N Vn,        monic of degree k + n + deg Vd.
 //! ```
 //!
-//! which is the paper's eq. (9) divided by its leading coefficient −2c1γ.
+//! For the paper's loop (backward difference Vn = z − 1, Vd = z, k = d) this is
+//! p(z) = z^{d+1} D(z) + N(z)((α + β) z − β): the paper's eq. (9) divided by its leading
+//! coefficient −2c1γ. The D-decomposition of [`crate::boundary`] and [`crate::region`] rests
+//! on the affinity in (a, b); every analysis works on an [`AffineFamily`].
 
 use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::Result;
+use crate::model::Loop;
 use crate::params::{Normalized, PlantParams, check_delay};
 use crate::plant::DiscretePlant;
+use crate::poly;
+use crate::zoh::{DiscreteLoop, WallScale};
 
-/// p(z) split by the wall parameters, p = P0 + α Pα + β Pβ (each ascending coefficients):
-/// P0 = z^{d+1} D(z), Pα = z N(z), Pβ = (z − 1) N(z). The D-decomposition of
-/// [`crate::boundary`] rests on this linearity in α and β.
+/// p(z) = P0(z) + a·PK(z) + b·PB(z) with K = a·scale.stiffness, B = b·scale.damping.
+///
+/// P0 = z^k·P0c(z) is stored as its low-degree core P0c = D·Vd and the power k, so that
+/// evaluating on the unit circle costs O(n) for any delay.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AffineFamily {
+    /// Core of P0 (ascending): P0 = z^k · p0_core.
+    pub p0_core: Vec<f64>,
+    /// Power k of the plant's pure delay in P0.
+    pub k: usize,
+    /// PK (ascending), the stiffness part.
+    pub pk: Vec<f64>,
+    /// PB (ascending), the damping part.
+    pub pb: Vec<f64>,
+    /// (P0(1), PK(1), PB(1)) formed in the shifted variable w = z − 1, free of the
+    /// cancellation that z-coefficients suffer when every root is near z = 1.
+    pub at_one: [f64; 3],
+    /// The z-derivatives (P0'(1), PK'(1), PB'(1)), formed the same way.
+    pub slope_at_one: [f64; 3],
+    /// Wall units.
+    pub scale: WallScale,
+}
+
+/// A polynomial in w = z − 1 (ascending) evaluated with its derivative at w = 0.
+fn at_zero(c: &[f64]) -> (f64, f64) {
+    (
+        c.first().copied().unwrap_or(0.0),
+        c.get(1).copied().unwrap_or(0.0),
+    )
+}
+
+impl AffineFamily {
+    /// The family of a discrete loop (see the module doc).
+    pub fn new(dl: &DiscreteLoop) -> Self {
+        let den_w = dl.denominator_shifted();
+        let (num_w, k) = dl.numerator_shifted(&den_w);
+        let den = poly::taylor_shift(&den_w, -1.0);
+        let num = poly::taylor_shift(&num_w, -1.0);
+        let (vn, vd) = (&dl.velocity_num, &dl.velocity_den);
+        let p0_core = poly::mul(&den, vd);
+        let pk = poly::mul(&num, vd);
+        let pb = poly::mul(&num, vn);
+        // Values and slopes at z = 1 from the shifted forms (product rule).
+        let (d1, dd1) = at_zero(&den_w);
+        let (n1, dn1) = at_zero(&num_w);
+        let (vd1, dvd1) = poly::eval_real(vd, 1.0);
+        let (vn1, dvn1) = poly::eval_real(vn, 1.0);
+        let kf = k as f64;
+        let at_one = [d1 * vd1, n1 * vd1, n1 * vn1];
+        let slope_at_one = [
+            kf * d1 * vd1 + dd1 * vd1 + d1 * dvd1,
+            dn1 * vd1 + n1 * dvd1,
+            dn1 * vn1 + n1 * dvn1,
+        ];
+        Self {
+            p0_core,
+            k,
+            pk,
+            pb,
+            at_one,
+            slope_at_one,
+            scale: dl.scale,
+        }
+    }
+
+    /// The family of a loop: discretize, then close the loop.
+    pub fn of_loop(lp: &Loop) -> Result<Self> {
+        Ok(Self::new(&lp.discretize()?))
+    }
+
+    /// Degree of p(z) (it is monic).
+    pub fn degree(&self) -> usize {
+        self.k + self.p0_core.len() - 1
+    }
+
+    /// Writes the ascending coefficients of p(z) for wall (a, b) into `out` (length
+    /// degree + 1).
+    pub fn coefficients_into(&self, a: f64, b: f64, out: &mut [f64]) {
+        let n = self.degree();
+        out[..=n].fill(0.0);
+        out[self.k..self.k + self.p0_core.len()].copy_from_slice(&self.p0_core);
+        for (o, (x, y)) in out.iter_mut().zip(self.pk.iter().zip(&self.pb)) {
+            *o += a * x + b * y;
+        }
+        // pk and pb may differ in length
+        if self.pk.len() != self.pb.len() {
+            let m = self.pk.len().min(self.pb.len());
+            for (i, x) in self.pk.iter().enumerate().skip(m) {
+                out[i] += a * x;
+            }
+            for (i, y) in self.pb.iter().enumerate().skip(m) {
+                out[i] += b * y;
+            }
+        }
+    }
+
+    /// The ascending coefficients of p(z) for wall (a, b).
+    pub fn coefficients(&self, a: f64, b: f64) -> Vec<f64> {
+        let mut c = vec![0.0; self.degree() + 1];
+        self.coefficients_into(a, b, &mut c);
+        c
+    }
+
+    /// (P0(z), PK(z), PB(z)) at a complex point; z^k by repeated squaring.
+    pub fn parts_at(&self, z: Complex64) -> (Complex64, Complex64, Complex64) {
+        let p0 = z.powu(self.k as u32) * poly::eval(&self.p0_core, z);
+        (p0, poly::eval(&self.pk, z), poly::eval(&self.pb, z))
+    }
+
+    /// The parts and their z-derivatives at a complex point.
+    pub fn parts_with_derivative(&self, z: Complex64) -> [(Complex64, Complex64); 3] {
+        let (c, dc) = poly::eval_with_derivative(&self.p0_core, z);
+        let zk = z.powu(self.k as u32);
+        let dzk = if self.k == 0 {
+            Complex64::new(0.0, 0.0)
+        } else {
+            z.powu(self.k as u32 - 1) * self.k as f64
+        };
+        [
+            (zk * c, dzk * c + zk * dc),
+            poly::eval_with_derivative(&self.pk, z),
+            poly::eval_with_derivative(&self.pb, z),
+        ]
+    }
+
+    /// p(z) at a complex point.
+    pub fn eval(&self, a: f64, b: f64, z: Complex64) -> Complex64 {
+        let (p0, pk, pb) = self.parts_at(z);
+        p0 + pk * a + pb * b
+    }
+
+    /// p(1), free of cancellation (see `at_one`): zero on the z = 1 line of Section V.
+    pub fn value_at_one(&self, a: f64, b: f64) -> f64 {
+        self.at_one[0] + a * self.at_one[1] + b * self.at_one[2]
+    }
+
+    /// (P0(−1), PK(−1), PB(−1)): the z = −1 line is P0(−1) + a·PK(−1) + b·PB(−1) = 0.
+    pub fn at_minus_one(&self) -> [f64; 3] {
+        let z = Complex64::new(-1.0, 0.0);
+        let (p0, pk, pb) = self.parts_at(z);
+        [p0.re, pk.re, pb.re]
+    }
+
+    /// Converts wall units (a, b) to a physical wall (K in N/m, B in Ns/m).
+    pub fn to_physical(&self, a: f64, b: f64) -> (f64, f64) {
+        (a * self.scale.stiffness, b * self.scale.damping)
+    }
+
+    /// Converts a physical wall (K, B) to wall units (a, b).
+    pub fn to_units(&self, stiffness: f64, damping: f64) -> (f64, f64) {
+        (
+            stiffness / self.scale.stiffness,
+            damping / self.scale.damping,
+        )
+    }
+}
+
+/// The paper's family in normalized units (Table I): the [`AffineFamily`] of the loop
+/// [`Loop::normalized`], so that (a, b) = (α, β), together with the paper's closed-form
+/// plant of eq. (5) for (γ, δ) and the delay d. It dereferences to the [`AffineFamily`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PolyFamily {
-    /// The plant.
+    /// The paper's closed-form discrete plant (eq. 5–6), kept as the independent reference
+    /// and for γ, δ.
     pub plant: DiscretePlant,
     /// Delay d in samples.
     pub d: usize,
+    /// The family through the general engine.
+    pub family: AffineFamily,
+}
+
+impl std::ops::Deref for PolyFamily {
+    type Target = AffineFamily;
+    fn deref(&self) -> &AffineFamily {
+        &self.family
+    }
 }
 
 impl PolyFamily {
     /// Builds the family for plant parameters (γ, δ) and delay d.
     pub fn new(pp: PlantParams, d: usize) -> Result<Self> {
         check_delay(d)?;
+        let lp = Loop::normalized(pp, d)?;
         Ok(Self {
             plant: DiscretePlant::from_params(pp),
             d,
+            family: AffineFamily::of_loop(&lp)?,
         })
-    }
-
-    /// Degree d + 3 of p(z).
-    pub fn degree(&self) -> usize {
-        self.d + 3
-    }
-
-    /// Writes the ascending coefficients of p(z) for (α, β) into `out` (length d + 4).
-    pub fn coefficients_into(&self, alpha: f64, beta: f64, out: &mut [f64]) {
-        let n = self.degree();
-        let pl = &self.plant;
-        out[..=n].fill(0.0);
-        // z^{d+1} (z² − a1 z + a0)
-        out[n] = 1.0;
-        out[n - 1] = -pl.a1;
-        out[n - 2] = pl.a0;
-        // (n1 z + n0)((α + β) z − β)
-        let ab = alpha + beta;
-        out[2] += pl.n1 * ab;
-        out[1] += pl.n0 * ab - pl.n1 * beta;
-        out[0] += -pl.n0 * beta;
-    }
-
-    /// The ascending coefficients of p(z) for (α, β) (eq. 9 up to a constant factor).
-    pub fn coefficients(&self, alpha: f64, beta: f64) -> Vec<f64> {
-        let mut c = vec![0.0; self.degree() + 1];
-        self.coefficients_into(alpha, beta, &mut c);
-        c
-    }
-
-    /// Evaluates (P0(z), Pα(z), Pβ(z)) at a complex point.
-    pub fn parts_at(&self, z: Complex64) -> (Complex64, Complex64, Complex64) {
-        let pl = &self.plant;
-        let nz = pl.numerator(z);
-        let p0 = z.powu(self.d as u32 + 1) * pl.denominator(z);
-        (p0, z * nz, (z - 1.0) * nz)
-    }
-
-    /// p(z) at a complex point.
-    pub fn eval(&self, alpha: f64, beta: f64, z: Complex64) -> Complex64 {
-        let (p0, pa, pb) = self.parts_at(z);
-        p0 + pa * alpha + pb * beta
     }
 
     /// p(1) = N(1)(α + γ) evaluated without cancellation (Section V: the left boundary

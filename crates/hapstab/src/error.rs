@@ -62,6 +62,15 @@ pub enum Error {
         /// The allowed range, as text.
         range: &'static str,
     },
+    /// A parameter is unusable for a reason other than its range (a zero polynomial, an
+    /// improper transfer function, …).
+    #[error("{name} {reason}")]
+    Invalid {
+        /// Parameter name.
+        name: &'static str,
+        /// Why, in words, starting with a verb ("must be …", "is …").
+        reason: String,
+    },
     /// A numerical routine did not converge.
     #[error("numerical failure: {0}")]
     Numerical(String),

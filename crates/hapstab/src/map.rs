@@ -182,6 +182,28 @@ impl MapSpec {
     }
 }
 
+/// p(z) = z^{d+1} D(z) + N(z)((α + β) z − β) from the paper's closed-form plant (eq. 5, 9),
+/// for maps whose axes change the plant at every point: the closed form costs a few
+/// exponentials where the general discretization would cost a matrix exponential. The two
+/// agree to rounding (tested in `crate::zoh`).
+fn paper_coefficients(
+    pl: &crate::plant::DiscretePlant,
+    d: usize,
+    alpha: f64,
+    beta: f64,
+    out: &mut [f64],
+) {
+    let n = d + 3;
+    out[..=n].fill(0.0);
+    out[n] = 1.0;
+    out[n - 1] = -pl.a1;
+    out[n - 2] = pl.a0;
+    let ab = alpha + beta;
+    out[2] += pl.n1 * ab;
+    out[1] += pl.n0 * ab - pl.n1 * beta;
+    out[0] += -pl.n0 * beta;
+}
+
 /// Computes a map in parallel over rows (rayon). `progress` is called with the number of
 /// rows finished so far (from any thread).
 pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sync)) -> Map {
@@ -203,14 +225,16 @@ pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sy
                 let p = spec.point(ix, iy);
                 match &fixed {
                     Some(fam) => fam.coefficients_into(p.alpha, p.beta, &mut c),
-                    None => PolyFamily {
-                        plant: crate::plant::DiscretePlant::from_params(PlantParams {
+                    None => paper_coefficients(
+                        &crate::plant::DiscretePlant::from_params(PlantParams {
                             gamma: p.gamma,
                             delta: p.delta,
                         }),
-                        d: p.d,
-                    }
-                    .coefficients_into(p.alpha, p.beta, &mut c),
+                        p.d,
+                        p.alpha,
+                        p.beta,
+                        &mut c,
+                    ),
                 }
                 match kind {
                     MapKind::Stability => st.push(schur_stable(&c)),

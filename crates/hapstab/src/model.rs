@@ -1,0 +1,456 @@
+//! The loop a user runs (Section II, Fig. 3, generalized): a continuous plant from wall force
+//! to measured position, sampled with period T behind a zero-order hold, a virtual wall
+//! F_k = K·y_k + B·v_k whose force is delayed by t_d = (d + λ)·T, and a velocity estimator
+//! v = V(z)·y.
+//!
+//! The paper's loop is one instance: the plant 1/(ms² + bs + k) of eq. (1), the backward
+//! difference v_k = (y_k − y_{k−1})/T and a whole number d of samples of delay. Everything
+//! the library answers (stability, regions, K_max, maps, margins, passivity, simulation) is a
+//! question about one [`Loop`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::params::{Effective, MAX_DELAY, PlantParams};
+
+/// A two-mass haptic device: the motor-side inertia (where the actuator pushes and the
+/// encoder measures) coupled to the handle through a compliant transmission; the human arm,
+/// if any, holds the handle (the paper's Section IX asks for "a model of the haptic device
+/// including motor dynamics").
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TwoMass {
+    /// Motor-side inertia J as an equivalent mass in kg (> 0).
+    pub motor_mass: f64,
+    /// Motor-side viscous damping b_m in Ns/m (>= 0).
+    pub motor_damping: f64,
+    /// Handle mass m_h in kg (>= 0; the arm's mass adds to it).
+    pub handle_mass: f64,
+    /// Transmission stiffness k_t in N/m (> 0).
+    pub transmission_stiffness: f64,
+    /// Transmission damping b_t in Ns/m (>= 0).
+    pub transmission_damping: f64,
+    /// Human arm on the handle: mass m_H, damping b_H, stiffness k_H (eq. 1's arm).
+    pub arm: crate::params::Arm,
+}
+
+/// The plant from wall force (N) to measured position (m).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum PlantModel {
+    /// The paper's device + arm as one mass-spring-damper 1/(ms² + bs + k) (eq. 1).
+    MassSpringDamper(Effective),
+    /// A two-mass device with a compliant transmission; see [`TwoMass`].
+    TwoMass(TwoMass),
+    /// Any strictly proper rational transfer function num(s)/den(s), coefficients in SI
+    /// units, highest power of s first (as MATLAB's and python-control's `tf`).
+    TransferFunction {
+        /// Numerator coefficients, highest power first.
+        num: Vec<f64>,
+        /// Denominator coefficients, highest power first.
+        den: Vec<f64>,
+    },
+}
+
+/// A plant: a model and an optional first-order actuator lag 1/(τs + 1) between the commanded
+/// and the applied force (the current loop of the motor driver).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plant {
+    /// The mechanical model.
+    pub model: PlantModel,
+    /// Actuator time constant τ in s (0 means no lag).
+    pub force_lag: f64,
+}
+
+/// The velocity estimate v_k the wall's damper acts on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum VelocityEstimator {
+    /// The paper's backward difference v_k = (y_k − y_{k−1})/T.
+    Backward,
+    /// First-order low-pass of the backward difference,
+    /// v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T with a = exp(−2π·f_c·T).
+    LowPass {
+        /// Cut-off frequency f_c in Hz (> 0).
+        cutoff_hz: f64,
+    },
+    /// Difference over N samples, v_k = (y_k − y_{k−N})/(N·T).
+    Average {
+        /// Window N in samples (>= 1).
+        samples: usize,
+    },
+    /// Any proper discrete filter applied to the position,
+    /// v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …) · y, output in m/s.
+    Iir {
+        /// Numerator coefficients b0, b1, … in powers of z⁻¹.
+        b: Vec<f64>,
+        /// Denominator coefficients a0, a1, … in powers of z⁻¹ (a0 ≠ 0).
+        a: Vec<f64>,
+    },
+}
+
+/// The delay of the wall force, t_d = (d + λ)·T with whole samples d and a fraction
+/// λ ∈ [0, 1) of a sample (Table I: d = t_d/T, here not necessarily whole).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Delay {
+    /// Whole samples d.
+    pub samples: usize,
+    /// Fraction λ of a sample, in [0, 1).
+    pub fraction: f64,
+}
+
+/// Relative tolerance below which t_d/T is taken as a whole number of samples: ratios are
+/// computed from user-typed decimals (3e-3/1e-3 = 2.9999999999999996), so a few ulps of
+/// rounding must not create a fractional delay of 1 − 4e-16 samples.
+const WHOLE_SAMPLE_TOL: f64 = 1e-12;
+
+impl Delay {
+    /// No delay.
+    pub const NONE: Delay = Delay {
+        samples: 0,
+        fraction: 0.0,
+    };
+
+    /// A whole number of samples (the paper's d).
+    pub fn samples(d: usize) -> Result<Self> {
+        crate::params::check_delay(d)?;
+        Ok(Self {
+            samples: d,
+            fraction: 0.0,
+        })
+    }
+
+    /// From a delay time t_d >= 0 in seconds and the period T: d = ⌊t_d/T⌋, λ = t_d/T − d.
+    pub fn from_time(delay_time: f64, period: f64) -> Result<Self> {
+        non_negative("delay time t_d", delay_time)?;
+        positive("sampling period T", period)?;
+        let ratio = delay_time / period;
+        if !ratio.is_finite() || ratio > MAX_DELAY as f64 {
+            return Err(Error::DelayTooLarge {
+                value: ratio,
+                max: MAX_DELAY,
+            });
+        }
+        let nearest = ratio.round();
+        if (ratio - nearest).abs() <= WHOLE_SAMPLE_TOL * nearest.max(1.0) {
+            return Self::samples(nearest as usize);
+        }
+        let d = ratio.floor();
+        Ok(Self {
+            samples: d as usize,
+            fraction: ratio - d,
+        })
+    }
+
+    /// t_d/T in samples.
+    pub fn in_samples(&self) -> f64 {
+        self.samples as f64 + self.fraction
+    }
+
+    /// Checks d <= [`MAX_DELAY`] and λ ∈ [0, 1).
+    pub fn validated(self) -> Result<Self> {
+        crate::params::check_delay(self.samples)?;
+        finite("delay fraction", self.fraction)?;
+        if !(0.0..1.0).contains(&self.fraction) {
+            return Err(Error::OutOfRange {
+                name: "delay fraction",
+                value: self.fraction,
+                range: "[0, 1)",
+            });
+        }
+        Ok(self)
+    }
+}
+
+/// The loop of Fig. 3, generalized: plant, sampling period, delay and velocity estimator.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Loop {
+    /// Plant from wall force to measured position.
+    pub plant: Plant,
+    /// Sampling period T in s.
+    pub period: f64,
+    /// Delay of the wall force.
+    pub delay: Delay,
+    /// Velocity estimator of the wall's damper.
+    pub velocity: VelocityEstimator,
+}
+
+impl Plant {
+    /// The paper's plant 1/(ms² + bs + k) (eq. 1).
+    pub fn mass_spring_damper(plant: Effective) -> Result<Self> {
+        Self::new(PlantModel::MassSpringDamper(plant), 0.0)
+    }
+
+    /// Validates the model's parameters and the lag τ >= 0.
+    pub fn new(model: PlantModel, force_lag: f64) -> Result<Self> {
+        non_negative("force lag tau", force_lag)?;
+        validate_model(&model)?;
+        Ok(Self { model, force_lag })
+    }
+
+    /// The same plant with an actuator lag τ in seconds.
+    pub fn with_force_lag(self, tau: f64) -> Result<Self> {
+        Self::new(self.model, tau)
+    }
+
+    /// The mass that normalizes the wall (Table I: α = KT²/m, β = BT/m): m of eq. (1) for the
+    /// paper's plant; the total mass (motor, handle, arm) of a two-mass device, which is what
+    /// it weighs at low frequency; for a transfer function, 1/(ω²|P(jω)|) at ω = 1/T, which is
+    /// m for a mass.
+    pub fn reference_mass(&self, period: f64) -> f64 {
+        match &self.model {
+            PlantModel::MassSpringDamper(e) => e.mass,
+            PlantModel::TwoMass(t) => t.motor_mass + t.handle_mass + t.arm.mass,
+            PlantModel::TransferFunction { num, den } => {
+                let w = 1.0 / period;
+                let s = num_complex::Complex64::new(0.0, w);
+                let p = eval_desc(num, s) / eval_desc(den, s);
+                let m = 1.0 / (w * w * p.norm());
+                if m.is_finite() && m > 0.0 { m } else { 1.0 }
+            }
+        }
+    }
+
+    /// The DC gain P(0) in m/N (the static compliance), or None for a plant with a pole at
+    /// s = 0 (a free mass). The actuator lag does not change it.
+    pub fn dc_gain(&self) -> Option<f64> {
+        let g = match &self.model {
+            PlantModel::MassSpringDamper(e) => 1.0 / e.stiffness,
+            PlantModel::TwoMass(t) => 1.0 / t.arm.stiffness,
+            PlantModel::TransferFunction { num, den } => {
+                num.last().copied().unwrap_or(0.0) / den.last().copied().unwrap_or(0.0)
+            }
+        };
+        g.is_finite().then_some(g)
+    }
+}
+
+/// Evaluates a polynomial with descending coefficients at a complex point.
+pub(crate) fn eval_desc(c: &[f64], s: num_complex::Complex64) -> num_complex::Complex64 {
+    c.iter()
+        .fold(num_complex::Complex64::new(0.0, 0.0), |acc, &x| acc * s + x)
+}
+
+fn validate_model(model: &PlantModel) -> Result<()> {
+    match model {
+        PlantModel::MassSpringDamper(e) => {
+            Effective::new(e.mass, e.damping, e.stiffness)?;
+        }
+        PlantModel::TwoMass(t) => {
+            positive("motor mass", t.motor_mass)?;
+            non_negative("motor damping", t.motor_damping)?;
+            non_negative("handle mass", t.handle_mass)?;
+            positive("transmission stiffness", t.transmission_stiffness)?;
+            non_negative("transmission damping", t.transmission_damping)?;
+            non_negative("arm mass m_H", t.arm.mass)?;
+            non_negative("arm damping b_H", t.arm.damping)?;
+            non_negative("arm stiffness k_H", t.arm.stiffness)?;
+            if t.handle_mass + t.arm.mass == 0.0 {
+                return Err(Error::NotPositive {
+                    name: "handle mass + arm mass",
+                    value: 0.0,
+                });
+            }
+        }
+        PlantModel::TransferFunction { num, den } => validate_tf(num, den)?,
+    }
+    Ok(())
+}
+
+/// Largest plant order accepted: haptic plants are of order 2 to 6; the bound keeps the
+/// dense matrix exponential and characteristic polynomials small and accurate.
+pub const MAX_PLANT_ORDER: usize = 12;
+
+fn validate_tf(num: &[f64], den: &[f64]) -> Result<()> {
+    for &c in num {
+        finite("plant numerator coefficient", c)?;
+    }
+    for &c in den {
+        finite("plant denominator coefficient", c)?;
+    }
+    let den = strip_leading_zeros(den);
+    let num = strip_leading_zeros(num);
+    if den.is_empty() {
+        return Err(Error::Invalid {
+            name: "plant denominator",
+            reason: "is zero".into(),
+        });
+    }
+    if num.is_empty() {
+        return Err(Error::Invalid {
+            name: "plant numerator",
+            reason: "is zero (the wall would act on nothing)".into(),
+        });
+    }
+    if num.len() >= den.len() {
+        return Err(Error::Invalid {
+            name: "plant transfer function",
+            reason: format!(
+                "must be strictly proper (numerator degree {} < denominator degree {})",
+                num.len() - 1,
+                den.len() - 1
+            ),
+        });
+    }
+    if den.len() - 1 > MAX_PLANT_ORDER {
+        return Err(Error::OutOfRange {
+            name: "plant order",
+            value: (den.len() - 1) as f64,
+            range: "1..=12",
+        });
+    }
+    Ok(())
+}
+
+/// Drops leading (highest-power) zeros of a descending coefficient list.
+pub(crate) fn strip_leading_zeros(c: &[f64]) -> &[f64] {
+    let first = c.iter().position(|&x| x != 0.0).unwrap_or(c.len());
+    &c[first..]
+}
+
+impl VelocityEstimator {
+    /// Checks the estimator's parameters (f_c > 0, N >= 1, a0 ≠ 0, finite coefficients).
+    pub fn validated(self) -> Result<Self> {
+        match &self {
+            VelocityEstimator::Backward => {}
+            VelocityEstimator::LowPass { cutoff_hz } => {
+                positive("velocity low-pass cut-off f_c", *cutoff_hz)?;
+            }
+            VelocityEstimator::Average { samples } => {
+                if *samples == 0 || *samples > MAX_DELAY {
+                    return Err(Error::OutOfRange {
+                        name: "velocity average window N",
+                        value: *samples as f64,
+                        range: "1..=2000",
+                    });
+                }
+            }
+            VelocityEstimator::Iir { b, a } => {
+                for &c in b.iter().chain(a) {
+                    finite("velocity filter coefficient", c)?;
+                }
+                if a.first().copied().unwrap_or(0.0) == 0.0 {
+                    return Err(Error::Invalid {
+                        name: "velocity filter a0",
+                        reason: "must be nonzero (the filter must be causal)".into(),
+                    });
+                }
+                if b.is_empty() || b.iter().all(|&x| x == 0.0) {
+                    return Err(Error::Invalid {
+                        name: "velocity filter numerator",
+                        reason: "is zero (the wall's damper would act on nothing)".into(),
+                    });
+                }
+                if b.len().max(a.len()) > MAX_DELAY + 1 {
+                    return Err(Error::OutOfRange {
+                        name: "velocity filter length",
+                        value: b.len().max(a.len()) as f64,
+                        range: "1..=2001",
+                    });
+                }
+            }
+        }
+        Ok(self)
+    }
+
+    /// The estimator as a discrete transfer function from position to T·velocity (the
+    /// velocity in metres per sample), V(z) = num(z)/den(z) in ascending powers of z with a
+    /// monic denominator.
+    pub fn per_sample_filter(&self, period: f64) -> (Vec<f64>, Vec<f64>) {
+        match self {
+            VelocityEstimator::Backward => (vec![-1.0, 1.0], vec![0.0, 1.0]),
+            VelocityEstimator::LowPass { cutoff_hz } => {
+                let a = (-2.0 * std::f64::consts::PI * cutoff_hz * period).exp();
+                (vec![-(1.0 - a), 1.0 - a], vec![-a, 1.0])
+            }
+            VelocityEstimator::Average { samples } => {
+                let n = *samples;
+                let mut num = vec![0.0; n + 1];
+                num[0] = -1.0 / n as f64;
+                num[n] = 1.0 / n as f64;
+                let mut den = vec![0.0; n + 1];
+                den[n] = 1.0;
+                (num, den)
+            }
+            VelocityEstimator::Iir { b, a } => {
+                let len = b.len().max(a.len());
+                let a0 = a[0];
+                // Σ b_i z^{−i} = z^{−(len−1)} Σ b_i z^{len−1−i}: ascending index len−1−i.
+                let mut num = vec![0.0; len];
+                let mut den = vec![0.0; len];
+                for (i, &bi) in b.iter().enumerate() {
+                    num[len - 1 - i] = period * bi / a0;
+                }
+                for (i, &ai) in a.iter().enumerate() {
+                    den[len - 1 - i] = ai / a0;
+                }
+                (num, den)
+            }
+        }
+    }
+}
+
+impl Loop {
+    /// Validates and bundles the parts of a loop.
+    pub fn new(
+        plant: Plant,
+        period: f64,
+        delay: Delay,
+        velocity: VelocityEstimator,
+    ) -> Result<Self> {
+        positive("sampling period T", period)?;
+        let plant = Plant::new(plant.model, plant.force_lag)?;
+        Ok(Self {
+            plant,
+            period,
+            delay: delay.validated()?,
+            velocity: velocity.validated()?,
+        })
+    }
+
+    /// The paper's loop in physical units: plant 1/(ms² + bs + k) (eq. 1), period T, d whole
+    /// samples of delay, backward-difference velocity.
+    pub fn paper(plant: Effective, period: f64, d: usize) -> Result<Self> {
+        Self::new(
+            Plant::mass_spring_damper(plant)?,
+            period,
+            Delay::samples(d)?,
+            VelocityEstimator::Backward,
+        )
+    }
+
+    /// The paper's loop in normalized units (Table I): m = 1, T = 1, so that the wall's
+    /// (K, B) are exactly (α, β) and the plant is 1/(s² + δs + γ).
+    pub fn normalized(pp: PlantParams, d: usize) -> Result<Self> {
+        let pp = PlantParams::new(pp.gamma, pp.delta)?;
+        Self::paper(Effective::new(1.0, pp.delta, pp.gamma)?, 1.0, d)
+    }
+
+    /// The (γ, δ) of Table I when the plant is the paper's mass-spring-damper without lag and
+    /// the velocity is the backward difference: the loops that have the paper's normalized
+    /// view. None otherwise.
+    pub fn paper_view(&self) -> Option<PlantParams> {
+        match (&self.plant.model, &self.velocity) {
+            (PlantModel::MassSpringDamper(e), VelocityEstimator::Backward)
+                if self.plant.force_lag == 0.0 && self.delay.fraction == 0.0 =>
+            {
+                PlantParams::from_physical(e, self.period).ok()
+            }
+            _ => None,
+        }
+    }
+
+    /// The delay time t_d in seconds.
+    pub fn delay_time(&self) -> f64 {
+        self.delay.in_samples() * self.period
+    }
+
+    /// The same loop with another delay.
+    pub fn with_delay(&self, delay: Delay) -> Result<Self> {
+        Self::new(
+            self.plant.clone(),
+            self.period,
+            delay,
+            self.velocity.clone(),
+        )
+    }
+}

@@ -1,0 +1,261 @@
+//! Real polynomials with ascending coefficients (c[k] multiplies z^k), and the characteristic
+//! polynomial of a small dense matrix. These are the building blocks of the loop's
+//! characteristic polynomial p(z) (eq. 7–9 and its generalization in [`crate::closed_loop`]).
+
+use num_complex::Complex64;
+
+/// Product of two polynomials (ascending coefficients).
+pub fn mul(a: &[f64], b: &[f64]) -> Vec<f64> {
+    if a.is_empty() || b.is_empty() {
+        return Vec::new();
+    }
+    let mut out = vec![0.0; a.len() + b.len() - 1];
+    for (i, &x) in a.iter().enumerate() {
+        if x == 0.0 {
+            continue;
+        }
+        for (j, &y) in b.iter().enumerate() {
+            out[i + j] += x * y;
+        }
+    }
+    out
+}
+
+/// a + s·b, padded to the longer length.
+pub fn add_scaled(a: &[f64], s: f64, b: &[f64]) -> Vec<f64> {
+    let n = a.len().max(b.len());
+    (0..n)
+        .map(|k| a.get(k).copied().unwrap_or(0.0) + s * b.get(k).copied().unwrap_or(0.0))
+        .collect()
+}
+
+/// z^k · a(z).
+pub fn shift_up(a: &[f64], k: usize) -> Vec<f64> {
+    let mut out = vec![0.0; k];
+    out.extend_from_slice(a);
+    out
+}
+
+/// Removes trailing (highest-power) exact zeros, keeping at least one coefficient.
+pub fn trim(mut a: Vec<f64>) -> Vec<f64> {
+    while a.len() > 1 && a[a.len() - 1] == 0.0 {
+        a.pop();
+    }
+    a
+}
+
+/// Value at a complex point by Horner's rule.
+pub fn eval(c: &[f64], z: Complex64) -> Complex64 {
+    c.iter()
+        .rev()
+        .fold(Complex64::new(0.0, 0.0), |acc, &ci| acc * z + ci)
+}
+
+/// Value and first derivative at a complex point by Horner's rule.
+pub fn eval_with_derivative(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
+    let zero = Complex64::new(0.0, 0.0);
+    c.iter()
+        .rev()
+        .fold((zero, zero), |(p, dp), &ci| (p * z + ci, dp * z + p))
+}
+
+/// Value and first derivative at a real point.
+pub fn eval_real(c: &[f64], x: f64) -> (f64, f64) {
+    c.iter()
+        .rev()
+        .fold((0.0, 0.0), |(p, dp), &ci| (p * x + ci, dp * x + p))
+}
+
+/// The Taylor shift q(z) = p(z + s): the coefficients of p in powers of (z − s) read as a
+/// polynomial in z. Used to convert the shifted (delta-like) form in w = z − 1 to z (s = −1).
+pub fn taylor_shift(p: &[f64], s: f64) -> Vec<f64> {
+    // Repeated synthetic division (Horner) by (z − s): exact for s = ±1 up to one rounding
+    // per multiply-add.
+    let mut c = p.to_vec();
+    let n = c.len();
+    for i in 0..n {
+        for j in (i..n.saturating_sub(1)).rev() {
+            c[j] += s * c[j + 1];
+        }
+    }
+    c
+}
+
+/// A dense row-major square matrix of small order (the plant's state dimension).
+pub type Mat = Vec<Vec<f64>>;
+
+/// The n×n identity.
+pub fn identity(n: usize) -> Mat {
+    (0..n)
+        .map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+        .collect()
+}
+
+/// Matrix product.
+pub fn mat_mul(a: &Mat, b: &Mat) -> Mat {
+    let n = a.len();
+    let m = b.first().map_or(0, Vec::len);
+    let mut out = vec![vec![0.0; m]; n];
+    for i in 0..n {
+        for (k, bk) in b.iter().enumerate() {
+            let aik = a[i][k];
+            if aik == 0.0 {
+                continue;
+            }
+            for j in 0..m {
+                out[i][j] += aik * bk[j];
+            }
+        }
+    }
+    out
+}
+
+/// Matrix–vector product.
+pub fn mat_vec(a: &Mat, x: &[f64]) -> Vec<f64> {
+    a.iter()
+        .map(|row| row.iter().zip(x).map(|(r, v)| r * v).sum())
+        .collect()
+}
+
+/// The 1-norm (largest absolute column sum).
+pub fn norm1(a: &Mat) -> f64 {
+    let n = a.first().map_or(0, Vec::len);
+    (0..n)
+        .map(|j| a.iter().map(|row| row[j].abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// Reduces a square matrix to upper Hessenberg form by Householder reflections (an orthogonal
+/// similarity, backward stable); returns the Hessenberg matrix. Matrices of order ≤ 2 are
+/// already Hessenberg and are returned untouched, so the paper's plant is never perturbed.
+fn hessenberg(mut a: Mat) -> Mat {
+    let n = a.len();
+    for k in 0..n.saturating_sub(2) {
+        let alpha2: f64 = (k + 1..n).map(|i| a[i][k] * a[i][k]).sum();
+        let tail2: f64 = (k + 2..n).map(|i| a[i][k] * a[i][k]).sum();
+        if tail2 == 0.0 {
+            continue;
+        }
+        let alpha = alpha2.sqrt().copysign(a[k + 1][k]);
+        let mut v = vec![0.0; n];
+        v[k + 1] = a[k + 1][k] + alpha;
+        for i in k + 2..n {
+            v[i] = a[i][k];
+        }
+        let vv: f64 = v.iter().map(|x| x * x).sum();
+        // A ← H A H with H = I − 2 v vᵀ / vᵀv.
+        for j in 0..n {
+            let s: f64 = (k + 1..n).map(|i| v[i] * a[i][j]).sum::<f64>() * 2.0 / vv;
+            for i in k + 1..n {
+                a[i][j] -= s * v[i];
+            }
+        }
+        for row in a.iter_mut() {
+            let s: f64 = (k + 1..n).map(|j| row[j] * v[j]).sum::<f64>() * 2.0 / vv;
+            for j in k + 1..n {
+                row[j] -= s * v[j];
+            }
+        }
+        for row in a.iter_mut().skip(k + 2) {
+            row[k] = 0.0;
+        }
+    }
+    a
+}
+
+/// The characteristic polynomial det(wI − A), monic, ascending coefficients: Householder
+/// reduction to Hessenberg form, then the row recurrence of the leading principal minors
+/// (Hyman's method). O(n³), backward stable for the small orders of haptic plants.
+pub fn char_poly(a: &Mat) -> Vec<f64> {
+    let n = a.len();
+    let h = hessenberg(a.clone());
+    // q[j] = det(wI − H[0..j, 0..j]), q[0] = 1.
+    let mut q: Vec<Vec<f64>> = vec![vec![1.0]];
+    for j in 0..n {
+        // Expansion along column j: (w − h_jj) q_j − Σ_{i<j} h_ij (Π_{k=i+1..j} h_{k,k−1}) q_i.
+        let mut next = mul(&[-h[j][j], 1.0], &q[j]);
+        let mut prod = 1.0;
+        for i in (0..j).rev() {
+            prod *= h[i + 1][i];
+            if prod == 0.0 {
+                break;
+            }
+            next = add_scaled(&next, -h[i][j] * prod, &q[i]);
+        }
+        q.push(next);
+    }
+    q.pop().unwrap_or_else(|| vec![1.0])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn char_poly_of_companion_matrix() {
+        // Companion matrix of (w − 1)(w − 2)(w + 3)(w − 0.5) = w⁴ − 0.5w³ − 7.5w² + 9.5w − 3.
+        let c = [-3.0, 9.5, -7.5, -0.5, 1.0];
+        let n = 4;
+        let mut a = vec![vec![0.0; n]; n];
+        for i in 1..n {
+            a[i][i - 1] = 1.0;
+        }
+        for i in 0..n {
+            a[i][n - 1] = -c[i];
+        }
+        // Scramble by a similarity with a non-orthogonal matrix so Householder has work to do.
+        let s = vec![
+            vec![1.0, 0.3, 0.0, 0.2],
+            vec![0.0, 1.0, 0.5, 0.0],
+            vec![0.1, 0.0, 1.0, 0.4],
+            vec![0.0, 0.2, 0.0, 1.0],
+        ];
+        // inverse of s by Gauss–Jordan
+        let mut aug: Vec<Vec<f64>> = s
+            .iter()
+            .enumerate()
+            .map(|(i, r)| {
+                let mut r = r.clone();
+                r.extend((0..n).map(|j| if i == j { 1.0 } else { 0.0 }));
+                r
+            })
+            .collect();
+        for col in 0..n {
+            let p = aug[col][col];
+            for v in aug[col].iter_mut() {
+                *v /= p;
+            }
+            for r in 0..n {
+                if r != col {
+                    let f = aug[r][col];
+                    let pivot = aug[col].clone();
+                    for (x, y) in aug[r].iter_mut().zip(pivot) {
+                        *x -= f * y;
+                    }
+                }
+            }
+        }
+        let sinv: Mat = aug.iter().map(|r| r[n..].to_vec()).collect();
+        let b = mat_mul(&mat_mul(&s, &a), &sinv);
+        let got = char_poly(&b);
+        for (g, e) in got.iter().zip(c) {
+            assert!((g - e).abs() < 1e-13, "{got:?}");
+        }
+    }
+
+    #[test]
+    fn taylor_shift_round_trip() {
+        let p = [0.5, -2.0, 3.0, 1.0];
+        let q = taylor_shift(&p, -1.0);
+        // q(z) = p(z − 1): check at a few points
+        for x in [-2.0, 0.3, 1.7] {
+            let (a, _) = eval_real(&q, x);
+            let (b, _) = eval_real(&p, x - 1.0);
+            assert!((a - b).abs() < 1e-13);
+        }
+        let back = taylor_shift(&q, 1.0);
+        for (a, b) in back.iter().zip(p) {
+            assert!((a - b).abs() < 1e-14);
+        }
+    }
+}

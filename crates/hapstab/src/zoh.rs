@@ -1,0 +1,533 @@
+//! The exact discrete-time equivalent of any loop's plant behind a zero-order hold with a
+//! fractional delay (Section III, eq. 2–6 and 10, generalized).
+//!
+//! # Continuous plant
+//!
+//! Every [`Plant`] becomes a state-space model ẋ = A x + B u, y = C x in *normalized time*
+//! τ = t/T (one unit per sample) with the force in *wall units* u = F/k_u, k_u = m/T²
+//! (Table I with m the plant's [`Plant::reference_mass`]). For the paper's plant this is
+//! A = [[0, 1], [−γ, −δ]], B = [0, 1]ᵀ, C = [1, 0] in the state (x, T·ẋ), so the wall's
+//! (K/k_u, B/(k_u T)) are the paper's (α, β).
+//!
+//! # Zero-order hold with a fractional delay (modified z-transform)
+//!
+//! A force computed at sample j is applied from jT + t_d to (j + 1)T + t_d with
+//! t_d = (d + λ)T. Over one sample the input is F_{k−d−1} on [0, λ) and F_{k−d} on [λ, 1), so
+//!
+//! ```text
+//! x_{k+1} = Φ x_k + Γ0 u_{k−d} + Γ1 u_{k−d−1},
+//! Φ = e^A,  Γ0 = Ψ(1 − λ) B,  Γ1 = e^{A(1−λ)} Ψ(λ) B,  Ψ(h) = ∫₀ʰ e^{As} ds,
+//! ```
+//!
+//! exact for every λ ∈ [0, 1), continuous as λ → 0 (Γ1 → 0) and λ → 1 (Γ0 → 0, one more
+//! sample of delay). No Padé or Thiran approximation is involved.
+//!
+//! # Accuracy
+//!
+//! Ψ(h) is summed as a Taylor series at h/2^k with ‖A‖h/2^k ≤ 1/2 and doubled exactly:
+//! Ψ(2h) = (2I + E(h))Ψ(h), E(2h) = E(h)(2I + E(h)) with E = e^{Ah} − I = AΨ(h). Carrying
+//! E = Φ − I instead of Φ keeps the information that fast sampling puts into 1 − Φ (every
+//! eigenvalue of Φ near z = 1): the characteristic polynomials are formed in the shifted
+//! variable w = z − 1 from E, where they do not cancel, and only then expanded in z. The same
+//! doubling is valid for integrating (A singular), undamped (imaginary eigenvalues) and stiff
+//! (‖A‖ ≫ 1, e.g. a fast actuator lag) plants; no step divides by an eigenvalue.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator, strip_leading_zeros};
+use crate::params::Effective;
+use crate::poly::{self, Mat};
+
+/// A continuous state-space model in normalized time and wall units (see the module doc).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StateSpace {
+    /// State matrix A (n × n).
+    pub a: Mat,
+    /// Input vector B (n).
+    pub b: Vec<f64>,
+    /// Output row C (n).
+    pub c: Vec<f64>,
+}
+
+/// The wall's unit conversion: K = a·stiffness, B = b·damping, where (a, b) are the
+/// coordinates the affine family is computed in (for the paper's plant, (α, β) of Table I).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WallScale {
+    /// k_u = m/T² in N/m per unit of a.
+    pub stiffness: f64,
+    /// k_u·T = m/T in Ns/m per unit of b.
+    pub damping: f64,
+}
+
+impl WallScale {
+    /// The identity scale (normalized loops: K = α, B = β).
+    pub const UNIT: WallScale = WallScale {
+        stiffness: 1.0,
+        damping: 1.0,
+    };
+}
+
+/// Taylor terms are summed until they fall below this fraction of the sum: one ulp.
+const TAYLOR_REL: f64 = 1e-17;
+/// Scaling target of the Taylor series: ‖A h‖ ≤ 1/2 makes 20 terms exact to 1e-19.
+const TAYLOR_NORM: f64 = 0.5;
+
+/// E(h) = e^{Ah} − I and Ψ(h) = ∫₀ʰ e^{As} ds by scaled Taylor series and exact doubling.
+pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
+    let n = a.len();
+    if h == 0.0 {
+        return (vec![vec![0.0; n]; n], vec![vec![0.0; n]; n]);
+    }
+    let norm = poly::norm1(a) * h;
+    let mut k = 0;
+    while norm * 0.5_f64.powi(k) > TAYLOR_NORM && k < 1100 {
+        k += 1;
+    }
+    let s = h * 0.5_f64.powi(k);
+    let psi_s = psi_series(a, s);
+    let mut e = poly::mat_mul(a, &psi_s);
+    let mut psi = psi_s;
+    for _ in 0..k {
+        let two_plus_e = add_identity(&e, 2.0);
+        psi = poly::mat_mul(&two_plus_e, &psi);
+        e = poly::mat_mul(&e, &two_plus_e);
+    }
+    (e, psi)
+}
+
+/// Ψ(s) = s Σ_j (As)^j/(j + 1)! for ‖As‖ ≤ 1/2.
+fn psi_series(a: &Mat, s: f64) -> Mat {
+    let n = a.len();
+    let as_: Mat = a
+        .iter()
+        .map(|r| r.iter().map(|x| x * s).collect())
+        .collect();
+    let mut term = poly::identity(n); // (As)^j / (j+1)!
+    let mut sum = poly::identity(n);
+    for j in 1..40 {
+        term = poly::mat_mul(&as_, &term);
+        let f = 1.0 / (j + 1) as f64;
+        for row in term.iter_mut() {
+            for x in row.iter_mut() {
+                *x *= f;
+            }
+        }
+        let tn = poly::norm1(&term);
+        for (sr, tr) in sum.iter_mut().zip(&term) {
+            for (x, t) in sr.iter_mut().zip(tr) {
+                *x += t;
+            }
+        }
+        if tn <= TAYLOR_REL * poly::norm1(&sum) {
+            break;
+        }
+    }
+    sum.iter()
+        .map(|r| r.iter().map(|x| x * s).collect())
+        .collect()
+}
+
+fn add_identity(e: &Mat, c: f64) -> Mat {
+    let mut m = e.clone();
+    for (i, row) in m.iter_mut().enumerate() {
+        row[i] += c;
+    }
+    m
+}
+
+impl StateSpace {
+    /// The plant of a loop in normalized time and wall units, with the actuator lag.
+    pub fn of_plant(plant: &Plant, period: f64) -> Result<Self> {
+        let m_ref = plant.reference_mass(period);
+        let base = match &plant.model {
+            PlantModel::MassSpringDamper(e) => mass_spring_damper(e, period),
+            PlantModel::TwoMass(t) => two_mass(t, period, m_ref),
+            PlantModel::TransferFunction { num, den } => {
+                transfer_function(num, den, period, m_ref)?
+            }
+        };
+        Ok(if plant.force_lag > 0.0 {
+            base.with_lag(period / plant.force_lag)
+        } else {
+            base
+        })
+    }
+
+    /// State dimension n.
+    pub fn order(&self) -> usize {
+        self.a.len()
+    }
+
+    /// Appends a first-order lag u_a' = r(u − u_a) in front of the input (r = T/τ).
+    fn with_lag(self, r: f64) -> Self {
+        let n = self.order();
+        let mut a = vec![vec![0.0; n + 1]; n + 1];
+        for i in 0..n {
+            a[i][..n].copy_from_slice(&self.a[i]);
+            a[i][n] = self.b[i];
+        }
+        a[n][n] = -r;
+        let mut b = vec![0.0; n + 1];
+        b[n] = r;
+        let mut c = self.c;
+        c.push(0.0);
+        Self { a, b, c }
+    }
+}
+
+/// The paper's plant in the state (x, T·ẋ): A = [[0, 1], [−γ, −δ]], B = [0, 1]ᵀ (eq. 1, 4).
+fn mass_spring_damper(e: &Effective, period: f64) -> StateSpace {
+    let gamma = e.stiffness * period * period / e.mass;
+    let delta = e.damping * period / e.mass;
+    StateSpace {
+        a: vec![vec![0.0, 1.0], vec![-gamma, -delta]],
+        b: vec![0.0, 1.0],
+        c: vec![1.0, 0.0],
+    }
+}
+
+/// The two-mass device in the state (x_m, T·v_m, x_h, T·v_h); the force acts on the motor
+/// side, the encoder reads x_m, the arm holds the handle.
+fn two_mass(t: &crate::model::TwoMass, period: f64, m_ref: f64) -> StateSpace {
+    let (tt, t2) = (period, period * period);
+    let j = t.motor_mass;
+    let mh = t.handle_mass + t.arm.mass;
+    let (kt, bt) = (t.transmission_stiffness * t2, t.transmission_damping * tt);
+    let a = vec![
+        vec![0.0, 1.0, 0.0, 0.0],
+        vec![-kt / j, -(t.motor_damping * tt + bt) / j, kt / j, bt / j],
+        vec![0.0, 0.0, 0.0, 1.0],
+        vec![
+            kt / mh,
+            bt / mh,
+            -(kt + t.arm.stiffness * t2) / mh,
+            -(bt + t.arm.damping * tt) / mh,
+        ],
+    ];
+    StateSpace {
+        a,
+        b: vec![0.0, m_ref / j, 0.0, 0.0],
+        c: vec![1.0, 0.0, 0.0, 0.0],
+    }
+}
+
+/// A strictly proper num(s)/den(s) in controllable canonical form after the substitution
+/// s = σ/T and the force scale k_u = m_ref/T², balanced by powers of two.
+fn transfer_function(num: &[f64], den: &[f64], period: f64, m_ref: f64) -> Result<StateSpace> {
+    let den = strip_leading_zeros(den);
+    let num = strip_leading_zeros(num);
+    let n = den.len() - 1;
+    if n == 0 || num.len() > n {
+        return Err(Error::Invalid {
+            name: "plant transfer function",
+            reason: "must be strictly proper".into(),
+        });
+    }
+    // Ascending: den(s) = Σ a_k s^k; σ-form coefficients a_k T^{n−k} / a_n (monic).
+    let lead = den[0];
+    let k_u = m_ref / (period * period);
+    let asc_den: Vec<f64> = den.iter().rev().copied().collect();
+    let asc_num: Vec<f64> = num.iter().rev().copied().collect();
+    let a_sig: Vec<f64> = (0..n)
+        .map(|k| asc_den[k] * period.powi((n - k) as i32) / lead)
+        .collect();
+    let b_sig: Vec<f64> = (0..n)
+        .map(|k| asc_num.get(k).copied().unwrap_or(0.0) * k_u * period.powi((n - k) as i32) / lead)
+        .collect();
+    let mut a = vec![vec![0.0; n]; n];
+    for i in 0..n - 1 {
+        a[i][i + 1] = 1.0;
+    }
+    for k in 0..n {
+        a[n - 1][k] = -a_sig[k];
+    }
+    let mut b = vec![0.0; n];
+    b[n - 1] = 1.0;
+    Ok(balance(StateSpace { a, b, c: b_sig }))
+}
+
+/// Diagonal similarity D⁻¹AD by powers of two (Parlett–Reinsch) so that rows and columns
+/// of A have comparable norms; exact in floating point, the transfer function is unchanged.
+fn balance(mut ss: StateSpace) -> StateSpace {
+    let n = ss.order();
+    for _ in 0..100 {
+        let mut done = true;
+        for i in 0..n {
+            let c: f64 = (0..n).filter(|&j| j != i).map(|j| ss.a[j][i].abs()).sum();
+            let r: f64 = (0..n).filter(|&j| j != i).map(|j| ss.a[i][j].abs()).sum();
+            if c == 0.0 || r == 0.0 {
+                continue;
+            }
+            let mut f = 1.0;
+            let (mut cc, mut rr) = (c, r);
+            while cc < rr / 2.0 {
+                cc *= 2.0;
+                rr /= 2.0;
+                f *= 2.0;
+            }
+            while cc > rr * 2.0 {
+                cc /= 2.0;
+                rr *= 2.0;
+                f /= 2.0;
+            }
+            if (cc + rr) < 0.95 * (c + r) {
+                done = false;
+                // column i × f, row i ÷ f
+                for j in 0..n {
+                    ss.a[j][i] *= f;
+                    ss.a[i][j] /= f;
+                }
+                ss.b[i] /= f;
+                ss.c[i] *= f;
+            }
+        }
+        if done {
+            break;
+        }
+    }
+    ss
+}
+
+/// The exact discrete loop: the plant's ZOH matrices with the fractional delay split, the
+/// whole-sample delay, the velocity estimator and the wall's unit conversion. One set of
+/// matrices shared by the analysis ([`crate::closed_loop`]) and the simulation.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DiscreteLoop {
+    /// E = Φ − I, Φ = e^A the one-sample transition (n × n).
+    pub phi_minus_identity: Mat,
+    /// Γ0 = Ψ(1 − λ)B: input of the force delayed by d samples.
+    pub gamma0: Vec<f64>,
+    /// Γ1 = e^{A(1−λ)}Ψ(λ)B: input of the force delayed by d + 1 samples (zero when λ = 0).
+    pub gamma1: Vec<f64>,
+    /// Output row C.
+    pub c: Vec<f64>,
+    /// The delay t_d = (d + λ)T.
+    pub delay: Delay,
+    /// The velocity estimator as T·V(z) = num/den (ascending powers of z, den monic).
+    pub velocity_num: Vec<f64>,
+    /// Denominator of the velocity estimator (ascending, monic).
+    pub velocity_den: Vec<f64>,
+    /// Wall units.
+    pub scale: WallScale,
+    /// Sampling period T in s.
+    pub period: f64,
+}
+
+/// A discrete transfer function z^{−delay}·num(z)/den(z) (ascending coefficients).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DiscreteTf {
+    /// Numerator, ascending powers of z.
+    pub num: Vec<f64>,
+    /// Denominator, ascending powers of z (monic).
+    pub den: Vec<f64>,
+    /// Pure delay in samples (the factor z^{−delay}).
+    pub delay: usize,
+}
+
+impl DiscreteLoop {
+    /// Discretizes a loop exactly (see the module doc).
+    pub fn new(lp: &Loop) -> Result<Self> {
+        let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
+        let lambda = lp.delay.fraction;
+        let (e1, psi1) = exp_and_integral(&ss.a, 1.0);
+        let (gamma0, gamma1) = if lambda == 0.0 {
+            (poly::mat_vec(&psi1, &ss.b), vec![0.0; ss.order()])
+        } else {
+            let (e_rest, psi_rest) = exp_and_integral(&ss.a, 1.0 - lambda);
+            let (_, psi_l) = exp_and_integral(&ss.a, lambda);
+            let g0 = poly::mat_vec(&psi_rest, &ss.b);
+            let inner = poly::mat_vec(&psi_l, &ss.b);
+            let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &inner);
+            (g0, g1)
+        };
+        let (velocity_num, velocity_den) = lp.velocity.per_sample_filter(lp.period);
+        let m = lp.plant.reference_mass(lp.period);
+        let k_u = m / (lp.period * lp.period);
+        let dl = Self {
+            phi_minus_identity: e1,
+            gamma0,
+            gamma1,
+            c: ss.c,
+            delay: lp.delay,
+            velocity_num,
+            velocity_den,
+            scale: WallScale {
+                stiffness: k_u,
+                damping: k_u * lp.period,
+            },
+            period: lp.period,
+        };
+        dl.check_finite()?;
+        Ok(dl)
+    }
+
+    fn check_finite(&self) -> Result<()> {
+        let all = self
+            .phi_minus_identity
+            .iter()
+            .flatten()
+            .chain(&self.gamma0)
+            .chain(&self.gamma1)
+            .chain(&self.c);
+        for &x in all {
+            if !x.is_finite() {
+                return Err(Error::Numerical(
+                    "the plant's discretization overflowed: its time constants are too far from the sampling period".into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// State dimension of the plant.
+    pub fn order(&self) -> usize {
+        self.c.len()
+    }
+
+    /// Φ = I + E.
+    pub fn phi(&self) -> Mat {
+        add_identity(&self.phi_minus_identity, 1.0)
+    }
+
+    /// The plant's denominator D(w) = det(wI − E) in the shifted variable w = z − 1.
+    pub fn denominator_shifted(&self) -> Vec<f64> {
+        poly::char_poly(&self.phi_minus_identity)
+    }
+
+    /// C adj(wI − E) g in the shifted variable w = z − 1, by det(wI − E + s·gC) − det(wI − E)
+    /// = s·C adj(wI − E) g with s balancing s·gC against E.
+    fn numerator_shifted_for(&self, g: &[f64], den: &[f64]) -> Vec<f64> {
+        let gn: f64 = g.iter().map(|x| x.abs()).sum();
+        let cn: f64 = self.c.iter().map(|x| x.abs()).sum();
+        if gn == 0.0 || cn == 0.0 {
+            return vec![0.0];
+        }
+        let s = poly::norm1(&self.phi_minus_identity).max(1.0) / (gn * cn);
+        let m: Mat = self
+            .phi_minus_identity
+            .iter()
+            .enumerate()
+            .map(|(i, row)| {
+                row.iter()
+                    .zip(&self.c)
+                    .map(|(e, c)| e - s * g[i] * c)
+                    .collect()
+            })
+            .collect();
+        let full = poly::char_poly(&m);
+        let mut num: Vec<f64> = full.iter().zip(den).map(|(f, d)| (f - d) / s).collect();
+        num.pop(); // the monic leading terms cancel exactly
+        num
+    }
+
+    /// The plant's numerator N(w) in the shifted variable: C adj(wI − E)Γ0 when λ = 0,
+    /// otherwise C adj(wI − E)((1 + w)Γ0 + Γ1), and the power k of the plant's pure delay
+    /// (H(z) = N/(z^k D), k = d or d + 1).
+    pub fn numerator_shifted(&self, den: &[f64]) -> (Vec<f64>, usize) {
+        let d = self.delay.samples;
+        if self.delay.fraction == 0.0 {
+            return (self.numerator_shifted_for(&self.gamma0, den), d);
+        }
+        let sum: Vec<f64> = self
+            .gamma0
+            .iter()
+            .zip(&self.gamma1)
+            .map(|(a, b)| a + b)
+            .collect();
+        let n_sum = self.numerator_shifted_for(&sum, den);
+        let n0 = self.numerator_shifted_for(&self.gamma0, den);
+        (
+            poly::add_scaled(&n_sum, 1.0, &poly::shift_up(&n0, 1)),
+            d + 1,
+        )
+    }
+
+    /// The plant H(z) = z^{−k} N(z)/D(z) in wall units (normalized: multiply the numerator by
+    /// 1/k_u for metres per newton), ascending coefficients in z.
+    pub fn plant_tf(&self) -> DiscreteTf {
+        let den_w = self.denominator_shifted();
+        let (num_w, k) = self.numerator_shifted(&den_w);
+        DiscreteTf {
+            num: poly::taylor_shift(&num_w, -1.0),
+            den: poly::taylor_shift(&den_w, -1.0),
+            delay: k,
+        }
+    }
+
+    /// The plant H(z) in physical units, metres per newton (the `c2d` of MATLAB and
+    /// python-control with the input delay).
+    pub fn plant_tf_physical(&self) -> DiscreteTf {
+        let mut tf = self.plant_tf();
+        for x in tf.num.iter_mut() {
+            *x /= self.scale.stiffness;
+        }
+        tf
+    }
+
+    /// The velocity estimator V(z) in physical units (m/s per m of position).
+    pub fn velocity_tf_physical(&self) -> DiscreteTf {
+        DiscreteTf {
+            num: self.velocity_num.iter().map(|x| x / self.period).collect(),
+            den: self.velocity_den.clone(),
+            delay: 0,
+        }
+    }
+}
+
+impl Loop {
+    /// The exact discrete loop (see [`DiscreteLoop`]).
+    pub fn discretize(&self) -> Result<DiscreteLoop> {
+        DiscreteLoop::new(self)
+    }
+}
+
+impl VelocityEstimator {
+    /// True for the paper's backward difference.
+    pub fn is_backward(&self) -> bool {
+        matches!(self, VelocityEstimator::Backward)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plant::DiscretePlant;
+
+    #[test]
+    fn paper_plant_matches_closed_form() {
+        for &(g, dl) in &[
+            (0.0, 0.0),
+            (1e-3, 0.015),
+            (0.3, 0.0),
+            (9.0, 1.0),
+            (1e-12, 1e-9),
+            (2.0, 6.0),
+            (0.0, 40.0),
+        ] {
+            let lp = Loop::normalized(crate::PlantParams::new(g, dl).unwrap(), 0).unwrap();
+            let tf = lp.discretize().unwrap().plant_tf();
+            let p = DiscretePlant::new(g, dl).unwrap();
+            let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1e-300);
+            assert!(
+                rel(tf.num[1], p.n1) < 1e-13,
+                "{g} {dl}: {:?} vs {p:?}",
+                tf.num
+            );
+            assert!(
+                rel(tf.num[0], p.n0) < 1e-13,
+                "{g} {dl}: {:?} vs {p:?}",
+                tf.num
+            );
+            assert!((tf.den[1] + p.a1).abs() < 1e-14 * p.a1.abs().max(1.0));
+            // z-coefficients formed from the shifted form carry absolute (not relative) errors
+            // of a few ulps of 1: what matters for roots near the unit circle.
+            assert!(
+                (tf.den[0] - p.a0).abs() < 4e-16,
+                "{g} {dl}: {:?} vs {p:?}",
+                tf.den
+            );
+            assert_eq!(tf.delay, 0);
+        }
+    }
+}
