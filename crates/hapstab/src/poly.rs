@@ -144,10 +144,12 @@ fn hessenberg(mut a: Mat) -> Mat {
         }
         let vv: f64 = v.iter().map(|x| x * x).sum();
         // A ← H A H with H = I − 2 v vᵀ / vᵀv.
-        for j in 0..n {
-            let s: f64 = (k + 1..n).map(|i| v[i] * a[i][j]).sum::<f64>() * 2.0 / vv;
-            for i in k + 1..n {
-                a[i][j] -= s * v[i];
+        let sums: Vec<f64> = (0..n)
+            .map(|j| (k + 1..n).map(|i| v[i] * a[i][j]).sum::<f64>() * 2.0 / vv)
+            .collect();
+        for (i, row) in a.iter_mut().enumerate().skip(k + 1) {
+            for (x, s) in row.iter_mut().zip(&sums) {
+                *x -= s * v[i];
             }
         }
         for row in a.iter_mut() {

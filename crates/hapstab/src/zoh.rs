@@ -163,9 +163,9 @@ impl StateSpace {
     fn with_lag(self, r: f64) -> Self {
         let n = self.order();
         let mut a = vec![vec![0.0; n + 1]; n + 1];
-        for i in 0..n {
-            a[i][..n].copy_from_slice(&self.a[i]);
-            a[i][n] = self.b[i];
+        for ((row, src), bi) in a.iter_mut().zip(&self.a).zip(&self.b) {
+            row[..n].copy_from_slice(src);
+            row[n] = *bi;
         }
         a[n][n] = -r;
         let mut b = vec![0.0; n + 1];
