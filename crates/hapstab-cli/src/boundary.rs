@@ -61,7 +61,7 @@ struct BoundaryOut {
 /// Computes the region for a resolved plant.
 pub fn region_of(pm: &PlantModel) -> Result<StableRegion> {
     let fam = PolyFamily::new(hapstab::PlantParams::new(pm.gamma, pm.delta)?, pm.d)?;
-    Ok(stable_region(&fam))
+    Ok(stable_region(&fam)?)
 }
 
 fn kind_name(k: &EdgeKind) -> String {

@@ -88,7 +88,7 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
             }
         }
         None => {
-            let r = hapstab::region::stable_region(&fam);
+            let r = hapstab::region::stable_region(&fam)?;
             let found = !r.polygons.is_empty();
             let b = r.beta_at_alpha_max * bpb;
             KmaxOut {

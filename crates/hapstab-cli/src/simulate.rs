@@ -757,7 +757,7 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         Some(m) => bail!("--stable-amplitude must be a positive number of metres (got {m})"),
     };
     let fam = PolyFamily::new(model.params.plant(), pm.d)?;
-    let region = stable_region(&fam);
+    let region = stable_region(&fam)?;
     let betas = beta_values(a, &region)?;
     let bar = if a.json || !std::io::stdout().is_terminal() {
         ProgressBar::hidden()

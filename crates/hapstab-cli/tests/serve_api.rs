@@ -198,7 +198,7 @@ fn other_errors_are_json_too() {
 }
 
 fn library_region(gamma: f64, delta: f64, d: usize) -> hapstab::region::StableRegion {
-    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
+    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()).unwrap()
 }
 
 #[test]

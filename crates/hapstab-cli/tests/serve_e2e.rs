@@ -44,7 +44,9 @@ fn free_port() -> u16 {
 }
 
 fn library_alpha_max(gamma: f64, delta: f64, d: usize) -> f64 {
-    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()).alpha_max
+    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
+        .unwrap()
+        .alpha_max
 }
 
 type R<T> = Result<T, Box<dyn std::error::Error>>;

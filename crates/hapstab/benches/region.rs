@@ -19,7 +19,7 @@ fn bench_region(c: &mut Criterion) {
             &fam,
             |b, fam| {
                 b.iter(|| {
-                    let r = stable_region(black_box(fam));
+                    let r = stable_region(black_box(fam)).expect("region");
                     black_box((r.alpha_max, r.beta_at_alpha_max, r.polygons.len()))
                 })
             },

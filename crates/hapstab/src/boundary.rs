@@ -1,79 +1,171 @@
-//! Exact stability boundaries by D-decomposition (Section V, Figs. 4–6).
+//! Exact stability boundaries by D-decomposition (Section V, Figs. 4–6), for any loop.
 //!
-//! p(z) = P0(z) + α Pα(z) + β Pβ(z) is linear in α and β (see [`PolyFamily`]). A root on the
-//! unit circle at z = e^{iθ} is two real linear equations in (α, β); with
-//! R(z) = z^d D(z)/N(z) their solution is, for θ in (0, π),
+//! p(z) = P0(z) + a·PK(z) + b·PB(z) is affine in the wall (see [`AffineFamily`]; for the
+//! paper's loop (a, b) = (α, β)). A root on the unit circle at z = e^{iθ} is two real linear
+//! equations in (a, b); for θ in (0, π) their solution is the *curve*
 //!
 //! ```text
-//! α(θ) = Im(R(z)(1 − z)) / sin θ,     β(θ) = −Im R(z) / sin θ.
+//! a(θ) = Im(P0·conj PB) / Im(conj PK·PB),     b(θ) = Im(PK·conj P0) / Im(conj PK·PB),
 //! ```
 //!
-//! z = 1 gives the line α = −γ (p(1) = N(1)(α + γ)); z = −1 gives the line
-//! α + 2β = (−1)^{d+1} D(−1)/N(−1) (absent when N(−1) = 0, as for a pure mass).
+//! (for the paper's loop: α(θ) = Im(R(z)(1 − z))/sin θ, β(θ) = −Im R(z)/sin θ with
+//! R = z^d D/N). A real root at z = 1 or z = −1 is one real equation: the *lines*
+//! P0(±1) + a·PK(±1) + b·PB(±1) = 0 (for the paper's loop α = −γ and
+//! α + 2β = (−1)^{d+1} D(−1)/N(−1)). Between these sets the number of roots outside the
+//! unit circle is constant, so one Schur–Cohn test per piece decides it.
 
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::closed_loop::PolyFamily;
+use crate::closed_loop::AffineFamily;
 use crate::stability::schur_stable;
 
-/// A point of the (α, β)-plane.
+/// A point of the wall plane in wall units (a, b); for the paper's loop (α, β).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct AlphaBeta {
-    /// Normalized virtual stiffness α.
+    /// Normalized virtual stiffness α (wall units a = K/k_u).
     pub alpha: f64,
-    /// Normalized virtual damping β.
+    /// Normalized virtual damping β (wall units b = B/(k_u T)).
     pub beta: f64,
 }
 
-/// The boundary point for a complex root pair at angle θ ∈ (0, π): the (α, β) for which
-/// p(e^{iθ}) = 0 (D-decomposition, Section V). None where N(e^{iθ}) = 0.
-pub fn curve_point(fam: &PolyFamily, theta: f64) -> Option<AlphaBeta> {
+/// The set of walls with a real root at z = ±1: p0 + a·pk + b·pb = 0.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RootLine {
+    /// P0(±1).
+    pub p0: f64,
+    /// PK(±1).
+    pub pk: f64,
+    /// PB(±1).
+    pub pb: f64,
+    /// +1 where a monic Schur-stable p has this sign of p0 + a·pk + b·pb: p(1) > 0 and
+    /// (−1)^n p(−1) > 0 (necessary conditions of the Schur–Cohn test).
+    pub stable_sign: f64,
+}
+
+impl RootLine {
+    /// p(±1) at wall (a, b).
+    pub fn value(&self, p: AlphaBeta) -> f64 {
+        self.p0 + p.alpha * self.pk + p.beta * self.pb
+    }
+
+    /// The a on the line at a given b (None when the line is parallel to the a-axis).
+    pub fn alpha_at(&self, beta: f64) -> Option<f64> {
+        let a = -(self.p0 + beta * self.pb) / self.pk;
+        a.is_finite().then_some(a)
+    }
+}
+
+/// The z = 1 line (Section V: α = −γ for the paper's loop), from the cancellation-free
+/// values at z = 1; None when the wall does not act at z = 1 (PK(1) = PB(1) = 0).
+pub fn plus_one_line(fam: &AffineFamily) -> Option<RootLine> {
+    if let Some((s, v1)) = fam.plus_one {
+        // p(1) = N(1)Vd(1)·(s + a + b·V(1)): exact coefficients, and the stable side keeps
+        // the sign of N(1)Vd(1).
+        return Some(RootLine {
+            p0: s,
+            pk: 1.0,
+            pb: v1,
+            stable_sign: fam.at_one[1].signum(),
+        });
+    }
+    let [p0, pk, pb] = fam.at_one;
+    (pk != 0.0 || pb != 0.0).then_some(RootLine {
+        p0,
+        pk,
+        pb,
+        stable_sign: 1.0,
+    })
+}
+
+/// A value of a polynomial below this fraction of its coefficients' 1-norm is rounding noise:
+/// 100 ulps leaves room for the evaluation's error growth with the degree.
+const ROUNDING_ZERO: f64 = 1e-14;
+
+/// The z = −1 line (Section VIII: a pole at z = −1); None when the wall does not act at
+/// z = −1 (PK(−1) = PB(−1) = 0, as for a pure mass whose N(−1) = 0).
+pub fn minus_one_line(fam: &AffineFamily) -> Option<RootLine> {
+    let [p0, pk, pb] = fam.at_minus_one();
+    // PK(−1), PB(−1) at the rounding level of their evaluation are zeros (e.g. N(−1) = 0
+    // exactly for an undamped mass-spring, computed as 1e-17): no line then.
+    let l1 = |c: &[f64]| c.iter().map(|x| x.abs()).sum::<f64>();
+    let tiny = ROUNDING_ZERO * (l1(&fam.pk) + l1(&fam.pb)) + 1e-300;
+    if pk.abs() <= tiny && pb.abs() <= tiny {
+        return None;
+    }
+    let sign = if fam.degree().is_multiple_of(2) {
+        1.0
+    } else {
+        -1.0
+    };
+    Some(RootLine {
+        p0,
+        pk,
+        pb,
+        stable_sign: sign,
+    })
+}
+
+/// Solves a·x + b·y = w for complex x, y, w read as plane vectors.
+fn solve_pair(x: Complex64, y: Complex64, w: Complex64) -> Option<AlphaBeta> {
+    let det = (x.conj() * y).im;
+    if det == 0.0 {
+        return None;
+    }
+    let p = AlphaBeta {
+        alpha: (w.conj() * y).im / det,
+        beta: (x.conj() * w).im / det,
+    };
+    (p.alpha.is_finite() && p.beta.is_finite()).then_some(p)
+}
+
+/// The boundary point for a complex root pair at angle θ ∈ (0, π): the wall for which
+/// p(e^{iθ}) = 0 (D-decomposition, Section V). None where the two equations are dependent
+/// (the curve runs to infinity there).
+pub fn curve_point(fam: &AffineFamily, theta: f64) -> Option<AlphaBeta> {
     let (s, c) = theta.sin_cos();
     curve_point_at(fam, Complex64::new(c, s))
 }
 
 /// As [`curve_point`] for z = e^{iθ} given directly (|z| = 1, Im z > 0), which lets callers
 /// that step along the circle avoid a sine and cosine per point.
-pub fn curve_point_at(fam: &PolyFamily, z: Complex64) -> Option<AlphaBeta> {
-    let n = fam.plant.numerator(z);
-    if n.norm_sqr() == 0.0 {
-        return None;
-    }
-    // z^d by repeated squaring: O(log d) products, a few roundings
-    let zd = z.powu(fam.d as u32);
-    let r = zd * fam.plant.denominator(z) / n;
-    let s = z.im;
-    Some(AlphaBeta {
-        alpha: (r * (1.0 - z)).im / s,
-        beta: -r.im / s,
-    })
+pub fn curve_point_at(fam: &AffineFamily, z: Complex64) -> Option<AlphaBeta> {
+    let (p0, pk, pb) = fam.parts_at(z);
+    solve_pair(pk, pb, -p0)
 }
 
-/// The z = −1 line as (a, c) with α + a·β = c, i.e. α + 2β = (−1)^{d+1} D(−1)/N(−1);
-/// None when N(−1) = 0.
-pub fn minus_one_line(fam: &PolyFamily) -> Option<(f64, f64)> {
-    let pl = &fam.plant;
-    let n = pl.n0 - pl.n1;
-    if n.abs() <= 1e-300 {
-        return None;
-    }
-    let dm1 = 1.0 + pl.a1 + pl.a0;
-    let sign = if (fam.d + 1).is_multiple_of(2) {
-        1.0
+/// The curve's end point at θ = 0 (z = 1) or θ = π (z = −1): the wall with a double root
+/// there, p(±1) = p'(±1) = 0 (the limit of the curve by l'Hôpital's rule). None when the
+/// limit does not exist (the curve runs to infinity).
+pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<AlphaBeta> {
+    let (v, s) = if at_plus_one {
+        (fam.at_one, fam.slope_at_one)
     } else {
-        -1.0
+        let parts = fam.parts_with_derivative(Complex64::new(-1.0, 0.0));
+        (parts.map(|p| p.0.re), parts.map(|p| p.1.re))
     };
-    Some((2.0, sign * dm1 / n))
+    let det = v[1] * s[2] - v[2] * s[1];
+    if det == 0.0 {
+        return None;
+    }
+    let p = AlphaBeta {
+        alpha: (-v[0] * s[2] + v[2] * s[0]) / det,
+        beta: (-v[1] * s[0] + v[0] * s[1]) / det,
+    };
+    (p.alpha.is_finite() && p.beta.is_finite()).then_some(p)
 }
 
-/// Q0(z) = P0(z) + β Pβ(z) and Pα(z) on the unit circle at angle θ, with z^{d+1} from its
-/// polar form (O(1) for any d).
-fn q0_palpha(fam: &PolyFamily, beta: f64, theta: f64) -> (Complex64, Complex64) {
+/// da/dθ along the curve, analytically (for the largest stable stiffness on an arc).
+pub fn dalpha_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
     let z = Complex64::from_polar(1.0, theta);
-    let zd1 = Complex64::from_polar(1.0, theta * (fam.d as f64 + 1.0));
-    let n = fam.plant.numerator(z);
-    (zd1 * fam.plant.denominator(z) + (z - 1.0) * n * beta, z * n)
+    let iz = Complex64::i() * z;
+    let [(p0, d0), (pk, dk), (pb, db)] = fam.parts_with_derivative(z);
+    let (d0, dk, db) = (iz * d0, iz * dk, iz * db);
+    let f = (p0 * pb.conj()).im;
+    let g = (pk.conj() * pb).im;
+    let df = (d0 * pb.conj() + p0 * db.conj()).im;
+    let dg = (dk.conj() * pb + pk.conj() * db).im;
+    (df * g - f * dg) / (g * g)
 }
 
 /// Bisection for a sign change of `f` on [a, b] (f(a), f(b) of opposite signs).
@@ -93,23 +185,30 @@ pub(crate) fn bisect(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     0.5 * (a + b)
 }
 
-/// Number of θ samples used to bracket sign changes for a delay d.
-fn theta_samples(d: usize) -> usize {
-    256 * (d + 4)
+/// Number of θ samples used to bracket crossings: p has at most `degree` roots, so its
+/// phase turns at most `degree` times around the circle; 256 samples per turn leave room.
+fn theta_samples(fam: &AffineFamily) -> usize {
+    256 * (fam.degree() + 1)
 }
 
-/// All α at which, for fixed β, p(z) has a root on the unit circle (D-decomposition along
-/// α, Section V): α = −γ (z = 1), the z = −1 value, and α = −Q0/Pα where Im(Q0 conj Pα) = 0.
-pub fn alpha_crossings(fam: &PolyFamily, beta: f64) -> Vec<f64> {
-    let mut out = vec![-fam.plant.gamma];
-    if let Some((a, c)) = minus_one_line(fam) {
-        out.push(c - a * beta);
-    }
-    let f = |t: f64| {
-        let (q, pa) = q0_palpha(fam, beta, t);
-        (q * pa.conj()).im
-    };
-    let m = theta_samples(fam.d);
+/// Im(Q conj PK) with Q = P0 + b·PB at z = e^{iθ}: zero where a real a puts a root there.
+fn crossing_function(fam: &AffineFamily, beta: f64, theta: f64) -> (f64, f64) {
+    let (p0, pk, pb) = fam.parts_at(Complex64::from_polar(1.0, theta));
+    let qc = (p0 + pb * beta) * pk.conj();
+    let nk = pk.norm_sqr();
+    (qc.im, if nk > 0.0 { -qc.re / nk } else { f64::NAN })
+}
+
+/// All a at which, for fixed b, p(z) has a root on the unit circle (D-decomposition along
+/// the stiffness, Section V): the z = ±1 lines and a = −Q/PK where Im(Q conj PK) = 0.
+pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
+    let mut out: Vec<f64> = [plus_one_line(fam), minus_one_line(fam)]
+        .iter()
+        .flatten()
+        .filter_map(|l| l.alpha_at(beta))
+        .collect();
+    let f = |t: f64| crossing_function(fam, beta, t).0;
+    let m = theta_samples(fam);
     let h = std::f64::consts::PI / m as f64;
     let mut prev_t = 1e-9 * h;
     let mut prev = f(prev_t);
@@ -122,12 +221,9 @@ pub fn alpha_crossings(fam: &PolyFamily, beta: f64) -> Vec<f64> {
         let v = f(t);
         if v == 0.0 || (v > 0.0) != (prev > 0.0) {
             let tr = if v == 0.0 { t } else { bisect(prev_t, t, f) };
-            let (q, pa) = q0_palpha(fam, beta, tr);
-            if pa.norm() > 0.0 {
-                let a = -(q * pa.conj()).re / pa.norm_sqr();
-                if a.is_finite() {
-                    out.push(a);
-                }
+            let a = crossing_function(fam, beta, tr).1;
+            if a.is_finite() {
+                out.push(a);
             }
         }
         prev = v;
@@ -138,7 +234,7 @@ pub fn alpha_crossings(fam: &PolyFamily, beta: f64) -> Vec<f64> {
     out
 }
 
-/// A stable interval lo < α < hi (either end may be infinite).
+/// A stable interval lo < a < hi (either end may be infinite).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Interval {
     /// Lower end (exclusive).
@@ -147,10 +243,14 @@ pub struct Interval {
     pub hi: f64,
 }
 
-/// The stable α-intervals for a given β (Section V): between consecutive boundary crossings
-/// the number of unstable roots is constant, so one Schur–Cohn test per gap decides it.
-pub fn stable_alpha_intervals(fam: &PolyFamily, beta: f64) -> Vec<Interval> {
+/// The stable intervals of the stiffness a for a given damping b (Section V): between
+/// consecutive boundary crossings the number of unstable roots is constant, so one
+/// Schur–Cohn test per gap decides it.
+pub fn stable_alpha_intervals(fam: &AffineFamily, beta: f64) -> Vec<Interval> {
     let xs = alpha_crossings(fam, beta);
+    if xs.is_empty() {
+        return Vec::new();
+    }
     let scale = xs.iter().fold(1e-3_f64, |m, x| m.max(x.abs()));
     let mut coeffs = vec![0.0; fam.degree() + 1];
     let mut stable_at = |a: f64| {
@@ -181,7 +281,7 @@ pub fn stable_alpha_intervals(fam: &PolyFamily, beta: f64) -> Vec<Interval> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::PlantParams;
+    use crate::{PlantParams, PolyFamily};
 
     #[test]
     fn pure_mass_interval_is_closed_form() {
@@ -208,5 +308,19 @@ mod tests {
                 "{v}"
             );
         }
+    }
+
+    #[test]
+    fn curve_ends_are_double_roots() {
+        // Paper's loop: the end at z = 1 lies on α = −γ, the end at z = −1 on the z = −1 line.
+        let fam = PolyFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 1).unwrap();
+        let e0 = curve_end(&fam, true).unwrap();
+        assert!((e0.alpha + 1e-3).abs() < 1e-12, "{e0:?}");
+        let e1 = curve_end(&fam, false).unwrap();
+        let line = minus_one_line(&fam).unwrap();
+        assert!(line.value(e1).abs() < 1e-12, "{e1:?}");
+        // and the curve tends to them
+        let near0 = curve_point(&fam, 1e-6).unwrap();
+        assert!((near0.alpha - e0.alpha).abs() < 1e-6 && (near0.beta - e0.beta).abs() < 1e-6);
     }
 }

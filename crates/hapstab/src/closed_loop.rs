@@ -44,6 +44,10 @@ pub struct AffineFamily {
     pub at_one: [f64; 3],
     /// The z-derivatives (P0'(1), PK'(1), PB'(1)), formed the same way.
     pub slope_at_one: [f64; 3],
+    /// The z = 1 line exactly, p(1) = N(1)Vd(1)·(s + a + b·V(1)): s = the plant's static
+    /// stiffness in wall units (the ZOH keeps the DC gain, H(1) = P(0)) and V(1) = Vn(1)/Vd(1)
+    /// the estimator's DC gain (0 for every differentiator). None when N(1)Vd(1) = 0.
+    pub plus_one: Option<(f64, f64)>,
     /// Wall units.
     pub scale: WallScale,
 }
@@ -73,7 +77,13 @@ impl AffineFamily {
         let (vd1, dvd1) = poly::eval_real(vd, 1.0);
         let (vn1, dvn1) = poly::eval_real(vn, 1.0);
         let kf = k as f64;
-        let at_one = [d1 * vd1, n1 * vd1, n1 * vn1];
+        let plus_one = dl
+            .dc_stiffness
+            .filter(|_| n1 * vd1 != 0.0)
+            .map(|s| (s, vn1 / vd1));
+        // P0(1) = N(1)Vd(1)·s: the static stiffness is exact where det(E) rounds.
+        let p0_one = plus_one.map_or(d1 * vd1, |(s, _)| n1 * vd1 * s);
+        let at_one = [p0_one, n1 * vd1, n1 * vn1];
         let slope_at_one = [
             kf * d1 * vd1 + dd1 * vd1 + d1 * dvd1,
             dn1 * vd1 + n1 * dvd1,
@@ -86,6 +96,7 @@ impl AffineFamily {
             pb,
             at_one,
             slope_at_one,
+            plus_one,
             scale: dl.scale,
         }
     }

@@ -210,17 +210,19 @@ impl Plant {
         }
     }
 
-    /// The DC gain P(0) in m/N (the static compliance), or None for a plant with a pole at
-    /// s = 0 (a free mass). The actuator lag does not change it.
-    pub fn dc_gain(&self) -> Option<f64> {
-        let g = match &self.model {
-            PlantModel::MassSpringDamper(e) => 1.0 / e.stiffness,
-            PlantModel::TwoMass(t) => 1.0 / t.arm.stiffness,
+    /// The static stiffness 1/P(0) in N/m: k for the paper's plant (eq. 1), the arm's k_H for
+    /// a two-mass device, den(0)/num(0) for a transfer function; 0 for a free mass. None when
+    /// P(0) = 0 (a plant that does not move under a constant force). The actuator lag does
+    /// not change it.
+    pub fn dc_stiffness(&self) -> Option<f64> {
+        let k = match &self.model {
+            PlantModel::MassSpringDamper(e) => e.stiffness,
+            PlantModel::TwoMass(t) => t.arm.stiffness,
             PlantModel::TransferFunction { num, den } => {
-                num.last().copied().unwrap_or(0.0) / den.last().copied().unwrap_or(0.0)
+                den.last().copied().unwrap_or(0.0) / num.last().copied().unwrap_or(0.0)
             }
         };
-        g.is_finite().then_some(g)
+        k.is_finite().then_some(k)
     }
 }
 

@@ -1,30 +1,50 @@
-//! Exact stable regions in the (α, β)-plane as closed polygons (Section V, Figs. 4–6).
+//! Exact stable regions in the wall plane as closed polygons (Section V, Figs. 4–6), for
+//! any loop's [`AffineFamily`] (for the paper's loop, the (α, β)-plane).
 //!
-//! The boundary pieces come from [`crate::boundary`]: the complex-root curve C(θ), θ ∈ [0, π],
-//! the z = 1 line α = −γ and the z = −1 line. Two necessary conditions of the Schur–Cohn test,
-//! (−1)^{d+3} p(−1) > 0 and |p(0)| = |n0 β| < 1, and p(1) > 0 cut out a convex window K;
-//! the curve, clipped to K, splits K into faces, in each of which the number of unstable roots
-//! is constant. One Schur–Cohn test per face at an interior point classifies it. The curve is
-//! sampled coarsely to build the arrangement, and the arcs of stable faces are then resampled
-//! adaptively in θ until every chord is within `1e-10 × size` of the curve. Intersections are
-//! refined on the curve itself (bisection in θ), so every vertex is a point where p(z) has a
-//! root on the unit circle.
+//! The method, step by step (each step is one function below):
+//!
+//! 1. **Bounds** ([`Bounds::new`]): necessary conditions of the Schur–Cohn test cut out a
+//!    convex polygon W that contains every stable wall: p(1) > 0 and (−1)^n p(−1) > 0 (the
+//!    z = ±1 lines of [`crate::boundary`]) and, p being monic of degree n, the coefficient
+//!    bounds |c_j| ≤ C(n, j), each a slab in the wall plane.
+//! 2. **Coarse curve** ([`coarse_curve`]): the complex-pair curve C(θ), θ ∈ [0, π], sampled on
+//!    a uniform grid and refined adaptively near W.
+//! 3. **Search window** ([`search_window`]): every vertex of a stable region is a curve point
+//!    or a crossing of the lines, so a box around those inside W, clipped to W, contains
+//!    the stable region.
+//! 4. **Arrangement** ([`arrangement`]): the curve, cut into chains where it runs to infinity,
+//!    and the window's edges split the window into faces; crossings are refined on the curve
+//!    itself (bisection in θ), so every vertex is a point where p has a root on the circle.
+//! 5. **Classification** ([`stable_faces`]): the number of unstable roots is constant in a
+//!    face, so one Schur–Cohn test at an interior point decides it.
+//! 6. **Refinement** ([`refine_face`]): the arcs of stable faces are resampled until every
+//!    chord is within `rel_tol × size` of the curve; α_max is found on the arcs from
+//!    da/dθ = 0.
+//!
+//! Every adaptive step draws curve points from one [`Budget`]; a region that would need
+//! more than [`MAX_CURVE_POINTS`] ends in an error instead of exhausting memory.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, curve_point, minus_one_line};
-use crate::closed_loop::PolyFamily;
+use crate::boundary::{
+    AlphaBeta, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta, minus_one_line,
+    plus_one_line,
+};
+use crate::closed_loop::AffineFamily;
+use crate::error::{Error, Result};
 use crate::stability::schur_stable;
 
 /// What an edge of a region polygon is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum EdgeKind {
-    /// The line α = −γ: a real root at z = 1.
+    /// The z = 1 line (α = −γ for the paper's loop): a real root at z = 1.
     ZPlusOne,
-    /// The line α + 2β = c: a real root at z = −1.
+    /// The z = −1 line: a real root at z = −1.
     ZMinusOne,
     /// The complex-pair curve between angles θ0 and θ1 (root pair at e^{±iθ}).
     Complex {
@@ -75,26 +95,301 @@ impl Polygon {
     }
 }
 
-/// The stable region for fixed (γ, δ, d): every stable component as a polygon, α_max and where
-/// it is reached, and the total area.
+/// The stable region of a loop: every stable component as a polygon in wall units, the
+/// largest stable stiffness and where it is reached, and the total area.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StableRegion {
     /// Stable components (possibly none).
     pub polygons: Vec<Polygon>,
-    /// Largest stable α (NaN when the region is empty).
+    /// Largest stable a (α_max for the paper's loop; NaN when the region is empty).
     pub alpha_max: f64,
-    /// β at which α_max is reached (NaN when empty).
+    /// b at which α_max is reached (NaN when empty).
     pub beta_at_alpha_max: f64,
-    /// Total area of the stable region in the (α, β)-plane.
+    /// Total area of the stable region in wall units.
     pub area: f64,
 }
 
 impl StableRegion {
-    /// True iff (α, β) lies inside one of the polygons.
+    /// True iff (a, b) lies inside one of the polygons.
     pub fn contains(&self, p: AlphaBeta) -> bool {
         self.polygons.iter().any(|q| q.contains(p))
     }
+
+    fn empty() -> Self {
+        Self {
+            polygons: Vec::new(),
+            alpha_max: f64::NAN,
+            beta_at_alpha_max: f64::NAN,
+            area: 0.0,
+        }
+    }
 }
+
+/// Default chord tolerance of region polygons, relative to the stable region's size.
+pub const DEFAULT_REL_TOL: f64 = 1e-9;
+
+/// Smallest chord tolerance accepted: below 1e-13 of the size the curve points themselves
+/// carry rounding errors of that order, so refinement could not converge.
+pub const MIN_REL_TOL: f64 = 1e-13;
+
+/// Most curve points one region may use. The paper's regions need 10³–10⁵; 4·10⁶ points are
+/// about 100 MB, the memory bound of one region computation.
+pub const MAX_CURVE_POINTS: usize = 4_000_000;
+
+/// Computes the stable region of a loop's family (Section V; Figs. 4–6).
+pub fn stable_region(fam: &AffineFamily) -> Result<StableRegion> {
+    stable_region_with(fam, DEFAULT_REL_TOL)
+}
+
+/// As [`stable_region`] with a chord tolerance relative to the region's size.
+pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegion> {
+    if !(rel_tol.is_finite() && (MIN_REL_TOL..=0.1).contains(&rel_tol)) {
+        return Err(Error::OutOfRange {
+            name: "region tolerance",
+            value: rel_tol,
+            range: "[1e-13, 0.1]",
+        });
+    }
+    let budget = Budget::new(MAX_CURVE_POINTS);
+    let bounds = Bounds::new(fam)?;
+    let mut focus: Option<BoxF> = None;
+    for _ in 0..MAX_ATTEMPTS {
+        let (region, checked) = attempt(fam, &bounds, focus, rel_tol, &budget)?;
+        match verify(fam, &bounds, &region, checked) {
+            None => return Ok(region),
+            Some(zoom) => focus = Some(zoom),
+        }
+    }
+    Err(Error::Numerical(
+        "the stable region could not be resolved: its exact boundary and a direct grid of \
+         Schur–Cohn tests keep disagreeing (features far smaller than the boundary curve's \
+         extent); the stable intervals at fixed damping and the grid map remain available"
+            .into(),
+    ))
+}
+
+/// Attempts before giving up: each one zooms the coarse sampling onto where the previous
+/// one disagreed with the grid, so four attempts cover a scale range of about 10¹².
+const MAX_ATTEMPTS: usize = 4;
+
+/// An axis-aligned box (a0, a1, b0, b1).
+type BoxF = (f64, f64, f64, f64);
+
+/// One pass of the method (steps 2–6 of the module doc) with an optional focus box for the
+/// coarse sampling; returns the region and the search window's box.
+fn attempt(
+    fam: &AffineFamily,
+    bounds: &Bounds,
+    focus: Option<BoxF>,
+    rel_tol: f64,
+    budget: &Budget,
+) -> Result<(StableRegion, Checked)> {
+    let coarse = coarse_curve(fam, bounds, focus, budget)?;
+    let Some(window) = search_window(bounds, &coarse) else {
+        let none = Checked {
+            wbox: None,
+            thorough: true,
+        };
+        return Ok((StableRegion::empty(), none));
+    };
+    let wbox = bbox(window.polygon.iter().map(|(p, _)| *p));
+    let graph = arrangement(fam, &window, &coarse);
+    let cycles = faces(&graph);
+    let consistent = euler_holds(&graph, cycles.len());
+    let faces = stable_faces(fam, &graph, cycles);
+    if faces.is_empty() {
+        return Ok((
+            StableRegion::empty(),
+            Checked {
+                wbox,
+                thorough: true,
+            },
+        ));
+    }
+    // The coarse faces are within the coarse tolerance of the true region, so 0.99 keeps the
+    // chord tolerance below rel_tol of the true size.
+    let tol = 0.99 * rel_tol * faces_size(&faces);
+    let polygons = faces
+        .iter()
+        .map(|(f, _)| refine_face(fam, &graph, f, tol, budget))
+        .collect::<Result<Vec<Polygon>>>()?;
+    let area = polygons.iter().map(|p| p.area()).sum();
+    let (alpha_max, beta_at_alpha_max) = alpha_max_of(fam, &polygons);
+    let region = StableRegion {
+        polygons,
+        alpha_max,
+        beta_at_alpha_max,
+        area,
+    };
+    Ok((
+        region,
+        Checked {
+            wbox,
+            thorough: !consistent,
+        },
+    ))
+}
+
+/// How an attempt's region must be verified: over which box, and whether thoroughly (exact
+/// slices as well as the grid) because the arrangement broke Euler's formula or found
+/// nothing stable.
+#[derive(Clone, Copy)]
+struct Checked {
+    wbox: Option<BoxF>,
+    thorough: bool,
+}
+
+/// The region's edges bucketed by damping, for point-in-region tests in O(edges/bucket)
+/// instead of O(vertices) (the even-odd rule counts crossings of a ray toward −∞ in a).
+struct EdgeIndex {
+    y0: f64,
+    h: f64,
+    buckets: Vec<Vec<(P, P)>>,
+}
+
+impl EdgeIndex {
+    fn new(region: &StableRegion) -> Self {
+        let pts = region
+            .polygons
+            .iter()
+            .flat_map(|p| p.vertices.iter().map(|v| P::of(*v)));
+        let (_, _, y0, y1) = bbox(pts).unwrap_or((0.0, 0.0, 0.0, 0.0));
+        let nb = 256;
+        let h = ((y1 - y0) / nb as f64).max(f64::MIN_POSITIVE);
+        let mut buckets = vec![Vec::new(); nb];
+        for poly in &region.polygons {
+            let v = &poly.vertices;
+            for i in 0..v.len() {
+                let (a, b) = (P::of(v[i]), P::of(v[(i + 1) % v.len()]));
+                let lo = (((a.y.min(b.y) - y0) / h).floor().max(0.0) as usize).min(nb - 1);
+                let hi = (((a.y.max(b.y) - y0) / h).floor().max(0.0) as usize).min(nb - 1);
+                for bucket in &mut buckets[lo..=hi] {
+                    bucket.push((a, b));
+                }
+            }
+        }
+        Self { y0, h, buckets }
+    }
+
+    fn contains(&self, p: P) -> bool {
+        let k = ((p.y - self.y0) / self.h).floor();
+        if !(k >= 0.0 && (k as usize) < self.buckets.len()) {
+            return false;
+        }
+        let mut inside = false;
+        for &(a, b) in &self.buckets[k as usize] {
+            if (a.y > p.y) != (b.y > p.y) {
+                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if p.x < x {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
+    }
+}
+
+/// Side of the verification grid: the region is checked against this many × this many
+/// direct Schur–Cohn tests (fewer for high degrees, where each test costs O(n²)).
+fn grid_side(fam: &AffineFamily) -> usize {
+    if fam.degree() <= 64 { 24 } else { 12 }
+}
+
+/// Checks the region against a grid of direct Schur–Cohn tests over the search window (and
+/// the bounds' box when the window is absent), and when `thorough` also against the exact
+/// stable intervals on slices of constant damping. None when they agree; otherwise the box to
+/// zoom the next attempt onto: the disagreeing and the stable points, two cells wide.
+fn verify(
+    fam: &AffineFamily,
+    bounds: &Bounds,
+    region: &StableRegion,
+    checked: Checked,
+) -> Option<BoxF> {
+    let wbox = checked
+        .wbox
+        .or_else(|| bbox(bounds.polygon.iter().map(|(p, _)| *p)))?;
+    let m = grid_side(fam);
+    let index = EdgeIndex::new(region);
+    let mut suspects = grid_suspects(fam, &index, wbox, m);
+    if checked.thorough {
+        suspects.extend(slice_suspects(fam, &index, wbox));
+    }
+    let wrong = suspects.iter().any(|(_, agree)| !agree);
+    if !wrong {
+        return None;
+    }
+    let (x0, x1, y0, y1) = wbox;
+    let (hx, hy) = ((x1 - x0) / m as f64, (y1 - y0) / m as f64);
+    let (a0, a1, b0, b1) = bbox(suspects.into_iter().map(|(p, _)| p))?;
+    Some((a0 - 2.0 * hx, a1 + 2.0 * hx, b0 - 2.0 * hy, b1 + 2.0 * hy))
+}
+
+/// Grid points that are stable or where the region disagrees with the Schur–Cohn test,
+/// each with "agrees?".
+fn grid_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF, m: usize) -> Vec<(P, bool)> {
+    let (x0, x1, y0, y1) = wbox;
+    let (hx, hy) = ((x1 - x0) / m as f64, (y1 - y0) / m as f64);
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    let mut out = Vec::new();
+    for i in 0..m {
+        for j in 0..m {
+            // Irrational offsets keep grid points off the z = ±1 lines and the axes.
+            let p = P {
+                x: x0 + hx * (i as f64 + 0.5 + GRID_JITTER),
+                y: y0 + hy * (j as f64 + 0.5 - GRID_JITTER),
+            };
+            fam.coefficients_into(p.x, p.y, &mut coeffs);
+            let stable = schur_stable(&coeffs);
+            let agree = stable == region.contains(p);
+            if stable || !agree {
+                out.push((p, agree));
+            }
+        }
+    }
+    out
+}
+
+/// Number of constant-damping slices of a thorough check.
+const SLICES: usize = 48;
+
+/// On slices of constant damping across the box, the exact stable intervals
+/// ([`crate::boundary::stable_alpha_intervals`]) against the region: each interval's
+/// midpoint must be inside, the midpoints of the gaps outside.
+fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P, bool)> {
+    let (x0, x1, y0, y1) = wbox;
+    (0..SLICES)
+        .into_par_iter()
+        .flat_map_iter(|j| {
+            let b = y0 + (y1 - y0) * (j as f64 + 0.5 + GRID_JITTER) / SLICES as f64;
+            let ivs = crate::boundary::stable_alpha_intervals(fam, b);
+            let mut out = Vec::new();
+            let mut prev_hi = x0;
+            for iv in &ivs {
+                let (lo, hi) = (iv.lo.max(x0 - (x1 - x0)), iv.hi.min(x1 + (x1 - x0)));
+                let inside = P {
+                    x: 0.5 * (lo + hi),
+                    y: b,
+                };
+                out.push((inside, region.contains(inside)));
+                if iv.lo > prev_hi {
+                    let gap = P {
+                        x: 0.5 * (prev_hi + iv.lo),
+                        y: b,
+                    };
+                    out.push((gap, !region.contains(gap)));
+                }
+                prev_hi = prev_hi.max(iv.hi);
+            }
+            out
+        })
+        .collect()
+}
+
+/// Offset of the verification grid within its cells (√2 − 1.3, an irrational fraction).
+const GRID_JITTER: f64 = 0.114_213_562_373_095_05;
+
+// ---------------------------------------------------------------------------------------
+// Geometry helpers
 
 fn shoelace(v: &[AlphaBeta]) -> f64 {
     let n = v.len();
@@ -136,6 +431,24 @@ impl P {
             beta: self.y,
         }
     }
+
+    fn of(p: AlphaBeta) -> Self {
+        P {
+            x: p.alpha,
+            y: p.beta,
+        }
+    }
+
+    fn finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite()
+    }
+
+    fn lerp(self, q: P, t: f64) -> P {
+        P {
+            x: self.x + t * (q.x - self.x),
+            y: self.y + t * (q.y - self.y),
+        }
+    }
 }
 
 fn sub(a: P, b: P) -> P {
@@ -154,162 +467,27 @@ fn cross(a: P, b: P) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
-/// R(z) = z^d D(z)/N(z) and R'(z) at a real point z = ±1 (for the curve's end points).
-fn r_and_derivative(fam: &PolyFamily, z: f64) -> Option<(f64, f64)> {
-    let pl = &fam.plant;
-    let d = fam.d as i32;
-    let n = pl.n1 * z + pl.n0;
-    if n.abs() < 1e-300 {
-        return None;
-    }
-    let dz = z * z - pl.a1 * z + pl.a0;
-    let ddz = 2.0 * z - pl.a1;
-    let zd = z.powi(d);
-    let zd1 = if d == 0 {
-        0.0
-    } else {
-        d as f64 * z.powi(d - 1)
-    };
-    let r = zd * dz / n;
-    let rp = (zd1 * dz + zd * ddz) / n - zd * dz * pl.n1 / (n * n);
-    Some((r, rp))
-}
-
-/// The curve point at θ, with the exact limits at θ = 0 (on α = −γ) and θ = π (on the z = −1
-/// line) from l'Hôpital's rule: C(0) = (−R(1), −R'(1)), C(π) = (2R'(−1) − R(−1), −R'(−1)).
-fn point(fam: &PolyFamily, theta: f64) -> Option<P> {
+/// The curve point at θ, with its exact end points at θ = 0 and θ = π (double roots at
+/// z = ±1, see [`curve_end`]).
+fn point(fam: &AffineFamily, theta: f64) -> Option<P> {
     if theta <= 0.0 {
-        let (r, rp) = r_and_derivative(fam, 1.0)?;
-        return Some(P { x: -r, y: -rp });
+        return curve_end(fam, true).map(P::of);
     }
     if theta >= std::f64::consts::PI {
-        let (r, rp) = r_and_derivative(fam, -1.0)?;
-        return Some(P {
-            x: 2.0 * rp - r,
-            y: -rp,
-        });
+        return curve_end(fam, false).map(P::of);
     }
-    curve_point(fam, theta).map(|p| P {
-        x: p.alpha,
-        y: p.beta,
-    })
+    curve_point(fam, theta).map(P::of)
 }
 
 /// The curve point at z = e^{iθ} strictly inside the upper half circle.
-fn point_at(fam: &PolyFamily, z: Complex64) -> Option<P> {
-    crate::boundary::curve_point_at(fam, z).map(|p| P {
-        x: p.alpha,
-        y: p.beta,
-    })
+fn point_at(fam: &AffineFamily, z: Complex64) -> Option<P> {
+    curve_point_at(fam, z).map(P::of)
 }
 
-/// e^{iθ}, or the exact end points for θ = 0 and θ = π.
+/// e^{iθ}.
 fn unit(theta: f64) -> Complex64 {
     let (s, c) = theta.sin_cos();
     Complex64::new(c, s)
-}
-
-/// Adaptive sampling of the curve on [t0, t1]: bisect until the midpoint lies within `tol` of
-/// the chord; coarse passes (finite `maxlen`) refine only where |β| <= maxlen. Appends points
-/// after t0 (t1 included).
-#[allow(clippy::too_many_arguments)]
-fn sample(
-    fam: &PolyFamily,
-    t0: f64,
-    p0: P,
-    t1: f64,
-    p1: P,
-    tol: f64,
-    maxlen: f64,
-    depth: u32,
-    out: &mut Vec<(f64, P)>,
-) {
-    sample_z(
-        fam,
-        (t0, unit(t0), p0),
-        (t1, unit(t1), p1),
-        tol,
-        maxlen,
-        depth,
-        out,
-    );
-}
-
-/// [`sample`] carrying z = e^{iθ}: the midpoint of an arc is (z0 + z1)/|z0 + z1| and k equal
-/// parts are powers of e^{iΔθ}, so no sine or cosine is evaluated per point.
-fn sample_z(
-    fam: &PolyFamily,
-    a: (f64, Complex64, P),
-    b: (f64, Complex64, P),
-    tol: f64,
-    maxlen: f64,
-    depth: u32,
-    out: &mut Vec<(f64, P)>,
-) {
-    let ((t0, z0, p0), (t1, z1, p1)) = (a, b);
-    let tm = 0.5 * (t0 + t1);
-    let zs = z0 + z1;
-    let zm = zs / zs.norm();
-    // Coarse passes (finite maxlen) only refine near the |β| < band of possible stability.
-    let relevant = maxlen.is_infinite() || p0.y.abs().min(p1.y.abs()) <= maxlen;
-    if depth < 48
-        && relevant
-        && zm.im > 0.0
-        && let Some(pm) = point_at(fam, zm)
-    {
-        let ch = sub(p1, p0);
-        // Fast accept (fine passes): deviation within tol and the midpoint projecting into
-        // [−1/4, 5/4] of the chord, tested without square roots.
-        let q = sub(pm, p0);
-        let len2 = ch.x * ch.x + ch.y * ch.y;
-        if maxlen.is_infinite() && len2 > 0.0 {
-            let c = cross(ch, q);
-            let t = (q.x * ch.x + q.y * ch.y) / len2;
-            if c * c <= tol * tol * len2 && (-0.25..=1.25).contains(&t) {
-                out.push((t1, p1));
-                return;
-            }
-        }
-        let len = len2.sqrt();
-        let dev = if len > 0.0 {
-            cross(ch, sub(pm, p0)).abs() / len
-        } else {
-            norm(sub(pm, p0))
-        };
-        let far = norm(sub(pm, p0)) + norm(sub(pm, p1));
-        // Coarse passes also bound the chord length near the band, so that a chord to a
-        // far point (the curve runs to infinity where N(e^{iθ}) = 0) cannot hide a turn.
-        let long = maxlen.is_finite() && depth < 30 && len > 0.25 * maxlen;
-        if dev > tol || far > 1.5 * len + tol || long {
-            // Split into k parts so that each chord's deviation (∝ length²) meets tol.
-            let k = if far > 1.5 * len + tol || long || depth > 8 {
-                2
-            } else {
-                ((dev / tol).sqrt().ceil() as usize).clamp(2, 64)
-            };
-            if k == 2 {
-                sample_z(fam, a, (tm, zm, pm), tol, maxlen, depth + 1, out);
-                sample_z(fam, (tm, zm, pm), b, tol, maxlen, depth + 1, out);
-                return;
-            }
-            let w = unit((t1 - t0) / k as f64);
-            let mut prev = a;
-            let mut z = z0;
-            for i in 1..=k {
-                let next = if i == k {
-                    b
-                } else {
-                    z *= w;
-                    let Some(p) = point_at(fam, z) else { break };
-                    (t0 + (t1 - t0) * i as f64 / k as f64, z, p)
-                };
-                sample_z(fam, prev, next, tol, maxlen, depth + 1, out);
-                prev = next;
-            }
-            return;
-        }
-    }
-    out.push((t1, p1));
 }
 
 /// A half-plane n·p <= c with the kind of its boundary line.
@@ -318,32 +496,530 @@ struct HalfPlane {
     n: P,
     c: f64,
     kind: EdgeKind,
+    /// The root line this half-plane comes from (z = ±1), for refining crossings on it.
+    line: Option<RootLine>,
 }
 
-/// Clips a convex polygon (with edge labels) by a half-plane (Sutherland–Hodgman).
-fn clip(poly: &[(P, EdgeKind)], h: HalfPlane) -> Vec<(P, EdgeKind)> {
+impl HalfPlane {
+    fn value(&self, p: P) -> f64 {
+        self.n.x * p.x + self.n.y * p.y - self.c
+    }
+
+    /// n·p ≤ c from n·p + c0 ... with the normal scaled to unit length.
+    fn normalized(n: P, c: f64, kind: EdgeKind, line: Option<RootLine>) -> Option<Self> {
+        let len = norm(n);
+        (len > 0.0 && len.is_finite() && c.is_finite()).then(|| HalfPlane {
+            n: P {
+                x: n.x / len,
+                y: n.y / len,
+            },
+            c: c / len,
+            kind,
+            line,
+        })
+    }
+
+    /// The stable side of a z = ±1 line: s·(p0 + a·pk + b·pb) > 0.
+    fn of_line(l: RootLine, kind: EdgeKind) -> Option<Self> {
+        let s = l.stable_sign;
+        Self::normalized(
+            P {
+                x: -s * l.pk,
+                y: -s * l.pb,
+            },
+            s * l.p0,
+            kind,
+            Some(l),
+        )
+    }
+}
+
+/// A convex polygon: each vertex with the half-plane whose boundary carries the edge that
+/// starts there.
+type Convex = Vec<(P, HalfPlane)>;
+
+/// Where the boundary lines of two half-planes cross (Cramer's rule); None if parallel.
+fn line_meet(a: &HalfPlane, b: &HalfPlane) -> Option<P> {
+    let det = a.n.x * b.n.y - a.n.y * b.n.x;
+    if det == 0.0 {
+        return None;
+    }
+    let p = P {
+        x: (a.c * b.n.y - b.c * a.n.y) / det,
+        y: (a.n.x * b.c - b.n.x * a.c) / det,
+    };
+    p.finite().then_some(p)
+}
+
+/// Clips a convex polygon by a half-plane (Sutherland–Hodgman). New vertices are the
+/// crossings of the two boundary lines, not interpolations along the edge, so a polygon that
+/// starts as a huge box keeps full precision near the origin.
+fn clip(poly: &Convex, h: &HalfPlane) -> Convex {
     let mut out = Vec::new();
     let n = poly.len();
-    let val = |p: P| h.n.x * p.x + h.n.y * p.y - h.c;
     for i in 0..n {
-        let (a, ka) = poly[i];
+        let (a, ea) = poly[i];
         let (b, _) = poly[(i + 1) % n];
-        let (va, vb) = (val(a), val(b));
+        let (va, vb) = (h.value(a), h.value(b));
         if va <= 0.0 {
-            out.push((a, ka));
+            out.push((a, ea));
         }
         if (va < 0.0 && vb > 0.0) || (va > 0.0 && vb < 0.0) {
-            let t = va / (va - vb);
-            let x = P {
-                x: a.x + t * (b.x - a.x),
-                y: a.y + t * (b.y - a.y),
-            };
-            // The new point starts the cut edge when leaving, keeps ka when entering.
-            out.push((x, if va <= 0.0 { h.kind } else { ka }));
+            let x = line_meet(&ea, h).unwrap_or_else(|| a.lerp(b, va / (va - vb)));
+            // The new point starts the cut edge when leaving, keeps the edge when entering.
+            out.push((x, if va <= 0.0 { *h } else { ea }));
         }
     }
     out
 }
+
+fn box_polygon(x0: f64, x1: f64, y0: f64, y1: f64) -> Convex {
+    let h = box_halfplanes(x0, x1, y0, y1);
+    // bottom (y ≥ y0), right (x ≤ x1), top (y ≤ y1), left (x ≥ x0), counter-clockwise
+    vec![
+        (P { x: x0, y: y0 }, h[2]),
+        (P { x: x1, y: y0 }, h[1]),
+        (P { x: x1, y: y1 }, h[3]),
+        (P { x: x0, y: y1 }, h[0]),
+    ]
+}
+
+fn bbox(points: impl Iterator<Item = P>) -> Option<(f64, f64, f64, f64)> {
+    let mut b: Option<(f64, f64, f64, f64)> = None;
+    for p in points {
+        let (x0, x1, y0, y1) = b.unwrap_or((p.x, p.x, p.y, p.y));
+        b = Some((x0.min(p.x), x1.max(p.x), y0.min(p.y), y1.max(p.y)));
+    }
+    b
+}
+
+// ---------------------------------------------------------------------------------------
+// Step 0: the point budget
+
+/// A shared count of curve points, so that every adaptive step together stays within
+/// [`MAX_CURVE_POINTS`].
+struct Budget {
+    left: AtomicUsize,
+}
+
+impl Budget {
+    fn new(n: usize) -> Self {
+        Self {
+            left: AtomicUsize::new(n),
+        }
+    }
+
+    /// Takes `n` points; false when the budget is exhausted.
+    fn take(&self, n: usize) -> bool {
+        self.left
+            .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |l| l.checked_sub(n))
+            .is_ok()
+    }
+
+    fn exhausted() -> Error {
+        Error::Numerical(format!(
+            "the stable region's boundary needs more than {MAX_CURVE_POINTS} points (a loop whose \
+             boundary curve winds too often to draw); the stable intervals at fixed damping \
+             (`check`, `kmax`) and the grid map remain available"
+        ))
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Step 1: rigorous bounds
+
+/// Half-planes whose intersection contains every stable wall (see the module doc).
+struct Bounds {
+    halfplanes: Vec<HalfPlane>,
+    /// Their intersection as a convex polygon.
+    polygon: Convex,
+}
+
+/// Start of the clipping: a box far beyond any wall value that the coefficient bounds leave
+/// possible, yet far below overflow of products of coordinates.
+const HUGE: f64 = 1e150;
+
+impl Bounds {
+    fn new(fam: &AffineFamily) -> Result<Self> {
+        let mut halfplanes: Vec<HalfPlane> = Vec::new();
+        if let Some(h) = plus_one_line(fam).and_then(|l| HalfPlane::of_line(l, EdgeKind::ZPlusOne))
+        {
+            halfplanes.push(h);
+        }
+        if let Some(h) =
+            minus_one_line(fam).and_then(|l| HalfPlane::of_line(l, EdgeKind::ZMinusOne))
+        {
+            halfplanes.push(h);
+        }
+        halfplanes.extend(coefficient_slabs(fam));
+        let mut polygon = box_polygon(-HUGE, HUGE, -HUGE, HUGE);
+        for h in &halfplanes {
+            polygon = clip(&polygon, h);
+        }
+        let unbounded = polygon
+            .iter()
+            .any(|(p, _)| p.x.abs() >= 0.5 * HUGE || p.y.abs() >= 0.5 * HUGE);
+        if unbounded {
+            return Err(Error::Invalid {
+                name: "loop",
+                reason: "has a wall whose stiffness and damping act alike on every coefficient of \
+                         p(z), so its stable set is unbounded and has no region to draw"
+                    .into(),
+            });
+        }
+        Ok(Self {
+            halfplanes,
+            polygon,
+        })
+    }
+
+    /// Signed excess beyond the bounds (≤ 0 inside).
+    fn excess(&self, p: P) -> f64 {
+        self.halfplanes
+            .iter()
+            .map(|h| h.value(p))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
+/// Relative widening of the coefficient slabs (see [`coefficient_slabs`]).
+const SLAB_SLACK: f64 = 1e-3;
+
+/// |c_j| ≤ C(n, j) for the monic p of degree n (Vieta: c_j is a sum of C(n, j) products of
+/// roots, each of modulus < 1 when p is Schur stable), as pairs of half-planes.
+fn coefficient_slabs(fam: &AffineFamily) -> Vec<HalfPlane> {
+    let n = fam.degree();
+    let mut out = Vec::new();
+    let mut binom = 1.0_f64;
+    let p0 = fam.coefficients(0.0, 0.0);
+    for (j, &c0) in p0.iter().enumerate().take(n) {
+        if j > 0 {
+            binom *= (n - j + 1) as f64 / j as f64;
+        }
+        let (k, b) = (
+            fam.pk.get(j).copied().unwrap_or(0.0),
+            fam.pb.get(j).copied().unwrap_or(0.0),
+        );
+        if (k == 0.0 && b == 0.0) || !binom.is_finite() {
+            continue;
+        }
+        let dir = P { x: k, y: b };
+        let neg = P { x: -k, y: -b };
+        // Inflated a little: a stable region may touch |c_j| = C(n, j) at a corner (the pure
+        // mass's (0, 2) has |c0| = 1), and a window edge must not run through that corner.
+        let c = binom * (1.0 + SLAB_SLACK);
+        out.extend(HalfPlane::normalized(dir, c - c0, EdgeKind::Window, None));
+        out.extend(HalfPlane::normalized(neg, c + c0, EdgeKind::Window, None));
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------
+// Step 2: the coarse curve
+
+/// How finely an arc is sampled: chord deviation tolerance, and (coarse passes) the region
+/// of interest and the longest chord allowed in it.
+#[derive(Clone, Copy)]
+struct Sampling<'a> {
+    tol: f64,
+    /// Coarse passes: refine only chords that come near this box, and split chords longer
+    /// than `maxlen` there. Fine passes: None.
+    focus: Option<(&'a BoxF, f64)>,
+}
+
+impl Sampling<'_> {
+    fn relevant(&self, p: P, q: P) -> bool {
+        match self.focus {
+            None => true,
+            Some(((x0, x1, y0, y1), _)) => {
+                p.x.min(q.x) <= *x1
+                    && p.x.max(q.x) >= *x0
+                    && p.y.min(q.y) <= *y1
+                    && p.y.max(q.y) >= *y0
+            }
+        }
+    }
+}
+
+/// Number of coarse knots: the curve winds about once per root of p, so 64 knots per degree.
+fn knot_count(fam: &AffineFamily) -> usize {
+    64 * (fam.degree() + 2)
+}
+
+/// Samples the curve on θ ∈ [0, π] (see the module doc, step 2).
+fn coarse_curve(
+    fam: &AffineFamily,
+    bounds: &Bounds,
+    zoom: Option<BoxF>,
+    budget: &Budget,
+) -> Result<Vec<(f64, P)>> {
+    let m = knot_count(fam);
+    if !budget.take(m + 1) {
+        return Err(Budget::exhausted());
+    }
+    let pi = std::f64::consts::PI;
+    let knots: Vec<(f64, Option<P>)> = (0..=m)
+        .into_par_iter()
+        .map(|i| {
+            let t = pi * i as f64 / m as f64;
+            match point(fam, t) {
+                // Where the curve runs to infinity at θ = π, end just short of it so that the
+                // last interval is still sampled (the far tail is cut off later).
+                None if i == m => {
+                    let t = pi * (1.0 - 1e-12);
+                    (t, point(fam, t))
+                }
+                p => (t, p),
+            }
+        })
+        .collect();
+    let focus = zoom.unwrap_or_else(|| focus_box(bounds, &knots));
+
+    let size = (focus.1 - focus.0).max(focus.3 - focus.2);
+    let s = Sampling {
+        tol: 1e-3 * size,
+        focus: Some((&focus, 0.25 * size)),
+    };
+    let pieces: Vec<Result<Vec<(f64, P)>>> = knots
+        .par_windows(2)
+        .with_min_len(8)
+        .map(|w| match (w[0], w[1]) {
+            ((t0, Some(p0)), (t1, Some(p1))) => sample_arc(fam, (t0, p0), (t1, p1), s, budget),
+            // a gap (no point): the next piece starts afresh at its own first knot
+            ((_, None), (t1, Some(p1))) => Ok(vec![(t1, p1)]),
+            _ => Ok(Vec::new()),
+        })
+        .collect();
+    let mut coarse: Vec<(f64, P)> = Vec::new();
+    if let (t0, Some(p0)) = knots[0] {
+        coarse.push((t0, p0));
+    }
+    for piece in pieces {
+        coarse.extend(piece?);
+    }
+    Ok(coarse)
+}
+
+/// The box where the coarse curve matters: around the knots inside the bounds (all of the
+/// bounds when none is), inflated by half its size.
+fn focus_box(bounds: &Bounds, knots: &[(f64, Option<P>)]) -> (f64, f64, f64, f64) {
+    let whole = bbox(bounds.polygon.iter().map(|(p, _)| *p)).unwrap_or((-1.0, 1.0, -1.0, 1.0));
+    let wsize = (whole.1 - whole.0).max(whole.3 - whole.2);
+    let inside = knots
+        .iter()
+        .filter_map(|(_, p)| *p)
+        .filter(|p| p.finite() && bounds.excess(*p) <= 1e-9 * wsize);
+    let (x0, x1, y0, y1) = bbox(inside).unwrap_or(whole);
+    let size = (x1 - x0).max(y1 - y0).max(1e-12 * wsize).max(1e-300);
+    let m = 0.5 * size;
+    (
+        (x0 - m).max(whole.0),
+        (x1 + m).min(whole.1),
+        (y0 - m).max(whole.2),
+        (y1 + m).min(whole.3),
+    )
+}
+
+/// Coarse passes split a chord whose midpoint deviates by more than this fraction of its
+/// length (a turn of about 0.2 rad per chord): a loop of any size gets at least ~30 points.
+const TURN_TOL: f64 = 0.025;
+
+/// Deepest bisection of one arc: 2⁻⁴⁸ of a knot interval is below the resolution of θ.
+const MAX_DEPTH: u32 = 48;
+
+/// Adaptive sampling of the curve between two points (θ, C(θ)); returns the points after the
+/// first (the last included). An explicit stack replaces recursion; every point drawn comes
+/// out of the budget.
+fn sample_arc(
+    fam: &AffineFamily,
+    a: (f64, P),
+    b: (f64, P),
+    s: Sampling<'_>,
+    budget: &Budget,
+) -> Result<Vec<(f64, P)>> {
+    let mut out = Vec::new();
+    // Stack of pending arcs, the leftmost on top.
+    let mut stack = vec![((a.0, unit(a.0), a.1), (b.0, unit(b.0), b.1), 0_u32)];
+    while let Some((l, r, depth)) = stack.pop() {
+        let Some(parts) = split(fam, l, r, depth, s) else {
+            out.push((r.0, r.2));
+            continue;
+        };
+        if !budget.take(parts.len()) {
+            return Err(Budget::exhausted());
+        }
+        let mut right = r;
+        for &p in parts.iter().rev() {
+            stack.push((p, right, depth + 1));
+            right = p;
+        }
+        stack.push((l, right, depth + 1));
+    }
+    Ok(out)
+}
+
+/// One end of an arc: θ, z = e^{iθ} and the curve point.
+type ArcEnd = (f64, Complex64, P);
+
+/// Deepest level at which a chord is split into more than two parts: deeper, the curvature
+/// estimate from one midpoint is no longer worth trusting for more.
+const MULTI_SPLIT_DEPTH: u32 = 8;
+
+/// The interior points an arc must be split at, or None if its chord follows the curve.
+/// The arc's midpoint is (z0 + z1)/|z0 + z1| and k equal parts are powers of e^{iΔθ/k}, so
+/// no sine or cosine is evaluated per point. A smooth arc is split into k ≈ √(dev/tol)
+/// parts at once (the deviation of a chord shrinks with the square of its length).
+fn split(
+    fam: &AffineFamily,
+    l: ArcEnd,
+    r: ArcEnd,
+    depth: u32,
+    s: Sampling<'_>,
+) -> Option<Vec<ArcEnd>> {
+    let ((t0, z0, p0), (t1, z1, p1)) = (l, r);
+    if depth >= MAX_DEPTH || !s.relevant(p0, p1) {
+        return None;
+    }
+    let zs = z0 + z1;
+    let zm = zs / zs.norm();
+    if zm.im <= 0.0 {
+        return None;
+    }
+    let pm = point_at(fam, zm)?;
+    let mid = (0.5 * (t0 + t1), zm, pm);
+    let ch = sub(p1, p0);
+    let q = sub(pm, p0);
+    let len2 = ch.x * ch.x + ch.y * ch.y;
+    let len = len2.sqrt();
+    let dev = if len > 0.0 {
+        cross(ch, q).abs() / len
+    } else {
+        norm(q)
+    };
+    // Accept when the midpoint is within tol of the chord and projects into [−1/4, 5/4] of
+    // it; coarse passes also bound the turning per chord (scale-free, so that loops far
+    // smaller than the focus are resolved) down to a floor below which it is noise.
+    let t = if len2 > 0.0 {
+        (q.x * ch.x + q.y * ch.y) / len2
+    } else {
+        0.5
+    };
+    let within = dev <= s.tol && (-0.25..=1.25).contains(&t);
+    let turning = s.focus.is_some() && dev > TURN_TOL * len && dev > 1e-7 * s.tol;
+    let far = norm(q) + norm(sub(pm, p1)) > 1.5 * len + s.tol;
+    // Coarse passes bound the chord length near the focus, so that a chord to a far point
+    // (the curve runs to infinity where the equations are dependent) cannot hide a turn.
+    let long = s
+        .focus
+        .is_some_and(|(_, maxlen)| depth < 30 && len > maxlen);
+    if within && !turning && !far && !long {
+        return None;
+    }
+    let k = if far || long || turning || depth > MULTI_SPLIT_DEPTH {
+        2
+    } else {
+        ((dev / s.tol).sqrt().ceil() as usize).clamp(2, 64)
+    };
+    if k == 2 {
+        return Some(vec![mid]);
+    }
+    let w = unit((t1 - t0) / k as f64);
+    let mut z = z0;
+    let mut parts = Vec::with_capacity(k - 1);
+    for i in 1..k {
+        z *= w;
+        let Some(p) = point_at(fam, z) else {
+            return Some(vec![mid]);
+        };
+        parts.push((t0 + (t1 - t0) * i as f64 / k as f64, z, p));
+    }
+    Some(parts)
+}
+
+// ---------------------------------------------------------------------------------------
+// Step 3: the search window
+
+/// The window: a box around the curve points and line crossings inside the bounds, plus a
+/// 5 % margin, clipped to the bounds. None when nothing can be stable.
+struct Window {
+    polygon: Convex,
+    halfplanes: Vec<HalfPlane>,
+    size: f64,
+}
+
+fn search_window(bounds: &Bounds, coarse: &[(f64, P)]) -> Option<Window> {
+    if bounds.polygon.len() < 3 {
+        return None;
+    }
+    let whole = bbox(bounds.polygon.iter().map(|(p, _)| *p))?;
+    let wsize = (whole.1 - whole.0).max(whole.3 - whole.2);
+    let slack = 1e-6 * wsize;
+    let inside = coarse
+        .iter()
+        .map(|(_, p)| *p)
+        .filter(|p| p.finite() && bounds.excess(*p) <= slack);
+    let corners = line_crossing(bounds).into_iter();
+    let (x0, x1, y0, y1) = bbox(inside.chain(corners)).unwrap_or(whole);
+    let size = (x1 - x0).max(y1 - y0).max(1e-12 * wsize).max(1e-300);
+    let margin = 0.05 * size;
+    let boxed = box_polygon(x0 - margin, x1 + margin, y0 - margin, y1 + margin);
+    let mut halfplanes: Vec<HalfPlane> = bounds.halfplanes.clone();
+    halfplanes.extend(box_halfplanes(
+        x0 - margin,
+        x1 + margin,
+        y0 - margin,
+        y1 + margin,
+    ));
+    let mut polygon = boxed;
+    for h in &bounds.halfplanes {
+        polygon = clip(&polygon, h);
+    }
+    (polygon.len() >= 3).then_some(Window {
+        polygon,
+        halfplanes,
+        size: size + 2.0 * margin,
+    })
+}
+
+fn box_halfplanes(x0: f64, x1: f64, y0: f64, y1: f64) -> Vec<HalfPlane> {
+    let h = |x: f64, y: f64, c: f64| HalfPlane {
+        n: P { x, y },
+        c,
+        kind: EdgeKind::Window,
+        line: None,
+    };
+    vec![
+        h(-1.0, 0.0, -x0),
+        h(1.0, 0.0, x1),
+        h(0.0, -1.0, -y0),
+        h(0.0, 1.0, y1),
+    ]
+}
+
+/// Where the z = 1 and z = −1 lines cross (a possible corner of a stable region), if inside
+/// the bounds.
+fn line_crossing(bounds: &Bounds) -> Option<P> {
+    let lines: Vec<&HalfPlane> = bounds
+        .halfplanes
+        .iter()
+        .filter(|h| h.line.is_some())
+        .collect();
+    let [a, b] = lines.as_slice() else {
+        return None;
+    };
+    let det = a.n.x * b.n.y - a.n.y * b.n.x;
+    if det == 0.0 {
+        return None;
+    }
+    let p = P {
+        x: (a.c * b.n.y - b.c * a.n.y) / det,
+        y: (a.n.x * b.c - b.n.x * a.c) / det,
+    };
+    (p.finite() && bounds.excess(p) <= 1e-9 * norm(p).max(1.0)).then_some(p)
+}
+
+// ---------------------------------------------------------------------------------------
+// Step 4: the arrangement of curve and window
 
 /// A polyline segment of the arrangement.
 #[derive(Clone, Copy, Debug)]
@@ -353,7 +1029,7 @@ struct Seg {
     /// Curve: θ at p and q; border: NaN.
     tp: f64,
     tq: f64,
-    /// Chain id (curve chains) or usize::MAX - edge index (border).
+    /// Chain id (curve chains) or [`BORDER`] (window edges).
     owner: usize,
     /// Index within the owner.
     idx: usize,
@@ -361,6 +1037,15 @@ struct Seg {
 }
 
 const BORDER: usize = usize::MAX / 2;
+
+impl Seg {
+    fn is_curve(&self) -> bool {
+        self.owner != BORDER
+    }
+    fn at(&self, t: f64) -> P {
+        self.p.lerp(self.q, t)
+    }
+}
 
 fn seg_intersect(a: &Seg, b: &Seg) -> Option<(f64, f64)> {
     let r = sub(a.q, a.p);
@@ -372,62 +1057,53 @@ fn seg_intersect(a: &Seg, b: &Seg) -> Option<(f64, f64)> {
     let qp = sub(b.p, a.p);
     let t = cross(qp, s) / den;
     let u = cross(qp, r) / den;
-    if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
-        Some((t, u))
-    } else {
-        None
-    }
+    ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some((t, u))
+}
+
+/// Halves a curve segment at its θ midpoint.
+fn split_seg(fam: &AffineFamily, s: &Seg) -> Option<[Seg; 2]> {
+    let tm = 0.5 * (s.tp + s.tq);
+    let pm = point(fam, tm)?;
+    Some([
+        Seg {
+            q: pm,
+            tq: tm,
+            ..*s
+        },
+        Seg {
+            p: pm,
+            tp: tm,
+            ..*s
+        },
+    ])
 }
 
 /// Refines a curve–curve crossing by repeated halving of both θ-intervals.
-fn refine_cc(fam: &PolyFamily, a: &Seg, b: &Seg) -> (P, f64, f64) {
+fn refine_cc(fam: &AffineFamily, a: &Seg, b: &Seg) -> (P, f64, f64) {
     let (mut a, mut b) = (*a, *b);
     for _ in 0..60 {
-        let split = |s: &Seg| -> Option<[Seg; 2]> {
-            let tm = 0.5 * (s.tp + s.tq);
-            let pm = point(fam, tm)?;
-            Some([
-                Seg {
-                    q: pm,
-                    tq: tm,
-                    ..*s
-                },
-                Seg {
-                    p: pm,
-                    tp: tm,
-                    ..*s
-                },
-            ])
-        };
-        let (Some(sa), Some(sb)) = (split(&a), split(&b)) else {
+        let (Some(sa), Some(sb)) = (split_seg(fam, &a), split_seg(fam, &b)) else {
             break;
         };
-        let mut found = false;
-        'o: for x in &sa {
-            for y in &sb {
-                if seg_intersect(x, y).is_some() {
-                    a = *x;
-                    b = *y;
-                    found = true;
-                    break 'o;
-                }
-            }
-        }
-        if !found || (a.tq - a.tp).abs() < 1e-16 && (b.tq - b.tp).abs() < 1e-16 {
+        let hit = sa
+            .iter()
+            .flat_map(|x| sb.iter().map(move |y| (*x, *y)))
+            .find(|(x, y)| seg_intersect(x, y).is_some());
+        let Some((x, y)) = hit else { break };
+        a = x;
+        b = y;
+        if (a.tq - a.tp).abs() < 1e-16 && (b.tq - b.tp).abs() < 1e-16 {
             break;
         }
     }
     let (t, u) = seg_intersect(&a, &b).unwrap_or((0.5, 0.5));
-    let p = P {
-        x: a.p.x + t * (a.q.x - a.p.x),
-        y: a.p.y + t * (a.q.y - a.p.y),
-    };
-    (p, a.tp + t * (a.tq - a.tp), b.tp + u * (b.tq - b.tp))
+    (a.at(t), a.tp + t * (a.tq - a.tp), b.tp + u * (b.tq - b.tp))
 }
 
-/// Refines a curve–line crossing by bisection in θ on the signed distance to the line.
-fn refine_cl(fam: &PolyFamily, a: &Seg, h: &HalfPlane) -> (P, f64) {
-    let f = |t: f64| point(fam, t).map_or(f64::NAN, |p| h.n.x * p.x + h.n.y * p.y - h.c);
+/// Refines a curve–line crossing by bisection in θ on the signed value of the line, and puts
+/// the vertex exactly on the line (the residual is below the curve's rounding).
+fn refine_cl(fam: &AffineFamily, a: &Seg, h: &HalfPlane) -> (P, f64) {
+    let f = |t: f64| point(fam, t).map_or(f64::NAN, |p| h.value(p));
     let (mut lo, mut hi) = (a.tp, a.tq);
     let flo = f(lo);
     for _ in 0..200 {
@@ -446,13 +1122,78 @@ fn refine_cl(fam: &PolyFamily, a: &Seg, h: &HalfPlane) -> (P, f64) {
         }
     }
     let t = 0.5 * (lo + hi);
-    let mut p = point(fam, t).unwrap_or(a.p);
-    // Put the vertex exactly on the line (the residual is below rounding of the curve).
-    let nn = h.n.x * h.n.x + h.n.y * h.n.y;
-    let r = (h.n.x * p.x + h.n.y * p.y - h.c) / nn;
-    p.x -= r * h.n.x;
-    p.y -= r * h.n.y;
-    (p, t)
+    let p = point(fam, t).unwrap_or(a.p);
+    let r = h.value(p);
+    (
+        P {
+            x: p.x - r * h.n.x,
+            y: p.y - r * h.n.y,
+        },
+        t,
+    )
+}
+
+/// Splits the coarse curve into chains: at gaps (no point) and where it leaves a box 10³
+/// times the window's size (where the curve runs to infinity), cutting the chord at the box.
+fn chains(fam: &AffineFamily, coarse: &[(f64, P)], window: &Window) -> Vec<Vec<(f64, P)>> {
+    let (x0, x1, y0, y1) =
+        bbox(window.polygon.iter().map(|(p, _)| *p)).unwrap_or((-1.0, 1.0, -1.0, 1.0));
+    let big = 1e3 * window.size;
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let lim = P { x: big, y: big };
+    let inside = |p: P| p.finite() && (p.x - cx).abs() < lim.x && (p.y - cy).abs() < lim.y;
+    // The chord p→q cut where it leaves the big box (p inside, q outside).
+    let exit = |(tp, p): (f64, P), (tq, q): (f64, P)| -> (f64, P) {
+        let mut s: f64 = 1.0;
+        for (a, b, l, c) in [(p.x, q.x, lim.x, cx), (p.y, q.y, lim.y, cy)] {
+            if b.is_finite() && (b - c).abs() >= l && a != b {
+                let bound = c + if b > c { l } else { -l };
+                s = s.min((bound - a) / (b - a));
+            }
+        }
+        let s = if s.is_finite() {
+            s.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (tp + s * (tq - tp), p.lerp(q, s))
+    };
+    let gap = 2.0 * std::f64::consts::PI / knot_count(fam) as f64;
+    let mut out: Vec<Vec<(f64, P)>> = Vec::new();
+    let mut cur: Vec<(f64, P)> = Vec::new();
+    let mut last: Option<(f64, P)> = None;
+    let flush = |cur: &mut Vec<(f64, P)>, out: &mut Vec<Vec<(f64, P)>>| {
+        if cur.len() >= 2 {
+            out.push(std::mem::take(cur));
+        } else {
+            cur.clear();
+        }
+    };
+    for &(t, p) in coarse {
+        let ok = inside(p);
+        let contiguous = last.is_none_or(|(lt, _)| (t - lt) < gap);
+        let prev_ok = last.is_some_and(|(_, lp)| inside(lp));
+        if !contiguous {
+            flush(&mut cur, &mut out);
+        } else if ok && !prev_ok {
+            if let Some(l) = last.filter(|(_, lp)| lp.finite()) {
+                cur.push(exit((t, p), l));
+            }
+        } else if !ok && prev_ok {
+            if p.finite()
+                && let Some(l) = last
+            {
+                cur.push(exit(l, (t, p)));
+            }
+            flush(&mut cur, &mut out);
+        }
+        if ok {
+            cur.push((t, p));
+        }
+        last = Some((t, p));
+    }
+    flush(&mut cur, &mut out);
+    out
 }
 
 /// A cut on a segment: parameter along it, vertex id, θ (curve) or NaN.
@@ -467,212 +1208,28 @@ struct Graph {
     edges: Vec<GraphEdge>,
 }
 
-/// Computes the stable region of p(z) for fixed (γ, δ, d) (Section V; Figs. 4–6).
-pub fn stable_region(fam: &PolyFamily) -> StableRegion {
-    stable_region_with(fam, DEFAULT_REL_TOL)
+/// The curve chains and window edges as segments with their cuts, before the graph is built.
+struct Pieces {
+    chains: Vec<Vec<(f64, P)>>,
+    segs: Vec<Seg>,
+    /// Index of the first window segment.
+    first_border: usize,
+    verts: Vec<P>,
+    cuts: Vec<Vec<Cut>>,
+    chain_ends: Vec<(usize, usize)>,
 }
 
-/// Default chord tolerance of region polygons, relative to the stable region's size.
-pub const DEFAULT_REL_TOL: f64 = 1e-9;
+fn arrangement(fam: &AffineFamily, window: &Window, coarse: &[(f64, P)]) -> Graph {
+    let mut pieces = pieces(chains(fam, coarse, window), window);
+    cut_chain_ends(&mut pieces, window.size);
+    intersect(fam, window, &mut pieces);
+    let mut g = build_graph(&pieces);
+    keep_inside(&mut g, window);
+    prune_dangling(&mut g);
+    g
+}
 
-/// As [`stable_region`] with a chord tolerance relative to the region's size.
-pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
-    let pi = std::f64::consts::PI;
-    let gamma = fam.plant.gamma;
-    // |p(0)| = |n0 β| < 1 and p(1) > 0 and the z = −1 condition: the window K.
-    let n0 = fam.plant.n0.abs().max(1e-300);
-    let bmax = 1.0 / n0;
-    // Coarse curve samples: a uniform θ grid, each interval refined adaptively (in parallel).
-    let m = 64 * (fam.d + 2);
-    let knots: Vec<(f64, Option<P>)> = (0..=m)
-        .into_par_iter()
-        .map(|i| {
-            let t = pi * i as f64 / m as f64;
-            match point(fam, t) {
-                // Where N(−1) = 0 (δ = 0) the curve runs to infinity as θ → π: end just
-                // short of it so that the last interval is still sampled (the far tail is cut
-                // off below).
-                None if i == m => {
-                    let t = pi * (1.0 - 1e-12);
-                    (t, point(fam, t))
-                }
-                p => (t, p),
-            }
-        })
-        .collect();
-    let pieces: Vec<Vec<(f64, P)>> = knots
-        .par_windows(2)
-        .with_min_len(8)
-        .map(|w| {
-            let mut out = Vec::new();
-            match (w[0], w[1]) {
-                ((t0, Some(p0)), (t1, Some(p1))) => {
-                    sample(fam, t0, p0, t1, p1, 1e-3 * bmax, 1.5 * bmax, 0, &mut out)
-                }
-                // a gap (no point): the next piece starts afresh at its own first knot
-                ((_, None), (t1, Some(p1))) => out.push((t1, p1)),
-                _ => {}
-            }
-            out
-        })
-        .collect();
-    let mut coarse: Vec<(f64, P)> = Vec::new();
-    if let (t0, Some(p0)) = knots[0] {
-        coarse.push((t0, p0));
-    }
-    for piece in pieces {
-        coarse.extend(piece);
-    }
-    let mline = minus_one_line(fam);
-    // α extent of the window. Every boundary point of the region with |β| < bmax is a curve
-    // point or a crossing of the curve with a line, so the coarse curve bounds it (plus a
-    // margin). A rigorous cap: a monic Schur-stable polynomial has |c_k| < C(n, k), so the
-    // z² coefficient bounds |α + β| < (C(n, 2) + |a0| + |a1|)/|n1|.
-    let nn = fam.degree() as f64;
-    let pl = &fam.plant;
-    let a_rig =
-        (nn * (nn - 1.0) / 2.0 + pl.a0.abs() + pl.a1.abs()) / pl.n1.abs().max(1e-300) + bmax;
-    let mut amax = -gamma;
-    for (_, p) in &coarse {
-        if p.y.abs() <= 1.05 * bmax && p.x.is_finite() {
-            amax = amax.max(p.x);
-        }
-    }
-    let amax = amax.min(a_rig);
-    let size = (amax + gamma).max(2.0 * bmax).max(1e-300);
-    let margin = 0.05 * size;
-    let (x0, x1, y0, y1) = (
-        -gamma - margin,
-        amax + margin,
-        -bmax - margin,
-        bmax + margin,
-    );
-    let mut window: Vec<(P, EdgeKind)> = vec![
-        (P { x: x0, y: y0 }, EdgeKind::Window),
-        (P { x: x1, y: y0 }, EdgeKind::Window),
-        (P { x: x1, y: y1 }, EdgeKind::Window),
-        (P { x: x0, y: y1 }, EdgeKind::Window),
-    ];
-    let h1 = HalfPlane {
-        n: P { x: -1.0, y: 0.0 },
-        c: gamma,
-        kind: EdgeKind::ZPlusOne,
-    };
-    window = clip(&window, h1);
-    let mut halfplanes = vec![h1];
-    if let Some((a, c)) = mline {
-        let pl = &fam.plant;
-        let nm1 = pl.n0 - pl.n1;
-        let s = if (fam.d + 1).is_multiple_of(2) {
-            nm1
-        } else {
-            -nm1
-        };
-        // s(α + 2β) < D(−1)·sign: α + aβ < c when s > 0, > c when s < 0.
-        let h = if s > 0.0 {
-            HalfPlane {
-                n: P { x: 1.0, y: a },
-                c,
-                kind: EdgeKind::ZMinusOne,
-            }
-        } else {
-            HalfPlane {
-                n: P { x: -1.0, y: -a },
-                c: -c,
-                kind: EdgeKind::ZMinusOne,
-            }
-        };
-        window = clip(&window, h);
-        halfplanes.push(h);
-    }
-    let empty = StableRegion {
-        polygons: Vec::new(),
-        alpha_max: f64::NAN,
-        beta_at_alpha_max: f64::NAN,
-        area: 0.0,
-    };
-    if window.len() < 3 {
-        return empty;
-    }
-    let inside_k = |p: P, slack: f64| {
-        halfplanes
-            .iter()
-            .all(|h| h.n.x * p.x + h.n.y * p.y - h.c <= slack)
-            && p.x >= x0 - slack
-            && p.x <= x1 + slack
-            && p.y >= y0 - slack
-            && p.y <= y1 + slack
-    };
-    // Chains: split the coarse curve where it leaves a generous box (poles of R).
-    let big = 1e3 * size;
-    let lim = P {
-        x: big + x1.abs(),
-        y: big + bmax,
-    };
-    let inside_big =
-        |p: P| p.x.is_finite() && p.y.is_finite() && p.x.abs() < lim.x && p.y.abs() < lim.y;
-    // Cut the chord p→q where it leaves the big box (q outside, p inside).
-    let exit = |(tp, p): (f64, P), (tq, q): (f64, P)| -> (f64, P) {
-        let mut s: f64 = 1.0;
-        for (a, b, l) in [(p.x, q.x, lim.x), (p.y, q.y, lim.y)] {
-            if b.is_finite() && b.abs() >= l && a != b {
-                let bound = if b > 0.0 { l } else { -l };
-                s = s.min((bound - a) / (b - a));
-            }
-        }
-        let s = if s.is_finite() {
-            s.clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (
-            tp + s * (tq - tp),
-            P {
-                x: p.x + s * (q.x - p.x),
-                y: p.y + s * (q.y - p.y),
-            },
-        )
-    };
-    let mut chains: Vec<Vec<(f64, P)>> = Vec::new();
-    let mut cur: Vec<(f64, P)> = Vec::new();
-    let mut last: Option<(f64, P)> = None;
-    for &(t, p) in &coarse {
-        let ok = inside_big(p);
-        let contiguous = last.is_none_or(|(lt, _)| (t - lt) < 2.0 * pi / m as f64);
-        let prev_ok = last.is_some_and(|(_, lp)| inside_big(lp));
-        if !contiguous {
-            if cur.len() >= 2 {
-                chains.push(std::mem::take(&mut cur));
-            } else {
-                cur.clear();
-            }
-        } else if ok && !prev_ok && p.x.is_finite() && p.y.is_finite() {
-            // entering the big box: start at the crossing
-            if let Some(l) = last.filter(|(_, lp)| lp.x.is_finite() && lp.y.is_finite()) {
-                cur.push(exit((t, p), l));
-            }
-        } else if !ok && prev_ok {
-            if p.x.is_finite()
-                && p.y.is_finite()
-                && let Some(l) = last
-            {
-                cur.push(exit(l, (t, p)));
-            }
-            if cur.len() >= 2 {
-                chains.push(std::mem::take(&mut cur));
-            } else {
-                cur.clear();
-            }
-        }
-        if ok {
-            cur.push((t, p));
-        }
-        last = Some((t, p));
-    }
-    if cur.len() >= 2 {
-        chains.push(cur);
-    }
-    // Segments.
+fn pieces(chains: Vec<Vec<(f64, P)>>, window: &Window) -> Pieces {
     let mut segs: Vec<Seg> = Vec::new();
     for (ci, ch) in chains.iter().enumerate() {
         for (i, w) in ch.windows(2).enumerate() {
@@ -683,145 +1240,166 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
                 tq: w[1].0,
                 owner: ci,
                 idx: i,
-                kind: EdgeKind::Complex {
-                    theta_start: w[0].0,
-                    theta_end: w[1].0,
-                },
+                kind: EdgeKind::Window,
             });
         }
     }
-    let nw = window.len();
+    let first_border = segs.len();
+    let nw = window.polygon.len();
     for i in 0..nw {
         segs.push(Seg {
-            p: window[i].0,
-            q: window[(i + 1) % nw].0,
+            p: window.polygon[i].0,
+            q: window.polygon[(i + 1) % nw].0,
             tp: f64::NAN,
             tq: f64::NAN,
             owner: BORDER,
             idx: i,
-            kind: window[i].1,
+            kind: window.polygon[i].1.kind,
         });
     }
     // Vertices: window corners and chain ends.
-    let mut verts: Vec<P> = window.iter().map(|w| w.0).collect();
-    let mut cuts: Vec<Vec<Cut>> = vec![Vec::new(); segs.len()];
-    let mut chain_ends: Vec<(usize, usize)> = Vec::new();
-    for ch in &chains {
-        let a = verts.len();
-        verts.push(ch[0].1);
-        let b = verts.len();
-        verts.push(ch[ch.len() - 1].1);
-        chain_ends.push((a, b));
+    let mut verts: Vec<P> = window.polygon.iter().map(|w| w.0).collect();
+    let chain_ends = chains
+        .iter()
+        .map(|ch| {
+            verts.push(ch[0].1);
+            verts.push(ch[ch.len() - 1].1);
+            (verts.len() - 2, verts.len() - 1)
+        })
+        .collect();
+    let cuts = vec![Vec::new(); segs.len()];
+    Pieces {
+        chains,
+        segs,
+        first_border,
+        verts,
+        cuts,
+        chain_ends,
     }
-    // Chain ends lying on a window edge become cuts of that edge.
-    let nseg_curve = segs.len() - nw;
-    for (ci, ch) in chains.iter().enumerate() {
-        for (end, vid) in [
-            (ch[0].1, chain_ends[ci].0),
-            (ch[ch.len() - 1].1, chain_ends[ci].1),
-        ] {
-            for k in 0..nw {
-                let s = &segs[nseg_curve + k];
+}
+
+/// Chain ends lying on a window edge become cuts of that edge.
+fn cut_chain_ends(pc: &mut Pieces, size: f64) {
+    for ci in 0..pc.chains.len() {
+        let ch = &pc.chains[ci];
+        let ends = [
+            (ch[0].1, pc.chain_ends[ci].0),
+            (ch[ch.len() - 1].1, pc.chain_ends[ci].1),
+        ];
+        for (end, vid) in ends {
+            for k in pc.first_border..pc.segs.len() {
+                let s = &pc.segs[k];
                 let d = sub(s.q, s.p);
                 let len2 = d.x * d.x + d.y * d.y;
                 let t = ((end.x - s.p.x) * d.x + (end.y - s.p.y) * d.y) / len2;
                 let dist = cross(d, sub(end, s.p)).abs() / len2.sqrt();
                 if dist <= 1e-12 * size && t > 0.0 && t < 1.0 {
-                    cuts[nseg_curve + k].push((t, vid, f64::NAN));
+                    pc.cuts[k].push((t, vid, f64::NAN));
                 }
             }
         }
     }
-    // Pairwise intersections by sweep over α-sorted bounding boxes.
-    let mut order: Vec<usize> = (0..segs.len()).collect();
+}
+
+/// All pairwise crossings by a sweep over bounding boxes sorted along the stiffness axis;
+/// each crossing becomes a vertex refined on the curve and a cut of both segments.
+fn intersect(fam: &AffineFamily, window: &Window, pc: &mut Pieces) {
     let lo = |s: &Seg| s.p.x.min(s.q.x);
     let hi = |s: &Seg| s.p.x.max(s.q.x);
-    order.sort_by(|&i, &j| lo(&segs[i]).total_cmp(&lo(&segs[j])));
+    let mut order: Vec<usize> = (0..pc.segs.len()).collect();
+    order.sort_by(|&i, &j| lo(&pc.segs[i]).total_cmp(&lo(&pc.segs[j])));
     let mut active: Vec<usize> = Vec::new();
     for &i in &order {
-        let si = segs[i];
-        active.retain(|&j| hi(&segs[j]) >= lo(&si));
+        let si = pc.segs[i];
+        active.retain(|&j| hi(&pc.segs[j]) >= lo(&si));
         for &j in &active {
-            let sj = segs[j];
-            if si.owner == sj.owner && (si.owner == BORDER || si.idx.abs_diff(sj.idx) <= 1) {
-                continue;
-            }
-            if si.p.y.max(si.q.y) < sj.p.y.min(sj.q.y) || sj.p.y.max(sj.q.y) < si.p.y.min(si.q.y) {
+            let sj = pc.segs[j];
+            let neighbours =
+                si.owner == sj.owner && (si.owner == BORDER || si.idx.abs_diff(sj.idx) <= 1);
+            let apart =
+                si.p.y.max(si.q.y) < sj.p.y.min(sj.q.y) || sj.p.y.max(sj.q.y) < si.p.y.min(si.q.y);
+            if neighbours || apart {
                 continue;
             }
             let Some((t, u)) = seg_intersect(&si, &sj) else {
                 continue;
             };
-            let (ci, cj) = (si.owner != BORDER, sj.owner != BORDER);
-            let vid = verts.len();
-            match (ci, cj) {
+            match (si.is_curve(), sj.is_curve()) {
                 (true, true) => {
                     let (p, ti, tj) = refine_cc(fam, &si, &sj);
-                    verts.push(p);
-                    cuts[i].push((t, vid, ti));
-                    cuts[j].push((u, vid, tj));
+                    let vid = pc.verts.len();
+                    pc.verts.push(p);
+                    pc.cuts[i].push((t, vid, ti));
+                    pc.cuts[j].push((u, vid, tj));
                 }
-                (true, false) | (false, true) => {
-                    let (c, b, tc, tb) = if ci { (i, j, t, u) } else { (j, i, u, t) };
-                    let sc = &segs[c];
-                    let raw = P {
-                        x: sc.p.x + tc * (sc.q.x - sc.p.x),
-                        y: sc.p.y + tc * (sc.q.y - sc.p.y),
-                    };
-                    let at_end = chain_ends.iter().any(|&(a, e)| {
-                        [a, e].iter().any(|&v| {
-                            let q = verts[v];
-                            (q.x - raw.x).abs() + (q.y - raw.y).abs() <= 1e-9 * size
-                        })
-                    });
-                    if at_end {
-                        continue;
-                    }
-                    let h = halfplanes.iter().find(|h| h.kind == segs[b].kind);
-                    let (p, th) = match h {
-                        Some(h) => refine_cl(fam, &segs[c], h),
-                        None => {
-                            let s = &segs[c];
-                            (
-                                P {
-                                    x: s.p.x + tc * (s.q.x - s.p.x),
-                                    y: s.p.y + tc * (s.q.y - s.p.y),
-                                },
-                                s.tp + tc * (s.tq - s.tp),
-                            )
-                        }
-                    };
-                    // skip crossings that coincide with a chain end already cut there
-                    let dup = cuts[b].iter().any(|&(_, v, _)| {
-                        let q = verts[v];
-                        (q.x - p.x).abs() + (q.y - p.y).abs() <= 1e-12 * size
-                    });
-                    if dup {
-                        continue;
-                    }
-                    verts.push(p);
-                    cuts[c].push((tc, vid, th));
-                    cuts[b].push((tb, vid, f64::NAN));
-                }
+                (true, false) => cut_curve_border(fam, window, pc, (i, t), (j, u)),
+                (false, true) => cut_curve_border(fam, window, pc, (j, u), (i, t)),
                 (false, false) => {}
             }
         }
         active.push(i);
     }
-    // Edges of the graph.
+}
+
+/// A crossing of curve segment c (at parameter tc) with window edge b (at tb).
+fn cut_curve_border(
+    fam: &AffineFamily,
+    window: &Window,
+    pc: &mut Pieces,
+    (c, tc): (usize, f64),
+    (b, tb): (usize, f64),
+) {
+    let size = window.size;
+    let sc = pc.segs[c];
+    let raw = sc.at(tc);
+    let at_end = pc.chain_ends.iter().any(|&(a, e)| {
+        [a, e].iter().any(|&v| {
+            let q = pc.verts[v];
+            (q.x - raw.x).abs() + (q.y - raw.y).abs() <= 1e-9 * size
+        })
+    });
+    if at_end {
+        return;
+    }
+    let line = window
+        .halfplanes
+        .iter()
+        .find(|h| h.line.is_some() && h.kind == pc.segs[b].kind);
+    let (p, th) = match line {
+        Some(h) => refine_cl(fam, &sc, h),
+        None => (raw, sc.tp + tc * (sc.tq - sc.tp)),
+    };
+    // skip crossings that coincide with a chain end already cut there
+    let dup = pc.cuts[b].iter().any(|&(_, v, _)| {
+        let q = pc.verts[v];
+        (q.x - p.x).abs() + (q.y - p.y).abs() <= 1e-12 * size
+    });
+    if dup {
+        return;
+    }
+    let vid = pc.verts.len();
+    pc.verts.push(p);
+    pc.cuts[c].push((tc, vid, th));
+    pc.cuts[b].push((tb, vid, f64::NAN));
+}
+
+/// The planar graph: chains and window edges split at their cuts.
+fn build_graph(pc: &Pieces) -> Graph {
     let mut g = Graph {
-        verts,
+        verts: pc.verts.clone(),
         edges: Vec::new(),
     };
-    for (ci, ch) in chains.iter().enumerate() {
-        let base = segs.iter().position(|s| s.owner == ci).unwrap_or(0);
-        let mut start = chain_ends[ci].0;
+    let sorted = |si: usize| {
+        let mut cs = pc.cuts[si].clone();
+        cs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        cs
+    };
+    let mut base = 0;
+    for (ci, ch) in pc.chains.iter().enumerate() {
+        let mut start = pc.chain_ends[ci].0;
         let mut poly: Vec<(f64, P)> = vec![ch[0]];
         for k in 0..ch.len() - 1 {
-            let si = base + k;
-            let mut cs = cuts[si].clone();
-            cs.sort_by(|a, b| a.0.total_cmp(&b.0));
-            for (_, v, th) in cs {
+            for (_, v, th) in sorted(base + k) {
                 poly.push((th, g.verts[v]));
                 g.edges
                     .push((start, v, std::mem::take(&mut poly), EdgeKind::Window));
@@ -830,114 +1408,57 @@ pub fn stable_region_with(fam: &PolyFamily, rel_tol: f64) -> StableRegion {
             }
             poly.push(ch[k + 1]);
         }
-        let end = chain_ends[ci].1;
+        let end = pc.chain_ends[ci].1;
         let n = poly.len();
         poly[n - 1].1 = g.verts[end];
         g.edges.push((start, end, poly, EdgeKind::Window));
+        base += ch.len() - 1;
     }
+    let nw = pc.segs.len() - pc.first_border;
     for k in 0..nw {
-        let si = nseg_curve + k;
-        let s = segs[si];
-        let mut cs = cuts[si].clone();
-        cs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let si = pc.first_border + k;
         let mut start = k;
-        for (_, v, _) in cs {
+        let ends = sorted(si)
+            .into_iter()
+            .map(|(_, v, _)| v)
+            .chain([(k + 1) % nw]);
+        for v in ends {
             g.edges.push((
                 start,
                 v,
                 vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[v])],
-                s.kind,
+                pc.segs[si].kind,
             ));
             start = v;
         }
-        let end = (k + 1) % nw;
-        g.edges.push((
-            start,
-            end,
-            vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[end])],
-            s.kind,
-        ));
     }
-    // Label curve edges and drop those outside K.
-    let slack = 1e-9 * size;
+    g
+}
+
+/// Drops curve edges outside the window and labels the rest as complex-pair arcs.
+fn keep_inside(g: &mut Graph, window: &Window) {
+    let slack = 1e-9 * window.size;
+    let inside = |p: P| window.halfplanes.iter().all(|h| h.value(p) <= slack);
+    let is_curve = |e: &GraphEdge| e.3 == EdgeKind::Window && e.2.iter().any(|p| !p.0.is_nan());
     g.edges.retain(|e| e.0 != e.1 || e.2.len() > 2);
     g.edges.retain(|e| {
-        if e.3 != EdgeKind::Window || e.2.iter().all(|p| p.0.is_nan()) {
+        if !is_curve(e) {
             return true;
         }
-        let mid = e.2[e.2.len() / 2].1;
-        let mid2 = P {
-            x: 0.5 * (e.2[0].1.x + e.2[1].1.x),
-            y: 0.5 * (e.2[0].1.y + e.2[1].1.y),
+        let mid = if e.2.len() > 2 {
+            e.2[e.2.len() / 2].1
+        } else {
+            e.2[0].1.lerp(e.2[1].1, 0.5)
         };
-        inside_k(if e.2.len() > 2 { mid } else { mid2 }, -slack * 0.0 + slack)
+        inside(mid)
     });
     for e in g.edges.iter_mut() {
-        if e.3 == EdgeKind::Window && e.2.iter().any(|p| !p.0.is_nan()) {
+        if is_curve(e) {
             e.3 = EdgeKind::Complex {
                 theta_start: e.2[0].0,
                 theta_end: e.2[e.2.len() - 1].0,
             };
         }
-    }
-    prune_dangling(&mut g);
-    let faces = faces(&g);
-    let mut coeffs = vec![0.0; fam.degree() + 1];
-    let mut stable_faces = Vec::new();
-    for f in faces {
-        let pts: Vec<AlphaBeta> = f
-            .iter()
-            .flat_map(|&(e, fwd)| {
-                let poly = &g.edges[e].2;
-                let it: Box<dyn Iterator<Item = &(f64, P)>> = if fwd {
-                    Box::new(poly.iter().take(poly.len() - 1))
-                } else {
-                    Box::new(poly.iter().rev().take(poly.len() - 1))
-                };
-                it.map(|(_, p)| p.ab())
-            })
-            .collect();
-        if pts.len() < 3 || shoelace(&pts) <= 0.0 {
-            continue;
-        }
-        let Some(ip) = interior_point(&pts) else {
-            continue;
-        };
-        fam.coefficients_into(ip.alpha, ip.beta, &mut coeffs);
-        if !schur_stable(&coeffs) {
-            continue;
-        }
-        stable_faces.push((f, pts));
-    }
-    // Size of the stable region (bounding box of the coarse faces) sets the fine tolerance.
-    let (mut bx0, mut bx1, mut by0, mut by1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for (_, pts) in &stable_faces {
-        for p in pts {
-            bx0 = bx0.min(p.alpha);
-            bx1 = bx1.max(p.alpha);
-            by0 = by0.min(p.beta);
-            by1 = by1.max(p.beta);
-        }
-    }
-    // The coarse faces are within 1e-3·bmax of the true region, so 0.99 keeps the chord
-    // tolerance below rel_tol of the true size.
-    let rsize = (bx1 - bx0).max(by1 - by0);
-    let polygons: Vec<Polygon> = stable_faces
-        .iter()
-        .map(|(f, _)| refine_face(fam, &g, f, 0.99 * rel_tol * rsize))
-        .collect();
-    let area = polygons.iter().map(|p| p.area()).sum();
-    let (alpha_max, beta_at_alpha_max) = alpha_max_of(fam, &polygons);
-    StableRegion {
-        polygons,
-        alpha_max,
-        beta_at_alpha_max,
-        area,
     }
 }
 
@@ -959,14 +1480,29 @@ fn prune_dangling(g: &mut Graph) {
 /// Faces of the planar graph as cycles of (edge, forward?) with the face on the left.
 fn faces(g: &Graph) -> Vec<Vec<(usize, bool)>> {
     let nv = g.verts.len();
+    // Departure angles are taken toward the first polyline point that is clearly away from
+    // the vertex: a curve that passes through a corner at a sample point leaves a segment of
+    // rounding length there, whose direction means nothing.
+    let size = bbox(g.verts.iter().copied()).map_or(1.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0));
+    let eps = 1e-10 * size;
+    let departure = |from: P, mut pts: Box<dyn Iterator<Item = P> + '_>| {
+        let to = pts
+            .by_ref()
+            .find(|p| norm(sub(*p, from)) > eps)
+            .unwrap_or(from);
+        (to.y - from.y).atan2(to.x - from.x)
+    };
     // outgoing half-edges per vertex with their departure angle
     let mut out: Vec<Vec<(f64, usize, bool)>> = vec![Vec::new(); nv];
     for (i, e) in g.edges.iter().enumerate() {
-        let (a, b) = (e.2[0].1, e.2[1].1);
-        out[e.0].push(((b.y - a.y).atan2(b.x - a.x), i, true));
         let n = e.2.len();
-        let (a, b) = (e.2[n - 1].1, e.2[n - 2].1);
-        out[e.1].push(((b.y - a.y).atan2(b.x - a.x), i, false));
+        let fwd = departure(e.2[0].1, Box::new(e.2.iter().skip(1).map(|q| q.1)));
+        out[e.0].push((fwd, i, true));
+        let back = departure(
+            e.2[n - 1].1,
+            Box::new(e.2.iter().rev().skip(1).map(|q| q.1)),
+        );
+        out[e.1].push((back, i, false));
     }
     for o in out.iter_mut() {
         o.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -1002,6 +1538,77 @@ fn faces(g: &Graph) -> Vec<Vec<(usize, bool)>> {
     result
 }
 
+// ---------------------------------------------------------------------------------------
+// Step 5: classification
+
+/// A face as its cycle of half-edges and its vertices.
+type Face = (Vec<(usize, bool)>, Vec<AlphaBeta>);
+
+/// Euler's formula for a planar graph with C connected components, counted in boundary
+/// cycles (each component's outer cycle separately): V − E + cycles = 2C. A walk that
+/// breaks it means a crossing was missed or the angular order was confused by nearly
+/// coincident pieces; the region is then verified thoroughly.
+fn euler_holds(g: &Graph, cycles: usize) -> bool {
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    let mut parent: Vec<usize> = (0..g.verts.len()).collect();
+    let mut used = vec![false; g.verts.len()];
+    for e in &g.edges {
+        used[e.0] = true;
+        used[e.1] = true;
+        let (a, b) = (root(&mut parent, e.0), root(&mut parent, e.1));
+        parent[a] = b;
+    }
+    let v = used.iter().filter(|&&u| u).count();
+    let c = (0..g.verts.len())
+        .filter(|&i| used[i] && root(&mut parent, i) == i)
+        .count();
+    v + cycles == g.edges.len() + 2 * c
+}
+
+/// The counter-clockwise faces whose interior point passes the Schur–Cohn test.
+fn stable_faces(fam: &AffineFamily, g: &Graph, cycles: Vec<Vec<(usize, bool)>>) -> Vec<Face> {
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    cycles
+        .into_iter()
+        .filter_map(|f| {
+            let pts = face_points(g, &f);
+            if pts.len() < 3 || shoelace(&pts) <= 0.0 {
+                return None;
+            }
+            let ip = interior_point(&pts)?;
+            fam.coefficients_into(ip.alpha, ip.beta, &mut coeffs);
+            schur_stable(&coeffs).then_some((f, pts))
+        })
+        .collect()
+}
+
+fn face_points(g: &Graph, f: &[(usize, bool)]) -> Vec<AlphaBeta> {
+    f.iter()
+        .flat_map(|&(e, fwd)| {
+            let poly = &g.edges[e].2;
+            let n = poly.len() - 1;
+            let it: Box<dyn Iterator<Item = &(f64, P)>> = if fwd {
+                Box::new(poly.iter().take(n))
+            } else {
+                Box::new(poly.iter().rev().take(n))
+            };
+            it.map(|(_, p)| p.ab())
+        })
+        .collect()
+}
+
+/// Largest extent of the stable faces' bounding box.
+fn faces_size(faces: &[Face]) -> f64 {
+    let pts = faces.iter().flat_map(|(_, v)| v.iter().map(|p| P::of(*p)));
+    bbox(pts).map_or(0.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0))
+}
+
 /// A point strictly inside a counter-clockwise polygon: the midpoint of a long edge moved a
 /// little to its left, checked by the even-odd rule.
 fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
@@ -1014,8 +1621,7 @@ fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
     idx.sort_by(|&a, &b| len(b).total_cmp(&len(a)));
     for &i in idx.iter().take(16) {
         let (a, b) = (v[i], v[(i + 1) % n]);
-        let l = len(i);
-        if l == 0.0 {
+        if len(i) == 0.0 {
             continue;
         }
         for f in [1e-3, 1e-2, 1e-4, 0.1] {
@@ -1031,70 +1637,46 @@ fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
     None
 }
 
-/// Rebuilds a stable face with its curve arcs resampled to the fine tolerance; the coarse
-/// knot intervals are refined in parallel.
-fn refine_face(fam: &PolyFamily, g: &Graph, f: &[(usize, bool)], tol: f64) -> Polygon {
-    let mut vertices: Vec<AlphaBeta> = Vec::new();
-    let mut thetas: Vec<f64> = Vec::new();
-    let mut edges = Vec::new();
+// ---------------------------------------------------------------------------------------
+// Step 6: refinement and the largest stable stiffness
+
+/// Rebuilds a stable face with its curve arcs resampled to the fine tolerance.
+fn refine_face(
+    fam: &AffineFamily,
+    g: &Graph,
+    f: &[(usize, bool)],
+    tol: f64,
+    budget: &Budget,
+) -> Result<Polygon> {
+    let mut poly = Polygon {
+        vertices: Vec::new(),
+        edges: Vec::new(),
+        thetas: Vec::new(),
+    };
     for &(e, fwd) in f {
-        let (a, b, poly, kind) = &g.edges[e];
+        let (a, b, line, kind) = &g.edges[e];
         let (va, vb) = if fwd { (*a, *b) } else { (*b, *a) };
-        let start = vertices.len();
+        let start = poly.vertices.len();
         match kind {
             EdgeKind::Complex { .. } => {
                 let mut knots: Vec<(f64, P)> = if fwd {
-                    poly.clone()
+                    line.clone()
                 } else {
-                    poly.iter().rev().copied().collect()
+                    line.iter().rev().copied().collect()
                 };
                 let n = knots.len();
                 knots[0].1 = g.verts[va];
                 knots[n - 1].1 = g.verts[vb];
                 let (t0, t1) = (knots[0].0, knots[n - 1].0);
-                // Split every knot interval into 8 equal θ-parts first, so that the parallel
-                // refinement is balanced where the curvature concentrates in a few intervals.
-                let mut fine: Vec<(f64, P)> = Vec::with_capacity(8 * n);
-                for (k, w) in knots.windows(2).enumerate() {
-                    if k == 0 {
-                        fine.push(w[0]);
-                    }
-                    let interior = w[0].0 > 0.0 && w[1].0 < std::f64::consts::PI;
-                    for j in 1..8 {
-                        let t = w[0].0 + (w[1].0 - w[0].0) * j as f64 / 8.0;
-                        if let (true, Some(p)) = (interior, point(fam, t)) {
-                            fine.push((t, p));
-                        }
-                    }
-                    fine.push(w[1]);
+                let arc = refine_arc(fam, &knots, tol, budget)?;
+                poly.vertices.push(g.verts[va].ab());
+                poly.thetas.push(t0);
+                let keep = arc.len().saturating_sub(1);
+                for (t, p) in arc.into_iter().take(keep) {
+                    poly.vertices.push(p.ab());
+                    poly.thetas.push(t);
                 }
-                let pieces: Vec<Vec<(f64, P)>> = fine
-                    .par_windows(2)
-                    .with_min_len(4)
-                    .map(|w| {
-                        let mut out = Vec::new();
-                        sample(
-                            fam,
-                            w[0].0,
-                            w[0].1,
-                            w[1].0,
-                            w[1].1,
-                            tol,
-                            f64::INFINITY,
-                            0,
-                            &mut out,
-                        );
-                        out
-                    })
-                    .collect();
-                vertices.push(g.verts[va].ab());
-                thetas.push(t0);
-                let total: usize = pieces.iter().map(|p| p.len()).sum();
-                for (t, p) in pieces.into_iter().flatten().take(total.saturating_sub(1)) {
-                    vertices.push(p.ab());
-                    thetas.push(t);
-                }
-                edges.push(Edge {
+                poly.edges.push(Edge {
                     start,
                     kind: EdgeKind::Complex {
                         theta_start: t0,
@@ -1103,92 +1685,100 @@ fn refine_face(fam: &PolyFamily, g: &Graph, f: &[(usize, bool)], tol: f64) -> Po
                 });
             }
             k => {
-                vertices.push(g.verts[va].ab());
-                // a line vertex that ends a curve arc keeps that arc's θ
-                let th = g
-                    .edges
-                    .iter()
-                    .find_map(|(x, y, pl, kk)| match kk {
-                        EdgeKind::Complex {
-                            theta_start,
-                            theta_end,
-                        } => {
-                            if *x == va {
-                                Some(*theta_start)
-                            } else if *y == va {
-                                Some(*theta_end)
-                            } else {
-                                None
-                            }
-                        }
-                        _ => {
-                            let _ = pl;
-                            None
-                        }
-                    })
-                    .unwrap_or(f64::NAN);
-                thetas.push(th);
-                edges.push(Edge { start, kind: *k });
+                poly.vertices.push(g.verts[va].ab());
+                poly.thetas.push(arc_end_theta(g, va));
+                poly.edges.push(Edge { start, kind: *k });
             }
         }
     }
-    Polygon {
-        vertices,
-        edges,
-        thetas,
-    }
+    Ok(poly)
 }
 
-/// dα/dθ on the curve, analytically: α = Im(R(z)(1 − z))/sin θ with R = z^d D/N.
-fn dalpha(fam: &PolyFamily, theta: f64) -> f64 {
-    let pl = &fam.plant;
-    let z = Complex64::from_polar(1.0, theta);
-    let d = fam.d as f64;
-    let zd = Complex64::from_polar(1.0, theta * d);
-    let dz = pl.denominator(z);
-    let ddz = z * 2.0 - pl.a1;
-    let n = pl.numerator(z);
-    let r = zd * dz / n;
-    let rp = (zd / z * d * dz + zd * ddz) / n - zd * dz * pl.n1 / (n * n);
-    let w = r * (1.0 - z);
-    let dw = (rp * (1.0 - z) - r) * Complex64::i() * z;
-    let (s, c) = theta.sin_cos();
-    (dw.im * s - w.im * c) / (s * s)
+/// Resamples an arc's knots to the fine tolerance, in parallel. Every knot interval is first
+/// split into 8 equal θ-parts, so that the parallel work is balanced where the curvature
+/// concentrates in a few intervals. Returns the points after the first knot.
+fn refine_arc(
+    fam: &AffineFamily,
+    knots: &[(f64, P)],
+    tol: f64,
+    budget: &Budget,
+) -> Result<Vec<(f64, P)>> {
+    if !budget.take(8 * knots.len()) {
+        return Err(Budget::exhausted());
+    }
+    let mut fine: Vec<(f64, P)> = Vec::with_capacity(8 * knots.len());
+    for (k, w) in knots.windows(2).enumerate() {
+        if k == 0 {
+            fine.push(w[0]);
+        }
+        let interior = w[0].0 > 0.0 && w[1].0 < std::f64::consts::PI;
+        for j in 1..8 {
+            let t = w[0].0 + (w[1].0 - w[0].0) * j as f64 / 8.0;
+            if let (true, Some(p)) = (interior, point(fam, t)) {
+                fine.push((t, p));
+            }
+        }
+        fine.push(w[1]);
+    }
+    let s = Sampling { tol, focus: None };
+    let pieces: Vec<Result<Vec<(f64, P)>>> = fine
+        .par_windows(2)
+        .with_min_len(4)
+        .map(|w| sample_arc(fam, w[0], w[1], s, budget))
+        .collect();
+    let mut out = Vec::new();
+    for p in pieces {
+        out.extend(p?);
+    }
+    Ok(out)
+}
+
+/// θ of a line vertex that ends a curve arc (NaN when no arc ends there).
+fn arc_end_theta(g: &Graph, v: usize) -> f64 {
+    g.edges
+        .iter()
+        .find_map(|(x, y, _, k)| match k {
+            EdgeKind::Complex { theta_start, .. } if *x == v => Some(*theta_start),
+            EdgeKind::Complex { theta_end, .. } if *y == v => Some(*theta_end),
+            _ => None,
+        })
+        .unwrap_or(f64::NAN)
 }
 
 /// α_max over the polygons and the β where it is reached. Where the maximum lies inside a
-/// complex-pair arc, dα/dθ = 0 is solved by bisection on the analytic derivative.
-fn alpha_max_of(fam: &PolyFamily, polys: &[Polygon]) -> (f64, f64) {
+/// complex-pair arc, da/dθ = 0 is solved by bisection on the analytic derivative.
+fn alpha_max_of(fam: &AffineFamily, polys: &[Polygon]) -> (f64, f64) {
     let mut best = (f64::NAN, f64::NAN);
     for poly in polys {
-        let n = poly.vertices.len();
-        let (imax, _) =
-            poly.vertices
-                .iter()
-                .enumerate()
-                .fold((0, f64::NEG_INFINITY), |(bi, bv), (i, p)| {
-                    if p.alpha > bv { (i, p.alpha) } else { (bi, bv) }
-                });
-        let mut cand = (poly.vertices[imax].alpha, poly.vertices[imax].beta);
-        let corner = poly.edges.iter().any(|e| e.start == imax);
-        if !corner {
-            let (t0, t1) = (poly.thetas[(imax + n - 1) % n], poly.thetas[(imax + 1) % n]);
-            if t0.is_finite() && t1.is_finite() {
-                let (a, b) = (t0.min(t1), t0.max(t1));
-                let (ga, gb) = (dalpha(fam, a), dalpha(fam, b));
-                if ga.signum() != gb.signum() {
-                    let t = crate::boundary::bisect(a, b, |t| dalpha(fam, t));
-                    if let Some(p) = curve_point(fam, t)
-                        && p.alpha >= cand.0
-                    {
-                        cand = (p.alpha, p.beta);
-                    }
-                }
-            }
-        }
+        let cand = polygon_alpha_max(fam, poly);
         if best.0.is_nan() || cand.0 > best.0 {
             best = cand;
         }
     }
     best
+}
+
+fn polygon_alpha_max(fam: &AffineFamily, poly: &Polygon) -> (f64, f64) {
+    let n = poly.vertices.len();
+    let imax = (0..n)
+        .max_by(|&i, &j| poly.vertices[i].alpha.total_cmp(&poly.vertices[j].alpha))
+        .unwrap_or(0);
+    let mut cand = (poly.vertices[imax].alpha, poly.vertices[imax].beta);
+    if poly.edges.iter().any(|e| e.start == imax) {
+        return cand; // a corner
+    }
+    let (t0, t1) = (poly.thetas[(imax + n - 1) % n], poly.thetas[(imax + 1) % n]);
+    if t0.is_finite() && t1.is_finite() {
+        let (a, b) = (t0.min(t1), t0.max(t1));
+        let (ga, gb) = (dalpha_dtheta(fam, a), dalpha_dtheta(fam, b));
+        if ga.signum() != gb.signum() {
+            let t = crate::boundary::bisect(a, b, |t| dalpha_dtheta(fam, t));
+            if let Some(p) = curve_point(fam, t)
+                && p.alpha >= cand.0
+            {
+                cand = (p.alpha, p.beta);
+            }
+        }
+    }
+    cand
 }

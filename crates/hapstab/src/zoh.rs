@@ -312,6 +312,11 @@ pub struct DiscreteLoop {
     pub scale: WallScale,
     /// Sampling period T in s.
     pub period: f64,
+    /// The plant's static stiffness 1/P(0) in wall units (a-coordinate): the zero-order hold
+    /// keeps the DC gain exactly, so H(1) = P(0) and the z = 1 line is a = −this when the
+    /// velocity estimate of a constant position is zero (Section V: α = −γ). None when
+    /// P(0) = 0.
+    pub dc_stiffness: Option<f64>,
 }
 
 /// A discrete transfer function z^{−delay}·num(z)/den(z) (ascending coefficients).
@@ -357,6 +362,7 @@ impl DiscreteLoop {
                 damping: k_u * lp.period,
             },
             period: lp.period,
+            dc_stiffness: lp.plant.dc_stiffness().map(|k| k / k_u),
         };
         dl.check_finite()?;
         Ok(dl)

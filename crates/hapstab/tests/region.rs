@@ -10,7 +10,7 @@ use hapstab::{Normalized, PlantParams, PolyFamily};
 
 fn region(g: f64, dl: f64, d: usize) -> (PolyFamily, StableRegion) {
     let fam = PolyFamily::new(PlantParams::new(g, dl).unwrap(), d).unwrap();
-    let r = stable_region(&fam);
+    let r = stable_region(&fam).unwrap();
     (fam, r)
 }
 

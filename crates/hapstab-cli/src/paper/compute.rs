@@ -134,7 +134,7 @@ fn extent(rings: &[Vec<(f64, f64)>]) -> (f64, f64, f64) {
 /// `stable_region` finds none (see [`Source::Slices`]).
 pub fn region(key: Key) -> Result<Region> {
     let fam = PolyFamily::new(key.plant()?, key.d)?;
-    let r = stable_region(&fam);
+    let r = stable_region(&fam)?;
     if !r.polygons.is_empty() {
         let rings: Vec<Vec<(f64, f64)>> = r
             .polygons

@@ -277,7 +277,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     let t0 = Instant::now();
     let spec = &req.spec;
     let fam = PolyFamily::new(spec.plant, spec.d).map_err(lib_error)?;
-    let r = stable_region(&fam);
+    let r = stable_region(&fam).map_err(lib_error)?;
     let t_region = t0.elapsed().as_secs_f64() * 1e3;
     let mut warnings = Vec::new();
     // Region size for the drawing tolerance.
