@@ -1,12 +1,42 @@
-//! Exact stable region (polygons to 1e-9 of the region's size) plus α_max, for the paper's
-//! upper parameter limits γ = 0.001, δ = 0.015 and d = 0, 1, 2, 10, 100 (issue 3 target:
-//! under 1 ms for d ≤ 10). Run: `cargo bench -p hapstab --bench region`.
+//! Exact stable region (polygons to 1e-9 of the region's size) plus α_max:
+//! - the paper's upper parameter limits γ = 0.001, δ = 0.015 and d = 0, 1, 2, 10, 100
+//!   (target: under 1 ms for d ≤ 10);
+//! - a general loop of order 5 (two-mass device with the typical arm and a 0.2 ms actuator
+//!   lag, low-pass velocity at 200 Hz) with d = 0, 1, 10 and a fractional delay of 1.5
+//!   samples (target: region and K_max under 2 ms for d ≤ 10).
+//!
+//! Run: `cargo bench -p hapstab --bench region`.
 
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+use hapstab::params::Arm;
 use hapstab::region::stable_region;
-use hapstab::{PlantParams, PolyFamily};
+use hapstab::{AffineFamily, PlantParams, PolyFamily};
+
+/// The general loop of the benchmark (order 5 with the lag state).
+pub fn general_loop(delay: Delay) -> Loop {
+    let plant = Plant::new(
+        PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.05,
+            motor_damping: 0.5,
+            handle_mass: 0.05,
+            transmission_stiffness: 2e4,
+            transmission_damping: 2.0,
+            arm: Arm::TYPICAL,
+        }),
+        2e-4,
+    )
+    .expect("valid plant");
+    Loop::new(
+        plant,
+        1e-3,
+        delay,
+        VelocityEstimator::LowPass { cutoff_hz: 200.0 },
+    )
+    .expect("valid loop")
+}
 
 fn bench_region(c: &mut Criterion) {
     let mut g = c.benchmark_group("region");
@@ -21,6 +51,27 @@ fn bench_region(c: &mut Criterion) {
                 b.iter(|| {
                     let r = stable_region(black_box(fam)).expect("region");
                     black_box((r.alpha_max, r.beta_at_alpha_max, r.polygons.len()))
+                })
+            },
+        );
+    }
+    let delays = [
+        ("0", Delay::samples(0)),
+        ("1", Delay::samples(1)),
+        ("10", Delay::samples(10)),
+        ("1.5", Delay::from_time(1.5e-3, 1e-3)),
+    ];
+    for (label, delay) in delays {
+        let lp = general_loop(delay.expect("valid delay"));
+        g.bench_with_input(
+            BenchmarkId::new("general_loop_order5", label),
+            &lp,
+            |b, lp| {
+                b.iter(|| {
+                    // discretization, family, region and K_max from scratch
+                    let fam = AffineFamily::of_loop(black_box(lp)).expect("family");
+                    let r = stable_region(&fam).expect("region");
+                    black_box(fam.to_physical(r.alpha_max, r.beta_at_alpha_max))
                 })
             },
         );

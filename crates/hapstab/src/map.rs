@@ -5,7 +5,7 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::closed_loop::PolyFamily;
+use crate::closed_loop::{AffineFamily, PolyFamily};
 use crate::error::{Error, Result};
 use crate::params::{Normalized, PlantParams};
 use crate::stability::{schur_stable, spectral_radius_schur};
@@ -207,13 +207,94 @@ fn paper_coefficients(
 /// Computes a map in parallel over rows (rayon). `progress` is called with the number of
 /// rows finished so far (from any thread).
 pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sync)) -> Map {
-    let (nx, ny) = (spec.x.n, spec.y.n);
     let deg = spec.base.d + 3;
     let fixed = if spec.plant_fixed() {
         PolyFamily::new(spec.base.plant(), spec.base.d).ok()
     } else {
         None
     };
+    let coefficients = |ix: usize, iy: usize, c: &mut [f64]| {
+        let p = spec.point(ix, iy);
+        match &fixed {
+            Some(fam) => fam.coefficients_into(p.alpha, p.beta, c),
+            None => paper_coefficients(
+                &crate::plant::DiscretePlant::from_params(PlantParams {
+                    gamma: p.gamma,
+                    delta: p.delta,
+                }),
+                p.d,
+                p.alpha,
+                p.beta,
+                c,
+            ),
+        }
+    };
+    let (stable, radius) = grid(spec.x.n, spec.y.n, deg, kind, progress, coefficients);
+    Map {
+        spec: *spec,
+        stable,
+        radius,
+    }
+}
+
+/// A map of any loop over its wall, in wall units (a, b) (see [`AffineFamily`]; multiply by
+/// `fam.scale` for K in N/m and B in Ns/m), row-major: value (ix, iy) at index iy·nx + ix.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WallMap {
+    /// Stiffness axis (wall units a).
+    pub x: AxisRange,
+    /// Damping axis (wall units b).
+    pub y: AxisRange,
+    /// Stable flag per point.
+    pub stable: Vec<bool>,
+    /// Spectral radius per point (only for `MapKind::SpectralRadius`).
+    pub radius: Option<Vec<f64>>,
+}
+
+impl WallMap {
+    /// Stable flag at grid indices.
+    pub fn is_stable(&self, ix: usize, iy: usize) -> bool {
+        self.stable[iy * self.x.n + ix]
+    }
+}
+
+/// The grid method of Section V for any loop: the wall's stiffness a along x and damping b
+/// along y, one Schur–Cohn test per point, in parallel over rows.
+pub fn wall_map(
+    fam: &AffineFamily,
+    x: AxisRange,
+    y: AxisRange,
+    kind: MapKind,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<WallMap> {
+    if x.n.saturating_mul(y.n) > MAX_POINTS {
+        return Err(Error::OutOfRange {
+            name: "map points",
+            value: (x.n as f64) * (y.n as f64),
+            range: "[4, 1e8]",
+        });
+    }
+    let coefficients =
+        |ix: usize, iy: usize, c: &mut [f64]| fam.coefficients_into(x.value(ix), y.value(iy), c);
+    let (stable, radius) = grid(x.n, y.n, fam.degree(), kind, progress, coefficients);
+    Ok(WallMap {
+        x,
+        y,
+        stable,
+        radius,
+    })
+}
+
+/// Stable flags (and spectral radii) over an nx × ny grid whose coefficients `coefficients`
+/// writes, in parallel over rows.
+fn grid(
+    nx: usize,
+    ny: usize,
+    deg: usize,
+    kind: MapKind,
+    progress: &(dyn Fn(usize) + Sync),
+    coefficients: impl Fn(usize, usize, &mut [f64]) + Sync,
+) -> (Vec<bool>, Option<Vec<f64>>) {
     let done = std::sync::atomic::AtomicUsize::new(0);
     let rows: Vec<(Vec<bool>, Vec<f64>)> = (0..ny)
         .into_par_iter()
@@ -222,20 +303,7 @@ pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sy
             let mut st = Vec::with_capacity(nx);
             let mut rad = Vec::new();
             for ix in 0..nx {
-                let p = spec.point(ix, iy);
-                match &fixed {
-                    Some(fam) => fam.coefficients_into(p.alpha, p.beta, &mut c),
-                    None => paper_coefficients(
-                        &crate::plant::DiscretePlant::from_params(PlantParams {
-                            gamma: p.gamma,
-                            delta: p.delta,
-                        }),
-                        p.d,
-                        p.alpha,
-                        p.beta,
-                        &mut c,
-                    ),
-                }
+                coefficients(ix, iy, &mut c);
                 match kind {
                     MapKind::Stability => st.push(schur_stable(&c)),
                     MapKind::SpectralRadius => {
@@ -256,9 +324,5 @@ pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sy
         stable.extend(s);
         radius.extend(r);
     }
-    Map {
-        spec: *spec,
-        stable,
-        radius: (kind == MapKind::SpectralRadius).then_some(radius),
-    }
+    (stable, (kind == MapKind::SpectralRadius).then_some(radius))
 }

@@ -292,7 +292,7 @@ impl EdgeIndex {
 /// Side of the verification grid: the region is checked against this many × this many
 /// direct Schur–Cohn tests (fewer for high degrees, where each test costs O(n²)).
 fn grid_side(fam: &AffineFamily) -> usize {
-    if fam.degree() <= 64 { 24 } else { 12 }
+    if fam.degree() <= 64 { 16 } else { 10 }
 }
 
 /// Checks the region against a grid of direct Schur–Cohn tests over the search window (and
@@ -1763,6 +1763,64 @@ fn polygon_alpha_max(fam: &AffineFamily, poly: &Polygon) -> (f64, f64) {
     let imax = (0..n)
         .max_by(|&i, &j| poly.vertices[i].alpha.total_cmp(&poly.vertices[j].alpha))
         .unwrap_or(0);
+    refine_vertex_max(fam, poly, imax)
+}
+
+/// The largest stable stiffness with the damping restricted to [b_lo, b_hi] (a device's
+/// usable damping, e.g. B ≥ 0), and the damping where it is reached: the region's maximum
+/// if it lies in the band, else the best of the arcs' maxima inside the band and the exact
+/// stable intervals on the band's edges. None when nothing in the band is stable.
+pub fn alpha_max_within(
+    fam: &AffineFamily,
+    region: &StableRegion,
+    b_lo: f64,
+    b_hi: f64,
+) -> Option<AlphaBeta> {
+    let inside = |b: f64| b >= b_lo && b <= b_hi;
+    if inside(region.beta_at_alpha_max) {
+        return Some(AlphaBeta {
+            alpha: region.alpha_max,
+            beta: region.beta_at_alpha_max,
+        });
+    }
+    let mut best: Option<AlphaBeta> = None;
+    let mut offer = |a: f64, b: f64| {
+        if a.is_finite() && best.is_none_or(|p| a > p.alpha) {
+            best = Some(AlphaBeta { alpha: a, beta: b });
+        }
+    };
+    for poly in &region.polygons {
+        let v = &poly.vertices;
+        let imax = (0..v.len())
+            .filter(|&i| inside(v[i].beta))
+            .max_by(|&i, &j| v[i].alpha.total_cmp(&v[j].alpha));
+        if let Some(i) = imax {
+            let (a, b) = refine_vertex_max(fam, poly, i);
+            if inside(b) {
+                offer(a, b);
+            } else {
+                offer(v[i].alpha, v[i].beta);
+            }
+        }
+    }
+    for b in [b_lo, b_hi].into_iter().filter(|b| b.is_finite()) {
+        let ivs = crate::boundary::stable_alpha_intervals(fam, b);
+        if let Some(top) = ivs
+            .iter()
+            .map(|iv| iv.hi)
+            .filter(|h| h.is_finite())
+            .reduce(f64::max)
+        {
+            offer(top, b);
+        }
+    }
+    best
+}
+
+/// The maximum of a near vertex i on its arc: where it lies inside a complex-pair arc,
+/// da/dθ = 0 solved by bisection on the analytic derivative.
+fn refine_vertex_max(fam: &AffineFamily, poly: &Polygon, imax: usize) -> (f64, f64) {
+    let n = poly.vertices.len();
     let mut cand = (poly.vertices[imax].alpha, poly.vertices[imax].beta);
     if poly.edges.iter().any(|e| e.start == imax) {
         return cand; // a corner

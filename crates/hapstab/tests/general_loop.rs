@@ -495,3 +495,103 @@ fn general_region_agrees_with_a_grid() {
         assert!(stable_seen > n * n / 40, "{name}: {stable_seen}");
     }
 }
+
+/// The largest stable K within a damping band: the region's maximum when it lies inside,
+/// otherwise the best of a dense scan of exact stable intervals over the band.
+#[test]
+fn stiffness_maximum_within_a_damping_band() {
+    use hapstab::boundary::stable_alpha_intervals;
+    use hapstab::region::{alpha_max_within, stable_region};
+    for (name, lp) in general_loops().into_iter().take(6) {
+        let fam = family(&lp);
+        let r = stable_region(&fam).unwrap();
+        // a band around the maximum returns it
+        let b = r.beta_at_alpha_max;
+        let p = alpha_max_within(&fam, &r, b - 0.01, b + 0.01).unwrap();
+        assert_eq!((p.alpha, p.beta), (r.alpha_max, b), "{name}");
+        // a band below the maximum: compare with a scan of exact intervals
+        let (lo, hi) = (b - 0.5 * b.abs().max(0.05), b - 0.1 * b.abs().max(0.05));
+        let Some(p) = alpha_max_within(&fam, &r, lo, hi) else {
+            continue;
+        };
+        assert!(p.beta >= lo && p.beta <= hi, "{name}: {p:?}");
+        let scan = (0..=400)
+            .map(|i| lo + (hi - lo) * i as f64 / 400.0)
+            .flat_map(|bb| stable_alpha_intervals(&fam, bb).into_iter().map(|iv| iv.hi))
+            .filter(|h| h.is_finite())
+            .fold(f64::NEG_INFINITY, f64::max);
+        let tol = 1e-9 * r.alpha_max.abs();
+        assert!(p.alpha >= scan - tol, "{name}: {} < scan {scan}", p.alpha);
+        // and it is attained: the exact interval at its damping reaches it
+        let top = stable_alpha_intervals(&fam, p.beta)
+            .iter()
+            .map(|iv| iv.hi)
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (top - p.alpha).abs() <= 1e-7 * r.alpha_max.abs(),
+            "{name}: {top} vs {}",
+            p.alpha
+        );
+    }
+}
+
+/// With a fractional delay the linear condition of eq. (22) still holds in the limit:
+/// K_max·(t_d + T/2)/(b + B) → 1 as (b + B)T/m → 0, for t_d ∈ {0.5, 1.3, 2.7}·T.
+#[test]
+fn fractional_delay_meets_the_linear_condition() {
+    use hapstab::boundary::stable_alpha_intervals;
+    let (m, t) = (1.0, 1e-3);
+    for td in [0.5, 1.3, 2.7] {
+        let mut last_gap = f64::INFINITY;
+        for damping in [1.0, 0.1, 0.01] {
+            // (b + B)T/m = damping·1e-3 with b = 0 and B = damping
+            let lp = Loop::new(
+                Plant::mass_spring_damper(Effective::new(m, 0.0, 0.0).unwrap()).unwrap(),
+                t,
+                Delay::from_time(td * t, t).unwrap(),
+                VelocityEstimator::Backward,
+            )
+            .unwrap();
+            let fam = family(&lp);
+            let (_, b) = fam.to_units(0.0, damping);
+            let top = stable_alpha_intervals(&fam, b)
+                .iter()
+                .map(|iv| iv.hi)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let (k_max, _) = fam.to_physical(top, b);
+            let ratio = k_max * (td * t + t / 2.0) / damping;
+            let gap = (ratio - 1.0).abs();
+            assert!(gap < last_gap, "t_d={td}T B={damping}: ratio {ratio}");
+            last_gap = gap;
+        }
+        assert!(last_gap < 1e-2, "t_d={td}T: {last_gap}");
+    }
+}
+
+/// The grid method over a general loop's wall agrees with its exact region away from the
+/// boundary.
+#[test]
+fn wall_map_agrees_with_the_region() {
+    use hapstab::boundary::AlphaBeta;
+    use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
+    for (name, lp) in general_loops().into_iter().skip(6) {
+        let fam = family(&lp);
+        let r = hapstab::region::stable_region(&fam).unwrap();
+        let x = AxisRange::new(Axis::Alpha, -0.2 * r.alpha_max, 1.2 * r.alpha_max, 120).unwrap();
+        let b = r.beta_at_alpha_max.abs().max(0.05);
+        let y = AxisRange::new(Axis::Beta, -2.0 * b, 3.0 * b, 100).unwrap();
+        let map = wall_map(&fam, x, y, MapKind::Stability, &|_| {}).unwrap();
+        let mut agree = 0;
+        for iy in 0..y.n {
+            for ix in 0..x.n {
+                let p = AlphaBeta {
+                    alpha: x.value(ix),
+                    beta: y.value(iy),
+                };
+                agree += (map.is_stable(ix, iy) == r.contains(p)) as usize;
+            }
+        }
+        // points exactly on a grid line of the boundary may differ: at most a thin band
+        assert!(agree >= x.n * y.n - x.n - y.n, "{name}: {agree}");
+    }
+}
