@@ -191,13 +191,24 @@ fn theta_samples(fam: &AffineFamily) -> usize {
     256 * (fam.degree() + 1)
 }
 
-/// Im(Q conj PK) with Q = P0 + b·PB at z = e^{iθ}: zero where a real a puts a root there.
+/// Im(Q conj PK) with Q = P0 + b·PB at z = e^{iθ}: zero where a real a puts a root there;
+/// and that a.
 fn crossing_function(fam: &AffineFamily, beta: f64, theta: f64) -> (f64, f64) {
-    let (p0, pk, pb) = fam.parts_at(Complex64::from_polar(1.0, theta));
+    let z = Complex64::from_polar(1.0, theta);
+    let zk = Complex64::from_polar(1.0, theta * fam.k as f64);
+    crossing_at(fam, beta, z, zk)
+}
+
+fn crossing_at(fam: &AffineFamily, beta: f64, z: Complex64, zk: Complex64) -> (f64, f64) {
+    let (p0, pk, pb) = fam.parts_with_power(z, zk);
     let qc = (p0 + pb * beta) * pk.conj();
     let nk = pk.norm_sqr();
     (qc.im, if nk > 0.0 { -qc.re / nk } else { f64::NAN })
 }
+
+/// Steps of the bracketing scan between exact re-evaluations of e^{iθ} and e^{ikθ}: the
+/// products drift by a few ulps per step, far below what a sign bracket needs.
+const RESYNC: usize = 256;
 
 /// All a at which, for fixed b, p(z) has a root on the unit circle (D-decomposition along
 /// the stiffness, Section V): the z = ±1 lines and a = −Q/PK where Im(Q conj PK) = 0.
@@ -210,15 +221,27 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
     let f = |t: f64| crossing_function(fam, beta, t).0;
     let m = theta_samples(fam);
     let h = std::f64::consts::PI / m as f64;
+    let (w, wk) = (
+        Complex64::from_polar(1.0, h),
+        Complex64::from_polar(1.0, h * fam.k as f64),
+    );
     let mut prev_t = 1e-9 * h;
     let mut prev = f(prev_t);
+    let (mut z, mut zk) = (Complex64::new(1.0, 0.0), Complex64::new(1.0, 0.0));
     for i in 1..=m {
         let t = if i == m {
             std::f64::consts::PI * (1.0 - 1e-12)
         } else {
             i as f64 * h
         };
-        let v = f(t);
+        if i % RESYNC == 0 || i == m {
+            z = Complex64::from_polar(1.0, t);
+            zk = Complex64::from_polar(1.0, t * fam.k as f64);
+        } else {
+            z *= w;
+            zk *= wk;
+        }
+        let v = crossing_at(fam, beta, z, zk).0;
         if v == 0.0 || (v > 0.0) != (prev > 0.0) {
             let tr = if v == 0.0 { t } else { bisect(prev_t, t, f) };
             let a = crossing_function(fam, beta, tr).1;

@@ -141,7 +141,17 @@ impl AffineFamily {
 
     /// (P0(z), PK(z), PB(z)) at a complex point; z^k by repeated squaring.
     pub fn parts_at(&self, z: Complex64) -> (Complex64, Complex64, Complex64) {
-        let p0 = z.powu(self.k as u32) * poly::eval(&self.p0_core, z);
+        self.parts_with_power(z, z.powu(self.k as u32))
+    }
+
+    /// As [`AffineFamily::parts_at`] with z^k supplied by the caller (who may step it along
+    /// the unit circle).
+    pub fn parts_with_power(
+        &self,
+        z: Complex64,
+        zk: Complex64,
+    ) -> (Complex64, Complex64, Complex64) {
+        let p0 = zk * poly::eval(&self.p0_core, z);
         (p0, poly::eval(&self.pk, z), poly::eval(&self.pb, z))
     }
 

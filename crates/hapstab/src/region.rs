@@ -349,18 +349,26 @@ fn grid_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF, m: usize) -
     out
 }
 
-/// Number of constant-damping slices of a thorough check.
-const SLICES: usize = 48;
+/// Number of constant-damping slices of a thorough check: each costs O(degree²) (a θ scan
+/// of 256 samples per degree), so fewer for long delays.
+fn slices(fam: &AffineFamily) -> usize {
+    match fam.degree() {
+        0..=64 => 48,
+        65..=300 => 16,
+        _ => 6,
+    }
+}
 
 /// On slices of constant damping across the box, the exact stable intervals
 /// ([`crate::boundary::stable_alpha_intervals`]) against the region: each interval's
 /// midpoint must be inside, the midpoints of the gaps outside.
 fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P, bool)> {
     let (x0, x1, y0, y1) = wbox;
-    (0..SLICES)
+    let n = slices(fam);
+    (0..n)
         .into_par_iter()
         .flat_map_iter(|j| {
-            let b = y0 + (y1 - y0) * (j as f64 + 0.5 + GRID_JITTER) / SLICES as f64;
+            let b = y0 + (y1 - y0) * (j as f64 + 0.5 + GRID_JITTER) / n as f64;
             let ivs = crate::boundary::stable_alpha_intervals(fam, b);
             let mut out = Vec::new();
             let mut prev_hi = x0;
@@ -667,6 +675,9 @@ impl Bounds {
                     .into(),
             });
         }
+        // Only the half-planes that carry an edge of the polygon bound it (and the z = ±1
+        // lines, kept for their crossings): point tests then cost O(edges), not O(degree).
+        let halfplanes = active_halfplanes(&polygon, &halfplanes);
         Ok(Self {
             halfplanes,
             polygon,
@@ -680,6 +691,20 @@ impl Bounds {
             .map(|h| h.value(p))
             .fold(f64::NEG_INFINITY, f64::max)
     }
+}
+
+/// The half-planes carrying an edge of a convex polygon, plus the root lines among `all`.
+fn active_halfplanes(polygon: &Convex, all: &[HalfPlane]) -> Vec<HalfPlane> {
+    let mut out: Vec<HalfPlane> = all.iter().filter(|h| h.line.is_some()).copied().collect();
+    for (_, h) in polygon {
+        let known = out
+            .iter()
+            .any(|o| o.n == h.n && o.c == h.c && o.kind == h.kind);
+        if !known {
+            out.push(*h);
+        }
+    }
+    out
 }
 
 /// Relative widening of the coefficient slabs (see [`coefficient_slabs`]).
@@ -963,17 +988,11 @@ fn search_window(bounds: &Bounds, coarse: &[(f64, P)]) -> Option<Window> {
     let size = (x1 - x0).max(y1 - y0).max(1e-12 * wsize).max(1e-300);
     let margin = 0.05 * size;
     let boxed = box_polygon(x0 - margin, x1 + margin, y0 - margin, y1 + margin);
-    let mut halfplanes: Vec<HalfPlane> = bounds.halfplanes.clone();
-    halfplanes.extend(box_halfplanes(
-        x0 - margin,
-        x1 + margin,
-        y0 - margin,
-        y1 + margin,
-    ));
     let mut polygon = boxed;
     for h in &bounds.halfplanes {
         polygon = clip(&polygon, h);
     }
+    let halfplanes = active_halfplanes(&polygon, &bounds.halfplanes);
     (polygon.len() >= 3).then_some(Window {
         polygon,
         halfplanes,
