@@ -46,6 +46,11 @@ use crate::stability::Verdict as LinearVerdict;
 pub const JUDGE_WINDOWS: usize = 8;
 /// Blocks the requested run is first divided into: 64 per judging window of the first check.
 const INITIAL_BLOCKS: usize = 512;
+/// Shortest block in samples, so that a block's velocity range means something.
+const MIN_BLOCK_LEN: usize = 4;
+/// Blocks merged to measure the run's peak envelope (the reference of [`DECAY_FLOOR`]):
+/// a group spans 1/64 of the first check, long enough to hold a swing of the motion.
+const PEAK_GROUP: usize = 8;
 /// Most blocks a log keeps; when full, neighbours merge (the block length doubles), so a log
 /// takes about 100 kB whatever the run length.
 pub const MAX_BLOCKS: usize = 1024;
@@ -71,6 +76,11 @@ pub const RATE_NOISE: f64 = 0.25;
 /// Motion below this fraction of its peak envelope has decayed: nine orders of magnitude
 /// below the peak, far below any encoder step or friction-limited motion of the same run.
 pub const DECAY_FLOOR: f64 = 1e-9;
+/// A decayed run's growth is fitted below this fraction of its peak envelope: the first two
+/// decades after the peak hold the transient of the faster modes.
+const DECAY_FIT_TOP: f64 = 1e-2;
+/// Fewest blocks for that fit (two halves of two points).
+const MIN_DECAY_POINTS: usize = 4;
 /// Hysteresis of the velocity crossings, as a fraction of the recent envelope: ignores
 /// ripple on a slow swing while counting every cycle of a settled oscillation.
 const HYSTERESIS: f64 = 0.1;
@@ -312,7 +322,7 @@ impl RunLog {
     /// An empty log for a run planned to last `planned` samples (it may run longer).
     pub fn new(planned: usize) -> Self {
         Self {
-            block_len: planned.div_ceil(INITIAL_BLOCKS).max(1),
+            block_len: planned.div_ceil(INITIAL_BLOCKS).max(MIN_BLOCK_LEN),
             blocks: Vec::with_capacity(MAX_BLOCKS),
             current: Block::empty(0),
             samples: 0,
@@ -482,7 +492,10 @@ impl Tail {
             to,
             windows,
             whole: Block::merge_all(&tail),
-            peak: blocks.iter().map(Block::envelope).fold(0.0, f64::max),
+            peak: blocks
+                .chunks(PEAK_GROUP)
+                .map(|g| Block::merge_all(g).envelope())
+                .fold(0.0, f64::max),
         })
     }
 
@@ -521,10 +534,14 @@ struct Fit {
 }
 
 impl Fit {
-    /// Fits every window; None if any window is at or below the floor.
+    /// Fits every window; None if the envelope of some window is zero (the motion stopped
+    /// there) or not finite.
     fn of(tail: &Tail) -> Option<Fit> {
-        let floor = tail.floor();
-        if tail.windows.iter().any(|w| !(w.envelope() > floor)) {
+        if tail
+            .windows
+            .iter()
+            .any(|w| !(w.envelope() > 0.0 && w.envelope().is_finite()))
+        {
             return None;
         }
         let pts: Vec<(f64, f64)> = tail
@@ -574,7 +591,7 @@ fn trend(tail: &Tail, fit: Option<Fit>) -> Trend {
         return Trend::Decayed;
     }
     let Some(fit) = fit else {
-        return Trend::Unsettled("the envelope rose again from below 1e-9 of its peak");
+        return Trend::Unsettled("the motion stopped and started again within the judged window");
     };
     let change = fit.rate * tail.span();
     let steady = fit.steady(tail.span());
@@ -796,23 +813,22 @@ fn blow_up_growth(blocks: &[Block]) -> Option<f64> {
     (dk > 0.0 && g.is_finite() && g > 1.0).then_some(g)
 }
 
-/// Decay per sample from the peak block down to the floor (for runs that decayed before or
-/// within the judged window).
-fn decay_growth(blocks: &[Block], floor: f64) -> Option<f64> {
-    let peak = blocks
+/// Decay per sample of a run that decayed below the floor: the slope of the log-envelope of
+/// the blocks after the peak, between [`DECAY_FIT_TOP`] and [`DECAY_FLOOR`] of it.
+fn decay_growth(blocks: &[Block], peak: f64) -> Option<f64> {
+    let start = blocks
         .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.envelope().total_cmp(&b.1.envelope()))?
-        .0;
-    let pts: Vec<(f64, f64)> = blocks[peak..]
+        .position(|b| b.envelope() >= DECAY_FIT_TOP * peak)?;
+    let pts: Vec<(f64, f64)> = blocks[start..]
         .iter()
-        .take_while(|b| b.envelope() > floor)
+        .skip_while(|b| b.envelope() > DECAY_FIT_TOP * peak)
+        .take_while(|b| b.envelope() > DECAY_FLOOR * peak)
         .map(|b| (b.centre(), b.envelope().ln()))
         .collect();
-    if pts.len() < 3 {
+    if pts.len() < MIN_DECAY_POINTS {
         return None;
     }
-    slope(&pts).map(f64::exp)
+    slope(&pts).map(f64::exp).filter(|g| *g < 1.0)
 }
 
 fn measured_growth(
@@ -822,12 +838,12 @@ fn measured_growth(
     blocks: &[Block],
     blown_up: bool,
 ) -> Option<f64> {
+    let decayed = tail.is_some_and(|t| t.windows[JUDGE_WINDOWS - 1].envelope() <= t.floor());
     match outcome {
         Outcome::LimitCycle | Outcome::Separated => None,
         _ if blown_up => blow_up_growth(blocks),
-        _ => fit
-            .map(|f| f.rate.exp())
-            .or_else(|| tail.and_then(|t| decay_growth(blocks, t.floor()))),
+        _ if decayed => tail.and_then(|t| decay_growth(blocks, t.peak)),
+        _ => fit.map(|f| f.rate.exp()),
     }
 }
 
