@@ -117,9 +117,9 @@ fn run_length(
 ) -> Result<Option<usize>> {
     let ((sname, secs), (cname, n)) = (seconds, count);
     Ok(match (secs, n) {
-        (Some(_), _) if !physical => bail!(
-            "normalized mode counts time in samples (T = 1): use {cname} instead of {sname}"
-        ),
+        (Some(_), _) if !physical => {
+            bail!("normalized mode counts time in samples (T = 1): use {cname} instead of {sname}")
+        }
         (Some(s), _) => {
             if !s.is_finite() || s <= 0.0 {
                 bail!("{sname} must be a positive number of seconds (got {s})");
@@ -720,7 +720,11 @@ fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
         sig(n.delta, 8),
         n.d,
         if units.physical {
-            format!(" (m = {} kg, T = {})", sig(o.mass, 6), eng(o.period, "s", 6))
+            format!(
+                " (m = {} kg, T = {})",
+                sig(o.mass, 6),
+                eng(o.period, "s", 6)
+            )
         } else {
             " (normalized: time in samples, forces as T²F/m)".to_string()
         }
@@ -842,7 +846,7 @@ fn cycle_explanation(r: &RunResult, s: &RunSettings) -> String {
 fn contact_text(r: &RunResult) -> String {
     let c = &r.verdict.contact;
     format!(
-        "{} contacts and {} separations ({} in the judged window, in contact {} % of it); {} at the end",
+        "contacts {}, separations {} ({} in the judged window, in contact {} % of it); {} at the end",
         c.contacts,
         c.separations,
         c.judged_separations,
@@ -861,9 +865,10 @@ fn hint_text(r: &RunResult, s: &RunSettings, units: Units, period: f64) -> Optio
         Outcome::Separated if s.human_force <= 0.0 => Some(
             "nothing pushes the device into the wall: give --push F to keep it in contact".into(),
         ),
-        Outcome::Separated => {
-            Some("the push does not hold the device on the wall; a larger --push keeps it in contact".into())
-        }
+        Outcome::Separated => Some(
+            "the push does not hold the device on the wall; a larger --push keeps it in contact"
+                .into(),
+        ),
         Outcome::Undecided if r.samples >= r.max_samples => Some(format!(
             "simulate longer with --max-duration{} (the horizon is now {})",
             if units.physical { "" } else { "-samples" },
@@ -1358,7 +1363,8 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
     for r in &o.points {
         let p = &r.point;
         let note = if let Some(i) = p.inconclusive.filter(|i| {
-            p.alpha_unstable.is_none_or(|u| i.alpha < u) && p.alpha_simulated.is_none_or(|s| i.alpha > s)
+            p.alpha_unstable.is_none_or(|u| i.alpha < u)
+                && p.alpha_simulated.is_none_or(|s| i.alpha > s)
         }) {
             let what = match i.outcome {
                 Outcome::Separated => "left the wall",
