@@ -773,6 +773,11 @@ fn run_text(o: &SimulateOut, units: Units) -> String {
     );
     if r.blown_up {
         t += " (stopped: the state blew up)";
+    } else if r.verdict.outcome == Outcome::Undecided && r.samples > r.requested_samples {
+        t += &format!(
+            "; extended from {} samples to the horizon without settling",
+            r.requested_samples
+        );
     } else if r.samples > r.requested_samples {
         t += &format!(
             "; extended from {} samples until it settled (horizon {} samples)",
@@ -836,10 +841,18 @@ fn cycle_explanation(r: &RunResult, s: &RunSettings) -> String {
         limits.push("saturation");
     }
     match (bouncing, unstable) {
-        (true, true) => "in contact the oscillation grows until the device leaves the wall; contact is lost and regained every cycle".into(),
-        (true, false) => "contact is lost and regained every cycle".into(),
-        (false, true) => format!("the growth of the unstable loop is limited by {}", limits.join(" and ")),
-        (false, false) => format!("the linear loop is stable; {} sustains the cycle", limits.join(" and ")),
+        (true, true) => "in contact the oscillation grows until the device leaves the wall".into(),
+        (true, false) => {
+            "the contact itself is stable; the device bounces off the wall and returns".into()
+        }
+        (false, true) => format!(
+            "the growth of the unstable loop is limited by {}",
+            limits.join(" and ")
+        ),
+        (false, false) => format!(
+            "the linear loop is stable; {} sustains the cycle",
+            limits.join(" and ")
+        ),
     }
 }
 
@@ -869,6 +882,9 @@ fn hint_text(r: &RunResult, s: &RunSettings, units: Units, period: f64) -> Optio
             "the push does not hold the device on the wall; a larger --push keeps it in contact"
                 .into(),
         ),
+        Outcome::Undecided if v.linear_window && v.linear_verdict == Some(Verdict::Marginal) => {
+            Some("the loop is marginal (spectral radius 1): a longer run will not settle it".into())
+        }
         Outcome::Undecided if r.samples >= r.max_samples => Some(format!(
             "simulate longer with --max-duration{} (the horizon is now {})",
             if units.physical { "" } else { "-samples" },

@@ -27,7 +27,7 @@ pub const MIN_REL_TOLERANCE: f64 = 1e-6;
 /// Most bisection steps per β: more than [`MIN_REL_TOLERANCE`] needs from any bracket.
 pub const MAX_BISECTION_STEPS: usize = 64;
 
-/// An empirical stability-boundary search (issue 6, item 4): for each β the largest α whose
+/// An empirical stability-boundary search: for each β the largest α whose
 /// simulated run is stable, with everything else taken from a template run.
 #[derive(Debug, Clone)]
 pub struct BoundarySearch {
@@ -140,7 +140,13 @@ impl Scan {
 
 /// Bisects between a stable `lo` and a non-stable `hi` down to the relative tolerance
 /// (at most [`MAX_BISECTION_STEPS`] steps); returns the final stable end and the runs made.
-fn bisect(search: &BoundarySearch, beta: f64, mut lo: f64, mut hi: f64, scan: &mut Scan) -> Result<(f64, usize)> {
+fn bisect(
+    search: &BoundarySearch,
+    beta: f64,
+    mut lo: f64,
+    mut hi: f64,
+    scan: &mut Scan,
+) -> Result<(f64, usize)> {
     let mut runs = 0;
     while hi - lo > search.rel_tolerance * hi && runs < MAX_BISECTION_STEPS {
         let mid = 0.5 * (lo + hi);
@@ -182,7 +188,11 @@ fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
     };
     let first_bad = classes.iter().position(|c| *c != RunClass::Stable);
     let mut runs = g;
-    for (&a, &c) in grid.iter().zip(&classes).take(first_bad.map_or(g, |i| i + 1)) {
+    for (&a, &c) in grid
+        .iter()
+        .zip(&classes)
+        .take(first_bad.map_or(g, |i| i + 1))
+    {
         scan.note(a, c);
     }
     let alpha_simulated = match first_bad {

@@ -81,6 +81,8 @@ pub const DECAY_FLOOR: f64 = 1e-9;
 const DECAY_FIT_TOP: f64 = 1e-2;
 /// Fewest blocks for that fit (two halves of two points).
 const MIN_DECAY_POINTS: usize = 4;
+/// The contact state before the first sample.
+const NO_SAMPLE: u8 = 2;
 /// Hysteresis of the velocity crossings, as a fraction of the recent envelope: ignores
 /// ripple on a slow swing while counting every cycle of a settled oscillation.
 const HYSTERESIS: f64 = 0.1;
@@ -310,7 +312,8 @@ pub struct RunLog {
     blocks: Vec<Block>,
     current: Block,
     samples: usize,
-    previous_contact: Option<bool>,
+    /// Contact on the previous sample: 0 or 1, [`NO_SAMPLE`] before the first sample.
+    previous_contact: u8,
     below: bool,
     hysteresis: f64,
     contacts: usize,
@@ -326,7 +329,7 @@ impl RunLog {
             blocks: Vec::with_capacity(MAX_BLOCKS),
             current: Block::empty(0),
             samples: 0,
-            previous_contact: None,
+            previous_contact: NO_SAMPLE,
             below: false,
             hysteresis: 0.0,
             contacts: 0,
@@ -345,6 +348,18 @@ impl RunLog {
     pub fn push(&mut self, s: SampleFacts) {
         let k = self.samples;
         self.samples += 1;
+        let crossing = if s.velocity < -self.hysteresis {
+            self.below = true;
+            false
+        } else if s.velocity > self.hysteresis && self.below {
+            self.below = false;
+            true
+        } else {
+            false
+        };
+        let contact = u8::from(s.in_contact);
+        let event = contact != self.previous_contact && self.previous_contact != NO_SAMPLE;
+        self.previous_contact = contact;
         let b = &mut self.current;
         if b.len == 0 {
             b.first_position = s.position;
@@ -355,39 +370,41 @@ impl RunLog {
         b.last_position = s.position;
         b.contact_samples += usize::from(s.in_contact);
         b.linear_samples += usize::from(s.linear);
-        if self.previous_contact.is_some_and(|p| p != s.in_contact) {
-            if s.in_contact {
-                self.contacts += 1;
-                b.contacts.add(k);
-            } else {
-                self.separations += 1;
-                b.separations += 1;
-                self.last_separation = Some(k);
-            }
-        }
-        self.previous_contact = Some(s.in_contact);
-        if s.velocity < -self.hysteresis {
-            self.below = true;
-        } else if s.velocity > self.hysteresis && self.below {
-            self.below = false;
+        if crossing {
             b.crossings.add(k);
         }
-        if b.len == self.block_len {
+        let full = b.len == self.block_len;
+        if event {
+            self.contact_event(k, s.in_contact);
+        }
+        if full {
             self.close_block();
         }
     }
 
+    #[cold]
+    #[inline(never)]
+    fn contact_event(&mut self, k: usize, in_contact: bool) {
+        let b = &mut self.current;
+        if in_contact {
+            self.contacts += 1;
+            b.contacts.add(k);
+        } else {
+            self.separations += 1;
+            b.separations += 1;
+            self.last_separation = Some(k);
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
     fn close_block(&mut self) {
         self.blocks.push(self.current);
         self.current = Block::empty(self.samples);
         let recent = &self.blocks[self.blocks.len().saturating_sub(HYSTERESIS_BLOCKS)..];
         self.hysteresis = HYSTERESIS * recent.iter().map(Block::envelope).fold(0.0, f64::max);
         if self.blocks.len() == MAX_BLOCKS {
-            self.blocks = self
-                .blocks
-                .chunks(2)
-                .map(|pair| Block::merge_all(pair))
-                .collect();
+            self.blocks = self.blocks.chunks(2).map(Block::merge_all).collect();
             self.block_len *= 2;
         }
     }
@@ -566,7 +583,9 @@ impl Fit {
 
 /// Largest over smallest, minus one (0 for equal values; infinite if one is zero).
 fn spread(values: impl Iterator<Item = f64>) -> f64 {
-    let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
     if hi == 0.0 { 0.0 } else { hi / lo - 1.0 }
 }
 
@@ -606,7 +625,9 @@ fn trend(tail: &Tail, fit: Option<Fit>) -> Trend {
     } else if steady {
         Trend::Unsettled("the envelope changes too slowly to judge over this window")
     } else {
-        Trend::Unsettled("the envelope's growth rate differs between the halves of the judged window")
+        Trend::Unsettled(
+            "the envelope's growth rate differs between the halves of the judged window",
+        )
     }
 }
 
@@ -678,9 +699,9 @@ fn judge_linear(tail: &Tail, fit: Option<Fit>, facts: &LoopFacts, last_chance: b
     let expected = facts.linear.map(|r| r.verdict);
     match (t, expected) {
         (Trend::Decayed | Trend::Decaying, Some(LinearVerdict::Unstable))
-        | (Trend::Growing, Some(LinearVerdict::Stable | LinearVerdict::Marginal)) => {
-            facts.linear.map_or_else(|| open(""), |r| disagreement(t, &r))
-        }
+        | (Trend::Growing, Some(LinearVerdict::Stable | LinearVerdict::Marginal)) => facts
+            .linear
+            .map_or_else(|| open(""), |r| disagreement(t, &r)),
         (Trend::Decayed, _) => settled(
             Outcome::Decaying,
             "the motion decayed below 1e-9 of its peak while the loop was linear",
@@ -774,7 +795,9 @@ fn limit_cycle(tail: &Tail, facts: &LoopFacts) -> Result<LimitCycle, &'static st
         .iter()
         .any(|w| events(w).count < MIN_CYCLES_PER_WINDOW + 1)
     {
-        return Err("fewer than 2 cycles per judging window: the oscillation is too slow or irregular");
+        return Err(
+            "fewer than 2 cycles per judging window: the oscillation is too slow or irregular",
+        );
     }
     let periods = tail.windows.iter().filter_map(|w| events(w).period());
     if spread(periods) > PERIOD_SPREAD {
@@ -898,7 +921,7 @@ pub fn judge(log: &RunLog, facts: &LoopFacts, blown_up: bool, last_chance: bool)
         contact: ContactSummary {
             contacts: log.contacts,
             separations: log.separations,
-            in_contact_at_end: log.previous_contact.unwrap_or(false),
+            in_contact_at_end: log.previous_contact == 1,
             last_separation_sample: log.last_separation,
             judged_contact_fraction: judged.contact_samples as f64 / judged.len.max(1) as f64,
             judged_separations: judged.separations,
