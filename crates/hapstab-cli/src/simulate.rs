@@ -971,6 +971,7 @@ struct SimboundaryOut {
     human_force: f64,
     initial: Initial,
     samples: usize,
+    max_samples: usize,
     stable_when: StableWhen,
     grid: usize,
     rel_tol: f64,
@@ -1115,6 +1116,7 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         human_force: settings.human_force,
         initial: settings.initial,
         samples: settings.samples,
+        max_samples: settings.max_samples,
         stable_when,
         grid: a.grid,
         rel_tol: a.rel_tol,
@@ -1150,14 +1152,14 @@ fn boundary_warnings(points: &[EmpiricalPoint], s: &RunSettings) -> Vec<String> 
             "the push does not hold the device on the wall: a larger --push keeps it in contact"
         };
         w.push(format!(
-            "at {separated} of {} β values the device left the wall (separated); separation is not stability, so the scan stopped there: {advice}",
+            "at {separated} of {} β values the device left the wall (separated); separation is not stability, so nothing beyond counts as stable: {advice}",
             points.len()
         ));
     }
     let undecided = count(Outcome::Undecided);
     if undecided > 0 {
         w.push(format!(
-            "at {undecided} of {} β values a run did not settle within the horizon, so the scan stopped there: simulate longer with --max-duration",
+            "at {undecided} of {} β values a run did not settle within the horizon (near the boundary the loop is nearly marginal), so nothing beyond counts as stable; --max-duration simulates longer",
             points.len()
         ));
     }
@@ -1348,13 +1350,16 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
     );
     println!("effects     {}", describe_effects(s, units.force()));
     println!(
-        "runs        {} samples each from x(0) = {} m; stable = {}",
+        "runs        {} samples each (extended up to {} until settled) from x(0) = {}; stable = {}",
         o.samples,
-        sig(o.initial.position, 6),
+        o.max_samples,
+        eng(o.initial.position, "m", 6),
         match o.stable_when {
             StableWhen::Decaying => "decaying".to_string(),
-            StableWhen::AmplitudeBelow(m) =>
-                format!("decaying or limit cycle below {} m", sig(m, 4)),
+            StableWhen::AmplitudeBelow(m) => format!(
+                "decaying or limit cycle below {} peak-to-peak",
+                eng(m, "m", 4)
+            ),
         }
     );
     println!(
@@ -1386,7 +1391,7 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
                 Outcome::Separated => "left the wall",
                 _ => "undecided",
             };
-            format!("{what} at α = {}: no verdict beyond", sig(i.alpha, 4))
+            format!("{what} at α = {}: no verdict beyond", sig(i.alpha, 6))
         } else if p.alpha_simulated.is_none() {
             format!("unstable already at α = {}", f(p.alpha_unstable, 4))
         } else if p.censored {

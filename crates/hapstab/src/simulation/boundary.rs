@@ -71,8 +71,8 @@ pub struct EmpiricalPoint {
     pub alpha_simulated: Option<f64>,
     /// Smallest α found unstable (None if no run was unstable).
     pub alpha_unstable: Option<f64>,
-    /// Smallest α whose run was inconclusive (separated or undecided), if any. Such a run
-    /// ends the scan there: it is no evidence of stability.
+    /// Smallest α whose run was inconclusive (separated or undecided), if any: no evidence
+    /// of stability, so the scan does not go beyond the first one.
     pub inconclusive: Option<InconclusiveRun>,
     /// True if every α up to the scan end was stable (the boundary lies beyond).
     pub censored: bool,
@@ -198,12 +198,11 @@ fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
     let alpha_simulated = match first_bad {
         None => Some(alpha_max),
         Some(0) => None,
-        Some(i) if classes[i] == RunClass::Unstable => {
+        Some(i) => {
             let (lo, n) = bisect(search, beta, grid[i - 1], grid[i], &mut scan)?;
             runs += n;
             Some(lo)
         }
-        Some(i) => Some(grid[i - 1]),
     };
     Ok(EmpiricalPoint {
         beta,
@@ -219,11 +218,12 @@ fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
 
 /// The empirical stability boundary of a nonlinear setting (compare Fig. 4–6 and
 /// Remark 1): for each β a coarse scan of α over (0, alpha_max] finds the first run that is
-/// not stable; if it is unstable, bisection between it and the last stable grid point finds
-/// the transition; if it is inconclusive (separated from a unilateral wall, or undecided),
-/// the scan ends there, since such a run is no evidence either way. β values and grid runs
-/// are simulated in parallel (rayon). Assumes the stable set along α starts near 0; the
-/// point reports the first transition.
+/// not stable, and bisection between it and the last stable grid point finds the transition.
+/// A run that is not stable is unstable (a growing run or a limit cycle not accepted by
+/// `stable_when`) or inconclusive (separated from a unilateral wall, or undecided): no
+/// evidence either way, so nothing beyond it counts as stable, and the point reports it. β
+/// values and grid runs are simulated in parallel (rayon). Assumes the stable set along α
+/// starts near 0; the point reports the first transition.
 pub fn empirical_boundary(search: &BoundarySearch) -> Result<Vec<EmpiricalPoint>> {
     search.template.validate()?;
     if search.grid < 2 {
