@@ -35,3 +35,41 @@ fn trim(s: &str) -> &str {
         s
     }
 }
+
+/// Engineering notation with an SI prefix: `eng(2.5e-5, "m", 4)` is "25 µm". The mantissa lies
+/// in [1, 1000) from pico to giga; outside that range (and for 0) the number stays unprefixed.
+pub fn eng(x: f64, unit: &str, digits: usize) -> String {
+    const PREFIXES: [(i32, &str); 7] = [
+        (-12, "p"),
+        (-9, "n"),
+        (-6, "µ"),
+        (-3, "m"),
+        (0, ""),
+        (3, "k"),
+        (6, "M"),
+    ];
+    let e3 = if x == 0.0 || !x.is_finite() {
+        0
+    } else {
+        (x.abs().log10() / 3.0).floor() as i32 * 3
+    };
+    match PREFIXES.iter().find(|(e, _)| *e == e3) {
+        Some((e, p)) => format!("{} {p}{unit}", sig(x / 10f64.powi(*e), digits)),
+        None => format!("{} {unit}", sig(x, digits)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::eng;
+
+    #[test]
+    fn engineering_notation_picks_the_prefix() {
+        assert_eq!(eng(2.5e-5, "m", 4), "25 µm");
+        assert_eq!(eng(0.0013832, "m", 4), "1.383 mm");
+        assert_eq!(eng(8.88, "Hz", 3), "8.88 Hz");
+        assert_eq!(eng(20_000.0, "N/m", 3), "20 kN/m");
+        assert_eq!(eng(0.0, "s", 3), "0 s");
+        assert_eq!(eng(1e-20, "m", 3), "1e-20 m");
+    }
+}

@@ -1,5 +1,5 @@
-//! `hapstab simulate` and `hapstab simboundary` (issue 6): the sampled-data loop of Fig. 3 in
-//! the time domain with the nonlinear effects the paper leaves to future work (Remark 1,
+//! `hapstab simulate` and `hapstab simboundary`: the sampled-data loop of Fig. 3 in the time
+//! domain with the nonlinear effects the paper leaves to future work (Remark 1,
 //! Section IX): unilateral wall, Coulomb/static friction, encoder quantization, actuator
 //! saturation. All simulation lives in `hapstab::simulation`; this module parses flags,
 //! writes the CSV trace and the plots, and formats the verdicts.
@@ -12,20 +12,20 @@ use clap::Args;
 use hapstab::boundary::AlphaBeta;
 use hapstab::region::stable_region;
 use hapstab::simulation::{
-    BoundarySearch, Config, Contact, Effects, EmpiricalPoint, Friction, HumanForce, Initial, Model,
-    Outcome, RunResult, StableWhen, Trace, empirical_boundary, samples_for_duration, simulate,
+    BoundarySearch, Config, Contact, DEFAULT_MAX_SAMPLES, Effects, EmpiricalPoint, Friction,
+    HumanForce, Initial, MAX_TRACE_ROWS, MIN_REL_TOLERANCE, Model, Outcome, RunResult, StableWhen,
+    Trace, empirical_boundary, samples_for_duration, simulate,
 };
-use hapstab::stability::Analysis;
-use hapstab::{Normalized, PolyFamily};
+use hapstab::{Normalized, PolyFamily, Verdict};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::model::{PlantArgs, PlantModel, WallArgs, resolve_point};
-use crate::output::{print_json, sig};
+use crate::output::{eng, print_json, sig};
 use crate::plot::{Figure, Grid, Legend, Marker, Saved, Series, palette};
 
-/// Longest run accepted (samples): 10⁹ samples take about a minute per core.
+/// Longest run and horizon accepted (samples): 10⁹ samples take 10–60 s per core.
 const MAX_SAMPLES: f64 = 1e9;
 /// Default run length: 10 s at the physical period, 10 000 samples in normalized mode.
 const DEFAULT_SAMPLES: usize = 10_000;
@@ -83,6 +83,19 @@ pub struct RunArgs {
     /// Run length in samples [default 10000].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub duration_samples: Option<f64>,
+    /// Horizon in seconds: a run whose second half has not settled is extended (doubling)
+    /// up to this length, then reported undecided [default: 10⁶ samples, or the run length
+    /// if longer].
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "S",
+        conflicts_with = "max_duration_samples"
+    )]
+    pub max_duration: Option<f64>,
+    /// Horizon in samples (see --max-duration) [default 1000000].
+    #[arg(long, allow_hyphen_values = true, value_name = "N")]
+    pub max_duration_samples: Option<f64>,
 }
 
 /// The resolved run settings (everything but the wall).
@@ -92,6 +105,44 @@ struct RunSettings {
     human_force: f64,
     initial: Initial,
     samples: usize,
+    max_samples: usize,
+}
+
+/// A run length from a seconds flag or a samples flag (None if neither is given).
+fn run_length(
+    physical: bool,
+    period: f64,
+    seconds: (&str, Option<f64>),
+    count: (&str, Option<f64>),
+) -> Result<Option<usize>> {
+    let ((sname, secs), (cname, n)) = (seconds, count);
+    Ok(match (secs, n) {
+        (Some(_), _) if !physical => {
+            bail!("normalized mode counts time in samples (T = 1): use {cname} instead of {sname}")
+        }
+        (Some(s), _) => {
+            if !s.is_finite() || s <= 0.0 {
+                bail!("{sname} must be a positive number of seconds (got {s})");
+            }
+            if s / period > MAX_SAMPLES {
+                bail!(
+                    "{sname} {s} s is {} samples; at most {MAX_SAMPLES:e} are allowed",
+                    sig(s / period, 4)
+                );
+            }
+            Some(samples_for_duration(s, period)?)
+        }
+        (None, Some(n)) => {
+            if !n.is_finite() || n < 2.0 || n.fract() != 0.0 {
+                bail!("{cname} must be a whole number >= 2 (got {n})");
+            }
+            if n > MAX_SAMPLES {
+                bail!("{cname} must be at most {MAX_SAMPLES:e} (got {n})");
+            }
+            Some(n as usize)
+        }
+        (None, None) => None,
+    })
 }
 
 impl RunArgs {
@@ -127,32 +178,24 @@ impl RunArgs {
             saturation: finite("--saturation", self.saturation)?,
         };
         effects.validate()?;
-        let samples = match (self.duration, self.duration_samples) {
-            (Some(_), _) if !physical => bail!(
-                "normalized mode counts time in samples (T = 1): use --duration-samples instead of --duration"
+        let samples = run_length(
+            physical,
+            period,
+            ("--duration", self.duration),
+            ("--duration-samples", self.duration_samples),
+        )?
+        .unwrap_or(DEFAULT_SAMPLES);
+        let max_samples = match run_length(
+            physical,
+            period,
+            ("--max-duration", self.max_duration),
+            ("--max-duration-samples", self.max_duration_samples),
+        )? {
+            Some(m) if m < samples => bail!(
+                "the horizon (--max-duration/--max-duration-samples) must be at least the run length of {samples} samples (got {m} samples)"
             ),
-            (Some(s), _) => {
-                if !s.is_finite() || s <= 0.0 {
-                    bail!("--duration must be a positive number of seconds (got {s})");
-                }
-                if s / period > MAX_SAMPLES {
-                    bail!(
-                        "--duration {s} s is {} samples; at most {MAX_SAMPLES:e} are allowed",
-                        sig(s / period, 4)
-                    );
-                }
-                samples_for_duration(s, period)?
-            }
-            (None, Some(n)) => {
-                if !n.is_finite() || n < 2.0 || n.fract() != 0.0 {
-                    bail!("--duration-samples must be a whole number >= 2 (got {n})");
-                }
-                if n > MAX_SAMPLES {
-                    bail!("--duration-samples must be at most {MAX_SAMPLES:e} (got {n})");
-                }
-                n as usize
-            }
-            (None, None) => DEFAULT_SAMPLES,
+            Some(m) => m,
+            None => samples.max(DEFAULT_MAX_SAMPLES),
         };
         Ok(RunSettings {
             effects,
@@ -163,12 +206,14 @@ impl RunArgs {
                 velocity: finite("--initial-velocity", self.initial_velocity)?.unwrap_or(0.0),
             },
             samples,
+            max_samples,
         })
     }
 
     fn config(&self, model: Model, physical: bool) -> Result<(Config, RunSettings)> {
         let s = self.resolve(physical, model.period)?;
         let mut cfg = Config::new(model, s.samples);
+        cfg.max_samples = s.max_samples;
         cfg.effects = s.effects;
         cfg.human = HumanForce::Constant(s.human_force);
         cfg.initial = s.initial;
@@ -238,9 +283,6 @@ impl Units {
     fn velocity(&self) -> &'static str {
         if self.physical { "m/s" } else { "m/sample" }
     }
-    fn frequency(&self) -> &'static str {
-        if self.physical { "Hz" } else { "cycles/sample" }
-    }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -257,13 +299,15 @@ pub struct SimulateArgs {
     wall: WallArgs,
     #[command(flatten)]
     run: RunArgs,
-    /// CSV trace with columns t, x, v, F (F: wall force, positive pushing out of the wall).
-    #[arg(long, value_name = "FILE", default_value = "simulate.csv")]
-    csv: PathBuf,
-    /// Plot of position and force over time: writes STEM.svg and STEM.png.
-    #[arg(long, value_name = "STEM", default_value = "simulate")]
-    plot: PathBuf,
-    /// Most CSV rows; longer runs record every n-th sample.
+    /// Write the trace as CSV with columns t, x, v, F (F: wall force, positive pushing out
+    /// of the wall).
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// Plot position and force over time, with the judged window: writes STEM.svg and
+    /// STEM.png.
+    #[arg(long, value_name = "STEM")]
+    plot: Option<PathBuf>,
+    /// Most trace rows (at most 2000000); longer runs record every n-th sample.
     #[arg(long, value_name = "N", default_value_t = 100_000)]
     max_rows: usize,
     /// Print one JSON object instead of text.
@@ -273,32 +317,26 @@ pub struct SimulateArgs {
 
 #[derive(Serialize)]
 struct Files {
-    csv: PathBuf,
-    svg: PathBuf,
-    png: PathBuf,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    csv: Option<PathBuf>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    svg: Option<PathBuf>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    png: Option<PathBuf>,
     rows: usize,
     record_every: usize,
 }
 
 #[derive(Serialize)]
-struct SimulateOut {
-    verdict: &'static str,
-    growth_per_sample: f64,
-    growth_method: hapstab::simulation::GrowthMethod,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    amplitude: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    frequency_hz: Option<f64>,
-    /// Spectral radius of p(z) from the linear analysis (Section V), for comparison.
-    spectral_radius: f64,
-    /// The linear analysis' verdict for the same (α, β, γ, δ, d).
-    linear_verdict: &'static str,
-    run_envelope_growth: Option<f64>,
-    samples: usize,
+struct SimulateOut<'a> {
+    /// The library's result: outcome, reason, evidence, run length.
+    #[serde(flatten)]
+    run: &'a RunResult,
+    /// Simulated time (s, or samples in normalized mode).
     duration: f64,
-    blown_up: bool,
-    final_position: f64,
-    final_velocity: f64,
+    /// The judged window in time units.
+    judged_from: f64,
+    judged_to: f64,
     units: &'static str,
     mass: f64,
     period: f64,
@@ -306,14 +344,51 @@ struct SimulateOut {
     effects: Effects,
     human_force: f64,
     initial: Initial,
-    files: Files,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    files: Option<Files>,
+}
+
+/// Bytes per kept trace row in memory (five f64 columns).
+const TRACE_ROW_BYTES: f64 = 40.0;
+
+/// Refuses an output path whose folder does not exist (nothing is created).
+fn check_output_path(flag: &str, path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        bail!(
+            "{flag} {}: the folder {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn check_simulate_args(a: &SimulateArgs) -> Result<()> {
+    if a.max_rows < 2 {
+        bail!("--max-rows must be at least 2 (got {})", a.max_rows);
+    }
+    if a.max_rows > MAX_TRACE_ROWS {
+        bail!(
+            "--max-rows {} would keep {} of trace in memory; at most {MAX_TRACE_ROWS} rows ({}) are allowed",
+            a.max_rows,
+            eng(a.max_rows as f64 * TRACE_ROW_BYTES, "B", 3),
+            eng(MAX_TRACE_ROWS as f64 * TRACE_ROW_BYTES, "B", 3)
+        );
+    }
+    if let Some(p) = &a.csv {
+        check_output_path("--csv", p)?;
+    }
+    if let Some(p) = &a.plot {
+        check_output_path("--plot", p)?;
+    }
+    Ok(())
 }
 
 /// Runs `hapstab simulate`.
 pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
-    if a.max_rows < 2 {
-        bail!("--max-rows must be at least 2 (got {})", a.max_rows);
-    }
+    check_simulate_args(a)?;
     let pm = resolve_point(&a.plant, &a.wall)?;
     let units = Units {
         physical: pm.physical.is_some(),
@@ -323,28 +398,20 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
         None => Model::unit(pm.normalized)?,
     };
     let (mut cfg, settings) = a.run.config(model, units.physical)?;
-    cfg.record_every = cfg.samples.div_ceil(a.max_rows - 1).max(1);
-    let analysis = Analysis::new(model.params)?;
+    let files_wanted = a.csv.is_some() || a.plot.is_some();
+    cfg.trace_rows = if files_wanted { a.max_rows } else { 0 };
     let mut result = simulate(&cfg)?;
     let trace = result.trace.take().unwrap_or_default();
-    let rows = write_trace_csv(&a.csv, &trace)?;
-    let saved = trace_plot(&trace, &result, &cfg, &settings, units)
-        .save(&a.plot)
-        .with_context(|| format!("plot {}", a.plot.display()))?;
+    let files = if files_wanted {
+        Some(write_files(a, &trace, &result, &cfg, &settings, units)?)
+    } else {
+        None
+    };
     let out = SimulateOut {
-        verdict: result.verdict.as_str(),
-        growth_per_sample: result.growth_per_sample,
-        growth_method: result.growth_method,
-        amplitude: result.amplitude,
-        frequency_hz: result.frequency_hz,
-        spectral_radius: analysis.spectral_radius,
-        linear_verdict: analysis.verdict.as_str(),
-        run_envelope_growth: result.run_envelope_growth,
-        samples: result.samples,
+        run: &result,
         duration: result.samples as f64 * model.period,
-        blown_up: result.blown_up,
-        final_position: result.final_position,
-        final_velocity: result.final_velocity,
+        judged_from: result.verdict.judged_from_sample as f64 * model.period,
+        judged_to: result.verdict.judged_to_sample as f64 * model.period,
         units: units.name(),
         mass: model.mass,
         period: model.period,
@@ -352,19 +419,42 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
         effects: settings.effects,
         human_force: settings.human_force,
         initial: settings.initial,
-        files: Files {
-            csv: a.csv.clone(),
-            svg: saved.svg.clone(),
-            png: saved.png.clone(),
-            rows,
-            record_every: cfg.record_every,
-        },
+        files,
     };
     if a.json {
         return print_json(&out);
     }
     print_simulate(&out, &settings, units);
     Ok(())
+}
+
+/// Writes the CSV and the plot that were asked for.
+fn write_files(
+    a: &SimulateArgs,
+    trace: &Trace,
+    result: &RunResult,
+    cfg: &Config,
+    settings: &RunSettings,
+    units: Units,
+) -> Result<Files> {
+    if let Some(csv) = &a.csv {
+        write_trace_csv(csv, trace)?;
+    }
+    let saved = match &a.plot {
+        Some(stem) => Some(
+            trace_plot(trace, result, cfg, settings, units)
+                .save(stem)
+                .with_context(|| format!("--plot {}", stem.display()))?,
+        ),
+        None => None,
+    };
+    Ok(Files {
+        csv: a.csv.clone(),
+        svg: saved.as_ref().map(|s| s.svg.clone()),
+        png: saved.map(|s| s.png),
+        rows: trace.time.len(),
+        record_every: result.trace_stride,
+    })
 }
 
 fn write_trace_csv(path: &Path, tr: &Trace) -> Result<usize> {
@@ -401,23 +491,52 @@ fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
     (f, format!("{p}{unit}"))
 }
 
+/// A frequency in Hz (physical) or cycles per sample (normalized).
+fn frequency(hz: f64, units: Units) -> String {
+    if units.physical {
+        eng(hz, "Hz", 4)
+    } else {
+        format!("{} cycles/sample", sig(hz, 4))
+    }
+}
+
+/// A time in s (physical) or a sample count (normalized).
+fn time_text(seconds: f64, units: Units) -> String {
+    if units.physical {
+        eng(seconds, "s", 4)
+    } else {
+        format!("{} samples", sig(seconds, 8))
+    }
+}
+
+/// The outcome with its key numbers, e.g. "limit cycle, bouncing: 1.383 mm peak-to-peak, 8.88 Hz".
+fn outcome_summary(r: &RunResult, units: Units) -> String {
+    let v = &r.verdict;
+    match (v.outcome, v.limit_cycle) {
+        (Outcome::LimitCycle, Some(lc)) => {
+            let counts = lc
+                .counts
+                .map(|c| format!(" ({} counts)", sig(c, 3)))
+                .unwrap_or_default();
+            format!(
+                "limit cycle{}: {} peak-to-peak{counts}, {}",
+                if lc.bouncing { ", bouncing" } else { "" },
+                eng(lc.peak_to_peak, "m", 4),
+                frequency(lc.frequency_hz, units)
+            )
+        }
+        (Outcome::Separated, _) => match v.contact.separations {
+            0 => "separated: never touched the wall".to_string(),
+            1 => "separated: left the wall after 1 bounce".to_string(),
+            n => format!("separated: left the wall after {n} bounces"),
+        },
+        (o, _) => o.as_str().replace('_', " "),
+    }
+}
+
 fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: Units) -> Grid {
     let p = cfg.model.params;
-    let verdict = match r.verdict {
-        Outcome::Decaying => "decaying".to_string(),
-        Outcome::Growing => "growing".to_string(),
-        Outcome::LimitCycle => match r.amplitude {
-            Some(a) => {
-                let (f, u) = scaled_unit(a, "m");
-                let freq = r
-                    .frequency_hz
-                    .map(|hz| format!(" at {} {}", sig(hz, 3), units.frequency()))
-                    .unwrap_or_default();
-                format!("limit cycle, amplitude {} {u}{freq}", sig(a * f, 3))
-            }
-            None => "limit cycle".to_string(),
-        },
-    };
+    let verdict = outcome_summary(r, units);
     let params = format!(
         "α = {}, β = {}, γ = {}, δ = {}, d = {}",
         sig(p.alpha, 4),
@@ -448,6 +567,27 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
         .y_label(format!("position x ({xunit})"))
         .x_range(0.0, t_end)
         .legend(Legend::UpperRight);
+    let (lo, hi) = tr
+        .position
+        .iter()
+        .chain([&xw])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let (j0, j1) = (
+        r.verdict.judged_from_sample as f64 * cfg.model.period,
+        r.verdict.judged_to_sample as f64 * cfg.model.period,
+    );
+    if hi > lo {
+        let (lo, hi) = (lo * xs, hi * xs);
+        pos.add(
+            Series::polygon([(j0, lo), (j1, lo), (j1, hi), (j0, hi)])
+                .color(palette::GREY)
+                .alpha(0.15)
+                .no_outline()
+                .label("judged window"),
+        );
+    }
     pos.add(
         Series::line(series(&tr.position, xs, 0.0))
             .color(palette::BLUE)
@@ -512,9 +652,11 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
     g.push(pos);
     g.push(force);
     // A limit cycle: zoom on its last periods.
-    if r.verdict == Outcome::LimitCycle && tr.time.len() > 16 {
+    if r.verdict.outcome == Outcome::LimitCycle && tr.time.len() > 16 {
         let span = r
-            .frequency_hz
+            .verdict
+            .limit_cycle
+            .map(|c| c.frequency_hz)
             .filter(|f| *f > 0.0)
             .map_or(t_end / 8.0, |f| 8.0 / f)
             .min(t_end / 4.0);
@@ -567,6 +709,8 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
 }
 
 fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
+    let r = o.run;
+    let v = &r.verdict;
     let n = &o.normalized;
     println!(
         "model       α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
@@ -577,60 +721,177 @@ fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
         n.d,
         if units.physical {
             format!(
-                " (m = {} kg, T = {} ms)",
+                " (m = {} kg, T = {})",
                 sig(o.mass, 6),
-                sig(o.period * 1e3, 6)
+                eng(o.period, "s", 6)
             )
         } else {
             " (normalized: time in samples, forces as T²F/m)".to_string()
         }
     );
     println!("effects     {}", describe_effects(s, units.force()));
+    println!("run         {}", run_text(o, units));
+    let outcome = outcome_summary(r, units);
+    match outcome.split_once(':') {
+        Some((head, tail)) => println!("verdict     {}:{tail}", head.to_uppercase()),
+        None => println!("verdict     {}", outcome.to_uppercase()),
+    }
+    println!("why         {}", v.reason);
     println!(
-        "run         {} samples ({} {}) from x(0) = {} m, ẋ(0) = {} {}{}",
-        o.samples,
-        sig(o.duration, 6),
-        units.time(),
-        sig(o.initial.position, 6),
-        sig(o.initial.velocity, 6),
-        units.velocity(),
-        if o.blown_up {
-            " (stopped: the state blew up)"
-        } else {
-            ""
+        "judged      t = {} … {} (the second half of the run)",
+        time_text(o.judged_from, units),
+        time_text(o.judged_to, units)
+    );
+    if let Some(line) = analysis_text(r, s) {
+        println!("{line}");
+    }
+    if s.effects.contact != Contact::Bilateral {
+        println!("contact     {}", contact_text(r));
+    }
+    if let Some(hint) = hint_text(r, s, units, o.period) {
+        println!("hint        {hint}");
+    }
+    if let Some(f) = &o.files {
+        let mut names: Vec<String> = Vec::new();
+        if let Some(c) = &f.csv {
+            names.push(format!("{} ({} rows: t, x, v, F)", c.display(), f.rows));
         }
+        names.extend(f.svg.iter().chain(&f.png).map(|p| p.display().to_string()));
+        println!("files       {}", names.join(", "));
+    }
+}
+
+fn run_text(o: &SimulateOut, units: Units) -> String {
+    let r = o.run;
+    let mut t = format!(
+        "{} samples ({}) from x(0) = {}, ẋ(0) = {} {}",
+        r.samples,
+        time_text(o.duration, units),
+        eng(o.initial.position, "m", 6),
+        sig(o.initial.velocity, 6),
+        units.velocity()
     );
-    let detail = match (o.amplitude, o.frequency_hz) {
-        (Some(a), Some(f)) => format!(
-            ": amplitude {} m, frequency {} {}",
-            sig(a, 4),
-            sig(f, 4),
-            units.frequency()
-        ),
-        (Some(a), None) => format!(": amplitude {} m", sig(a, 4)),
-        _ => String::new(),
+    if r.blown_up {
+        t += " (stopped: the state blew up)";
+    } else if r.verdict.outcome == Outcome::Undecided && r.samples > r.requested_samples {
+        t += &format!(
+            "; extended from {} samples to the horizon without settling",
+            r.requested_samples
+        );
+    } else if r.samples > r.requested_samples {
+        t += &format!(
+            "; extended from {} samples until it settled (horizon {} samples)",
+            r.requested_samples, r.max_samples
+        );
+    }
+    t
+}
+
+/// The measured growth beside the spectral radius, or what the analysis says about a
+/// cycle or a separation.
+fn analysis_text(r: &RunResult, s: &RunSettings) -> Option<String> {
+    let v = &r.verdict;
+    let rho = v.spectral_radius?;
+    let lin = v.linear_verdict.map_or("", |x| x.as_str());
+    let analysis = format!("spectral radius {} ({lin})", sig(rho, 9));
+    let in_contact = if v.linear_window {
+        ""
+    } else {
+        " for the loop in linear contact"
     };
-    println!(
-        "verdict     {}{detail}",
-        o.verdict.replace('_', " ").to_uppercase()
-    );
-    println!(
-        "growth      {} per sample ({}); linear analysis: spectral radius {} ({})",
-        sig(o.growth_per_sample, 12),
-        match o.growth_method {
-            hapstab::simulation::GrowthMethod::SubspaceIteration => "subspace iteration",
-            hapstab::simulation::GrowthMethod::EnvelopeFit => "envelope fit",
-        },
-        sig(o.spectral_radius, 12),
-        o.linear_verdict
-    );
-    println!(
-        "files       {} ({} rows: t, x, v, F), {}, {}",
-        o.files.csv.display(),
-        o.files.rows,
-        o.files.svg.display(),
-        o.files.png.display()
-    );
+    let measured = v.measured_growth_per_sample.filter(|g| match v.outcome {
+        Outcome::Growing => *g > 1.0,
+        Outcome::Decaying => *g < 1.0,
+        _ => true,
+    });
+    Some(match (v.outcome, measured) {
+        (Outcome::Growing | Outcome::Decaying | Outcome::Undecided, Some(g)) => format!(
+            "growth      measured {} per sample{}; analysis: {analysis}{in_contact}",
+            sig(g, 9),
+            if v.outcome == Outcome::Undecided {
+                " (not settled)"
+            } else {
+                ""
+            }
+        ),
+        (Outcome::LimitCycle, _) => format!(
+            "analysis    {analysis}{in_contact}; {}",
+            cycle_explanation(r, s)
+        ),
+        (Outcome::Separated, _) => format!(
+            "analysis    {analysis} while in contact; the run ended out of contact, so it does not test the wall"
+        ),
+        _ => format!("analysis    {analysis}{in_contact}"),
+    })
+}
+
+fn cycle_explanation(r: &RunResult, s: &RunSettings) -> String {
+    let v = &r.verdict;
+    let unstable = v.linear_verdict == Some(Verdict::Unstable);
+    let bouncing = v.limit_cycle.is_some_and(|c| c.bouncing);
+    let e = &s.effects;
+    let mut limits: Vec<&str> = Vec::new();
+    if e.quantization.is_some() {
+        limits.push("quantization");
+    }
+    if e.friction.is_some() {
+        limits.push("friction");
+    }
+    if e.saturation.is_some() {
+        limits.push("saturation");
+    }
+    match (bouncing, unstable) {
+        (true, true) => "in contact the oscillation grows until the device leaves the wall".into(),
+        (true, false) => {
+            "the contact itself is stable; the device bounces off the wall and returns".into()
+        }
+        (false, true) => format!(
+            "the growth of the unstable loop is limited by {}",
+            limits.join(" and ")
+        ),
+        (false, false) => format!(
+            "the linear loop is stable; {} sustains the cycle",
+            limits.join(" and ")
+        ),
+    }
+}
+
+fn contact_text(r: &RunResult) -> String {
+    let c = &r.verdict.contact;
+    format!(
+        "contacts {}, separations {} ({} in the judged window, in contact {} % of it); {} at the end",
+        c.contacts,
+        c.separations,
+        c.judged_separations,
+        sig(100.0 * c.judged_contact_fraction, 3),
+        if c.in_contact_at_end {
+            "in contact"
+        } else {
+            "out of contact"
+        }
+    )
+}
+
+fn hint_text(r: &RunResult, s: &RunSettings, units: Units, period: f64) -> Option<String> {
+    let v = &r.verdict;
+    match v.outcome {
+        Outcome::Separated if s.human_force <= 0.0 => Some(
+            "nothing pushes the device into the wall: give --push F to keep it in contact".into(),
+        ),
+        Outcome::Separated => Some(
+            "the push does not hold the device on the wall; a larger --push keeps it in contact"
+                .into(),
+        ),
+        Outcome::Undecided if v.linear_window && v.linear_verdict == Some(Verdict::Marginal) => {
+            Some("the loop is marginal (spectral radius 1): a longer run will not settle it".into())
+        }
+        Outcome::Undecided if r.samples >= r.max_samples => Some(format!(
+            "simulate longer with --max-duration{} (the horizon is now {})",
+            if units.physical { "" } else { "-samples" },
+            time_text(r.max_samples as f64 * period, units)
+        )),
+        _ => None,
+    }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -660,7 +921,7 @@ pub struct SimboundaryArgs {
     /// Coarse α scan points before bisection.
     #[arg(long, value_name = "N", default_value_t = 12)]
     grid: usize,
-    /// Bisection stops when the bracket is below this fraction of α.
+    /// Bisection stops when the bracket is below this fraction of α (at least 1e-6).
     #[arg(
         long,
         value_name = "REL",
@@ -668,15 +929,16 @@ pub struct SimboundaryArgs {
         allow_hyphen_values = true
     )]
     rel_tol: f64,
-    /// Count limit cycles of amplitude below M metres as stable [default: only decaying runs].
+    /// Count limit cycles of peak-to-peak amplitude below M metres as stable [default: only
+    /// decaying runs].
     #[arg(long, value_name = "M", allow_hyphen_values = true)]
     stable_amplitude: Option<f64>,
     /// Write the table as CSV.
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
-    /// Plot of the exact linear region and the simulated boundary: STEM.svg and STEM.png.
-    #[arg(long, value_name = "STEM", default_value = "simboundary")]
-    plot: PathBuf,
+    /// Plot the exact linear region and the simulated boundary: writes STEM.svg and STEM.png.
+    #[arg(long, value_name = "STEM")]
+    plot: Option<PathBuf>,
     /// Print one JSON object instead of text (no progress bar).
     #[arg(long)]
     json: bool,
@@ -709,6 +971,7 @@ struct SimboundaryOut {
     human_force: f64,
     initial: Initial,
     samples: usize,
+    max_samples: usize,
     stable_when: StableWhen,
     grid: usize,
     rel_tol: f64,
@@ -716,9 +979,12 @@ struct SimboundaryOut {
     exact_alpha_max: f64,
     exact_beta_at_alpha_max: f64,
     points: Vec<BoundaryRow>,
+    /// Why some of the answer is no evidence of stability (e.g. runs that left the wall).
+    warnings: Vec<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     csv: Option<PathBuf>,
-    plot: Saved,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plot: Option<Saved>,
 }
 
 fn model_of(pm: &PlantModel) -> Result<Model> {
@@ -731,6 +997,12 @@ fn model_of(pm: &PlantModel) -> Result<Model> {
 
 /// Runs `hapstab simboundary`.
 pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
+    if let Some(p) = &a.csv {
+        check_output_path("--csv", p)?;
+    }
+    if let Some(p) = &a.plot {
+        check_output_path("--plot", p)?;
+    }
     let pm = a.plant.resolve()?;
     let units = Units {
         physical: pm.physical.is_some(),
@@ -743,8 +1015,14 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     if a.grid < 2 || a.grid > 10_000 {
         bail!("--grid must be in [2, 10000] (got {})", a.grid);
     }
-    if !(a.rel_tol.is_finite() && a.rel_tol > 0.0 && a.rel_tol < 1.0) {
-        bail!("--rel-tol must be in (0, 1) (got {})", a.rel_tol);
+    if !(a.rel_tol.is_finite() && a.rel_tol < 1.0) {
+        bail!("--rel-tol must be in [1e-6, 1) (got {})", a.rel_tol);
+    }
+    if a.rel_tol < MIN_REL_TOLERANCE {
+        bail!(
+            "--rel-tol {} is below the minimum 1e-6: the bisection would resolve α more finely than the simulated verdicts can",
+            a.rel_tol
+        );
     }
     if let Some(m) = a.alpha_max
         && !(m.is_finite() && m > 0.0)
@@ -819,9 +1097,14 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         write_boundary_csv(path, &rows)?;
     }
-    let saved = boundary_plot(&region, &points, &model.params, &settings, units)
-        .save(&a.plot)
-        .with_context(|| format!("plot {}", a.plot.display()))?;
+    let saved = match &a.plot {
+        Some(stem) => Some(
+            boundary_plot(&region, &points, &model.params, &settings, units)
+                .save(stem)
+                .with_context(|| format!("--plot {}", stem.display()))?,
+        ),
+        None => None,
+    };
     let out = SimboundaryOut {
         gamma: pm.gamma,
         delta: pm.delta,
@@ -833,11 +1116,13 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         human_force: settings.human_force,
         initial: settings.initial,
         samples: settings.samples,
+        max_samples: settings.max_samples,
         stable_when,
         grid: a.grid,
         rel_tol: a.rel_tol,
         exact_alpha_max: region.alpha_max,
         exact_beta_at_alpha_max: region.beta_at_alpha_max,
+        warnings: boundary_warnings(&points, &settings),
         points: rows,
         csv: a.csv.clone(),
         plot: saved,
@@ -847,6 +1132,38 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     }
     print_simboundary(&out, &settings, units);
     Ok(())
+}
+
+/// Warnings about inconclusive runs: a separation or an undecided run is no evidence of
+/// stability.
+fn boundary_warnings(points: &[EmpiricalPoint], s: &RunSettings) -> Vec<String> {
+    let count = |o: Outcome| {
+        points
+            .iter()
+            .filter(|p| p.inconclusive.is_some_and(|i| i.outcome == o))
+            .count()
+    };
+    let mut w = Vec::new();
+    let separated = count(Outcome::Separated);
+    if separated > 0 {
+        let advice = if s.human_force <= 0.0 {
+            "nothing pushes the device into the wall: give --push F to keep it in contact"
+        } else {
+            "the push does not hold the device on the wall: a larger --push keeps it in contact"
+        };
+        w.push(format!(
+            "at {separated} of {} β values the device left the wall (separated); separation is not stability, so nothing beyond counts as stable: {advice}",
+            points.len()
+        ));
+    }
+    let undecided = count(Outcome::Undecided);
+    if undecided > 0 {
+        w.push(format!(
+            "at {undecided} of {} β values a run did not settle within the horizon (near the boundary the loop is nearly marginal), so nothing beyond counts as stable; --max-duration simulates longer",
+            points.len()
+        ));
+    }
+    w
 }
 
 /// The β values: the flags, or 10 %–90 % of the exact region's β extent above 0.
@@ -901,6 +1218,8 @@ fn write_boundary_csv(path: &Path, rows: &[BoundaryRow]) -> Result<()> {
         "censored",
         "alpha_max",
         "runs",
+        "inconclusive_alpha",
+        "inconclusive_outcome",
     ])?;
     for r in rows {
         let p = &r.point;
@@ -913,6 +1232,10 @@ fn write_boundary_csv(path: &Path, rows: &[BoundaryRow]) -> Result<()> {
             p.censored.to_string(),
             num(p.alpha_max),
             p.runs.to_string(),
+            opt(p.inconclusive.map(|i| i.alpha)),
+            p.inconclusive
+                .map_or("", |i| i.outcome.as_str())
+                .to_string(),
         ])?;
     }
     w.flush()
@@ -994,6 +1317,18 @@ fn boundary_plot(
                 .label("unstable at first scan α"),
         );
     }
+    let inconclusive: Vec<(f64, f64)> = points
+        .iter()
+        .filter_map(|p| p.inconclusive.map(|i| (i.alpha, p.beta)))
+        .collect();
+    if !inconclusive.is_empty() {
+        f.add(
+            Series::scatter(inconclusive, Marker::Triangle)
+                .color(palette::GREY)
+                .hollow()
+                .label("left the wall or undecided: no verdict"),
+        );
+    }
     f
 }
 
@@ -1015,13 +1350,16 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
     );
     println!("effects     {}", describe_effects(s, units.force()));
     println!(
-        "runs        {} samples each from x(0) = {} m; stable = {}",
+        "runs        {} samples each (extended up to {} until settled) from x(0) = {}; stable = {}",
         o.samples,
-        sig(o.initial.position, 6),
+        o.max_samples,
+        eng(o.initial.position, "m", 6),
         match o.stable_when {
             StableWhen::Decaying => "decaying".to_string(),
-            StableWhen::AmplitudeBelow(m) =>
-                format!("decaying or limit cycle below {} m", sig(m, 4)),
+            StableWhen::AmplitudeBelow(m) => format!(
+                "decaying or limit cycle below {} peak-to-peak",
+                eng(m, "m", 4)
+            ),
         }
     );
     println!(
@@ -1045,7 +1383,16 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
     let f = |v: Option<f64>, n| v.map_or_else(|| "-".to_string(), |x| sig(x, n));
     for r in &o.points {
         let p = &r.point;
-        let note = if p.alpha_simulated.is_none() {
+        let note = if let Some(i) = p.inconclusive.filter(|i| {
+            p.alpha_unstable.is_none_or(|u| i.alpha < u)
+                && p.alpha_simulated.is_none_or(|s| i.alpha > s)
+        }) {
+            let what = match i.outcome {
+                Outcome::Separated => "left the wall",
+                _ => "undecided",
+            };
+            format!("{what} at α = {}: no verdict beyond", sig(i.alpha, 6))
+        } else if p.alpha_simulated.is_none() {
             format!("unstable already at α = {}", f(p.alpha_unstable, 4))
         } else if p.censored {
             format!("stable up to scan end α = {}", sig(p.alpha_max, 4))
@@ -1076,18 +1423,23 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
     println!();
     if s.effects.quantization.is_some()
         && o.stable_when == StableWhen::Decaying
-        && o.points.iter().any(|r| r.point.alpha_simulated.is_none())
+        && o.points.iter().any(|r| {
+            r.point.alpha_simulated.is_none()
+                && r.point.alpha_unstable.is_some()
+                && r.point.inconclusive.is_none()
+        })
     {
         println!(
             "note        quantized runs often settle into small limit cycles instead of decaying;\n            --stable-amplitude M counts cycles below M metres as stable"
         );
     }
+    for w in &o.warnings {
+        println!("warning     {w}");
+    }
     if let Some(c) = &o.csv {
         println!("csv         {}", c.display());
     }
-    println!(
-        "plot        {}, {}",
-        o.plot.svg.display(),
-        o.plot.png.display()
-    );
+    if let Some(p) = &o.plot {
+        println!("plot        {}, {}", p.svg.display(), p.png.display());
+    }
 }

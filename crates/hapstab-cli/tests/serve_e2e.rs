@@ -179,6 +179,17 @@ async fn drive(c: &Client, base: &str, shot: &Path) -> R<()> {
     );
     let lib = Analysis::new(Normalized::new(a, b, g1, de1, d1)?)?;
     assert_eq!(verdict, lib.verdict.as_str(), "verdict at ({a}, {b})");
+    // The simulated contact never contradicts the analysis: no decay beside an unstable
+    // wall; its judged window is shaded.
+    let outcome = c.find(Locator::Id("sim-outcome")).await?.text().await?;
+    assert!(!outcome.is_empty(), "an outcome is shown");
+    if verdict == "unstable" {
+        assert!(
+            !outcome.starts_with("decaying"),
+            "{outcome} beside {verdict}"
+        );
+    }
+    assert_eq!(c.find_all(Locator::Id("sim-judged")).await?.len(), 1);
     let roots = c.find_all(Locator::Css("#roots circle.root")).await?;
     assert_eq!(roots.len(), d1 + 3, "p(z) has degree d + 3");
     let png = c.screenshot().await?;

@@ -1,6 +1,7 @@
-//! Binary tests of `hapstab simulate` and `hapstab simboundary` (issue 6): verdicts against
-//! the linear analysis of `hapstab check`, the CSV trace, the plots, a quantization limit
-//! cycle, and bad input (exit 2, one line on stderr).
+//! Binary tests of `hapstab simulate` and `hapstab simboundary`: verdicts against the linear
+//! analysis of `hapstab check`, the CSV trace, the plots, quantization limit cycles, bouncing
+//! and separation from a unilateral wall, and bad or hostile input (exit 2, one line on
+//! stderr, nothing written).
 
 use std::path::Path;
 
@@ -49,9 +50,10 @@ fn assert_png(path: &Path) {
     assert!(ink > (w * h) as usize / 50, "blank PNG: {ink} pixels");
 }
 
-/// The linear bilateral loop: the verdict agrees with the stability test of `hapstab check`
-/// and growth_per_sample is its spectral radius (eq. 9, Section V) to 1e-6, on both sides
-/// of the boundary, in normalized and physical units and with delay.
+/// The linear bilateral loop: the outcome agrees with the stability test of `hapstab check`,
+/// the spectral radius beside it is check's, and the measured envelope growth is a
+/// measurement of it (log-rate within 5 %), on both sides of the boundary, in normalized and
+/// physical units and with delay.
 #[test]
 fn linear_verdict_and_growth_match_check() {
     let dir = tempfile::tempdir().unwrap();
@@ -76,15 +78,16 @@ fn linear_verdict_and_growth_match_check() {
             &[&["--duration-samples", "3000"], *p].concat(),
         );
         let rho = f(&chk["spectral_radius"]);
-        let g = f(&sim["growth_per_sample"]);
+        let g = f(&sim["measured_growth_per_sample"]);
         assert!(
-            (g - rho).abs() <= 1e-6 * rho,
+            (g.ln() - rho.ln()).abs() <= 0.05 * rho.ln().abs(),
             "{p:?}: growth {g} vs spectral radius {rho}"
         );
         assert_eq!(f(&sim["spectral_radius"]), rho, "{p:?}");
         let stable = chk["stable"].as_bool().unwrap();
         let expect = if stable { "decaying" } else { "growing" };
-        assert_eq!(sim["verdict"], expect, "{p:?}");
+        assert_eq!(sim["outcome"], expect, "{p:?}");
+        assert_eq!(sim["linear_window"], true, "{p:?}");
         assert_eq!(sim["linear_verdict"], chk["verdict"], "{p:?}");
         assert_eq!(sim["normalized"], chk["normalized"], "{p:?}");
         verdicts.push(stable);
@@ -136,11 +139,13 @@ fn csv_trace_plot_files() {
         "wall force",
         "time t (samples)",
         "Simulation: decaying",
+        "judged window",
     ] {
         assert!(svg.contains(t), "SVG lacks {t}");
     }
 
-    // Physical units, a long run: the trace is capped at --max-rows, every n-th sample.
+    // Physical units, a run extended until it settles: the trace keeps at most --max-rows
+    // rows, every n-th sample over the whole run.
     let v = simulate(
         dir.path(),
         "long",
@@ -154,11 +159,13 @@ fn csv_trace_plot_files() {
             "3",
         ],
     );
-    assert_eq!(v["samples"], 2000);
+    let samples = v["samples"].as_u64().unwrap();
+    assert!(samples >= 2000);
     let every = v["files"]["record_every"].as_u64().unwrap();
     let rows = v["files"]["rows"].as_u64().unwrap();
-    assert!((250..=300).contains(&rows), "{rows}");
-    assert_eq!(every, 2000u64.div_ceil(299));
+    assert!((150..=300).contains(&rows), "{rows}");
+    assert!(every >= 2000u64.div_ceil(299));
+    assert_eq!(rows, samples.div_ceil(every), "rows cover the whole run");
     let text = std::fs::read_to_string(dir.path().join("long.csv")).unwrap();
     assert_eq!(text.lines().count() as u64, rows + 1);
     let t1: f64 = text
@@ -200,16 +207,19 @@ fn quantization_limit_cycle_near_the_boundary() {
         "q",
         &[&base[..], &["--quantization", "3e-5", "--duration", "5"]].concat(),
     );
-    assert_eq!(v["verdict"], "limit_cycle", "{v}");
+    assert_eq!(v["outcome"], "limit_cycle", "{v}");
     assert_eq!(v["linear_verdict"], "stable");
-    let a = f(&v["amplitude"]);
-    assert!(a > 0.25 * q && a < 10.0 * q, "amplitude {a}");
-    let fr = f(&v["frequency_hz"]);
+    let lc = &v["limit_cycle"];
+    let a = f(&lc["peak_to_peak"]);
+    assert!(a > 0.5 * q && a < 20.0 * q, "amplitude {a}");
+    assert!((f(&lc["counts"]) - a / q).abs() < 1e-9 * a / q);
+    assert_eq!(lc["bouncing"], false);
+    let fr = f(&lc["frequency_hz"]);
     assert!(
         (fr / f_dom - 1.0).abs() < 0.25,
         "frequency {fr} Hz vs linear mode {f_dom} Hz"
     );
-    assert!((f(&v["growth_per_sample"]) - 1.0).abs() < 1e-3);
+    assert!(v["measured_growth_per_sample"].is_null());
     let svg = std::fs::read_to_string(dir.path().join("q.svg")).unwrap();
     assert!(svg.contains("Limit cycle: the last periods"));
     assert!(svg.contains("quantization q = 3e-5 m"));
@@ -219,8 +229,8 @@ fn quantization_limit_cycle_near_the_boundary() {
         "lin",
         &[&base[..], &["--duration", "5"]].concat(),
     );
-    assert_eq!(v["verdict"], "decaying");
-    assert!(v.get("amplitude").is_none() && v.get("frequency_hz").is_none());
+    assert_eq!(v["outcome"], "decaying");
+    assert!(v["limit_cycle"].is_null());
 }
 
 #[test]
@@ -234,7 +244,7 @@ fn simboundary_table_csv_plot() {
         "--quantization",
         "3e-5",
         "--stable-amplitude",
-        "3e-4",
+        "6e-4",
         "--beta-min",
         "0.1",
         "--beta-max",
@@ -274,7 +284,7 @@ fn simboundary_table_csv_plot() {
     assert!(f(&v["exact_alpha_max"]) > 0.7 && f(&v["exact_alpha_max"]) < 0.71);
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.starts_with(
-        "beta,alpha_linear,alpha_simulated,alpha_unstable,ratio,censored,alpha_max,runs\n"
+        "beta,alpha_linear,alpha_simulated,alpha_unstable,ratio,censored,alpha_max,runs,inconclusive_alpha,inconclusive_outcome\n"
     ));
     assert_eq!(text.lines().count(), 4);
     assert_png(&dir.path().join("b.png"));
@@ -317,7 +327,8 @@ fn simboundary_table_csv_plot() {
         text.contains("α simulated") && text.contains("K sim (N/m)"),
         "{text}"
     );
-    assert!(dir.path().join("simboundary.png").is_file());
+    // Nothing was asked to be written, so nothing was.
+    assert!(!dir.path().join("simboundary.png").exists());
 }
 
 /// Bad input exits 2 with exactly one line on stderr and nothing on stdout.
@@ -355,6 +366,37 @@ fn bad_input_exits_2_with_one_line() {
         &["simboundary", "--beta-min", "0.5", "--beta-max", "0.1"],
         &["simboundary", "--stable-amplitude", "-1"],
         &["simboundary", "--quantization", "NaN"],
+        &["simboundary", "--rel-tol", "1e-17"],
+        &["simboundary", "--rel-tol", "0"],
+        &["simboundary", "--plot", "/nonexistent-dir/b"],
+        &[
+            "simulate",
+            "--max-rows",
+            "100000000",
+            "--duration-samples",
+            "1e8",
+        ],
+        &["simulate", "--plot", "/nonexistent-dir/x"],
+        &["simulate", "--duration", "2", "--max-duration", "1"],
+        &["simulate", "--max-duration", "1e7"],
+        &["simulate", "--max-duration", "-1"],
+        &[
+            "simulate",
+            "--alpha",
+            "0.1",
+            "--beta",
+            "0.1",
+            "--max-duration",
+            "5",
+        ],
+        &["simulate", "--max-duration-samples", "1e12"],
+        &[
+            "simulate",
+            "--max-duration",
+            "5",
+            "--max-duration-samples",
+            "5000",
+        ],
     ];
     for args in cases {
         let out = hapstab()
@@ -369,4 +411,241 @@ fn bad_input_exits_2_with_one_line() {
     }
     // Nothing was written by the failed runs.
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// Runs a command in `dir`, expecting exit 2 with one line on stderr that contains `needle`.
+fn refused(dir: &Path, args: &[&str], needle: &str) -> std::time::Duration {
+    let t0 = std::time::Instant::now();
+    let out = hapstab().current_dir(dir).args(args).output().unwrap();
+    let took = t0.elapsed();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    took
+}
+
+/// Hostile sizes are refused before any work, naming the flag: a bisection tolerance below
+/// the documented minimum (it would never end), a trace of 10⁸ rows (4 GB), a plot in a
+/// folder that does not exist (which is not created).
+#[test]
+fn hostile_sizes_are_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let quick = std::time::Duration::from_secs(5);
+    let t = refused(
+        dir.path(),
+        &["simboundary", "--unilateral", "--rel-tol", "1e-17"],
+        "--rel-tol",
+    );
+    assert!(t < quick, "{t:?}");
+    let t = refused(
+        dir.path(),
+        &[
+            "simulate",
+            "--duration-samples",
+            "1e8",
+            "--max-rows",
+            "100000000",
+        ],
+        "--max-rows",
+    );
+    assert!(t < quick, "{t:?}");
+    refused(
+        dir.path(),
+        &["simulate", "--plot", "/nonexistent-hapstab-dir/x"],
+        "/nonexistent-hapstab-dir",
+    );
+    assert!(!Path::new("/nonexistent-hapstab-dir").exists());
+    refused(
+        dir.path(),
+        &["simulate", "--csv", "/nonexistent-hapstab-dir/x.csv"],
+        "--csv",
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// Plain `simulate` (text and JSON) writes no file.
+#[test]
+fn plain_simulate_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    for json in [false, true] {
+        let mut cmd = hapstab();
+        cmd.current_dir(dir.path())
+            .args(["simulate", "--duration", "1"]);
+        if json {
+            cmd.arg("--json");
+        }
+        let out = cmd.output().unwrap();
+        assert!(out.status.success());
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(!text.contains("files"), "{text}");
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// The device of the reproductions: 0.2 kg, 2 Ns/m, with the default arm, d = 1.
+const DEVICE: [&str; 6] = [
+    "--device-mass",
+    "0.2",
+    "--device-damping",
+    "2",
+    "--delay",
+    "1",
+];
+
+fn text(args: &[&str]) -> String {
+    let out = hapstab().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// Every number printed on a "growth" line, in order.
+fn growth_numbers(text: &str) -> Vec<f64> {
+    text.lines()
+        .filter(|l| l.starts_with("growth"))
+        .flat_map(|l| l.split_whitespace().filter_map(|w| w.parse::<f64>().ok()))
+        .collect()
+}
+
+/// Reproduction: K = 20 kN/m, B = 5 Ns/m against a unilateral wall, pushed with 1 N, from
+/// the surface at 10 mm/s, 0.3 s. In contact the loop is unstable (spectral radius 1.007, as
+/// `check` says): the run is a bouncing limit cycle, and the output says that contact is lost
+/// and regained every cycle; it prints no growth factor below 1.
+#[test]
+fn unstable_unilateral_contact_is_a_bouncing_cycle() {
+    let run = [
+        &DEVICE[..],
+        &[
+            "--wall-stiffness",
+            "20000",
+            "--wall-damping",
+            "5",
+            "--unilateral",
+            "--push",
+            "1",
+            "--initial-position",
+            "0",
+            "--initial-velocity",
+            "0.01",
+            "--duration",
+            "0.3",
+        ],
+    ]
+    .concat();
+    let chk = json(
+        &[
+            &["check"],
+            &DEVICE[..],
+            &["--wall-stiffness", "20000", "--wall-damping", "5"],
+        ]
+        .concat(),
+    );
+    assert_eq!(chk["verdict"], "unstable");
+    let v = json(&[&["simulate"], &run[..]].concat());
+    assert_eq!(v["outcome"], "limit_cycle", "{v}");
+    assert_eq!(v["limit_cycle"]["bouncing"], true);
+    assert!(v["measured_growth_per_sample"].is_null());
+    assert_eq!(v["spectral_radius"], chk["spectral_radius"]);
+    assert!(
+        v["contact"]["judged_separations"].as_u64().unwrap() >= 10,
+        "{v}"
+    );
+    let t = text(&[&["simulate"], &run[..]].concat());
+    assert!(t.contains("LIMIT CYCLE, BOUNCING"), "{t}");
+    assert!(
+        t.contains("contact is lost and regained every cycle"),
+        "{t}"
+    );
+    assert!(growth_numbers(&t).iter().all(|g| *g >= 1.0), "{t}");
+    assert!(!t.contains("DECAYING"), "{t}");
+}
+
+/// Reproduction: K = 8 kN/m (stable in contact), 10 µm encoder, pushed with 2 N. A 2 s run
+/// has not settled (a slowly decaying transient); it is extended and reports the same
+/// limit cycle as a 20 s run: about 25 µm peak-to-peak (2.5 counts).
+#[test]
+fn quantized_contact_reports_the_settled_cycle() {
+    let base = [
+        &DEVICE[..],
+        &[
+            "--wall-stiffness",
+            "8000",
+            "--wall-damping",
+            "5",
+            "--quantization",
+            "1e-5",
+            "--unilateral",
+            "--push",
+            "2",
+        ],
+    ]
+    .concat();
+    let short = json(&[&["simulate"], &base[..], &["--duration", "2"]].concat());
+    let long = json(&[&["simulate"], &base[..], &["--duration", "20"]].concat());
+    assert!(f(&short["samples"]) > 2000.0, "extended: {short}");
+    for v in [&short, &long] {
+        assert_eq!(v["outcome"], "limit_cycle", "{v}");
+        assert_eq!(v["linear_verdict"], "stable");
+        let counts = f(&v["limit_cycle"]["counts"]);
+        assert!((2.0..4.0).contains(&counts), "{v}");
+    }
+    let pp = |v: &Value| f(&v["limit_cycle"]["peak_to_peak"]);
+    assert!((pp(&short) / pp(&long) - 1.0).abs() < 0.1);
+    let t = text(&[&["simulate"], &base[..], &["--duration", "2"]].concat());
+    assert!(
+        t.contains("counts)") && t.contains("µm peak-to-peak"),
+        "{t}"
+    );
+    assert!(t.contains("extended from 2000 samples"), "{t}");
+}
+
+/// Reproduction: `simboundary --unilateral --quantization 1e-5` with a device without arm
+/// and no push. The device leaves the wall and never returns; that must not count as
+/// stability: no β is "stable up to the scan end", the points say the device left the wall,
+/// and a warning suggests --push.
+#[test]
+fn simboundary_does_not_count_separation_as_stability() {
+    let args = [
+        "simboundary",
+        "--no-arm",
+        "--unilateral",
+        "--quantization",
+        "1e-5",
+        "--beta-count",
+        "3",
+        "--duration-samples",
+        "3000",
+        "--rel-tol",
+        "0.01",
+    ];
+    let v = json(&args);
+    for p in v["points"].as_array().unwrap() {
+        assert_eq!(p["censored"], false, "{p}");
+        assert_eq!(p["inconclusive"]["outcome"], "separated", "{p}");
+    }
+    let w = v["warnings"].as_array().unwrap();
+    assert!(
+        w.iter().any(|w| w.as_str().unwrap().contains("--push")),
+        "{w:?}"
+    );
+    let t = text(&args);
+    assert!(!t.contains("stable up to scan end"), "{t}");
+    assert!(
+        t.contains("left the wall at α") && t.contains("warning"),
+        "{t}"
+    );
+    // Pushed, the same scan finds a boundary.
+    let v = json(&[&args[..], &["--push", "2", "--stable-amplitude", "2e-4"]].concat());
+    assert!(
+        v["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|p| p["alpha_simulated"].is_number()),
+        "{v}"
+    );
 }

@@ -11,7 +11,7 @@ use hapstab::nyquist::{
 };
 use hapstab::params::Normalized;
 use hapstab::region::{EdgeKind, stable_region};
-use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, Model, Simulator};
+use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, Model, RunResult};
 use hapstab::stability::Analysis;
 use serde::Serialize;
 
@@ -603,7 +603,8 @@ pub struct TraceOut {
     pub wall_force: Vec<f64>,
 }
 
-/// Answer of `/api/simulate`.
+/// Answer of `/api/simulate`: the library's run result (the same verdict as `hapstab
+/// simulate` for the same setting) with a decimated trace of the whole run.
 #[derive(Debug, Clone, Serialize)]
 pub struct SimOut {
     pub params: Normalized,
@@ -611,22 +612,21 @@ pub struct SimOut {
     pub mass: f64,
     pub period: f64,
     pub units_note: &'static str,
-    pub contact: Contact,
+    /// unilateral | unilateral_no_pull | bilateral.
+    pub contact_mode: Contact,
     pub push: f64,
     pub velocity: f64,
-    pub samples: usize,
-    /// decaying | limit_cycle | growing for unilateral runs (envelope fit), or the exact
-    /// verdict of p(z) for the bilateral wall.
-    pub outcome: String,
-    /// Exact verdict of the linear loop (Section V) at this point.
-    pub linear_verdict: &'static str,
-    pub blown_up: bool,
+    /// outcome, reason, judged window, measured growth beside the spectral radius, limit
+    /// cycle, contact events, samples simulated (see `hapstab::simulation::RunResult`).
+    #[serde(flatten)]
+    pub run: RunResult,
     pub trace: TraceOut,
     pub server_ms: f64,
 }
 
 /// Runs `/api/simulate`: the device starts at the wall surface x = 0 moving in with
-/// `velocity`, the operator pushes with a constant `push`; unilateral wall by default.
+/// `velocity`, the operator pushes with a constant `push`; unilateral wall by default. The
+/// run is `samples` long, extended like `hapstab simulate` until its verdict settles.
 pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     let t0 = Instant::now();
     let spec = &req.spec;
@@ -647,7 +647,6 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
         ),
     };
     let model = Model::new(n, mass, period).map_err(lib_error)?;
-    let every = req.samples.div_ceil(MAX_TRACE_POINTS).max(1);
     let mut cfg = Config::new(model, req.samples);
     cfg.effects = Effects {
         contact: req.contact,
@@ -658,36 +657,18 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
         position: 0.0,
         velocity: req.velocity,
     };
-    cfg.record_every = every;
-    cfg.envelope.windows = (req.samples / 8).clamp(4, 64);
-    let exact = Analysis::new(n).map_err(lib_error)?;
-    let (outcome, blown_up, trace) = if req.contact == Contact::Bilateral {
-        // The linear loop: its verdict is exact (Section V); only the trace is simulated.
-        let mut sim = Simulator::new(&cfg).map_err(lib_error)?;
-        sim.advance(req.samples).map_err(lib_error)?;
-        let outcome = match exact.verdict.as_str() {
-            "stable" => "decaying",
-            "unstable" => "growing",
-            _ => "limit_cycle",
-        };
-        (outcome.to_string(), sim.blown_up(), sim.trace().cloned())
-    } else {
-        let run = hapstab::simulation::simulate(&cfg).map_err(lib_error)?;
-        (run.verdict.as_str().to_string(), run.blown_up, run.trace)
-    };
-    let trace = trace.unwrap_or_default();
+    cfg.trace_rows = MAX_TRACE_POINTS;
+    let mut run = hapstab::simulation::simulate(&cfg).map_err(lib_error)?;
+    let trace = run.trace.take().unwrap_or_default();
     Ok(SimOut {
         params: n,
         mass,
         period,
         units_note,
-        contact: req.contact,
+        contact_mode: req.contact,
         push: req.push,
         velocity: req.velocity,
-        samples: req.samples,
-        outcome,
-        linear_verdict: exact.verdict.as_str(),
-        blown_up,
+        run,
         trace: TraceOut {
             time: trace.time,
             position: trace.position,

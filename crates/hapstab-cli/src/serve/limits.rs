@@ -42,6 +42,9 @@ pub const MAX_ROBUST_WORK: usize = 120_000;
 /// Simulation: samples.
 pub const MIN_SIM_SAMPLES: usize = 10;
 pub const MAX_SIM_SAMPLES: usize = 20_000;
+/// Simulation: horizon in samples up to which a run is extended until its verdict settles
+/// (the library's default, as for `hapstab simulate`).
+pub const SIM_HORIZON: usize = hapstab::simulation::DEFAULT_MAX_SAMPLES;
 /// Simulation: largest number of trace rows returned.
 pub const MAX_TRACE_POINTS: usize = 2000;
 /// Simulation: largest |push force| in N and |initial velocity| in m/s.
@@ -77,6 +80,7 @@ pub struct Limits {
     pub robust_d_max: usize,
     pub robust_work_max: usize,
     pub sim_samples: [usize; 2],
+    pub sim_horizon_samples: usize,
     pub sim_trace_points_max: usize,
     pub export_px: [usize; 2],
     pub concurrent_jobs: usize,
@@ -103,6 +107,7 @@ pub fn limits() -> Limits {
         robust_d_max: MAX_ROBUST_D,
         robust_work_max: MAX_ROBUST_WORK,
         sim_samples: [MIN_SIM_SAMPLES, MAX_SIM_SAMPLES],
+        sim_horizon_samples: SIM_HORIZON,
         sim_trace_points_max: MAX_TRACE_POINTS,
         export_px: [MIN_EXPORT_PX, MAX_EXPORT_PX],
         concurrent_jobs: MAX_JOBS,
