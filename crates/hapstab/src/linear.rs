@@ -178,15 +178,17 @@ pub fn linear_check(n: &Normalized) -> LinearCheck {
     }
 }
 
-/// The upper end of the exact stable α-interval at β that starts on the left boundary
-/// α = −γ (Section V, Fig. 5), from the D-decomposition of
-/// [`crate::boundary::stable_alpha_intervals`]; None when no stable interval starts at −γ.
+/// The upper end of the exact stable α-interval at β (Section V, Fig. 5), from the
+/// D-decomposition of [`crate::boundary::stable_alpha_intervals`]: the interval that starts
+/// on the left boundary α = −γ, or, for long delays where instability sets in before the
+/// net stiffness γ + α reaches zero, the one that contains α = 0. None when neither exists.
 pub fn exact_upper_alpha(fam: &PolyFamily, beta: f64) -> Option<f64> {
     let g = fam.plant.gamma;
     let tol = 1e-12 * g.max(1e-300) + 1e-300;
-    stable_alpha_intervals(fam, beta)
-        .into_iter()
+    let ivs = stable_alpha_intervals(fam, beta);
+    ivs.iter()
         .find(|iv| iv.lo <= -g + tol && iv.hi > -g)
+        .or_else(|| ivs.iter().find(|iv| iv.lo < 0.0 && iv.hi > 0.0))
         .map(|iv| iv.hi)
 }
 
