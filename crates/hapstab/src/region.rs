@@ -153,9 +153,9 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
     let budget = Budget::new(MAX_CURVE_POINTS);
     let bounds = Bounds::new(fam)?;
     let mut focus: Option<BoxF> = None;
-    for _ in 0..MAX_ATTEMPTS {
+    for i in 0..MAX_ATTEMPTS {
         let (region, checked) = attempt(fam, &bounds, focus, rel_tol, &budget)?;
-        match verify(fam, &bounds, &region, checked) {
+        match verify(fam, &bounds, &region, checked, i) {
             None => return Ok(region),
             Some(zoom) => focus = Some(zoom),
         }
@@ -304,6 +304,7 @@ fn verify(
     bounds: &Bounds,
     region: &StableRegion,
     checked: Checked,
+    attempt: usize,
 ) -> Option<BoxF> {
     let wbox = checked
         .wbox
@@ -319,9 +320,13 @@ fn verify(
         return None;
     }
     let (x0, x1, y0, y1) = wbox;
-    let (hx, hy) = ((x1 - x0) / m as f64, (y1 - y0) / m as f64);
+    // Two grid cells around the suspects, shrinking fourfold with every attempt, but never
+    // less than half the suspects' own extent.
+    let shrink = 0.25_f64.powi(attempt as i32);
     let (a0, a1, b0, b1) = bbox(suspects.into_iter().map(|(p, _)| p))?;
-    Some((a0 - 2.0 * hx, a1 + 2.0 * hx, b0 - 2.0 * hy, b1 + 2.0 * hy))
+    let mx = (2.0 * (x1 - x0) / m as f64 * shrink).max(0.5 * (a1 - a0));
+    let my = (2.0 * (y1 - y0) / m as f64 * shrink).max(0.5 * (b1 - b0));
+    Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
 }
 
 /// Grid points that are stable or where the region disagrees with the Schur–Cohn test,
@@ -338,15 +343,29 @@ fn grid_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF, m: usize) -
                 x: x0 + hx * (i as f64 + 0.5 + GRID_JITTER),
                 y: y0 + hy * (j as f64 + 0.5 - GRID_JITTER),
             };
-            fam.coefficients_into(p.x, p.y, &mut coeffs);
-            let stable = schur_stable(&coeffs);
-            let agree = stable == region.contains(p);
-            if stable || !agree {
-                out.push((p, agree));
-            }
+            out.extend(probe(fam, region, p, &mut coeffs));
         }
     }
+    // Walls near the wall-free point: a damped plant is stable there, and a region much
+    // smaller than the window that the grid straddles is found by them.
+    let r = PROBE_RADIUS * (x1 - x0).max(y1 - y0);
+    for k in 0..8 {
+        let (s, c) = (k as f64 * std::f64::consts::FRAC_PI_4 + GRID_JITTER).sin_cos();
+        out.extend(probe(fam, region, P { x: r * c, y: r * s }, &mut coeffs));
+    }
     out
+}
+
+/// Distance of the probes from the wall-free point, relative to the window.
+const PROBE_RADIUS: f64 = 1e-3;
+
+/// A verification point if it is stable or the region disagrees with the Schur–Cohn test
+/// there.
+fn probe(fam: &AffineFamily, region: &EdgeIndex, p: P, coeffs: &mut [f64]) -> Option<(P, bool)> {
+    fam.coefficients_into(p.x, p.y, coeffs);
+    let stable = schur_stable(coeffs);
+    let agree = stable == region.contains(p);
+    (stable || !agree).then_some((p, agree))
 }
 
 /// Number of constant-damping slices of a thorough check: each costs O(degree²) (a θ scan
@@ -1653,7 +1672,16 @@ fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
             }
         }
     }
-    None
+    // A thin or intricate face: search a grid over its bounding box.
+    let (x0, x1, y0, y1) = bbox(v.iter().map(|p| P::of(*p)))?;
+    let m = 24;
+    (0..m * m).find_map(|k| {
+        let p = AlphaBeta {
+            alpha: x0 + (x1 - x0) * ((k % m) as f64 + 0.5 + GRID_JITTER) / m as f64,
+            beta: y0 + (y1 - y0) * ((k / m) as f64 + 0.5 - GRID_JITTER) / m as f64,
+        };
+        point_in(v, p).then_some(p)
+    })
 }
 
 // ---------------------------------------------------------------------------------------
