@@ -1,0 +1,53 @@
+//! The library's region and interval functions for a resolved loop, in the loop's wall units
+//! (a, b) (α, β for the paper's loop); callers convert with `AffineFamily::to_physical`.
+
+use anyhow::{Result, bail};
+use hapstab::boundary::{Interval, stable_alpha_intervals};
+use hapstab::region::{StableRegion, stable_region};
+use hapstab::params::{Physical, Sampling, Wall};
+use hapstab::{AffineFamily, Loop, PlantModel, PolyFamily};
+
+/// The paper's family of a loop that has the normalized view; its (α, β) are the loop
+/// family's wall units (a, b).
+fn paper_family(lp: &Loop) -> Result<PolyFamily> {
+    match lp.paper_view() {
+        Some(pp) => Ok(PolyFamily::new(pp, lp.delay.samples)?),
+        None => bail!(
+            "the stable region is computed for the paper's loop only (mass-spring-damper plant, backward-difference velocity, no actuator lag, whole-sample delay)"
+        ),
+    }
+}
+
+/// Stable intervals lo < a < hi of the wall's stiffness at fixed damping b (Section V).
+pub fn stable_intervals(lp: &Loop, _fam: &AffineFamily, b: f64) -> Result<Vec<Interval>> {
+    Ok(stable_alpha_intervals(&paper_family(lp)?, b))
+}
+
+/// The stable region in the wall plane (Section V, Figs. 4–6).
+pub fn region(lp: &Loop, _fam: &AffineFamily) -> Result<StableRegion> {
+    Ok(stable_region(&paper_family(lp)?))
+}
+
+/// The stable interval that contains a, or else the one reaching furthest.
+pub fn pick_interval(ivs: &[Interval], a: f64) -> Option<Interval> {
+    ivs.iter()
+        .find(|iv| iv.lo < a && a < iv.hi)
+        .or_else(|| ivs.iter().max_by(|x, y| x.hi.total_cmp(&y.hi)))
+        .copied()
+}
+
+/// The linear condition (22) K < (b + B)/(t_d + T/2) in N/m, for the paper's loop in
+/// physical units (Section VI); None for other loops.
+pub fn linear_k(lp: &Loop, wall_damping: f64) -> Option<f64> {
+    lp.paper_view()?;
+    let PlantModel::MassSpringDamper(e) = &lp.plant.model else {
+        return None;
+    };
+    let wall = Wall {
+        stiffness: 0.0,
+        damping: wall_damping,
+    };
+    let sampling = Sampling::new(lp.period, lp.delay.samples).ok()?;
+    let p = Physical::new(*e, wall, sampling).ok()?;
+    Some(hapstab::linear::linear_stiffness_limit(&p))
+}
