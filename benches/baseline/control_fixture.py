@@ -12,12 +12,18 @@ actuator lag; whole delays 0..10 samples; every velocity estimator) and for each
 (K, B), one near the stability boundary and one away from it. For every case the closed loop
 is formed with python-control alone:
 
-    H = control.sample_system(P, T, 'zoh')          plant behind a zero-order hold
-    G = H * z^(-d)                                  the wall force's delay
-    C = K + B * V(z)                                the wall with the velocity estimator
-    poles(control.feedback(G, C))                   1 + G C = 0
+    H = control.sample_system(control.ss(P), T, 'zoh')   plant behind a zero-order hold
+    G = H * z^(-d)                                       the wall force's delay (a tf)
+    C = K + B * V(z)                                     the wall with the velocity estimator
+    poles(control.feedback(G, C))                        1 + G C = 0
 
-and the spectral radius max |pole| and the verdict (stable iff it is < 1) are written to the
+The plant is sampled as a state-space model, so python-control closes the loop in state
+space and its poles are eigenvalues of the closed loop's state matrix. (Sampling a
+TransferFunction instead makes python-control close the loop on expanded polynomials in z,
+whose roots lose up to 1e-3 relative when several plant poles lie within 1e-2 of z = 1, as
+benches/baseline/control_mpmath.py shows on this fixture's loops.)
+
+The spectral radius max |pole| and the verdict (stable iff it is < 1) are written to the
 fixture crates/hapstab/tests/fixtures/control_loops.json that
 crates/hapstab/tests/python_control.rs reads. Plants and velocity estimators are written in
 hapstab's own forms (serde `PlantModel`, the `--velocity` spec text) so that the Rust test
@@ -198,8 +204,7 @@ class ClosedLoop:
         p = continuous_plant(case["plant"])
         if case["force_lag"] > 0:
             p = p * control.tf([1.0], [case["force_lag"], 1.0])
-        h = control.sample_system(p, t, "zoh")
-        h = control.tf(h) if not isinstance(h, control.TransferFunction) else h
+        h = control.sample_system(control.ss(p), t, "zoh")
         delay = control.tf([1.0], [1.0] + [0.0] * case["delay"], t)
         self.g = h * delay
         self.v = velocity_tf(case["velocity"], t)

@@ -4,14 +4,17 @@ mpmath at 60 significant digits, independent of python-control and of hapstab.
 
 Needs `pip install mpmath`. Usage:
 
-    python benches/baseline/control_mpmath.py [FIXTURE] [--ids 3,17,...] [--rust FILE]
+    python benches/baseline/control_mpmath.py [FIXTURE] [--ids 3,17,...] [--rust FILE] [--write]
 
 For each case: the continuous state-space model (A, B, C) in SI units, the zero-order hold by
 the matrix exponential of [[A, B], [0, 0]]·T (mpmath.expm), the discrete plant
 N(z)/D(z) = C adj(zI − Φ)Γ / det(zI − Φ) by the Faddeev–LeVerrier recursion, the closed loop
 p(z) = z^d D(z) Vd(z) + N(z) (K Vd(z) + B Vn(z)) and its roots (mpmath.polyroots). Prints the
 reference spectral radius beside python-control's, and beside hapstab's when --rust names a
-file of "id wall_kind radius" lines.
+file of "id wall_kind radius" lines (HAPSTAB_CONTROL_DUMP=FILE cargo test -p hapstab --test
+python_control writes one). --write stores the reference in the fixture as
+`reference_radius` (the nearest double), the referee of tests/python_control.rs where
+python-control and hapstab disagree.
 """
 
 import argparse
@@ -156,8 +159,10 @@ def main():
     ap.add_argument("--ids", default="")
     ap.add_argument("--rust", default="")
     ap.add_argument("--json", default="")
+    ap.add_argument("--write", action="store_true")
     args = ap.parse_args()
-    cases = json.load(open(args.fixture))["cases"]
+    fixture = json.load(open(args.fixture))
+    cases = fixture["cases"]
     if args.ids:
         ids = {int(x) for x in args.ids.split(",")}
         cases = [c for c in cases if c["id"] in ids]
@@ -169,6 +174,7 @@ def main():
     out = []
     for c in cases:
         ref = radius(c)
+        c["reference_radius"] = float(ref)
         pc = c["spectral_radius"]
         rel_pc = float(abs(pc - ref) / ref)
         line = f"{c['id']:4d} {c['wall_kind']:5s} ref {mp.nstr(ref, 20):24s} python-control rel {rel_pc:.2e}"
@@ -182,6 +188,14 @@ def main():
                     "python_control_rel": rel_pc, "hapstab_rel": rel_h})
     if args.json:
         json.dump(out, open(args.json, "w"), indent=1)
+    if args.write:
+        fixture["referee"] = "benches/baseline/control_mpmath.py (mpmath %s, %d digits)" % (
+            mp.__version__,
+            mp.mp.dps,
+        )
+        with open(args.fixture, "w") as f:
+            json.dump(fixture, f, indent=1)
+            f.write("\n")
 
 
 if __name__ == "__main__":

@@ -105,7 +105,11 @@ fn fraction(prefix: &str, num: &str, den: &str) -> [String; 3] {
         let left = (width - s.chars().count()) / 2;
         format!("{pad}{}{s}", " ".repeat(left))
     };
-    [centre(num), format!("{prefix}{}", "-".repeat(width)), centre(den)]
+    [
+        centre(num),
+        format!("{prefix}{}", "-".repeat(width)),
+        centre(den),
+    ]
 }
 
 fn print_text(rl: &ResolvedLoop, w: Wall, o: &DiscretizeOut) {

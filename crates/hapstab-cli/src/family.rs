@@ -3,8 +3,8 @@
 
 use anyhow::{Result, bail};
 use hapstab::boundary::{Interval, stable_alpha_intervals};
-use hapstab::region::{StableRegion, stable_region};
 use hapstab::params::{Physical, Sampling, Wall};
+use hapstab::region::{StableRegion, stable_region};
 use hapstab::{AffineFamily, Loop, PlantModel, PolyFamily};
 
 /// The paper's family of a loop that has the normalized view; its (α, β) are the loop

@@ -119,9 +119,17 @@ struct MapSummary {
     out: Option<String>,
 }
 
-fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> Result<Values> {
+fn normalized_map(
+    a: &MapArgs,
+    x: Grid,
+    y: Grid,
+    kind: MapKind,
+    bar: &ProgressBar,
+) -> Result<Values> {
     if a.lp.any_physical() {
-        bail!("maps over alpha, beta, gamma, delta are of the paper's normalized loop; for a physical loop grid --x K:LO:HI:N --y B:LO:HI:N");
+        bail!(
+            "maps over alpha, beta, gamma, delta are of the paper's normalized loop; for a physical loop grid --x K:LO:HI:N --y B:LO:HI:N"
+        );
     }
     let p = &a.lp.plant;
     let d = crate::model::delay_samples(p.delay.unwrap_or(0.0))?;
@@ -147,7 +155,11 @@ fn wall_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     }
     let rl = a.lp.resolve(false)?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
-    let values = |g: Grid| (0..g.range.n).map(|i| g.range.value(i)).collect::<Vec<f64>>();
+    let values = |g: Grid| {
+        (0..g.range.n)
+            .map(|i| g.range.value(i))
+            .collect::<Vec<f64>>()
+    };
     let (xs, ys) = (values(x), values(y));
     let k_on_x = x.name == Name::K;
     let wall = |xv: f64, yv: f64| {

@@ -557,7 +557,9 @@ pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs)
             });
         }
         if !matches!(rl.lp.plant.model, LibPlantModel::MassSpringDamper(_)) {
-            bail!("--alpha/--beta are normalized by the paper's mass m; give --wall-stiffness/--wall-damping for this plant");
+            bail!(
+                "--alpha/--beta are normalized by the paper's mass m; give --wall-stiffness/--wall-damping for this plant"
+            );
         }
         let (stiffness, damping) = fam.to_physical(alpha, beta);
         return Ok(Wall { stiffness, damping });
@@ -567,7 +569,10 @@ pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs)
         damping: wall.wall_damping.unwrap_or(DEFAULT_WALL.damping),
     };
     if !w.stiffness.is_finite() {
-        bail!("wall stiffness K must be a finite number (got {})", w.stiffness);
+        bail!(
+            "wall stiffness K must be a finite number (got {})",
+            w.stiffness
+        );
     }
     if !w.damping.is_finite() {
         bail!("wall damping B must be a finite number (got {})", w.damping);

@@ -115,7 +115,10 @@ mod tests {
 
     #[test]
     fn polynomials_read_like_matlab() {
-        assert_eq!(poly_text(&[1.0, -1.655, 0.7408], "z", 6), "z^2 - 1.655 z + 0.7408");
+        assert_eq!(
+            poly_text(&[1.0, -1.655, 0.7408], "z", 6),
+            "z^2 - 1.655 z + 0.7408"
+        );
         assert_eq!(
             poly_text(&[0.01187, 0.06408, 0.009721], "z", 4),
             "0.01187 z^2 + 0.06408 z + 0.009721"

@@ -79,7 +79,10 @@ fn discretize_reproduces_matlab_c2d_example_json() {
     assert_eq!(v["input"]["delay_time"], 0.25);
     assert_eq!(v["input"]["loop"]["delay"]["samples"], 2);
     assert_eq!(v["input"]["loop"]["delay"]["fraction"], 0.5);
-    assert_eq!(v["input"]["loop"]["plant"]["model"]["kind"], "transfer_function");
+    assert_eq!(
+        v["input"]["loop"]["plant"]["model"]["kind"],
+        "transfer_function"
+    );
 }
 
 /// The coefficients of a polynomial as text, e.g. "0.0118732 z^2 + 0.0640836 z + 0.00972066"
@@ -165,12 +168,7 @@ fn discretize_pure_mass_closed_forms() {
     assert_eq!(floats(&v["velocity"]["den"]), vec![1.0, 0.0]);
     // z³ − 2z² + z + g[(K + B/T) z² + K z − (B/T) z + (K... ) ]: expand (z + 1)(c1 z − c0)
     let (c1, c0) = (k + b / t, b / t);
-    let want = [
-        1.0,
-        -2.0 + g * c1,
-        1.0 + g * (c1 - c0),
-        -g * c0,
-    ];
+    let want = [1.0, -2.0 + g * c1, 1.0 + g * (c1 - c0), -g * c0];
     let p = floats(&v["characteristic"]);
     assert_eq!(p.len(), 4);
     for (x, y) in p.iter().zip(want) {
@@ -208,13 +206,22 @@ fn discretize_lowpass_velocity_closed_form() {
     let num = floats(&v["velocity"]["num"]);
     let den = floats(&v["velocity"]["den"]);
     let c = (1.0 - a) / 1e-3;
-    assert!((num[0] - c).abs() < 1e-12 * c && (num[1] + c).abs() < 1e-12 * c, "{num:?}");
-    assert!((den[0] - 1.0).abs() < 1e-15 && (den[1] + a).abs() < 1e-15, "{den:?}");
+    assert!(
+        (num[0] - c).abs() < 1e-12 * c && (num[1] + c).abs() < 1e-12 * c,
+        "{num:?}"
+    );
+    assert!(
+        (den[0] - 1.0).abs() < 1e-15 && (den[1] + a).abs() < 1e-15,
+        "{den:?}"
+    );
     // average:N is (z^N − 1)/(N T z^N)
     let v = json(&["discretize", "--velocity", "average:4"]);
     let num = floats(&v["velocity"]["num"]);
     assert_eq!(num.len(), 5);
-    assert!((num[0] - 250.0).abs() < 1e-12 && (num[4] + 250.0).abs() < 1e-12, "{num:?}");
+    assert!(
+        (num[0] - 250.0).abs() < 1e-12 && (num[4] + 250.0).abs() < 1e-12,
+        "{num:?}"
+    );
     assert_eq!(floats(&v["velocity"]["den"]), vec![1.0, 0.0, 0.0, 0.0, 0.0]);
 }
 
@@ -250,8 +257,24 @@ fn assert_consistent(v: &Value) {
 
 #[test]
 fn transfer_function_equals_mass_spring_damper() {
-    let tf = check(&["--plant-num", "1", "--plant-den", "1.1,7.5,350", "--delay", "1"]);
-    let msd = check(&["--mass", "1.1", "--damping", "7.5", "--stiffness", "350", "--delay", "1"]);
+    let tf = check(&[
+        "--plant-num",
+        "1",
+        "--plant-den",
+        "1.1,7.5,350",
+        "--delay",
+        "1",
+    ]);
+    let msd = check(&[
+        "--mass",
+        "1.1",
+        "--damping",
+        "7.5",
+        "--stiffness",
+        "350",
+        "--delay",
+        "1",
+    ]);
     assert!((radius(&tf) - radius(&msd)).abs() < 1e-12, "{tf} vs {msd}");
     assert_eq!(tf["verdict"], msd["verdict"]);
     assert_consistent(&tf);
@@ -319,7 +342,10 @@ fn rigid_two_mass_device_is_one_mass() {
         "5e4",
     ]);
     assert_consistent(&soft);
-    assert_eq!(soft["input"]["loop"]["plant"]["model"]["arm"]["stiffness"], 350.0);
+    assert_eq!(
+        soft["input"]["loop"]["plant"]["model"]["arm"]["stiffness"],
+        350.0
+    );
 }
 
 /// t_d = (d + λ)T: λ → 0 and λ → 1 match d and d + 1 samples.
@@ -524,25 +550,153 @@ fn refused(args: &[&str], needles: &[&str]) {
 #[test]
 fn contradictory_flags_are_refused_naming_both() {
     for (args, a, b) in [
-        (&["check", "--no-arm", "--arm-mass", "1"][..], "--no-arm", "--arm-mass"),
-        (&["kmax", "--no-arm", "--arm-stiffness", "9"], "--no-arm", "--arm-stiffness"),
-        (&["check", "--gamma", "0.1", "--mass", "1"], "--gamma", "--mass"),
-        (&["boundary", "--delta", "0.1", "--period", "1e-3"], "--delta", "--period"),
-        (&["check", "--alpha", "0.1", "--beta", "0.1", "--wall-stiffness", "5"], "--alpha", "--wall-stiffness"),
-        (&["check", "--gamma", "0.1", "--wall-damping", "5"], "--gamma", "--wall-damping"),
-        (&["check", "--delay", "1", "--delay-time", "0.001"], "--delay", "--delay-time"),
-        (&["discretize", "--plant-num", "1", "--plant-den", "1,0,0", "--mass", "1"], "--plant-num", "--mass"),
-        (&["kmax", "--plant-den", "1,0,0", "--arm-damping", "1"], "--plant-den", "--arm-damping"),
-        (&["check", "--plant-num", "1", "--motor-mass", "1"], "--plant-num", "--motor-mass"),
-        (&["check", "--motor-mass", "1", "--mass", "1"], "--motor-mass", "--mass"),
-        (&["map", "--x", "K:0:1:2", "--y", "B:0:1:2", "--handle-mass", "1", "--stiffness", "1"], "--handle-mass", "--stiffness"),
-        (&["check", "--transmission-stiffness", "1e5", "--device-mass", "1"], "--transmission-stiffness", "--device-mass"),
-        (&["check", "--gamma", "0.1", "--velocity", "lowpass:5"], "--gamma", "--velocity"),
-        (&["check", "--delta", "0.1", "--force-lag", "0.001"], "--delta", "--force-lag"),
-        (&["check", "--alpha", "0.1", "--beta", "0.1", "--plant-num", "1", "--plant-den", "1,0,0"], "--alpha", "--plant-num"),
-        (&["discretize", "--beta", "0.1", "--motor-mass", "1"], "--beta", "--motor-mass"),
-        (&["kmax", "--robust", "--velocity", "average:2"], "--robust", "--velocity"),
-        (&["map", "--x", "alpha:0:1:2", "--y", "beta:0:1:2", "--alpha", "0.1", "--mass", "1"], "--alpha", "--mass"),
+        (
+            &["check", "--no-arm", "--arm-mass", "1"][..],
+            "--no-arm",
+            "--arm-mass",
+        ),
+        (
+            &["kmax", "--no-arm", "--arm-stiffness", "9"],
+            "--no-arm",
+            "--arm-stiffness",
+        ),
+        (
+            &["check", "--gamma", "0.1", "--mass", "1"],
+            "--gamma",
+            "--mass",
+        ),
+        (
+            &["boundary", "--delta", "0.1", "--period", "1e-3"],
+            "--delta",
+            "--period",
+        ),
+        (
+            &[
+                "check",
+                "--alpha",
+                "0.1",
+                "--beta",
+                "0.1",
+                "--wall-stiffness",
+                "5",
+            ],
+            "--alpha",
+            "--wall-stiffness",
+        ),
+        (
+            &["check", "--gamma", "0.1", "--wall-damping", "5"],
+            "--gamma",
+            "--wall-damping",
+        ),
+        (
+            &["check", "--delay", "1", "--delay-time", "0.001"],
+            "--delay",
+            "--delay-time",
+        ),
+        (
+            &[
+                "discretize",
+                "--plant-num",
+                "1",
+                "--plant-den",
+                "1,0,0",
+                "--mass",
+                "1",
+            ],
+            "--plant-num",
+            "--mass",
+        ),
+        (
+            &["kmax", "--plant-den", "1,0,0", "--arm-damping", "1"],
+            "--plant-den",
+            "--arm-damping",
+        ),
+        (
+            &["check", "--plant-num", "1", "--motor-mass", "1"],
+            "--plant-num",
+            "--motor-mass",
+        ),
+        (
+            &["check", "--motor-mass", "1", "--mass", "1"],
+            "--motor-mass",
+            "--mass",
+        ),
+        (
+            &[
+                "map",
+                "--x",
+                "K:0:1:2",
+                "--y",
+                "B:0:1:2",
+                "--handle-mass",
+                "1",
+                "--stiffness",
+                "1",
+            ],
+            "--handle-mass",
+            "--stiffness",
+        ),
+        (
+            &[
+                "check",
+                "--transmission-stiffness",
+                "1e5",
+                "--device-mass",
+                "1",
+            ],
+            "--transmission-stiffness",
+            "--device-mass",
+        ),
+        (
+            &["check", "--gamma", "0.1", "--velocity", "lowpass:5"],
+            "--gamma",
+            "--velocity",
+        ),
+        (
+            &["check", "--delta", "0.1", "--force-lag", "0.001"],
+            "--delta",
+            "--force-lag",
+        ),
+        (
+            &[
+                "check",
+                "--alpha",
+                "0.1",
+                "--beta",
+                "0.1",
+                "--plant-num",
+                "1",
+                "--plant-den",
+                "1,0,0",
+            ],
+            "--alpha",
+            "--plant-num",
+        ),
+        (
+            &["discretize", "--beta", "0.1", "--motor-mass", "1"],
+            "--beta",
+            "--motor-mass",
+        ),
+        (
+            &["kmax", "--robust", "--velocity", "average:2"],
+            "--robust",
+            "--velocity",
+        ),
+        (
+            &[
+                "map",
+                "--x",
+                "alpha:0:1:2",
+                "--y",
+                "beta:0:1:2",
+                "--alpha",
+                "0.1",
+                "--mass",
+                "1",
+            ],
+            "--alpha",
+            "--mass",
+        ),
     ] {
         refused(args, &[a, b, "cannot be used with"]);
     }
@@ -551,36 +705,145 @@ fn contradictory_flags_are_refused_naming_both() {
 #[test]
 fn bad_loop_input_is_one_line_naming_flag_and_value() {
     for (args, needles) in [
-        (&["check", "--velocity", "forward"][..], &["--velocity", "forward"][..]),
-        (&["check", "--velocity", "lowpass"], &["--velocity", "lowpass"]),
-        (&["check", "--velocity", "lowpass:-5"], &["--velocity", "-5"]),
-        (&["check", "--velocity", "lowpass:fast"], &["--velocity", "fast"]),
-        (&["check", "--velocity", "average:0"], &["--velocity", "average:0"]),
-        (&["check", "--velocity", "average:1.5"], &["--velocity", "1.5"]),
-        (&["check", "--velocity", "iir:1,-1"], &["--velocity", "iir:1,-1"]),
-        (&["check", "--velocity", "iir:1,-1/0,1"], &["--velocity", "a0"]),
-        (&["check", "--velocity", "iir:1,x/1"], &["--velocity", "'x'"]),
-        (&["check", "--velocity", "backward:3"], &["--velocity", "backward:3"]),
-        (&["check", "--plant-num", "1,2,3", "--plant-den", "1,1"], &["--plant-num 1,2,3", "strictly proper"]),
-        (&["check", "--plant-num", "1,2", "--plant-den", "1,2"], &["--plant-den 1,2", "strictly proper"]),
-        (&["check", "--plant-num", "1", "--plant-den", "0,0"], &["--plant-den 0,0", "denominator"]),
-        (&["check", "--plant-num", "1,x", "--plant-den", "1,0"], &["--plant-num", "'x'"]),
-        (&["check", "--plant-num", "1", "--plant-den", "1,nan"], &["--plant-den", "nan"]),
-        (&["check", "--plant-num", "1", "--plant-den", "1,1,1,1,1,1,1,1,1,1,1,1,1,1"], &["plant order", "13"]),
-        (&["check", "--plant-num", "1"], &["--plant-num", "--plant-den"]),
-        (&["check", "--plant-den", "1,0,0"], &["--plant-den", "--plant-num"]),
+        (
+            &["check", "--velocity", "forward"][..],
+            &["--velocity", "forward"][..],
+        ),
+        (
+            &["check", "--velocity", "lowpass"],
+            &["--velocity", "lowpass"],
+        ),
+        (
+            &["check", "--velocity", "lowpass:-5"],
+            &["--velocity", "-5"],
+        ),
+        (
+            &["check", "--velocity", "lowpass:fast"],
+            &["--velocity", "fast"],
+        ),
+        (
+            &["check", "--velocity", "average:0"],
+            &["--velocity", "average:0"],
+        ),
+        (
+            &["check", "--velocity", "average:1.5"],
+            &["--velocity", "1.5"],
+        ),
+        (
+            &["check", "--velocity", "iir:1,-1"],
+            &["--velocity", "iir:1,-1"],
+        ),
+        (
+            &["check", "--velocity", "iir:1,-1/0,1"],
+            &["--velocity", "a0"],
+        ),
+        (
+            &["check", "--velocity", "iir:1,x/1"],
+            &["--velocity", "'x'"],
+        ),
+        (
+            &["check", "--velocity", "backward:3"],
+            &["--velocity", "backward:3"],
+        ),
+        (
+            &["check", "--plant-num", "1,2,3", "--plant-den", "1,1"],
+            &["--plant-num 1,2,3", "strictly proper"],
+        ),
+        (
+            &["check", "--plant-num", "1,2", "--plant-den", "1,2"],
+            &["--plant-den 1,2", "strictly proper"],
+        ),
+        (
+            &["check", "--plant-num", "1", "--plant-den", "0,0"],
+            &["--plant-den 0,0", "denominator"],
+        ),
+        (
+            &["check", "--plant-num", "1,x", "--plant-den", "1,0"],
+            &["--plant-num", "'x'"],
+        ),
+        (
+            &["check", "--plant-num", "1", "--plant-den", "1,nan"],
+            &["--plant-den", "nan"],
+        ),
+        (
+            &[
+                "check",
+                "--plant-num",
+                "1",
+                "--plant-den",
+                "1,1,1,1,1,1,1,1,1,1,1,1,1,1",
+            ],
+            &["plant order", "13"],
+        ),
+        (
+            &["check", "--plant-num", "1"],
+            &["--plant-num", "--plant-den"],
+        ),
+        (
+            &["check", "--plant-den", "1,0,0"],
+            &["--plant-den", "--plant-num"],
+        ),
         (&["check", "--force-lag", "-1"], &["--force-lag", "-1"]),
         (&["check", "--force-lag", "inf"], &["--force-lag", "inf"]),
-        (&["check", "--motor-mass", "0.1"], &["--transmission-stiffness"]),
-        (&["check", "--transmission-stiffness", "1e5"], &["--motor-mass"]),
-        (&["check", "--motor-mass", "-0.1", "--transmission-stiffness", "1e5"], &["motor mass", "-0.1"]),
-        (&["check", "--motor-mass", "0.1", "--transmission-stiffness", "0"], &["transmission stiffness", "0"]),
-        (&["check", "--delay-time", "-0.001"], &["delay time", "-0.001"]),
+        (
+            &["check", "--motor-mass", "0.1"],
+            &["--transmission-stiffness"],
+        ),
+        (
+            &["check", "--transmission-stiffness", "1e5"],
+            &["--motor-mass"],
+        ),
+        (
+            &[
+                "check",
+                "--motor-mass",
+                "-0.1",
+                "--transmission-stiffness",
+                "1e5",
+            ],
+            &["motor mass", "-0.1"],
+        ),
+        (
+            &[
+                "check",
+                "--motor-mass",
+                "0.1",
+                "--transmission-stiffness",
+                "0",
+            ],
+            &["transmission stiffness", "0"],
+        ),
+        (
+            &["check", "--delay-time", "-0.001"],
+            &["delay time", "-0.001"],
+        ),
         (&["check", "--delay-time", "nan"], &["delay time", "NaN"]),
-        (&["check", "--plant-num", "1", "--plant-den", "1,0", "--alpha", "0.1", "--beta", "0.1"], &["--alpha", "--plant-num"]),
-        (&["map", "--x", "K:0:1:2", "--y", "alpha:0:1:2"], &["K", "alpha"]),
-        (&["map", "--x", "K:0:1:2", "--y", "B:0:1:2", "--gamma", "0.1"], &["--gamma"]),
-        (&["map", "--x", "alpha:0:1:2", "--y", "beta:0:1:2", "--no-arm"], &["K:LO:HI:N"]),
+        (
+            &[
+                "check",
+                "--plant-num",
+                "1",
+                "--plant-den",
+                "1,0",
+                "--alpha",
+                "0.1",
+                "--beta",
+                "0.1",
+            ],
+            &["--alpha", "--plant-num"],
+        ),
+        (
+            &["map", "--x", "K:0:1:2", "--y", "alpha:0:1:2"],
+            &["K", "alpha"],
+        ),
+        (
+            &["map", "--x", "K:0:1:2", "--y", "B:0:1:2", "--gamma", "0.1"],
+            &["--gamma"],
+        ),
+        (
+            &["map", "--x", "alpha:0:1:2", "--y", "beta:0:1:2", "--no-arm"],
+            &["K:LO:HI:N"],
+        ),
         (&["discretize", "--alpha", "0.1"], &["--beta"]),
     ] {
         refused(args, needles);

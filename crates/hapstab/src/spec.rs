@@ -50,7 +50,10 @@ pub fn parse_coefficients(name: &'static str, text: &str) -> Result<Vec<f64>> {
 
 fn parse_iir(text: &str, body: &str) -> Result<VelocityEstimator> {
     let Some((b, a)) = body.split_once('/') else {
-        return Err(bad_velocity(text, "needs a '/' between numerator and denominator"));
+        return Err(bad_velocity(
+            text,
+            "needs a '/' between numerator and denominator",
+        ));
     };
     let b = parse_coefficients("velocity filter numerator b", b)?;
     let a = parse_coefficients("velocity filter denominator a", a)?;
@@ -58,10 +61,12 @@ fn parse_iir(text: &str, body: &str) -> Result<VelocityEstimator> {
 }
 
 fn parse_number<T: FromStr>(text: &str, value: &str, what: &str) -> Result<T> {
-    value
-        .trim()
-        .parse()
-        .map_err(|_| bad_velocity(text, &format!("has '{}', which is not {what}", value.trim())))
+    value.trim().parse().map_err(|_| {
+        bad_velocity(
+            text,
+            &format!("has '{}', which is not {what}", value.trim()),
+        )
+    })
 }
 
 impl FromStr for VelocityEstimator {
@@ -118,10 +123,7 @@ mod tests {
     fn every_form_parses_and_round_trips() {
         let cases = [
             ("backward", VelocityEstimator::Backward),
-            (
-                "lowpass:50",
-                VelocityEstimator::LowPass { cutoff_hz: 50.0 },
-            ),
+            ("lowpass:50", VelocityEstimator::LowPass { cutoff_hz: 50.0 }),
             (" average:15 ", VelocityEstimator::Average { samples: 15 }),
             (
                 "iir:1, -1/0.001,0.0005",
