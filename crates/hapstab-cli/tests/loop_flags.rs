@@ -425,7 +425,7 @@ fn wall_map_of_a_pure_mass_closed_form() {
         let (alpha, beta, s) = (v[0] * 1e-6 / 0.1, v[1] * 1e-3 / 0.1, v[2] == 1.0);
         let hi = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
         let inside = alpha > 1e-9 && beta > 0.0 && beta < 2.0 && alpha < hi - 1e-9;
-        let outside = alpha < -1e-9 || beta < -1e-9 || beta > 2.0 + 1e-9 || alpha > hi + 1e-9;
+        let outside = alpha < -1e-9 || !(-1e-9..=2.0 + 1e-9).contains(&beta) || alpha > hi + 1e-9;
         if inside {
             assert!(s, "({alpha}, {beta})");
             stable += 1;

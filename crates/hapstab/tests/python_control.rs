@@ -148,8 +148,12 @@ fn check(c: &Case, h: &Answer) -> Option<String> {
     (decidable && (h.verdict.as_str() != want || !python_agrees)).then_some(what)
 }
 
-/// The fixture's cases with hapstab's answers, split by the dominant root's conditioning.
-fn answers() -> (Vec<(Case, Answer)>, Vec<(Case, Answer)>) {
+/// Cases of the fixture with hapstab's answers.
+type Answered = Vec<(Case, Answer)>;
+
+/// The fixture's cases with hapstab's answers, split by the dominant root's conditioning:
+/// (well-conditioned, ill-conditioned).
+fn answers() -> (Answered, Answered) {
     fixture()
         .cases
         .into_iter()
