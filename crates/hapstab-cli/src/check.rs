@@ -11,7 +11,7 @@ use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::family::{linear_k, pick_interval, stable_intervals};
+use crate::family::{characteristic, linear_k, pick_interval, stable_intervals, wall_units};
 use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
@@ -67,7 +67,7 @@ struct CheckOut {
 /// b: the one containing a, or the one reaching furthest; Err when it cannot be computed for
 /// this loop.
 fn interval_units(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<Interval>> {
-    let (a, b) = fam.to_units(w.stiffness, w.damping);
+    let (a, b) = wall_units(&rl.lp, fam, w)?;
     Ok(pick_interval(&stable_intervals(&rl.lp, fam, b)?, a))
 }
 
@@ -80,7 +80,7 @@ fn paper_view(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<P
     let Some(pp) = rl.lp.paper_view() else {
         return Ok(None);
     };
-    let (alpha, beta) = fam.to_units(w.stiffness, w.damping);
+    let (alpha, beta) = wall_units(&rl.lp, fam, w)?;
     let d = rl.lp.delay.samples;
     let k_linear = if rl.normalized {
         None
@@ -100,8 +100,8 @@ pub fn run(a: &CheckArgs) -> Result<()> {
     let rl = a.lp.resolve(a.wall.normalized())?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
-    let (wa, wb) = fam.to_units(w.stiffness, w.damping);
-    let analysis = Analysis::of_poly(&fam.coefficients(wa, wb))?;
+    let units = wall_units(&rl.lp, &fam, w)?;
+    let analysis = Analysis::of_poly(&characteristic(&rl.lp, &fam, units)?)?;
     let (k_interval, k_interval_undecided) = if rl.normalized {
         (None, None)
     } else {

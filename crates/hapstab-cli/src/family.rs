@@ -51,3 +51,23 @@ pub fn linear_k(lp: &Loop, wall_damping: f64) -> Option<f64> {
     let p = Physical::new(*e, wall, sampling).ok()?;
     Some(hapstab::linear::linear_stiffness_limit(&p))
 }
+
+/// The wall in the family's units (a, b): for the paper's loop the (α, β) of Table I exactly
+/// as [`Physical::normalized`] forms them, so that every command reports the same α and β.
+pub fn wall_units(lp: &Loop, fam: &AffineFamily, w: Wall) -> Result<(f64, f64)> {
+    if let (Some(_), PlantModel::MassSpringDamper(e)) = (lp.paper_view(), &lp.plant.model) {
+        let sampling = Sampling::new(lp.period, lp.delay.samples)?;
+        let n = Physical::new(*e, w, sampling)?.normalized()?;
+        return Ok((n.alpha, n.beta));
+    }
+    Ok(fam.to_units(w.stiffness, w.damping))
+}
+
+/// The ascending coefficients of p(z) for a wall in the family's units; for the paper's loop
+/// through the paper's family (eq. 9) in (α, β), as every other command forms it.
+pub fn characteristic(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Result<Vec<f64>> {
+    Ok(match lp.paper_view() {
+        Some(_) => paper_family(lp)?.coefficients(a, b),
+        None => fam.coefficients(a, b),
+    })
+}
