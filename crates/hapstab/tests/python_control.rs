@@ -1,6 +1,6 @@
 //! Independent check against python-control: the closed loops of
 //! `tests/fixtures/control_loops.json` were formed by `benches/baseline/control_fixture.py`
-//! with python-control alone (`sample_system(P, T, 'zoh')`, the delay as z^(−d), the velocity
+//! with python-control alone (`sample_system(ss(P), T, 'zoh')`, the delay as z^(−d), the velocity
 //! estimator as a discrete tf, `feedback`, `poles`) and refereed by
 //! `benches/baseline/control_mpmath.py` (the same loops in mpmath at 60 digits:
 //! `reference_radius`). hapstab builds the same loops from the same numbers (plants in its
