@@ -56,16 +56,12 @@ struct CheckOut {
     /// the one reaching furthest; null when no K is stable at that B.
     #[serde(skip_serializing_if = "Option::is_none")]
     k_interval: Option<Option<[f64; 2]>>,
-    /// Why the K interval is missing, when it could not be computed for this loop.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_interval_undecided: Option<String>,
     #[serde(flatten)]
     paper: Option<PaperView>,
 }
 
 /// The stable interval of the wall's stiffness in the loop's units (a, b) at its damping
-/// b: the one containing a, or the one reaching furthest; Err when it cannot be computed for
-/// this loop.
+/// b: the one containing a, or the one reaching furthest.
 fn interval_units(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<Interval>> {
     let (a, b) = wall_units(&rl.lp, fam, w)?;
     Ok(pick_interval(&stable_intervals(&rl.lp, fam, b)?, a))
@@ -102,13 +98,10 @@ pub fn run(a: &CheckArgs) -> Result<()> {
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
     let units = wall_units(&rl.lp, &fam, w)?;
     let analysis = Analysis::of_poly(&characteristic(&rl.lp, &fam, units)?)?;
-    let (k_interval, k_interval_undecided) = if rl.normalized {
-        (None, None)
+    let k_interval = if rl.normalized {
+        None
     } else {
-        match interval_units(&rl, &fam, w) {
-            Ok(iv) => (Some(k_interval(&fam, iv)), None),
-            Err(e) => (None, Some(e.to_string())),
-        }
+        Some(k_interval(&fam, interval_units(&rl, &fam, w)?))
     };
     let out = CheckOut {
         input: LoopInput::new(&rl, Some(w)),
@@ -117,7 +110,6 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         spectral_radius: analysis.spectral_radius,
         roots: analysis.roots.clone(),
         k_interval,
-        k_interval_undecided,
         paper: paper_view(&rl, &fam, w)?,
     };
     if a.json {
@@ -183,14 +175,13 @@ fn print_k_interval(w: Wall, o: &CheckOut) {
         .and_then(|p| p.k_linear)
         .map(|k| format!(" (linear condition (22): K < {} N/m)", sig(k, 10)))
         .unwrap_or_default();
-    match (&o.k_interval, &o.k_interval_undecided) {
-        (Some(Some([lo, hi])), _) => println!(
+    match &o.k_interval {
+        Some(Some([lo, hi])) => println!(
             "stiffness   stable for {} < K < {} N/m at B = {b} Ns/m{linear}",
             sig(*lo, 10),
             sig(*hi, 10)
         ),
-        (Some(None), _) => println!("stiffness   no stable K at B = {b} Ns/m"),
-        (None, Some(why)) => println!("stiffness   K interval at B = {b} Ns/m undecided: {why}"),
-        (None, None) => {}
+        Some(None) => println!("stiffness   no stable K at B = {b} Ns/m"),
+        None => {}
     }
 }

@@ -7,25 +7,29 @@ use hapstab::params::{Physical, Sampling, Wall};
 use hapstab::region::{StableRegion, stable_region};
 use hapstab::{AffineFamily, Loop, PlantModel, PolyFamily};
 
-/// The paper's family of a loop that has the normalized view; its (α, β) are the loop
-/// family's wall units (a, b).
-fn paper_family(lp: &Loop) -> Result<PolyFamily> {
-    match lp.paper_view() {
-        Some(pp) => Ok(PolyFamily::new(pp, lp.delay.samples)?),
-        None => bail!(
-            "the stable region is computed for the paper's loop only (mass-spring-damper plant, backward-difference velocity, no actuator lag, whole-sample delay)"
-        ),
-    }
+/// The paper's family of a loop that has the normalized view (eq. 9 in (α, β), as every
+/// command has always formed it); its (α, β) are the loop family's wall units (a, b).
+fn paper_family(lp: &Loop) -> Result<Option<PolyFamily>> {
+    lp.paper_view()
+        .map(|pp| PolyFamily::new(pp, lp.delay.samples))
+        .transpose()
+        .map_err(Into::into)
 }
 
 /// Stable intervals lo < a < hi of the wall's stiffness at fixed damping b (Section V).
-pub fn stable_intervals(lp: &Loop, _fam: &AffineFamily, b: f64) -> Result<Vec<Interval>> {
-    Ok(stable_alpha_intervals(&paper_family(lp)?, b))
+pub fn stable_intervals(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<Vec<Interval>> {
+    Ok(match paper_family(lp)? {
+        Some(pf) => stable_alpha_intervals(&pf, b),
+        None => stable_alpha_intervals(fam, b),
+    })
 }
 
 /// The stable region in the wall plane (Section V, Figs. 4–6).
-pub fn region(lp: &Loop, _fam: &AffineFamily) -> Result<StableRegion> {
-    Ok(stable_region(&paper_family(lp)?))
+pub fn region(lp: &Loop, fam: &AffineFamily) -> Result<StableRegion> {
+    Ok(match paper_family(lp)? {
+        Some(pf) => stable_region(&pf)?,
+        None => stable_region(fam)?,
+    })
 }
 
 /// The stable interval that contains a, or else the one reaching furthest.
@@ -66,8 +70,8 @@ pub fn wall_units(lp: &Loop, fam: &AffineFamily, w: Wall) -> Result<(f64, f64)> 
 /// The ascending coefficients of p(z) for a wall in the family's units; for the paper's loop
 /// through the paper's family (eq. 9) in (α, β), as every other command forms it.
 pub fn characteristic(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Result<Vec<f64>> {
-    Ok(match lp.paper_view() {
-        Some(_) => paper_family(lp)?.coefficients(a, b),
+    Ok(match paper_family(lp)? {
+        Some(pf) => pf.coefficients(a, b),
         None => fam.coefficients(a, b),
     })
 }
