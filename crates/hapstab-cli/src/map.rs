@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, compute_wall_map};
+use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -18,10 +18,10 @@ use crate::output::print_json;
 #[command(mut_arg("beta", |a| a.conflicts_with_all(PHYSICAL_PLANT_FLAGS).conflicts_with_all(LOOP_FLAGS)))]
 pub struct MapArgs {
     /// Horizontal axis as NAME:LO:HI:N, NAME one of alpha, beta, gamma, delta (the paper's
-    /// normalized loop) or K, B (the wall of any loop, in N/m and Ns/m).
+    /// normalized loop), or K (the wall stiffness of any loop in N/m, with --y B:…).
     #[arg(long, allow_hyphen_values = true)]
     x: String,
-    /// Vertical axis as NAME:LO:HI:N.
+    /// Vertical axis as NAME:LO:HI:N (B: the wall damping in Ns/m, with --x K:…).
     #[arg(long, allow_hyphen_values = true)]
     y: String,
     #[command(flatten)]
@@ -149,26 +149,18 @@ fn normalized_map(
     })
 }
 
-fn wall_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> Result<Values> {
+/// The map of a loop's wall: K along x and B along y, converted to the family's wall units.
+fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> Result<Values> {
     if a.lp.plant.normalized_mode() {
         bail!("K and B axes map a physical loop; with --gamma/--delta grid alpha and beta");
     }
     let rl = a.lp.resolve(false)?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
-    let values = |g: Grid| {
-        (0..g.range.n)
-            .map(|i| g.range.value(i))
-            .collect::<Vec<f64>>()
-    };
-    let (xs, ys) = (values(x), values(y));
-    let k_on_x = x.name == Name::K;
-    let wall = |xv: f64, yv: f64| {
-        let (k, b) = if k_on_x { (xv, yv) } else { (yv, xv) };
-        fam.to_units(k, b)
-    };
-    let m = compute_wall_map(&fam, (&xs, &ys), &wall, kind, &|k| {
-        bar.set_position(k as u64)
-    })?;
+    let (a_lo, b_lo) = fam.to_units(x.range.lo, y.range.lo);
+    let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
+    let xa = AxisRange::new(Axis::Alpha, a_lo, a_hi, x.range.n)?;
+    let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
+    let m = wall_map(&fam, xa, yb, kind, &|k| bar.set_position(k as u64))?;
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
@@ -229,9 +221,9 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let t = std::time::Instant::now();
     let v = match (x.name, y.name) {
         (Name::Normalized(_), Name::Normalized(_)) => normalized_map(a, x, y, kind, &bar)?,
-        (Name::K, Name::B) | (Name::B, Name::K) => wall_map(a, x, y, kind, &bar)?,
+        (Name::K, Name::B) => loop_map(a, x, y, kind, &bar)?,
         _ => bail!(
-            "--x and --y must both be normalized (alpha, beta, gamma, delta) or be K and B (got {} and {})",
+            "--x and --y must both be normalized (alpha, beta, gamma, delta), or --x K and --y B (got {} and {})",
             axis_label(x.name),
             axis_label(y.name)
         ),
