@@ -1,7 +1,7 @@
 //! The library's region and interval functions for a resolved loop, in the loop's wall units
 //! (a, b) (α, β for the paper's loop); callers convert with `AffineFamily::to_physical`.
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use hapstab::boundary::{Interval, stable_alpha_intervals};
 use hapstab::params::{Physical, Sampling, Wall};
 use hapstab::region::{StableRegion, stable_region};
