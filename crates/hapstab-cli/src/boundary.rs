@@ -1,20 +1,23 @@
-//! `hapstab boundary`: the exact stable region for fixed (γ, δ, d) (Section V, Figs. 4–6).
+//! `hapstab boundary`: the exact stable region of a loop in the wall plane (Section V,
+//! Figs. 4–6): in (α, β) for the paper's loop, and in physical (K, B) for a physical loop.
 
 use anyhow::{Context, Result};
 use clap::Args;
-use hapstab::PolyFamily;
-use hapstab::region::{EdgeKind, StableRegion, stable_region};
+use hapstab::AffineFamily;
+use hapstab::region::{EdgeKind, StableRegion};
 use serde::Serialize;
 
-use crate::model::{PlantArgs, PlantModel};
+use crate::family::region;
+use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{print_json, sig};
 
 /// Arguments of `hapstab boundary`.
 #[derive(Args, Debug)]
 pub struct BoundaryArgs {
     #[command(flatten)]
-    plant: PlantArgs,
-    /// Write the polygon vertices to this CSV file (polygon, vertex, alpha, beta, theta, edge).
+    lp: LoopArgs,
+    /// Write the polygon vertices to this CSV file (polygon, vertex, alpha, beta, theta, edge,
+    /// and for a physical loop K in N/m and B in Ns/m).
     #[arg(long)]
     csv: Option<std::path::PathBuf>,
     /// Print one JSON object instead of text.
@@ -35,22 +38,37 @@ struct PhysicalRegion {
     k_max: f64,
     /// B at K_max in Ns/m.
     b_at_k_max: f64,
-    /// N/m per unit α (m/T²).
+    /// N/m per wall unit a (m/T² for the paper's plant: per unit α).
     k_per_alpha: f64,
-    /// Ns/m per unit β (m/T).
+    /// Ns/m per wall unit b (m/T for the paper's plant: per unit β).
     b_per_beta: f64,
+    /// Area of the stable region in (N/m)·(Ns/m).
+    area: f64,
+    /// The polygons as arrays of [K, B] in N/m and Ns/m.
+    polygons: Vec<Vec<[f64; 2]>>,
+}
+
+/// The paper's plant in normalized units (Table I).
+#[derive(Serialize)]
+struct PaperPlant {
+    gamma: f64,
+    delta: f64,
+    d: usize,
 }
 
 #[derive(Serialize)]
 struct BoundaryOut {
-    gamma: f64,
-    delta: f64,
-    d: usize,
+    input: LoopInput,
+    #[serde(flatten)]
+    paper: Option<PaperPlant>,
+    /// Largest stable stiffness in wall units (α for the paper's loop).
     alpha_max: f64,
+    /// Damping in wall units (β) at which it is reached.
     beta_at_alpha_max: f64,
+    /// Area in wall units.
     area: f64,
-    /// Closed polygons, each an array of [alpha, beta] (counter-clockwise, first vertex not
-    /// repeated).
+    /// Closed polygons in wall units, each an array of [alpha, beta] (counter-clockwise,
+    /// first vertex not repeated).
     polygons: Vec<Vec<[f64; 2]>>,
     /// Edge labels per polygon.
     edges: Vec<Vec<EdgeOut>>,
@@ -58,15 +76,10 @@ struct BoundaryOut {
     physical: Option<PhysicalRegion>,
 }
 
-/// Computes the region for a resolved plant.
-pub fn region_of(pm: &PlantModel) -> Result<StableRegion> {
-    let fam = PolyFamily::new(hapstab::PlantParams::new(pm.gamma, pm.delta)?, pm.d)?;
-    Ok(stable_region(&fam)?)
-}
-
-fn kind_name(k: &EdgeKind) -> String {
+fn kind_name(k: &EdgeKind, paper: bool) -> String {
     match k {
-        EdgeKind::ZPlusOne => "z = 1 line (α = −γ)".into(),
+        EdgeKind::ZPlusOne if paper => "z = 1 line (α = −γ)".into(),
+        EdgeKind::ZPlusOne => "z = 1 line".into(),
         EdgeKind::ZMinusOne => "z = −1 line".into(),
         EdgeKind::Complex {
             theta_start,
@@ -80,57 +93,81 @@ fn kind_name(k: &EdgeKind) -> String {
     }
 }
 
-fn write_csv(path: &std::path::Path, r: &StableRegion) -> Result<()> {
+fn edge_tag(k: &EdgeKind) -> &'static str {
+    match k {
+        EdgeKind::ZPlusOne => "z=1",
+        EdgeKind::ZMinusOne => "z=-1",
+        EdgeKind::Complex { .. } => "complex",
+        EdgeKind::Window => "window",
+    }
+}
+
+fn write_csv(path: &std::path::Path, r: &StableRegion, fam: Option<&AffineFamily>) -> Result<()> {
     let mut w =
         csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
-    w.write_record(["polygon", "vertex", "alpha", "beta", "theta", "edge"])?;
+    let mut header = vec!["polygon", "vertex", "alpha", "beta", "theta", "edge"];
+    if fam.is_some() {
+        header.extend(["K", "B"]);
+    }
+    w.write_record(&header)?;
     for (pi, p) in r.polygons.iter().enumerate() {
         let mut ei = 0;
         for (vi, v) in p.vertices.iter().enumerate() {
             while ei + 1 < p.edges.len() && p.edges[ei + 1].start <= vi {
                 ei += 1;
             }
-            let kind = match p.edges[ei].kind {
-                EdgeKind::ZPlusOne => "z=1",
-                EdgeKind::ZMinusOne => "z=-1",
-                EdgeKind::Complex { .. } => "complex",
-                EdgeKind::Window => "window",
-            };
-            w.write_record([
+            let mut rec = vec![
                 pi.to_string(),
                 vi.to_string(),
                 format!("{:e}", v.alpha),
                 format!("{:e}", v.beta),
                 format!("{:e}", p.thetas[vi]),
-                kind.to_string(),
-            ])?;
+                edge_tag(&p.edges[ei].kind).to_string(),
+            ];
+            if let Some(f) = fam {
+                let (k, b) = f.to_physical(v.alpha, v.beta);
+                rec.extend([format!("{k:e}"), format!("{b:e}")]);
+            }
+            w.write_record(&rec)?;
         }
     }
     w.flush()?;
     Ok(())
 }
 
-/// Runs `hapstab boundary`.
-pub fn run(a: &BoundaryArgs) -> Result<()> {
-    let pm = a.plant.resolve()?;
-    let r = region_of(&pm)?;
-    if let Some(path) = &a.csv {
-        write_csv(path, &r)?;
+fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
+    let (k_max, b_at_k_max) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    let (kpa, bpb) = fam.to_physical(1.0, 1.0);
+    PhysicalRegion {
+        k_max,
+        b_at_k_max,
+        k_per_alpha: kpa,
+        b_per_beta: bpb,
+        area: r.area * kpa * bpb,
+        polygons: r
+            .polygons
+            .iter()
+            .map(|p| {
+                p.vertices
+                    .iter()
+                    .map(|v| {
+                        let (k, b) = fam.to_physical(v.alpha, v.beta);
+                        [k, b]
+                    })
+                    .collect()
+            })
+            .collect(),
     }
-    let physical = pm.physical.map(|(eff, s)| {
-        let kpa = eff.mass / (s.period * s.period);
-        let bpb = eff.mass / s.period;
-        PhysicalRegion {
-            k_max: r.alpha_max * kpa,
-            b_at_k_max: r.beta_at_alpha_max * bpb,
-            k_per_alpha: kpa,
-            b_per_beta: bpb,
-        }
-    });
-    let out = BoundaryOut {
-        gamma: pm.gamma,
-        delta: pm.delta,
-        d: pm.d,
+}
+
+fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOut {
+    BoundaryOut {
+        input: LoopInput::new(rl, None),
+        paper: rl.lp.paper_view().map(|pp| PaperPlant {
+            gamma: pp.gamma,
+            delta: pp.delta,
+            d: rl.lp.delay.samples,
+        }),
         alpha_max: r.alpha_max,
         beta_at_alpha_max: r.beta_at_alpha_max,
         area: r.area,
@@ -152,47 +189,74 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
                     .collect()
             })
             .collect(),
-        physical,
-    };
+        physical: (!rl.normalized).then(|| physical_region(fam, r)),
+    }
+}
+
+/// Runs `hapstab boundary`.
+pub fn run(a: &BoundaryArgs) -> Result<()> {
+    let rl = a.lp.resolve(false)?;
+    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let r = region(&rl.lp, &fam)?;
+    if let Some(path) = &a.csv {
+        write_csv(path, &r, (!rl.normalized).then_some(&fam))?;
+    }
+    let out = output(&rl, &fam, &r);
     if a.json {
         return print_json(&out);
     }
-    println!(
-        "stable region for γ = {}, δ = {}, d = {}",
-        sig(pm.gamma, 10),
-        sig(pm.delta, 10),
-        pm.d
-    );
-    if r.polygons.is_empty() {
-        println!("empty: no (α, β) makes this loop stable");
-        return Ok(());
+    print_text(&rl, &fam, &r, &out);
+    if let Some(path) = &a.csv {
+        println!("vertices written to {}", path.display());
     }
-    println!(
-        "α_max = {:.15e} at β = {:.15e}",
-        r.alpha_max, r.beta_at_alpha_max
-    );
-    println!("area  = {:.12e}", r.area);
+    Ok(())
+}
+
+fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &BoundaryOut) {
+    match &out.paper {
+        Some(p) => println!(
+            "stable region for γ = {}, δ = {}, d = {}",
+            sig(p.gamma, 10),
+            sig(p.delta, 10),
+            p.d
+        ),
+        None => println!("stable region of the loop"),
+    }
+    if !rl.normalized {
+        for line in describe_loop(&rl.lp) {
+            println!("{line}");
+        }
+    }
+    if r.polygons.is_empty() {
+        println!("empty: no wall (K, B) makes this loop stable");
+        return;
+    }
+    if out.paper.is_some() {
+        println!(
+            "α_max = {:.15e} at β = {:.15e}",
+            r.alpha_max, r.beta_at_alpha_max
+        );
+        println!("area  = {:.12e}", r.area);
+    }
     if let Some(p) = &out.physical {
         println!(
             "K_max = {} N/m at B = {} Ns/m",
             sig(p.k_max, 12),
             sig(p.b_at_k_max, 12)
         );
+        println!("area  = {} (N/m)·(Ns/m)", sig(p.area, 12));
     }
     for (i, p) in r.polygons.iter().enumerate() {
         println!("polygon {} ({} vertices):", i + 1, p.vertices.len());
         for e in &p.edges {
             let v = p.vertices[e.start];
-            println!(
-                "  from (α, β) = ({}, {}): {}",
-                sig(v.alpha, 10),
-                sig(v.beta, 10),
-                kind_name(&e.kind)
-            );
+            let at = if rl.normalized {
+                format!("(α, β) = ({}, {})", sig(v.alpha, 10), sig(v.beta, 10))
+            } else {
+                let (k, b) = fam.to_physical(v.alpha, v.beta);
+                format!("(K, B) = ({} N/m, {} Ns/m)", sig(k, 10), sig(b, 10))
+            };
+            println!("  from {at}: {}", kind_name(&e.kind, out.paper.is_some()));
         }
     }
-    if let Some(path) = &a.csv {
-        println!("vertices written to {}", path.display());
-    }
-    Ok(())
 }

@@ -1,26 +1,26 @@
-//! `hapstab kmax`: the largest stable virtual stiffness in N/m for a device (with an optional
-//! arm), beside the linear condition (b + B)/(t_d + T/2) of eq. (22).
+//! `hapstab kmax`: the largest stable virtual stiffness in N/m for any loop, beside the
+//! linear condition (b + B)/(t_d + T/2) of eq. (22) for the paper's loop.
 
 use anyhow::{Result, bail};
 use clap::Args;
-use hapstab::PolyFamily;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::AffineFamily;
 use serde::Serialize;
 
-use crate::model::PlantArgs;
+use crate::family::{linear_k, region, stable_intervals};
+use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{print_json, sig};
 
 /// Arguments of `hapstab kmax`.
 #[derive(Args, Debug)]
 pub struct KmaxArgs {
     #[command(flatten)]
-    plant: PlantArgs,
+    lp: LoopArgs,
     /// Virtual damping B in Ns/m; without it, the overall K_max and the B that reaches it.
     #[arg(long, allow_hyphen_values = true)]
     wall_damping: Option<f64>,
     /// Robust design (beyond the paper): K_max stable for every plant in a box, by default
     /// from the ungrabbed device to the device held by the arm (see --box-* flags).
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = LOOP_FLAGS)]
     robust: bool,
     #[command(flatten)]
     robust_box: crate::robust::RobustArgs,
@@ -29,8 +29,19 @@ pub struct KmaxArgs {
     json: bool,
 }
 
+/// The paper's normalized view of the result (Table I).
+#[derive(Serialize)]
+struct PaperView {
+    alpha_max: Option<f64>,
+    beta: Option<f64>,
+    gamma: f64,
+    delta: f64,
+    d: usize,
+}
+
 #[derive(Serialize)]
 struct KmaxOut {
+    input: LoopInput,
     /// Largest stable K in N/m.
     k_max: Option<f64>,
     /// B at which the overall K_max is reached (when no B was given), Ns/m.
@@ -39,98 +50,107 @@ struct KmaxOut {
     /// The given B, Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     wall_damping: Option<f64>,
-    /// Stable K interval at the given B (lower end is −k), N/m.
+    /// Stable K interval at the given B, N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     k_interval: Option<[f64; 2]>,
-    /// Linear condition (22): (b + B)/(t_d + T/2) at the same B, N/m.
-    k_linear: f64,
-    /// Normalized values.
-    alpha_max: Option<f64>,
-    beta: Option<f64>,
-    gamma: f64,
-    delta: f64,
-    d: usize,
+    /// Linear condition (22): (b + B)/(t_d + T/2) at the same B, N/m (the paper's loop).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_linear: Option<f64>,
+    #[serde(flatten)]
+    paper: Option<PaperView>,
+}
+
+/// The stable interval with the largest upper end at damping B (Ns/m), in wall units.
+fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> {
+    if !b.is_finite() {
+        bail!("wall damping B must be a finite number (got {b})");
+    }
+    let (_, bu) = fam.to_units(0.0, b);
+    let best = stable_intervals(&rl.lp, fam, bu)?
+        .into_iter()
+        .max_by(|x, y| x.hi.total_cmp(&y.hi));
+    let k = |a: f64| fam.to_physical(a, 0.0).0;
+    Ok(KmaxOut {
+        input: LoopInput::new(rl, None),
+        k_max: best.map(|i| k(i.hi)),
+        b_at_k_max: None,
+        wall_damping: Some(b),
+        k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
+        k_linear: linear_k(&rl.lp, b),
+        paper: paper_view(rl, best.map(|i| i.hi), Some(bu)),
+    })
+}
+
+/// The overall K_max of the stable region and the B that reaches it.
+fn overall(rl: &ResolvedLoop, fam: &AffineFamily) -> Result<KmaxOut> {
+    let r = region(&rl.lp, fam)?;
+    let found = !r.polygons.is_empty();
+    let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    Ok(KmaxOut {
+        input: LoopInput::new(rl, None),
+        k_max: found.then_some(k),
+        b_at_k_max: found.then_some(b),
+        wall_damping: None,
+        k_interval: None,
+        k_linear: linear_k(&rl.lp, if found { b } else { 0.0 }),
+        paper: paper_view(
+            rl,
+            found.then_some(r.alpha_max),
+            found.then_some(r.beta_at_alpha_max),
+        ),
+    })
+}
+
+fn paper_view(rl: &ResolvedLoop, alpha_max: Option<f64>, beta: Option<f64>) -> Option<PaperView> {
+    rl.lp.paper_view().map(|pp| PaperView {
+        alpha_max,
+        beta,
+        gamma: pp.gamma,
+        delta: pp.delta,
+        d: rl.lp.delay.samples,
+    })
 }
 
 /// Runs `hapstab kmax`.
 pub fn run(a: &KmaxArgs) -> Result<()> {
     if a.robust {
-        return crate::robust::run_robust(&a.plant, &a.robust_box, a.json);
+        return crate::robust::run_robust(&a.lp.plant, &a.robust_box, a.json);
     }
-    let pm = a.plant.resolve()?;
-    let Some((eff, s)) = pm.physical else {
+    let rl = a.lp.resolve(false)?;
+    if rl.normalized {
         bail!("kmax works in physical units; for normalized parameters use `hapstab boundary`");
-    };
-    let kpa = eff.mass / (s.period * s.period);
-    let bpb = eff.mass / s.period;
-    let tr = s.delay_time() + s.period / 2.0;
-    let fam = PolyFamily::new(hapstab::PlantParams::new(pm.gamma, pm.delta)?, pm.d)?;
+    }
+    let fam = AffineFamily::of_loop(&rl.lp)?;
     let out = match a.wall_damping {
-        Some(b) => {
-            if !b.is_finite() {
-                bail!("wall damping B must be a finite number (got {b})");
-            }
-            let beta = b / bpb;
-            let best = stable_alpha_intervals(&fam, beta)
-                .into_iter()
-                .max_by(|x, y| x.hi.total_cmp(&y.hi));
-            KmaxOut {
-                k_max: best.map(|i| i.hi * kpa),
-                b_at_k_max: None,
-                wall_damping: Some(b),
-                k_interval: best.map(|i| [i.lo * kpa, i.hi * kpa]),
-                k_linear: (eff.damping + b) / tr,
-                alpha_max: best.map(|i| i.hi),
-                beta: Some(beta),
-                gamma: pm.gamma,
-                delta: pm.delta,
-                d: pm.d,
-            }
-        }
-        None => {
-            let r = hapstab::region::stable_region(&fam)?;
-            let found = !r.polygons.is_empty();
-            let b = r.beta_at_alpha_max * bpb;
-            KmaxOut {
-                k_max: found.then_some(r.alpha_max * kpa),
-                b_at_k_max: found.then_some(b),
-                wall_damping: None,
-                k_interval: None,
-                k_linear: (eff.damping + if found { b } else { 0.0 }) / tr,
-                alpha_max: found.then_some(r.alpha_max),
-                beta: found.then_some(r.beta_at_alpha_max),
-                gamma: pm.gamma,
-                delta: pm.delta,
-                d: pm.d,
-            }
-        }
+        Some(b) => at_damping(&rl, &fam, b)?,
+        None => overall(&rl, &fam)?,
     };
     if a.json {
         return print_json(&out);
     }
-    println!(
-        "plant m = {} kg, b = {} Ns/m, k = {} N/m; T = {} ms, d = {}",
-        sig(eff.mass, 6),
-        sig(eff.damping, 6),
-        sig(eff.stiffness, 6),
-        sig(s.period * 1e3, 6),
-        pm.d
-    );
+    for line in describe_loop(&rl.lp) {
+        println!("{line}");
+    }
+    let linear = |what: &str| {
+        out.k_linear
+            .map(|k| format!("; linear condition (22){what}: {} N/m", sig(k, 12)))
+            .unwrap_or_default()
+    };
     match (out.k_max, out.wall_damping, out.b_at_k_max) {
         (None, _, _) => println!("no stable virtual stiffness exists"),
         (Some(k), Some(b), _) => println!(
-            "K_max = {} N/m at B = {} Ns/m (stable for {} < K < {}); linear condition (22): {} N/m",
+            "K_max = {} N/m at B = {} Ns/m (stable for {} < K < {}){}",
             sig(k, 12),
             sig(b, 8),
             sig(out.k_interval.map_or(f64::NAN, |i| i[0]), 8),
             sig(k, 12),
-            sig(out.k_linear, 12)
+            linear("")
         ),
         (Some(k), None, Some(b)) => println!(
-            "K_max = {} N/m, reached at B = {} Ns/m; linear condition (22) at that B: {} N/m",
+            "K_max = {} N/m, reached at B = {} Ns/m{}",
             sig(k, 12),
             sig(b, 12),
-            sig(out.k_linear, 12)
+            linear(" at that B")
         ),
         _ => {}
     }

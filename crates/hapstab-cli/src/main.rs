@@ -3,6 +3,8 @@
 
 mod boundary;
 mod check;
+mod discretize;
+mod family;
 mod kmax;
 mod linear;
 mod map;
@@ -34,6 +36,8 @@ enum Command {
     Simboundary(simulate::SimboundaryArgs),
     /// Is this virtual wall stable, and how stiff may it be? (Sections III and V)
     Check(check::CheckArgs),
+    /// The exact discrete loop as coefficients: plant H(z) with its delay, velocity filter V(z), p(z)
+    Discretize(discretize::DiscretizeArgs),
     /// The exact stable region in the (α, β)-plane, α_max and area (Section V, Figs. 4–6)
     Boundary(boundary::BoundaryArgs),
     /// Largest stable virtual stiffness K in N/m, beside the linear condition (22)
@@ -57,6 +61,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(a) => simulate::run_simulate(&a),
         Command::Simboundary(a) => simulate::run_simboundary(&a),
         Command::Check(a) => check::run(&a),
+        Command::Discretize(a) => discretize::run(&a),
         Command::Boundary(a) => boundary::run(&a),
         Command::Kmax(a) => kmax::run(&a),
         Command::Map(a) => map::run(&a),
@@ -65,6 +70,24 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Linear(a) => linear::run(&a),
         Command::Nyquist(a) => nyquist::run(&a),
         Command::Paper(a) => paper::run(&a),
+    }
+}
+
+/// One clear line from clap's message: its first line names the flag and the value; a first
+/// line that ends in ':' (a conflict with several flags) is completed by the indented lines
+/// that list them.
+fn one_line(text: &str) -> String {
+    let mut lines = text.lines();
+    let first = lines.next().unwrap_or("error: invalid arguments");
+    match first.strip_suffix(':') {
+        Some(head) => {
+            let items: Vec<&str> = lines
+                .take_while(|l| l.starts_with(' ') && !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            format!("{head} {}", items.join(", "))
+        }
+        None => first.to_string(),
     }
 }
 
@@ -95,10 +118,7 @@ fn main() {
                     },
                 );
             }
-            // One clear line: clap's first line names the flag and the value.
-            let text = e.render().to_string();
-            let line = text.lines().next().unwrap_or("error: invalid arguments");
-            eprintln!("{line}");
+            eprintln!("{}", one_line(&e.render().to_string()));
             std::process::exit(2);
         }
     };

@@ -2,8 +2,12 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
+use hapstab::AffineFamily;
+use hapstab::model::{Delay, Loop, Plant, PlantModel as LibPlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Device, Effective, Normalized, Physical, Sampling, Wall};
 use serde::Serialize;
+
+use crate::output::{poly_text, sig};
 
 /// Default sampling period: 1 ms, the paper's upper limit (Section IV).
 pub const DEFAULT_PERIOD: f64 = 1e-3;
@@ -13,16 +17,32 @@ pub const DEFAULT_WALL: Wall = Wall {
     damping: 10.0,
 };
 
+/// The flags that describe a physical plant or its sampling: none of them may be combined
+/// with the normalized plant (--gamma/--delta).
+pub const PHYSICAL_PLANT_FLAGS: [&str; 11] = [
+    "mass",
+    "damping",
+    "stiffness",
+    "device_mass",
+    "device_damping",
+    "arm_mass",
+    "arm_damping",
+    "arm_stiffness",
+    "no_arm",
+    "period",
+    "delay_time",
+];
+
 /// Plant and sampling: either normalized (γ, δ) or physical units. Without any flag: a
 /// PHANToM-like device (m_L = 0.1 kg, b_L = 1.5 Ns/m) held by a typical arm (m_H = 1 kg,
 /// b_H = 6 Ns/m, k_H = 350 N/m), T = 1 ms, d = 0.
 #[derive(Args, Debug, Clone, Default)]
 pub struct PlantArgs {
-    /// Normalized physical stiffness γ = kT²/m (normalized mode).
-    #[arg(long, allow_hyphen_values = true)]
+    /// Normalized physical stiffness γ = kT²/m (normalized mode: the paper's plant only).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = PHYSICAL_PLANT_FLAGS)]
     pub gamma: Option<f64>,
-    /// Normalized physical damping δ = bT/m (normalized mode).
-    #[arg(long, allow_hyphen_values = true)]
+    /// Normalized physical damping δ = bT/m (normalized mode: the paper's plant only).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = PHYSICAL_PLANT_FLAGS)]
     pub delta: Option<f64>,
     /// Effective mass m = m_L + m_H in kg (replaces the device and arm split).
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["device_mass", "arm_mass"])]
@@ -49,7 +69,7 @@ pub struct PlantArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub arm_stiffness: Option<f64>,
     /// No human arm: the ungrabbed device (k_H = b_H = m_H = 0).
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["arm_mass", "arm_damping", "arm_stiffness", "mass", "damping", "stiffness"])]
     pub no_arm: bool,
     /// Sampling period T in s [default 0.001].
     #[arg(long, allow_hyphen_values = true)]
@@ -57,7 +77,8 @@ pub struct PlantArgs {
     /// Delay d in whole samples [default 0].
     #[arg(long, allow_hyphen_values = true, conflicts_with = "delay_time")]
     pub delay: Option<f64>,
-    /// Delay t_d in seconds; must be a whole number of periods.
+    /// Delay t_d = (d + λ)T in seconds; a fraction λ of a period is discretized exactly
+    /// (modified z-transform) by the commands that accept the general loop.
     #[arg(long, allow_hyphen_values = true)]
     pub delay_time: Option<f64>,
 }
@@ -76,7 +97,8 @@ pub struct PlantModel {
     pub physical: Option<(Effective, Sampling)>,
 }
 
-fn delay_samples(v: f64) -> Result<usize> {
+/// A delay in whole samples from the --delay flag.
+pub fn delay_samples(v: f64) -> Result<usize> {
     if !v.is_finite() {
         bail!("delay d must be a finite whole number of samples (got {v})");
     }
@@ -90,11 +112,13 @@ fn delay_samples(v: f64) -> Result<usize> {
 }
 
 impl PlantArgs {
-    fn normalized_mode(&self) -> bool {
+    /// True when the plant is given normalized (--gamma/--delta).
+    pub fn normalized_mode(&self) -> bool {
         self.gamma.is_some() || self.delta.is_some()
     }
 
-    fn any_physical(&self) -> bool {
+    /// True when a physical plant or sampling flag is given.
+    pub fn any_physical(&self) -> bool {
         self.mass.is_some()
             || self.damping.is_some()
             || self.stiffness.is_some()
@@ -122,13 +146,17 @@ impl PlantArgs {
             mass: self.device_mass.unwrap_or(Device::PHANTOM_LIKE.mass),
             damping: self.device_damping.unwrap_or(Device::PHANTOM_LIKE.damping),
         };
+        Ok(Effective::combine(device, self.arm())?)
+    }
+
+    /// The arm from the arm flags: the typical arm by default, none with --no-arm.
+    pub fn arm(&self) -> Arm {
         let base = if self.no_arm { Arm::NONE } else { Arm::TYPICAL };
-        let arm = Arm {
+        Arm {
             mass: self.arm_mass.unwrap_or(base.mass),
             damping: self.arm_damping.unwrap_or(base.damping),
             stiffness: self.arm_stiffness.unwrap_or(base.stiffness),
-        };
-        Ok(Effective::combine(device, arm)?)
+        }
     }
 
     /// The sampling period and delay.
@@ -174,17 +202,17 @@ impl PlantArgs {
 /// A wall in either unit system.
 #[derive(Args, Debug, Clone, Default)]
 pub struct WallArgs {
-    /// Normalized virtual stiffness α = KT²/m.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Normalized virtual stiffness α = KT²/m (the paper's plant only).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["wall_stiffness", "wall_damping"])]
     pub alpha: Option<f64>,
-    /// Normalized virtual damping β = BT/m.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Normalized virtual damping β = BT/m (the paper's plant only).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["wall_stiffness", "wall_damping"])]
     pub beta: Option<f64>,
     /// Virtual stiffness K in N/m [default 10000 in physical mode].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["gamma", "delta"])]
     pub wall_stiffness: Option<f64>,
     /// Virtual damping B in Ns/m [default 10 in physical mode].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["gamma", "delta"])]
     pub wall_damping: Option<f64>,
 }
 
@@ -250,6 +278,414 @@ pub fn resolve_point(plant: &PlantArgs, wall: &WallArgs) -> Result<PointModel> {
                 normalized: phys.normalized()?,
                 physical: Some(phys),
             })
+        }
+    }
+}
+
+/// A transfer-function plant replaces every other plant description.
+const TF_CONFLICTS: [&str; 16] = [
+    "gamma",
+    "delta",
+    "mass",
+    "damping",
+    "stiffness",
+    "device_mass",
+    "device_damping",
+    "arm_mass",
+    "arm_damping",
+    "arm_stiffness",
+    "no_arm",
+    "motor_mass",
+    "motor_damping",
+    "handle_mass",
+    "transmission_stiffness",
+    "transmission_damping",
+];
+
+/// A two-mass device replaces the normalized plant and the one-mass device with its
+/// effective m, b, k; the arm flags stay (the arm holds the handle).
+const TWO_MASS_CONFLICTS: [&str; 7] = [
+    "gamma",
+    "delta",
+    "mass",
+    "damping",
+    "stiffness",
+    "device_mass",
+    "device_damping",
+];
+
+/// Plants without the paper's mass m, which a normalized wall (--alpha/--beta) is scaled by.
+pub const NON_PAPER_PLANT_FLAGS: [&str; 7] = [
+    "plant_num",
+    "plant_den",
+    "motor_mass",
+    "motor_damping",
+    "handle_mass",
+    "transmission_stiffness",
+    "transmission_damping",
+];
+
+/// The flags that go beyond the paper's loop (any of them makes a loop physical).
+pub const LOOP_FLAGS: [&str; 9] = [
+    "plant_num",
+    "plant_den",
+    "motor_mass",
+    "motor_damping",
+    "handle_mass",
+    "transmission_stiffness",
+    "transmission_damping",
+    "force_lag",
+    "velocity",
+];
+
+/// A comma-separated coefficient list as typed on the command line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coefficients(pub Vec<f64>);
+
+fn plant_numerator(s: &str) -> std::result::Result<Coefficients, String> {
+    hapstab::spec::parse_coefficients("plant numerator", s)
+        .map(Coefficients)
+        .map_err(|e| e.to_string())
+}
+
+fn plant_denominator(s: &str) -> std::result::Result<Coefficients, String> {
+    hapstab::spec::parse_coefficients("plant denominator", s)
+        .map(Coefficients)
+        .map_err(|e| e.to_string())
+}
+
+fn velocity_estimator(s: &str) -> std::result::Result<VelocityEstimator, String> {
+    s.parse::<VelocityEstimator>().map_err(|e| e.to_string())
+}
+
+fn time_constant(s: &str) -> std::result::Result<f64, String> {
+    let tau: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| "not a number of seconds".to_string())?;
+    if !tau.is_finite() || tau < 0.0 {
+        return Err("the actuator time constant must be a finite number >= 0".into());
+    }
+    Ok(tau)
+}
+
+/// The user's loop: the paper's flags ([`PlantArgs`]) plus a plant given as a transfer
+/// function or a two-mass device, an actuator lag and a velocity estimator. Without the new
+/// flags it is the paper's loop.
+#[derive(Args, Debug, Clone, Default)]
+pub struct LoopArgs {
+    #[command(flatten)]
+    pub plant: PlantArgs,
+    /// Plant P(s) = num(s)/den(s) from wall force (N) to measured position (m): numerator
+    /// coefficients, highest power of s first, comma-separated (as MATLAB's and
+    /// python-control's tf), e.g. --plant-num 10 --plant-den 1,3,10. Strictly proper,
+    /// order <= 12.
+    #[arg(long, value_name = "COEFFS", allow_hyphen_values = true,
+          value_parser = plant_numerator, conflicts_with_all = TF_CONFLICTS)]
+    pub plant_num: Option<Coefficients>,
+    /// Denominator of P(s), highest power of s first, comma-separated (with --plant-num).
+    #[arg(long, value_name = "COEFFS", allow_hyphen_values = true,
+          value_parser = plant_denominator, conflicts_with_all = TF_CONFLICTS)]
+    pub plant_den: Option<Coefficients>,
+    /// Two-mass device: motor-side mass J in kg, where the actuator pushes and the encoder
+    /// measures (needs --transmission-stiffness; the arm flags act on the handle).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
+    pub motor_mass: Option<f64>,
+    /// Two-mass device: motor-side viscous damping b_m in Ns/m [default 0].
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
+    pub motor_damping: Option<f64>,
+    /// Two-mass device: handle mass m_h in kg [default 0]; the arm's mass adds to it.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
+    pub handle_mass: Option<f64>,
+    /// Two-mass device: transmission stiffness k_t in N/m between motor and handle.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
+    pub transmission_stiffness: Option<f64>,
+    /// Two-mass device: transmission damping b_t in Ns/m [default 0].
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
+    pub transmission_damping: Option<f64>,
+    /// Actuator lag: the applied force follows the commanded one through 1/(τs + 1), τ in s
+    /// (the current loop's time constant) [default 0: no lag].
+    #[arg(long, value_name = "TAU", allow_hyphen_values = true,
+          value_parser = time_constant, conflicts_with_all = ["gamma", "delta"])]
+    pub force_lag: Option<f64>,
+    /// Velocity estimator of the wall's damper [default backward]:
+    ///   backward                v_k = (y_k − y_{k−1})/T  (the paper's)
+    ///   lowpass:FC              v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T,
+    ///                           a = exp(−2π·f_c·T), f_c = FC in Hz
+    ///   average:N               v_k = (y_k − y_{k−N})/(N·T)
+    ///   iir:b0,b1,…/a0,a1,…     v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …) · y in m/s,
+    ///                           any proper discrete filter on the position (a0 ≠ 0)
+    #[arg(long, value_name = "SPEC", allow_hyphen_values = true, verbatim_doc_comment,
+          value_parser = velocity_estimator, conflicts_with_all = ["gamma", "delta"])]
+    pub velocity: Option<VelocityEstimator>,
+}
+
+/// A loop resolved from the flags.
+#[derive(Debug, Clone)]
+pub struct ResolvedLoop {
+    /// The loop (for a normalized plant: [`Loop::normalized`], m = T = 1, so K = α, B = β).
+    pub lp: Loop,
+    /// True when the plant was given normalized (--gamma/--delta, or --alpha/--beta alone).
+    pub normalized: bool,
+}
+
+impl LoopArgs {
+    /// True when any flag beyond the paper's loop is given.
+    pub fn any_loop_flag(&self) -> bool {
+        self.plant_num.is_some()
+            || self.plant_den.is_some()
+            || self.two_mass_given()
+            || self.force_lag.is_some()
+            || self.velocity.is_some()
+    }
+
+    fn two_mass_given(&self) -> bool {
+        self.motor_mass.is_some()
+            || self.motor_damping.is_some()
+            || self.handle_mass.is_some()
+            || self.transmission_stiffness.is_some()
+            || self.transmission_damping.is_some()
+    }
+
+    /// True when some flag describes a physical plant, its sampling or a loop beyond the
+    /// paper's (then a lone --alpha/--beta is a wall on that loop, not a normalized plant).
+    pub fn any_physical(&self) -> bool {
+        self.plant.any_physical() || self.any_loop_flag()
+    }
+
+    /// Resolves the loop; `normalized_wall` says whether --alpha/--beta were given (alone
+    /// they select the normalized paper loop with γ = δ = 0).
+    pub fn resolve(&self, normalized_wall: bool) -> Result<ResolvedLoop> {
+        if self.plant.normalized_mode() || (normalized_wall && !self.any_physical()) {
+            let pp = hapstab::PlantParams::new(
+                self.plant.gamma.unwrap_or(0.0),
+                self.plant.delta.unwrap_or(0.0),
+            )?;
+            let d = delay_samples(self.plant.delay.unwrap_or(0.0))?;
+            return Ok(ResolvedLoop {
+                lp: Loop::normalized(pp, d)?,
+                normalized: true,
+            });
+        }
+        let period = self.plant.period.unwrap_or(DEFAULT_PERIOD);
+        let plant = Plant::new(self.plant_model()?, self.force_lag.unwrap_or(0.0))
+            .map_err(|e| tf_context(self, e))?;
+        let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
+        Ok(ResolvedLoop {
+            lp: Loop::new(plant, period, self.delay(period)?, velocity)?,
+            normalized: false,
+        })
+    }
+
+    fn delay(&self, period: f64) -> Result<Delay> {
+        Ok(match self.plant.delay_time {
+            Some(t) => Delay::from_time(t, period)?,
+            None => Delay::samples(delay_samples(self.plant.delay.unwrap_or(0.0))?)?,
+        })
+    }
+
+    fn plant_model(&self) -> Result<LibPlantModel> {
+        match (&self.plant_num, &self.plant_den) {
+            (Some(num), Some(den)) => {
+                return Ok(LibPlantModel::TransferFunction {
+                    num: num.0.clone(),
+                    den: den.0.clone(),
+                });
+            }
+            (Some(_), None) => bail!("--plant-num needs --plant-den (the plant's denominator)"),
+            (None, Some(_)) => bail!("--plant-den needs --plant-num (the plant's numerator)"),
+            (None, None) => {}
+        }
+        if self.two_mass_given() {
+            return Ok(LibPlantModel::TwoMass(self.two_mass()?));
+        }
+        Ok(LibPlantModel::MassSpringDamper(self.plant.effective()?))
+    }
+
+    fn two_mass(&self) -> Result<TwoMass> {
+        let Some(motor_mass) = self.motor_mass else {
+            bail!("the two-mass device needs --motor-mass (the motor-side mass in kg)");
+        };
+        let Some(transmission_stiffness) = self.transmission_stiffness else {
+            bail!("the two-mass device needs --transmission-stiffness (k_t in N/m)");
+        };
+        Ok(TwoMass {
+            motor_mass,
+            motor_damping: self.motor_damping.unwrap_or(0.0),
+            handle_mass: self.handle_mass.unwrap_or(0.0),
+            transmission_stiffness,
+            transmission_damping: self.transmission_damping.unwrap_or(0.0),
+            arm: self.plant.arm(),
+        })
+    }
+}
+
+/// Names the typed coefficient lists in a transfer-function error.
+fn tf_context(a: &LoopArgs, e: hapstab::Error) -> anyhow::Error {
+    match (&a.plant_num, &a.plant_den, &e) {
+        (Some(n), Some(d), hapstab::Error::Invalid { .. } | hapstab::Error::OutOfRange { .. }) => {
+            anyhow::anyhow!("--plant-num {} --plant-den {}: {e}", list(&n.0), list(&d.0))
+        }
+        _ => e.into(),
+    }
+}
+
+fn list(c: &[f64]) -> String {
+    c.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
+}
+
+impl WallArgs {
+    /// True when the wall is given normalized (--alpha/--beta).
+    pub fn normalized(&self) -> bool {
+        self.alpha.is_some() || self.beta.is_some()
+    }
+}
+
+/// The wall of a resolved loop in the loop's units: K in N/m and B in Ns/m, or (α, β) for a
+/// normalized loop. --alpha/--beta on a physical mass-spring-damper plant convert by
+/// K = α·m/T², B = β·m/T (Table I).
+pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs) -> Result<Wall> {
+    if rl.normalized || wall.normalized() {
+        let (Some(alpha), Some(beta)) = (wall.alpha, wall.beta) else {
+            bail!("a normalized wall needs both --alpha and --beta");
+        };
+        hapstab::Normalized::new(alpha, beta, 0.0, 0.0, 0)?;
+        if rl.normalized {
+            return Ok(Wall {
+                stiffness: alpha,
+                damping: beta,
+            });
+        }
+        if !matches!(rl.lp.plant.model, LibPlantModel::MassSpringDamper(_)) {
+            bail!(
+                "--alpha/--beta are normalized by the paper's mass m; give --wall-stiffness/--wall-damping for this plant"
+            );
+        }
+        let (stiffness, damping) = fam.to_physical(alpha, beta);
+        return Ok(Wall { stiffness, damping });
+    }
+    let w = Wall {
+        stiffness: wall.wall_stiffness.unwrap_or(DEFAULT_WALL.stiffness),
+        damping: wall.wall_damping.unwrap_or(DEFAULT_WALL.damping),
+    };
+    if !w.stiffness.is_finite() {
+        bail!(
+            "wall stiffness K must be a finite number (got {})",
+            w.stiffness
+        );
+    }
+    if !w.damping.is_finite() {
+        bail!("wall damping B must be a finite number (got {})", w.damping);
+    }
+    Ok(w)
+}
+
+/// The loop in words, one line per part (for the text output of the commands).
+pub fn describe_loop(lp: &Loop) -> Vec<String> {
+    let mut out = vec![format!("plant     {}", plant_text(&lp.plant.model))];
+    if lp.plant.force_lag > 0.0 {
+        out.push(format!(
+            "lag       actuator 1/(τs + 1), τ = {} ms",
+            sig(lp.plant.force_lag * 1e3, 6)
+        ));
+    }
+    out.push(format!(
+        "sampling  T = {} ms, delay {}",
+        sig(lp.period * 1e3, 6),
+        delay_text(lp)
+    ));
+    out.push(format!("velocity  {}", lp.velocity));
+    out
+}
+
+fn delay_text(lp: &Loop) -> String {
+    let ms = sig(lp.delay_time() * 1e3, 6);
+    if lp.delay.fraction == 0.0 {
+        format!("d = {} (t_d = {ms} ms)", lp.delay.samples)
+    } else {
+        format!(
+            "t_d = {ms} ms (d = {}, λ = {})",
+            lp.delay.samples,
+            sig(lp.delay.fraction, 6)
+        )
+    }
+}
+
+fn plant_text(m: &LibPlantModel) -> String {
+    match m {
+        LibPlantModel::MassSpringDamper(e) => format!(
+            "1/(m s² + b s + k), m = {} kg, b = {} Ns/m, k = {} N/m",
+            sig(e.mass, 6),
+            sig(e.damping, 6),
+            sig(e.stiffness, 6)
+        ),
+        LibPlantModel::TwoMass(t) => format!(
+            "two-mass device: motor J = {} kg, b_m = {} Ns/m; handle m_h = {} kg; transmission k_t = {} N/m, b_t = {} Ns/m; arm m_H = {} kg, b_H = {} Ns/m, k_H = {} N/m",
+            sig(t.motor_mass, 6),
+            sig(t.motor_damping, 6),
+            sig(t.handle_mass, 6),
+            sig(t.transmission_stiffness, 6),
+            sig(t.transmission_damping, 6),
+            sig(t.arm.mass, 6),
+            sig(t.arm.damping, 6),
+            sig(t.arm.stiffness, 6)
+        ),
+        LibPlantModel::TransferFunction { num, den } => format!(
+            "P(s) = ({}) / ({}) m/N",
+            poly_text(num, "s", 6),
+            poly_text(den, "s", 6)
+        ),
+    }
+}
+
+/// The inputs of a command on one loop, echoed in its JSON under `input`.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum LoopInput {
+    /// A physical loop in SI units and, for commands at one point, its wall.
+    Physical {
+        /// The loop.
+        #[serde(rename = "loop")]
+        lp: Loop,
+        /// t_d in s.
+        delay_time: f64,
+        /// The wall (K in N/m, B in Ns/m).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        wall: Option<Wall>,
+    },
+    /// The paper's loop in normalized units (Table I).
+    Normalized {
+        /// γ.
+        gamma: f64,
+        /// δ.
+        delta: f64,
+        /// d.
+        d: usize,
+        /// α.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        alpha: Option<f64>,
+        /// β.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        beta: Option<f64>,
+    },
+}
+
+impl LoopInput {
+    /// The input record of a resolved loop and an optional wall in the loop's units.
+    pub fn new(rl: &ResolvedLoop, wall: Option<Wall>) -> Self {
+        match (rl.normalized, rl.lp.paper_view()) {
+            (true, Some(pp)) => LoopInput::Normalized {
+                gamma: pp.gamma,
+                delta: pp.delta,
+                d: rl.lp.delay.samples,
+                alpha: wall.map(|w| w.stiffness),
+                beta: wall.map(|w| w.damping),
+            },
+            _ => LoopInput::Physical {
+                lp: rl.lp.clone(),
+                delay_time: rl.lp.delay_time(),
+                wall,
+            },
         }
     }
 }

@@ -59,9 +59,49 @@ pub fn eng(x: f64, unit: &str, digits: usize) -> String {
     }
 }
 
+/// A polynomial with descending coefficients as MATLAB displays it, e.g.
+/// `z^2 - 1.655 z + 0.7408`: `digits` significant digits, zero terms left out, a unit
+/// coefficient shown only on the constant term.
+pub fn poly_text(desc: &[f64], var: &str, digits: usize) -> String {
+    let n = desc.len().saturating_sub(1);
+    let mut out = String::new();
+    for (i, &c) in desc.iter().enumerate() {
+        if c == 0.0 {
+            continue;
+        }
+        let power = n - i;
+        let sign = if c < 0.0 { "-" } else { "+" };
+        if out.is_empty() {
+            if c < 0.0 {
+                out.push('-');
+            }
+        } else {
+            out.push_str(&format!(" {sign} "));
+        }
+        let mag = c.abs();
+        let number = sig(mag, digits);
+        let var_part = match power {
+            0 => String::new(),
+            1 => var.to_string(),
+            p => format!("{var}^{p}"),
+        };
+        match (power, number.as_str()) {
+            (0, _) => out.push_str(&number),
+            (_, "1") => out.push_str(&var_part),
+            _ => out.push_str(&format!("{number} {var_part}")),
+        }
+    }
+    if out.is_empty() { "0".into() } else { out }
+}
+
+/// Ascending coefficients reversed into descending order (MATLAB's and python-control's).
+pub fn descending(asc: &[f64]) -> Vec<f64> {
+    asc.iter().rev().copied().collect()
+}
+
 #[cfg(test)]
 mod tests {
-    use super::eng;
+    use super::*;
 
     #[test]
     fn engineering_notation_picks_the_prefix() {
@@ -71,5 +111,21 @@ mod tests {
         assert_eq!(eng(20_000.0, "N/m", 3), "20 kN/m");
         assert_eq!(eng(0.0, "s", 3), "0 s");
         assert_eq!(eng(1e-20, "m", 3), "1e-20 m");
+    }
+
+    #[test]
+    fn polynomials_read_like_matlab() {
+        assert_eq!(
+            poly_text(&[1.0, -1.655, 0.7408], "z", 6),
+            "z^2 - 1.655 z + 0.7408"
+        );
+        assert_eq!(
+            poly_text(&[0.01187, 0.06408, 0.009721], "z", 4),
+            "0.01187 z^2 + 0.06408 z + 0.009721"
+        );
+        assert_eq!(poly_text(&[-2.0, 0.0, 1.0], "s", 6), "-2 s^2 + 1");
+        assert_eq!(poly_text(&[1.0, 0.0], "z", 6), "z");
+        assert_eq!(poly_text(&[0.0, 0.0], "z", 6), "0");
+        assert_eq!(poly_text(&[10.0], "s", 6), "10");
     }
 }

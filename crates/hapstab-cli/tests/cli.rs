@@ -91,7 +91,7 @@ fn bad_input_is_one_line_and_exit_2() {
     );
     bad(&["check", "--delay", "-1"], "delay");
     bad(&["check", "--delay", "1.5"], "delay");
-    bad(&["check", "--delay-time", "0.0015"], "0.0015");
+    bad(&["check", "--delay-time", "-0.0015"], "-0.0015");
     bad(&["check", "--frobnicate"], "--frobnicate");
     bad(&["check", "--mass", "abc"], "abc");
     bad(&["check", "--gamma", "0.001"], "--alpha");

@@ -35,6 +35,7 @@ pub mod poly;
 pub mod ranges;
 pub mod region;
 pub mod simulation;
+pub mod spec;
 pub mod stability;
 pub mod zoh;
 

@@ -1,0 +1,183 @@
+//! Text forms of a loop's parts, shared by every front end (command-line flags, the browser
+//! explorer, the Python package) so that the same text means the same loop everywhere.
+//!
+//! - A velocity estimator (see [`VelocityEstimator`] for the formulas):
+//!   `backward` | `lowpass:FC` (f_c in Hz) | `average:N` (N samples) |
+//!   `iir:b0,b1,…/a0,a1,…` (coefficients in powers of z⁻¹).
+//! - A coefficient list: comma-separated numbers, e.g. the `num` and `den` of a transfer
+//!   function (highest power of s first, as MATLAB's and python-control's `tf`).
+//!
+//! Parsing validates: a spec that parses is a usable estimator ([`VelocityEstimator::validated`]).
+//! [`std::fmt::Display`] writes the same form back with shortest round-trip numbers, so
+//! `text.parse::<VelocityEstimator>()?.to_string().parse()` gives the same estimator.
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::error::{Error, Result, finite};
+use crate::model::VelocityEstimator;
+
+/// The accepted forms of a velocity estimator spec, for error messages and help texts.
+pub const VELOCITY_FORMS: &str = "backward, lowpass:FC, average:N or iir:b0,b1,…/a0,a1,…";
+
+fn bad_velocity(text: &str, why: &str) -> Error {
+    Error::Invalid {
+        name: "velocity estimator",
+        reason: format!("'{text}' {why} (expected {VELOCITY_FORMS})"),
+    }
+}
+
+/// Parses a comma-separated list of finite numbers; `name` names the parameter in errors.
+pub fn parse_coefficients(name: &'static str, text: &str) -> Result<Vec<f64>> {
+    let text = text.trim();
+    if text.is_empty() {
+        return Err(Error::Invalid {
+            name,
+            reason: "is empty (expected comma-separated numbers, e.g. 1,3,10)".into(),
+        });
+    }
+    text.split(',')
+        .map(|tok| {
+            let tok = tok.trim();
+            let x: f64 = tok.parse().map_err(|_| Error::Invalid {
+                name,
+                reason: format!("has '{tok}', which is not a number (in '{text}')"),
+            })?;
+            finite(name, x)
+        })
+        .collect()
+}
+
+fn parse_iir(text: &str, body: &str) -> Result<VelocityEstimator> {
+    let Some((b, a)) = body.split_once('/') else {
+        return Err(bad_velocity(
+            text,
+            "needs a '/' between numerator and denominator",
+        ));
+    };
+    let b = parse_coefficients("velocity filter numerator b", b)?;
+    let a = parse_coefficients("velocity filter denominator a", a)?;
+    VelocityEstimator::Iir { b, a }.validated()
+}
+
+fn parse_number<T: FromStr>(text: &str, value: &str, what: &str) -> Result<T> {
+    value.trim().parse().map_err(|_| {
+        bad_velocity(
+            text,
+            &format!("has '{}', which is not {what}", value.trim()),
+        )
+    })
+}
+
+impl FromStr for VelocityEstimator {
+    type Err = Error;
+
+    /// Parses `backward`, `lowpass:FC`, `average:N` or `iir:b0,b1,…/a0,a1,…` and validates
+    /// the parameters (f_c > 0, N >= 1, a0 ≠ 0).
+    fn from_str(s: &str) -> Result<Self> {
+        let text = s.trim();
+        let (kind, body) = match text.split_once(':') {
+            Some((k, b)) => (k.trim(), Some(b)),
+            None => (text, None),
+        };
+        let est = match (kind.to_ascii_lowercase().as_str(), body) {
+            ("backward", None) => VelocityEstimator::Backward,
+            ("lowpass", Some(fc)) => VelocityEstimator::LowPass {
+                cutoff_hz: parse_number(text, fc, "a cut-off frequency in Hz")?,
+            },
+            ("average", Some(n)) => VelocityEstimator::Average {
+                samples: parse_number(text, n, "a whole number of samples")?,
+            },
+            ("iir", Some(body)) => return parse_iir(text, body),
+            ("backward", Some(_)) => return Err(bad_velocity(text, "takes no parameter")),
+            ("lowpass" | "average" | "iir", None) => {
+                return Err(bad_velocity(text, "needs a parameter after ':'"));
+            }
+            _ => return Err(bad_velocity(text, "is not a velocity estimator")),
+        };
+        est.validated()
+    }
+}
+
+fn join(c: &[f64]) -> String {
+    c.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
+}
+
+impl fmt::Display for VelocityEstimator {
+    /// The spec form that [`FromStr`] reads, with shortest round-trip numbers.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VelocityEstimator::Backward => write!(f, "backward"),
+            VelocityEstimator::LowPass { cutoff_hz } => write!(f, "lowpass:{cutoff_hz}"),
+            VelocityEstimator::Average { samples } => write!(f, "average:{samples}"),
+            VelocityEstimator::Iir { b, a } => write!(f, "iir:{}/{}", join(b), join(a)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_form_parses_and_round_trips() {
+        let cases = [
+            ("backward", VelocityEstimator::Backward),
+            ("lowpass:50", VelocityEstimator::LowPass { cutoff_hz: 50.0 }),
+            (" average:15 ", VelocityEstimator::Average { samples: 15 }),
+            (
+                "iir:1, -1/0.001,0.0005",
+                VelocityEstimator::Iir {
+                    b: vec![1.0, -1.0],
+                    a: vec![0.001, 0.0005],
+                },
+            ),
+        ];
+        for (text, want) in cases {
+            let got: VelocityEstimator = text.parse().unwrap();
+            assert_eq!(got, want, "{text}");
+            assert_eq!(got.to_string().parse::<VelocityEstimator>().unwrap(), want);
+        }
+        // shortest round-trip numbers survive the text form exactly
+        let v = VelocityEstimator::LowPass {
+            cutoff_hz: 0.1 + 0.2,
+        };
+        assert_eq!(v.to_string().parse::<VelocityEstimator>().unwrap(), v);
+    }
+
+    #[test]
+    fn bad_specs_name_the_text() {
+        for (text, needle) in [
+            ("forward", "'forward'"),
+            ("backward:2", "takes no parameter"),
+            ("lowpass", "needs a parameter"),
+            ("lowpass:fast", "'fast'"),
+            ("lowpass:-5", "-5"),
+            ("lowpass:0", "f_c"),
+            ("average:0", "window N"),
+            ("average:2.5", "'2.5'"),
+            ("iir:1,-1", "'/'"),
+            ("iir:1,x/1", "'x'"),
+            ("iir:1,-1/0,1", "a0"),
+            ("iir:0/1", "numerator"),
+            ("iir:1/", "empty"),
+        ] {
+            let e = text.parse::<VelocityEstimator>().unwrap_err().to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+            assert!(!e.contains('\n'), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn coefficient_lists() {
+        assert_eq!(
+            parse_coefficients("num", "1, 3,10").unwrap(),
+            vec![1.0, 3.0, 10.0]
+        );
+        assert_eq!(parse_coefficients("num", "-2.5e-3").unwrap(), vec![-2.5e-3]);
+        assert!(parse_coefficients("num", "").is_err());
+        assert!(parse_coefficients("num", "1,,2").is_err());
+        let e = parse_coefficients("num", "1,inf").unwrap_err().to_string();
+        assert!(e.contains("num") && e.contains("inf"), "{e}");
+    }
+}
