@@ -123,12 +123,13 @@ fn solve_pair(x: Complex64, y: Complex64, w: Complex64) -> Option<AlphaBeta> {
 /// p(e^{iθ}) = 0 (D-decomposition, Section V). None where the two equations are dependent
 /// (the curve runs to infinity there).
 pub fn curve_point(fam: &AffineFamily, theta: f64) -> Option<AlphaBeta> {
-    let (s, c) = theta.sin_cos();
-    curve_point_at(fam, Complex64::new(c, s))
+    let (p0, pk, pb) = fam.parts_on_circle(theta);
+    solve_pair(pk, pb, -p0)
 }
 
 /// As [`curve_point`] for z = e^{iθ} given directly (|z| = 1, Im z > 0), which lets callers
-/// that step along the circle avoid a sine and cosine per point.
+/// that step along the circle avoid a sine and cosine per point. Near z = 1 use
+/// [`curve_point`], which evaluates in the shifted variable.
 pub fn curve_point_at(fam: &AffineFamily, z: Complex64) -> Option<AlphaBeta> {
     let (p0, pk, pb) = fam.parts_at(z);
     solve_pair(pk, pb, -p0)

@@ -50,7 +50,31 @@ pub struct AffineFamily {
     pub plus_one: Option<(f64, f64)>,
     /// Wall units.
     pub scale: WallScale,
+    /// The parts in the shifted variable w = z − 1 (P0 = (1 + w)^k·p0_core(w)), formed from
+    /// E = Φ − I without the cancellation that z-coefficients suffer near z = 1; None when a
+    /// velocity filter is too long to shift (more than [`MAX_SHIFTED_FILTER`] taps).
+    pub shifted: Option<ShiftedParts>,
 }
+
+/// The parts of p in the shifted variable w = z − 1 (ascending coefficients in w).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShiftedParts {
+    /// Core of P0 in w: D(w)·Vd(w).
+    pub p0_core: Vec<f64>,
+    /// PK in w: N(w)·Vd(w).
+    pub pk: Vec<f64>,
+    /// PB in w: N(w)·Vn(w).
+    pub pb: Vec<f64>,
+}
+
+/// Longest velocity filter whose shifted form is kept: the shift of z^N has binomial
+/// coefficients C(N, j), exact in doubles up to N ≈ 50 and harmless far beyond, but a filter
+/// this long has no cluster of roots near z = 1 to resolve.
+pub const MAX_SHIFTED_FILTER: usize = 64;
+
+/// Angles |θ| below this evaluate p on the unit circle in the shifted form: there
+/// |w| = 2 sin(θ/2) < 0.5 and the shifted coefficients' growth costs nothing.
+pub const SHIFTED_THETA: f64 = 0.5;
 
 /// A polynomial in w = z − 1 (ascending) evaluated with its derivative at w = 0.
 fn at_zero(c: &[f64]) -> (f64, f64) {
@@ -58,6 +82,14 @@ fn at_zero(c: &[f64]) -> (f64, f64) {
         c.first().copied().unwrap_or(0.0),
         c.get(1).copied().unwrap_or(0.0),
     )
+}
+
+/// (1 + w)^e = exp(e·ln(1 + w)), with ln|1 + w| = ½·ln_1p(2 Re w + |w|²) free of
+/// cancellation for small w.
+fn pow_one_plus(w: Complex64, e: f64) -> Complex64 {
+    let ln_mod = 0.5 * (2.0 * w.re + w.norm_sqr()).ln_1p();
+    let arg = w.im.atan2(1.0 + w.re);
+    Complex64::from_polar((e * ln_mod).exp(), e * arg)
 }
 
 impl AffineFamily {
@@ -89,6 +121,14 @@ impl AffineFamily {
             dn1 * vd1 + n1 * dvd1,
             dn1 * vn1 + n1 * dvn1,
         ];
+        let shifted = (vd.len().max(vn.len()) <= MAX_SHIFTED_FILTER).then(|| {
+            let (vd_w, vn_w) = (poly::taylor_shift(vd, 1.0), poly::taylor_shift(vn, 1.0));
+            ShiftedParts {
+                p0_core: poly::mul(&den_w, &vd_w),
+                pk: poly::mul(&num_w, &vd_w),
+                pb: poly::mul(&num_w, &vn_w),
+            }
+        });
         Self {
             p0_core,
             k,
@@ -98,6 +138,7 @@ impl AffineFamily {
             slope_at_one,
             plus_one,
             scale: dl.scale,
+            shifted,
         }
     }
 
@@ -153,6 +194,46 @@ impl AffineFamily {
     ) -> (Complex64, Complex64, Complex64) {
         let p0 = zk * poly::eval(&self.p0_core, z);
         (p0, poly::eval(&self.pk, z), poly::eval(&self.pb, z))
+    }
+
+    /// (P0, PK, PB) at z = e^{iθ}, near z = 1 from the shifted form with
+    /// w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ (no cancellation), elsewhere from the
+    /// z-coefficients; z^k = e^{ikθ} in polar form.
+    pub fn parts_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64) {
+        let zk = Complex64::from_polar(1.0, theta * self.k as f64);
+        match &self.shifted {
+            Some(sh) if theta.abs() < SHIFTED_THETA => {
+                let h = (0.5 * theta).sin();
+                let w = Complex64::new(-2.0 * h * h, theta.sin());
+                (
+                    zk * poly::eval(&sh.p0_core, w),
+                    poly::eval(&sh.pk, w),
+                    poly::eval(&sh.pb, w),
+                )
+            }
+            _ => self.parts_with_power(Complex64::from_polar(1.0, theta), zk),
+        }
+    }
+
+    /// (P0, PK, PB) and their derivatives at z = 1 + w, from the shifted form when it exists
+    /// and |w| < 1/2 ((1 + w)^k = exp(k·ln(1 + w)) with ln(1 + w) free of cancellation),
+    /// else from the z-coefficients. For polishing roots near z = 1.
+    pub fn parts_shifted_with_derivative(&self, w: Complex64) -> [(Complex64, Complex64); 3] {
+        let Some(sh) = self.shifted.as_ref().filter(|_| w.norm() < 0.5) else {
+            return self.parts_with_derivative(w + 1.0);
+        };
+        let (c, dc) = poly::eval_with_derivative(&sh.p0_core, w);
+        let zk = pow_one_plus(w, self.k as f64);
+        let dzk = if self.k == 0 {
+            Complex64::new(0.0, 0.0)
+        } else {
+            pow_one_plus(w, self.k as f64 - 1.0) * self.k as f64
+        };
+        [
+            (zk * c, dzk * c + zk * dc),
+            poly::eval_with_derivative(&sh.pk, w),
+            poly::eval_with_derivative(&sh.pb, w),
+        ]
     }
 
     /// The parts and their z-derivatives at a complex point.

@@ -506,8 +506,12 @@ fn point(fam: &AffineFamily, theta: f64) -> Option<P> {
     curve_point(fam, theta).map(P::of)
 }
 
-/// The curve point at z = e^{iθ} strictly inside the upper half circle.
-fn point_at(fam: &AffineFamily, z: Complex64) -> Option<P> {
+/// The curve point at z = e^{iθ} strictly inside the upper half circle; near z = 1 from θ
+/// (the shifted form needs w = e^{iθ} − 1 without the cancellation of z − 1).
+fn point_at(fam: &AffineFamily, theta: f64, z: Complex64) -> Option<P> {
+    if theta < crate::closed_loop::SHIFTED_THETA {
+        return curve_point(fam, theta).map(P::of);
+    }
     curve_point_at(fam, z).map(P::of)
 }
 
@@ -929,8 +933,9 @@ fn split(
     if zm.im <= 0.0 {
         return None;
     }
-    let pm = point_at(fam, zm)?;
-    let mid = (0.5 * (t0 + t1), zm, pm);
+    let tm = 0.5 * (t0 + t1);
+    let pm = point_at(fam, tm, zm)?;
+    let mid = (tm, zm, pm);
     let ch = sub(p1, p0);
     let q = sub(pm, p0);
     let len2 = ch.x * ch.x + ch.y * ch.y;
@@ -972,10 +977,11 @@ fn split(
     let mut parts = Vec::with_capacity(k - 1);
     for i in 1..k {
         z *= w;
-        let Some(p) = point_at(fam, z) else {
+        let t = t0 + (t1 - t0) * i as f64 / k as f64;
+        let Some(p) = point_at(fam, t, z) else {
             return Some(vec![mid]);
         };
-        parts.push((t0 + (t1 - t0) * i as f64 / k as f64, z, p));
+        parts.push((t, z, p));
     }
     Some(parts)
 }
