@@ -22,6 +22,7 @@
 
 #![warn(missing_docs)]
 
+pub mod argument;
 pub mod boundary;
 pub mod closed_loop;
 pub mod error;

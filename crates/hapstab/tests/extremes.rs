@@ -1,0 +1,121 @@
+//! Property tests across extreme scales: random loops with parameters drawn log-uniformly
+//! over the documented ranges (sampling periods 1e-7 … 1 s, masses, dampings and stiffnesses
+//! over many decades, delays, every velocity estimator). For every point the answers of
+//! independent routes must agree and be finite: the stable stiffness intervals at the
+//! point's damping contain its stiffness iff the Schur–Cohn test says stable, and (on a
+//! subset) the exact region contains it iff the test says stable.
+
+use hapstab::AffineFamily;
+use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
+use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
+use hapstab::params::Effective;
+use hapstab::region::stable_region;
+use hapstab::stability::schur_stable;
+use proptest::prelude::*;
+
+fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..hi.ln()).prop_map(f64::exp)
+}
+
+fn maybe_zero(s: impl Strategy<Value = f64>) -> impl Strategy<Value = f64> {
+    prop_oneof![1 => Just(0.0), 4 => s]
+}
+
+fn velocity() -> impl Strategy<Value = VelocityEstimator> {
+    prop_oneof![
+        3 => Just(VelocityEstimator::Backward),
+        1 => log_uniform(1.0, 1e4).prop_map(|cutoff_hz| VelocityEstimator::LowPass { cutoff_hz }),
+        1 => (1usize..20).prop_map(|samples| VelocityEstimator::Average { samples }),
+    ]
+}
+
+prop_compose! {
+    fn a_loop()(
+        m in log_uniform(1e-3, 10.0),
+        b in maybe_zero(log_uniform(1e-3, 1e3)),
+        k in maybe_zero(log_uniform(1e-2, 1e6)),
+        period in log_uniform(1e-7, 1.0),
+        d in 0usize..12,
+        frac in prop_oneof![3 => Just(0.0), 1 => 0.01f64..0.99],
+        v in velocity(),
+    ) -> Loop {
+        let plant = Plant::mass_spring_damper(Effective::new(m, b, k).unwrap()).unwrap();
+        let delay = Delay { samples: d, fraction: frac };
+        Loop::new(plant, period, delay, v).unwrap()
+    }
+}
+
+/// Relative distance below which a stiffness counts as on an interval's end.
+const ON_BOUNDARY: f64 = 1e-9;
+
+fn check_point(fam: &AffineFamily, a: f64, b: f64) -> Result<(), TestCaseError> {
+    let c = fam.coefficients(a, b);
+    prop_assert!(c.iter().all(|x| x.is_finite()), "coefficients not finite");
+    let stable = schur_stable(&c);
+    let ivs = stable_alpha_intervals(fam, b);
+    for iv in &ivs {
+        prop_assert!(!iv.lo.is_nan() && !iv.hi.is_nan());
+    }
+    let scale = a.abs().max(1e-300);
+    let near_end = ivs.iter().any(|iv| {
+        (iv.lo - a).abs() <= ON_BOUNDARY * scale || (iv.hi - a).abs() <= ON_BOUNDARY * scale
+    });
+    if !near_end {
+        let inside = ivs.iter().any(|iv| iv.lo < a && a < iv.hi);
+        prop_assert_eq!(inside, stable, "a = {}, b = {}, intervals {:?}", a, b, ivs);
+    }
+    Ok(())
+}
+
+/// A signed value log-uniform in magnitude over [lo, hi]: walls near the wall-free point,
+/// where fast sampling puts every root near z = 1.
+fn signed_log(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (any::<bool>(), log_uniform(lo, hi)).prop_map(|(neg, x)| if neg { -x } else { x })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 4000, .. ProptestConfig::default() })]
+
+    #[test]
+    fn intervals_agree_with_the_schur_test_near_the_origin(
+        lp in a_loop(), a in signed_log(1e-14, 1.0), b in signed_log(1e-12, 1.0)
+    ) {
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        check_point(&fam, a, b)?;
+    }
+
+    #[test]
+    fn intervals_agree_with_the_schur_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        // wall units scale like (α, β); spread the wall over the region's typical extent
+        let d = lp.delay.in_samples() + 0.5;
+        check_point(&fam, a / d, b / d.sqrt())?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+
+    #[test]
+    fn region_agrees_with_the_schur_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        let d = lp.delay.in_samples() + 0.5;
+        let (a, b) = (a / d, b / d.sqrt());
+        let Ok(r) = stable_region(&fam) else {
+            return Ok(()); // an honest refusal is allowed; counted in the report test
+        };
+        prop_assert!(r.area.is_finite());
+        for p in &r.polygons {
+            prop_assert!(p.vertices.iter().all(|v| v.alpha.is_finite() && v.beta.is_finite()));
+        }
+        let stable = schur_stable(&fam.coefficients(a, b));
+        let inside = r.contains(AlphaBeta { alpha: a, beta: b });
+        if stable != inside {
+            // only allowed within the polygon tolerance of the boundary: check by intervals
+            let ivs = stable_alpha_intervals(&fam, b);
+            let scale = r.alpha_max.abs().max(a.abs()).max(1e-300);
+            let near = ivs.iter().any(|iv| (iv.lo - a).abs() < 1e-8 * scale || (iv.hi - a).abs() < 1e-8 * scale);
+            prop_assert!(near, "a = {a}, b = {b}: Schur {stable}, region {inside}, intervals {ivs:?}");
+        }
+    }
+}
