@@ -17,6 +17,7 @@ use serde::Serialize;
 
 use crate::closed_loop::{AffineFamily, SHIFTED_THETA};
 use crate::poly;
+use crate::stability::Verdict;
 
 /// The answer of the argument-principle test at one wall.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -124,6 +125,74 @@ pub fn winding(fam: &AffineFamily, a: f64, b: f64) -> Winding {
         degree,
         margin,
     }
+}
+
+/// The Schur–Cohn recursion (see [`crate::stability::schur_stable`]) with the growth factor of
+/// its rounding errors, κ = Π_j (1 + |k_j|)/(1 − |k_j|) over the reflection coefficients k_j
+/// (each step b_j = a_{j+1} − k·a_{n−1−j} cancels when |k| is near 1). Returns (stable, κ);
+/// κ is infinite when a reflection coefficient reaches 1 within rounding.
+pub fn schur_with_condition(c: &[f64]) -> (bool, f64) {
+    let mut a = c.to_vec();
+    let mut b = vec![0.0; c.len()];
+    let mut n = c.len() - 1;
+    let mut kappa = 1.0_f64;
+    while n > 0 {
+        let an = a[n];
+        if !an.is_finite() || an == 0.0 {
+            return (false, f64::INFINITY);
+        }
+        let k = a[0] / an;
+        if k.is_nan() {
+            return (false, f64::INFINITY);
+        }
+        let gap = 1.0 - k.abs();
+        if gap <= 0.0 {
+            // unstable, unless the coefficient is 1 only by rounding
+            let sure = -gap > 64.0 * f64::EPSILON * kappa * n as f64;
+            return (false, if sure { kappa } else { f64::INFINITY });
+        }
+        kappa *= (1.0 + k.abs()) / gap;
+        for j in 0..n {
+            b[j] = a[j + 1] - k * a[n - 1 - j];
+        }
+        std::mem::swap(&mut a, &mut b);
+        n -= 1;
+    }
+    (true, kappa)
+}
+
+/// The Schur–Cohn answer is trusted while κ·n·ε stays below this (errors of 1e-6 relative in
+/// the reduced polynomials still leave every reflection coefficient's side of 1 intact for
+/// all but walls within 1e-6 of the boundary, which the argument principle then settles).
+const SCHUR_TRUST: f64 = 1e-6;
+
+/// The verdict at one wall (Section V: stable iff every root of p = P0 + a·PK + b·PB lies
+/// strictly inside the unit circle): the Schur–Cohn test where its recursion is
+/// well-conditioned, the argument principle ([`winding`]) where it is not (walls within
+/// rounding of the boundary, clusters of roots near z = 1); `Marginal` where the argument
+/// principle cannot decide either (a root within rounding of the circle). `coeffs` is a
+/// buffer of length degree + 1.
+pub fn verdict_at(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Verdict {
+    fam.coefficients_into(a, b, coeffs);
+    let (stable, kappa) = schur_with_condition(coeffs);
+    if kappa * coeffs.len() as f64 * f64::EPSILON < SCHUR_TRUST {
+        return if stable {
+            Verdict::Stable
+        } else {
+            Verdict::Unstable
+        };
+    }
+    let w = winding(fam, a, b);
+    match (w.decided(), w.stable()) {
+        (false, _) => Verdict::Marginal,
+        (true, true) => Verdict::Stable,
+        (true, false) => Verdict::Unstable,
+    }
+}
+
+/// True iff [`verdict_at`] says stable (a wall within rounding of the boundary is not).
+pub fn stable_at(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> bool {
+    verdict_at(fam, a, b, coeffs) == Verdict::Stable
 }
 
 #[cfg(test)]

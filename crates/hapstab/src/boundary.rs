@@ -18,7 +18,6 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
-use crate::stability::schur_stable;
 
 /// A point of the wall plane in wall units (a, b); for the paper's loop (α, β).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -186,33 +185,55 @@ pub(crate) fn bisect(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     0.5 * (a + b)
 }
 
-/// Number of θ samples used to bracket crossings: p has at most `degree` roots, so its
-/// phase turns at most `degree` times around the circle; 256 samples per turn leave room.
-fn theta_samples(fam: &AffineFamily) -> usize {
-    256 * (fam.degree() + 1)
-}
-
 /// Im(Q conj PK) with Q = P0 + b·PB at z = e^{iθ}: zero where a real a puts a root there;
 /// and that a.
 fn crossing_function(fam: &AffineFamily, beta: f64, theta: f64) -> (f64, f64) {
-    let z = Complex64::from_polar(1.0, theta);
-    let zk = Complex64::from_polar(1.0, theta * fam.k as f64);
-    crossing_at(fam, beta, z, zk)
-}
-
-fn crossing_at(fam: &AffineFamily, beta: f64, z: Complex64, zk: Complex64) -> (f64, f64) {
-    let (p0, pk, pb) = fam.parts_with_power(z, zk);
+    let (p0, pk, pb) = fam.parts_on_circle(theta);
     let qc = (p0 + pb * beta) * pk.conj();
     let nk = pk.norm_sqr();
     (qc.im, if nk > 0.0 { -qc.re / nk } else { f64::NAN })
 }
 
-/// Steps of the bracketing scan between exact re-evaluations of e^{iθ} and e^{ikθ}: the
-/// products drift by a few ulps per step, far below what a sign bracket needs.
-const RESYNC: usize = 256;
+/// d/dθ of Im(Q conj PK) at z = e^{iθ} (d/dθ = iz·d/dz), from the shifted form near z = 1.
+fn crossing_slope(fam: &AffineFamily, beta: f64, theta: f64) -> f64 {
+    let z = Complex64::from_polar(1.0, theta);
+    let parts = if theta < crate::closed_loop::SHIFTED_THETA {
+        let h = (0.5 * theta).sin();
+        fam.parts_shifted_with_derivative(Complex64::new(-2.0 * h * h, theta.sin()))
+    } else {
+        fam.parts_with_derivative(z)
+    };
+    let [(p0, d0), (pk, dk), (pb, db)] = parts;
+    let iz = Complex64::i() * z;
+    let (q, dq) = (p0 + pb * beta, (d0 + db * beta) * iz);
+    (dq * pk.conj() + q * (dk * iz).conj()).im
+}
+
+/// The θ grid of the crossing scan: p has at most `degree` roots, so its phase turns at most
+/// `degree` times around the circle and 256 samples per turn leave room; near θ = 0 a
+/// geometric run from 1e-12 up to the first step brackets roots close to z = 1 (fast
+/// sampling, slow modes), which cross at angles far below the uniform step.
+fn scan_thetas(fam: &AffineFamily) -> Vec<f64> {
+    let pi = std::f64::consts::PI;
+    let m = 256 * (fam.degree() + 1);
+    let h = pi / m as f64;
+    let mut ts = Vec::with_capacity(m + 256);
+    let mut t = 1e-12_f64.min(1e-9 * h);
+    while t < h {
+        ts.push(t);
+        t *= NEAR_ONE_RATIO;
+    }
+    ts.extend((1..m).map(|i| i as f64 * h));
+    ts.push(pi * (1.0 - 1e-12));
+    ts
+}
 
 /// All a at which, for fixed b, p(z) has a root on the unit circle (D-decomposition along
-/// the stiffness, Section V): the z = ±1 lines and a = −Q/PK where Im(Q conj PK) = 0.
+/// the stiffness, Section V): the z = ±1 lines and a = −Q/PK where Im(Q conj PK) = 0. Sign
+/// changes between samples are bisected; where the sign does not change but the slope does,
+/// the extremum between is located and, if it crosses zero, both zeros on either side of it
+/// are kept (two crossings closer than a sample, as a thin region of a lightly damped loop
+/// makes them).
 pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
     let mut out: Vec<f64> = [plus_one_line(fam), minus_one_line(fam)]
         .iter()
@@ -220,43 +241,44 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
         .filter_map(|l| l.alpha_at(beta))
         .collect();
     let f = |t: f64| crossing_function(fam, beta, t).0;
-    let m = theta_samples(fam);
-    let h = std::f64::consts::PI / m as f64;
-    let (w, wk) = (
-        Complex64::from_polar(1.0, h),
-        Complex64::from_polar(1.0, h * fam.k as f64),
-    );
-    let mut prev_t = 1e-9 * h;
-    let mut prev = f(prev_t);
-    let (mut z, mut zk) = (Complex64::new(1.0, 0.0), Complex64::new(1.0, 0.0));
-    for i in 1..=m {
-        let t = if i == m {
-            std::f64::consts::PI * (1.0 - 1e-12)
-        } else {
-            i as f64 * h
-        };
-        if i % RESYNC == 0 || i == m {
-            z = Complex64::from_polar(1.0, t);
-            zk = Complex64::from_polar(1.0, t * fam.k as f64);
-        } else {
-            z *= w;
-            zk *= wk;
+    let df = |t: f64| crossing_slope(fam, beta, t);
+    let mut push = |t: f64| {
+        let a = crossing_function(fam, beta, t).1;
+        if a.is_finite() {
+            out.push(a);
         }
-        let v = crossing_at(fam, beta, z, zk).0;
-        if v == 0.0 || (v > 0.0) != (prev > 0.0) {
-            let tr = if v == 0.0 { t } else { bisect(prev_t, t, f) };
-            let a = crossing_function(fam, beta, tr).1;
-            if a.is_finite() {
-                out.push(a);
+    };
+    let ts = scan_thetas(fam);
+    let fs: Vec<f64> = ts.iter().map(|&t| f(t)).collect();
+    for i in 1..ts.len() {
+        let (t0, t1, f0, f1) = (ts[i - 1], ts[i], fs[i - 1], fs[i]);
+        if f1 == 0.0 || (f0 > 0.0) != (f1 > 0.0) {
+            push(if f1 == 0.0 { t1 } else { bisect(t0, t1, f) });
+            continue;
+        }
+        // A local minimum of |f| at sample i: f may dip through zero and back between its
+        // neighbours. Locate the extremum by the slope; two zeros if it crosses.
+        let Some(&f2) = fs.get(i + 1) else { continue };
+        let t2 = ts[i + 1];
+        if f1.abs() < f0.abs() && f1.abs() <= f2.abs() && (f2 > 0.0) == (f1 > 0.0) {
+            let (d0, d2) = (df(t0), df(t2));
+            if (d0 > 0.0) == (d2 > 0.0) {
+                continue;
+            }
+            let te = bisect(t0, t2, df);
+            if (f(te) > 0.0) != (f1 > 0.0) {
+                push(bisect(t0, te, f));
+                push(bisect(te, t2, f));
             }
         }
-        prev = v;
-        prev_t = t;
     }
     out.sort_by(f64::total_cmp);
     out.dedup_by(|a, b| (*a - *b).abs() <= 1e-15 * a.abs().max(b.abs()));
     out
 }
+
+/// Ratio of the geometric θ grid near z = 1 (about 20 samples per decade).
+const NEAR_ONE_RATIO: f64 = 1.122;
 
 /// A stable interval lo < a < hi (either end may be infinite).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -277,10 +299,7 @@ pub fn stable_alpha_intervals(fam: &AffineFamily, beta: f64) -> Vec<Interval> {
     }
     let scale = xs.iter().fold(1e-3_f64, |m, x| m.max(x.abs()));
     let mut coeffs = vec![0.0; fam.degree() + 1];
-    let mut stable_at = |a: f64| {
-        fam.coefficients_into(a, beta, &mut coeffs);
-        schur_stable(&coeffs)
-    };
+    let mut stable_at = |a: f64| crate::argument::stable_at(fam, a, beta, &mut coeffs);
     let mut out: Vec<Interval> = Vec::new();
     let push = |lo: f64, hi: f64, out: &mut Vec<Interval>| match out.last_mut() {
         Some(last) if last.hi == lo => last.hi = hi,

@@ -274,15 +274,48 @@ pub fn wall_map(
             range: "[4, 1e8]",
         });
     }
-    let coefficients =
-        |ix: usize, iy: usize, c: &mut [f64]| fam.coefficients_into(x.value(ix), y.value(iy), c);
-    let (stable, radius) = grid(x.n, y.n, fam.degree(), kind, progress, coefficients);
+    let (stable, radius) = match kind {
+        MapKind::Stability => {
+            let stable = grid_stable(x.n, y.n, fam.degree(), progress, |ix, iy, c| {
+                crate::argument::stable_at(fam, x.value(ix), y.value(iy), c)
+            });
+            (stable, None)
+        }
+        MapKind::SpectralRadius => {
+            let coefficients = |ix: usize, iy: usize, c: &mut [f64]| {
+                fam.coefficients_into(x.value(ix), y.value(iy), c)
+            };
+            grid(x.n, y.n, fam.degree(), kind, progress, coefficients)
+        }
+    };
     Ok(WallMap {
         x,
         y,
         stable,
         radius,
     })
+}
+
+/// Stable flags over an nx × ny grid by a decision function of the grid indices (given a
+/// coefficient buffer), in parallel over rows.
+fn grid_stable(
+    nx: usize,
+    ny: usize,
+    deg: usize,
+    progress: &(dyn Fn(usize) + Sync),
+    stable: impl Fn(usize, usize, &mut [f64]) -> bool + Sync,
+) -> Vec<bool> {
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let rows: Vec<Vec<bool>> = (0..ny)
+        .into_par_iter()
+        .map(|iy| {
+            let mut c = vec![0.0; deg + 1];
+            let row = (0..nx).map(|ix| stable(ix, iy, &mut c)).collect();
+            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+            row
+        })
+        .collect();
+    rows.concat()
 }
 
 /// Stable flags (and spectral radii) over an nx × ny grid whose coefficients `coefficients`

@@ -30,13 +30,13 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::argument::stable_at;
 use crate::boundary::{
     AlphaBeta, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta, minus_one_line,
     plus_one_line,
 };
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
-use crate::stability::schur_stable;
 
 /// What an edge of a region polygon is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -271,6 +271,10 @@ impl EdgeIndex {
         Self { y0, h, buckets }
     }
 
+    fn is_empty(&self) -> bool {
+        self.buckets.iter().all(Vec::is_empty)
+    }
+
     fn contains(&self, p: P) -> bool {
         let k = ((p.y - self.y0) / self.h).floor();
         if !(k >= 0.0 && (k as usize) < self.buckets.len()) {
@@ -348,10 +352,20 @@ fn grid_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF, m: usize) -
     }
     // Walls near the wall-free point: a damped plant is stable there, and a region much
     // smaller than the window that the grid straddles is found by them.
-    let r = PROBE_RADIUS * (x1 - x0).max(y1 - y0);
-    for k in 0..8 {
-        let (s, c) = (k as f64 * std::f64::consts::FRAC_PI_4 + GRID_JITTER).sin_cos();
-        out.extend(probe(fam, region, P { x: r * c, y: r * s }, &mut coeffs));
+    let size = (x1 - x0).max(y1 - y0);
+    // Probes right at the wall-free point only test an empty answer: where a region exists,
+    // the wall-free point may be its corner (an undamped plant), within rounding of the
+    // boundary.
+    let radii: &[f64] = if region.is_empty() {
+        &[PROBE_RADIUS, 1e-9]
+    } else {
+        &[PROBE_RADIUS]
+    };
+    for r in radii.iter().map(|r| r * size) {
+        for k in 0..8 {
+            let (s, c) = (k as f64 * std::f64::consts::FRAC_PI_4 + GRID_JITTER).sin_cos();
+            out.extend(probe(fam, region, P { x: r * c, y: r * s }, &mut coeffs));
+        }
     }
     out
 }
@@ -362,8 +376,7 @@ const PROBE_RADIUS: f64 = 1e-3;
 /// A verification point if it is stable or the region disagrees with the Schur–Cohn test
 /// there.
 fn probe(fam: &AffineFamily, region: &EdgeIndex, p: P, coeffs: &mut [f64]) -> Option<(P, bool)> {
-    fam.coefficients_into(p.x, p.y, coeffs);
-    let stable = schur_stable(coeffs);
+    let stable = stable_at(fam, p.x, p.y, coeffs);
     let agree = stable == region.contains(p);
     (stable || !agree).then_some((p, agree))
 }
@@ -806,14 +819,14 @@ fn coarse_curve(
         return Err(Budget::exhausted());
     }
     let pi = std::f64::consts::PI;
-    let knots: Vec<(f64, Option<P>)> = (0..=m)
-        .into_par_iter()
-        .map(|i| {
-            let t = pi * i as f64 / m as f64;
+    let thetas: Vec<f64> = (0..=m).map(|i| pi * i as f64 / m as f64).collect();
+    let knots: Vec<(f64, Option<P>)> = thetas
+        .par_iter()
+        .map(|&t| {
             match point(fam, t) {
                 // Where the curve runs to infinity at θ = π, end just short of it so that the
                 // last interval is still sampled (the far tail is cut off later).
-                None if i == m => {
+                None if t == pi => {
                     let t = pi * (1.0 - 1e-12);
                     (t, point(fam, t))
                 }
@@ -822,7 +835,6 @@ fn coarse_curve(
         })
         .collect();
     let focus = zoom.unwrap_or_else(|| focus_box(bounds, &knots));
-
     let size = (focus.1 - focus.0).max(focus.3 - focus.2);
     let s = Sampling {
         tol: 1e-3 * size,
@@ -953,7 +965,10 @@ fn split(
     } else {
         0.5
     };
-    let within = dev <= s.tol && (-0.25..=1.25).contains(&t);
+    // A chord and midpoint all within the tolerance of one point is done whatever its
+    // direction (a direction made of rounding noise would otherwise split to the depth limit).
+    let tiny = norm(q) <= s.tol && norm(sub(pm, p1)) <= s.tol;
+    let within = tiny || (dev <= s.tol && (-0.25..=1.25).contains(&t));
     let turning = s.focus.is_some() && dev > TURN_TOL * len && dev > 1e-7 * s.tol;
     let far = norm(q) + norm(sub(pm, p1)) > 1.5 * len + s.tol;
     // Coarse passes bound the chord length near the focus, so that a chord to a far point
@@ -1626,8 +1641,7 @@ fn stable_faces(fam: &AffineFamily, g: &Graph, cycles: Vec<Vec<(usize, bool)>>) 
                 return None;
             }
             let ip = interior_point(&pts)?;
-            fam.coefficients_into(ip.alpha, ip.beta, &mut coeffs);
-            schur_stable(&coeffs).then_some((f, pts))
+            stable_at(fam, ip.alpha, ip.beta, &mut coeffs).then_some((f, pts))
         })
         .collect()
 }
@@ -1759,6 +1773,29 @@ fn refine_arc(
     if !budget.take(8 * knots.len()) {
         return Err(Budget::exhausted());
     }
+    // Knots within the tolerance of the chord from the last kept knot to the next add
+    // nothing (the coarse pass's geometric run near θ = 0 packs many into the corner at
+    // z = 1); the fine sampling below puts back whatever the curve needs.
+    let mut kept: Vec<(f64, P)> = Vec::with_capacity(knots.len());
+    for (i, &k) in knots.iter().enumerate() {
+        let needed = match (kept.last(), knots.get(i + 1)) {
+            (Some(prev), Some(next)) => {
+                let ch = sub(next.1, prev.1);
+                let len = norm(ch);
+                let dev = if len > tol {
+                    cross(ch, sub(k.1, prev.1)).abs() / len
+                } else {
+                    norm(sub(k.1, prev.1))
+                };
+                dev > tol
+            }
+            _ => true,
+        };
+        if needed {
+            kept.push(k);
+        }
+    }
+    let knots = &kept;
     let mut fine: Vec<(f64, P)> = Vec::with_capacity(8 * knots.len());
     for (k, w) in knots.windows(2).enumerate() {
         if k == 0 {

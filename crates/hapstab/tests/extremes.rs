@@ -2,15 +2,19 @@
 //! over the documented ranges (sampling periods 1e-7 … 1 s, masses, dampings and stiffnesses
 //! over many decades, delays, every velocity estimator). For every point the answers of
 //! independent routes must agree and be finite: the stable stiffness intervals at the
-//! point's damping contain its stiffness iff the Schur–Cohn test says stable, and (on a
-//! subset) the exact region contains it iff the test says stable.
+//! point's damping contain its stiffness iff the point test says stable (the Schur–Cohn test
+//! where it is well-conditioned, the argument principle where it is not), and (on a subset)
+//! the exact region contains it iff the point test says stable.
+//!
+//! A longer run: `HAPSTAB_EXTREME_CASES=1000000 cargo test -p hapstab --release --test extremes`.
 
 use hapstab::AffineFamily;
+use hapstab::argument::verdict_at;
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
 use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
 use hapstab::params::Effective;
 use hapstab::region::stable_region;
-use hapstab::stability::schur_stable;
+use hapstab::stability::Verdict;
 use proptest::prelude::*;
 
 fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
@@ -49,9 +53,13 @@ prop_compose! {
 const ON_BOUNDARY: f64 = 1e-9;
 
 fn check_point(fam: &AffineFamily, a: f64, b: f64) -> Result<(), TestCaseError> {
-    let c = fam.coefficients(a, b);
+    let mut c = fam.coefficients(a, b);
     prop_assert!(c.iter().all(|x| x.is_finite()), "coefficients not finite");
-    let stable = schur_stable(&c);
+    let verdict = verdict_at(fam, a, b, &mut c);
+    if verdict == Verdict::Marginal {
+        return Ok(()); // a root within rounding of the circle: no side to agree on
+    }
+    let stable = verdict == Verdict::Stable;
     let ivs = stable_alpha_intervals(fam, b);
     for iv in &ivs {
         prop_assert!(!iv.lo.is_nan() && !iv.hi.is_nan());
@@ -73,11 +81,20 @@ fn signed_log(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (any::<bool>(), log_uniform(lo, hi)).prop_map(|(neg, x)| if neg { -x } else { x })
 }
 
+/// Cases per property: 4000 in CI; a longer run sets HAPSTAB_EXTREME_CASES (the region
+/// property runs a tenth as many).
+fn cases() -> u32 {
+    std::env::var("HAPSTAB_EXTREME_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(4000)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 4000, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: cases(), .. ProptestConfig::default() })]
 
     #[test]
-    fn intervals_agree_with_the_schur_test_near_the_origin(
+    fn intervals_agree_with_the_point_test_near_the_origin(
         lp in a_loop(), a in signed_log(1e-14, 1.0), b in signed_log(1e-12, 1.0)
     ) {
         let fam = AffineFamily::of_loop(&lp).unwrap();
@@ -85,7 +102,7 @@ proptest! {
     }
 
     #[test]
-    fn intervals_agree_with_the_schur_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
+    fn intervals_agree_with_the_point_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
         let fam = AffineFamily::of_loop(&lp).unwrap();
         // wall units scale like (α, β); spread the wall over the region's typical extent
         let d = lp.delay.in_samples() + 0.5;
@@ -94,10 +111,10 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: cases() / 10, .. ProptestConfig::default() })]
 
     #[test]
-    fn region_agrees_with_the_schur_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
+    fn region_agrees_with_the_point_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
         let fam = AffineFamily::of_loop(&lp).unwrap();
         let d = lp.delay.in_samples() + 0.5;
         let (a, b) = (a / d, b / d.sqrt());
@@ -108,14 +125,18 @@ proptest! {
         for p in &r.polygons {
             prop_assert!(p.vertices.iter().all(|v| v.alpha.is_finite() && v.beta.is_finite()));
         }
-        let stable = schur_stable(&fam.coefficients(a, b));
+        let verdict = verdict_at(&fam, a, b, &mut fam.coefficients(a, b));
+        if verdict == Verdict::Marginal {
+            return Ok(());
+        }
+        let stable = verdict == Verdict::Stable;
         let inside = r.contains(AlphaBeta { alpha: a, beta: b });
         if stable != inside {
             // only allowed within the polygon tolerance of the boundary: check by intervals
             let ivs = stable_alpha_intervals(&fam, b);
             let scale = r.alpha_max.abs().max(a.abs()).max(1e-300);
             let near = ivs.iter().any(|iv| (iv.lo - a).abs() < 1e-8 * scale || (iv.hi - a).abs() < 1e-8 * scale);
-            prop_assert!(near, "a = {a}, b = {b}: Schur {stable}, region {inside}, intervals {ivs:?}");
+            prop_assert!(near, "a = {a}, b = {b}: point test {stable}, region {inside}, intervals {ivs:?}");
         }
     }
 }
