@@ -127,3 +127,38 @@ fn main() {
         std::process::exit(2);
     }
 }
+
+/// clap's message as one line: its first paragraph (up to the first blank line), which names
+/// the flag and the value, with the indented continuation lines (e.g. the list of missing
+/// required flags) joined onto it.
+fn one_line(text: &str) -> String {
+    let line = text
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .map(str::trim)
+        .collect::<Vec<_>>()
+        .join(" ");
+    if line.is_empty() {
+        "error: invalid arguments".into()
+    } else {
+        line
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_required_flags_are_named_on_one_line() {
+        for (args, flag) in [
+            (vec!["hapstab", "map", "--x", "alpha:0:1:10"], "--y"),
+            (vec!["hapstab", "paper"], "--out"),
+        ] {
+            let e = Cli::try_parse_from(&args).err().expect("a parse error");
+            let line = one_line(&e.render().to_string());
+            assert!(line.contains(flag), "{args:?}: {line}");
+            assert!(!line.contains('\n'), "{line}");
+        }
+    }
+}

@@ -168,9 +168,9 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     })
 }
 
+/// Writes the grid as CSV; the caller names the file in any error (open, write, flush).
 fn write_csv(path: &std::path::Path, x: Grid, y: Grid, v: &Values) -> Result<()> {
-    let mut w =
-        csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut w = csv::Writer::from_path(path)?;
     let mut header = vec![axis_label(x.name), axis_label(y.name), "stable"];
     if v.radius.is_some() {
         header.push("spectral_radius");
@@ -231,7 +231,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let secs = t.elapsed().as_secs_f64();
     bar.finish_and_clear();
     if let Some(path) = &a.out {
-        write_csv(path, x, y, &v)?;
+        write_csv(path, x, y, &v).with_context(|| format!("cannot write {}", path.display()))?;
     }
     let points = x.range.n * y.range.n;
     let stable_points = v.stable.iter().filter(|&&s| s).count();

@@ -12,6 +12,7 @@
 //! | [`plant`] | Section III, eq. (2)–(6), (10) |
 //! | [`closed_loop`] | eq. (7)–(9) |
 //! | [`stability`] | Section V (roots inside the unit circle) |
+//! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
 //!
 //! ```
 //! use hapstab::{Normalized, Analysis, Verdict};
@@ -25,6 +26,7 @@
 pub mod boundary;
 pub mod closed_loop;
 pub mod error;
+pub mod limits;
 pub mod linear;
 pub mod map;
 pub mod model;
