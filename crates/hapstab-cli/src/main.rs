@@ -2,6 +2,7 @@
 //! the library and formats output; every analysis lives in the `hapstab` crate.
 
 mod boundary;
+mod budget;
 mod check;
 mod discretize;
 mod family;
@@ -13,6 +14,7 @@ mod nyquist;
 mod output;
 mod paper;
 mod plot;
+mod progress;
 mod ranges;
 mod robust;
 mod serve;

@@ -3,12 +3,14 @@
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
+use hapstab::limits::map_cost;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::io::IsTerminal;
 
+use crate::budget::{self, Driver};
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, PHYSICAL_PLANT_FLAGS};
 use crate::output::print_json;
 
@@ -141,6 +143,7 @@ fn normalized_map(
         d,
     )?;
     let spec = MapSpec::new(x.range, y.range, base)?;
+    check_budget(a, x, y, d + 3, "--delay", &d.to_string())?;
     let m = compute_map(&spec, kind, &|k| bar.set_position(k as u64));
     Ok(Values {
         stable: m.stable,
@@ -160,12 +163,42 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
     let xa = AxisRange::new(Axis::Alpha, a_lo, a_hi, x.range.n)?;
     let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
+    let n = fam.degree();
+    check_budget(a, x, y, n, "the loop's degree", &n.to_string())?;
     let m = wall_map(&fam, xa, yb, kind, &|k| bar.set_position(k as u64))?;
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
         input: Some(LoopInput::new(&rl, None)),
     })
+}
+
+/// Refuses a map beyond the command-line budget (a point test is O(n²) in the degree n of
+/// p(z), a spectral radius O(n³)), naming --x, --y or what sets the degree.
+fn check_budget(a: &MapArgs, x: Grid, y: Grid, degree: usize, what: &str, value: &str) -> Result<()> {
+    let points = x.range.n as f64 * y.range.n as f64;
+    let d = degree.saturating_sub(3);
+    budget::check(
+        map_cost(points, d, a.radius),
+        &format!("the map of {points} points"),
+        &[
+            Driver {
+                flag: "--x",
+                value: a.x.clone(),
+                factor: x.range.n as f64 / 100.0,
+            },
+            Driver {
+                flag: "--y",
+                value: a.y.clone(),
+                factor: y.range.n as f64 / 100.0,
+            },
+            Driver {
+                flag: what,
+                value: value.to_string(),
+                factor: (degree.max(3) as f64 / 3.0).powi(if a.radius { 3 } else { 2 }),
+            },
+        ],
+    )
 }
 
 /// Writes the grid as CSV; the caller names the file in any error (open, write, flush).

@@ -196,3 +196,93 @@ fn kmax_physical_units() {
     assert!((lin - 6.5 / 0.0015).abs() < 1e-9);
     assert!(k > 0.9 * lin && k < 1.1 * lin, "{k} vs {lin}");
 }
+
+#[test]
+fn oversized_analyses_are_refused_before_they_start() {
+    // each of these used to panic or allocate gigabytes; now one line names the flag and the
+    // value, within a second
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["nyquist", "--beta-samples", "18446744073709551615"],
+            "--beta-samples 18446744073709551615",
+        ),
+        (
+            &["nyquist", "--gamma-samples", "1000000000"],
+            "--gamma-samples 1000000000",
+        ),
+        (&["nyquist", "--steps", "100000000"], "--steps 100000000"),
+        (
+            &["kmax", "--robust", "--box-samples", "10000000"],
+            "--box-samples 10000000",
+        ),
+        (
+            &["kmax", "--robust", "--box-samples", "18446744073709551615"],
+            "--box-samples",
+        ),
+        (
+            &[
+                "map",
+                "--x",
+                "alpha:0:1:10000",
+                "--y",
+                "beta:0:1:10000",
+                "--radius",
+                "--delay",
+                "100",
+            ],
+            "--delay 100",
+        ),
+    ];
+    for (args, needle) in cases {
+        let t = std::time::Instant::now();
+        bad(args, needle);
+        bad(args, "limit");
+        assert!(
+            t.elapsed().as_secs_f64() < 5.0,
+            "{args:?}: {:?}",
+            t.elapsed()
+        );
+    }
+}
+
+#[test]
+fn messages_name_the_flag_the_path_and_the_physical_parameter() {
+    // a missing required flag is named
+    bad(&["map", "--x", "alpha:0:1:10"], "--y");
+    bad(&["paper"], "--out");
+    // output errors name the file
+    bad(
+        &[
+            "boundary",
+            "--gamma",
+            "0",
+            "--delta",
+            "0",
+            "--csv",
+            "/dev/full",
+        ],
+        "/dev/full",
+    );
+    bad(
+        &[
+            "map",
+            "--x",
+            "alpha:0:1:3",
+            "--y",
+            "beta:0:1:3",
+            "--out",
+            "/dev/full",
+        ],
+        "/dev/full",
+    );
+    bad(
+        &["boundary", "--csv", "/nonexistent-dir/x.csv"],
+        "/nonexistent-dir/x.csv",
+    );
+    // a mass so small that the normalized values overflow blames the mass
+    bad(&["check", "--mass", "1e-320"], "mass m = 1e-320");
+    bad(
+        &["check", "--mass", "1e-320", "--stiffness", "1"],
+        "mass m = 1e-320",
+    );
+}

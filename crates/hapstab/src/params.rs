@@ -189,13 +189,19 @@ impl Physical {
         let plant = PlantParams::from_physical(&self.plant, t)?;
         let alpha = per_mass(
             "α = KT²/m",
-            [("wall stiffness K", self.wall.stiffness.abs()), ("sampling period T", t)],
+            [
+                ("wall stiffness K", self.wall.stiffness.abs()),
+                ("sampling period T", t),
+            ],
             2,
             m,
         )?;
         let beta = per_mass(
             "β = BT/m",
-            [("wall damping B", self.wall.damping.abs()), ("sampling period T", t)],
+            [
+                ("wall damping B", self.wall.damping.abs()),
+                ("sampling period T", t),
+            ],
             1,
             m,
         )?;
@@ -262,7 +268,10 @@ impl PlantParams {
         positive("sampling period T", period)?;
         let gamma = per_mass(
             "γ = kT²/m",
-            [("stiffness k", plant.stiffness), ("sampling period T", period)],
+            [
+                ("stiffness k", plant.stiffness),
+                ("sampling period T", period),
+            ],
             2,
             plant.mass,
         )?;
