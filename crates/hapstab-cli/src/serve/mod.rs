@@ -74,6 +74,9 @@ pub struct ServeArgs {
     /// Connections open at once.
     #[arg(long, default_value_t = limits::MAX_CONNECTIONS, hide = true)]
     connections: usize,
+    /// Time to send a whole request head in milliseconds (408 when exceeded).
+    #[arg(long, default_value_t = limits::HEADER_READ_TIMEOUT_MS, hide = true)]
+    header_timeout_ms: u64,
 }
 
 /// Shared server state.
@@ -115,7 +118,7 @@ async fn serve(a: &ServeArgs) -> Result<()> {
     };
     let transport = listen::Transport {
         max_connections: listen::connection_capacity(a.connections),
-        header_read_timeout: Duration::from_millis(limits::HEADER_READ_TIMEOUT_MS),
+        header_read_timeout: Duration::from_millis(a.header_timeout_ms.max(1)),
         connection_lifetime: Duration::from_millis(limits::CONNECTION_LIFETIME_MS),
         head: head::HeadLimits {
             max_head_bytes: limits::MAX_HEAD_BYTES,
