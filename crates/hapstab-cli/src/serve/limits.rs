@@ -66,6 +66,10 @@ pub const COMPUTE_TIMEOUT_MS: u64 = 10_000;
 /// Connections open at once; more wait in the listen queue until one closes (bounded also
 /// by the open-file limit of the process, which the server raises to its hard limit).
 pub const MAX_CONNECTIONS: usize = 4096;
+/// Connections the kernel queues before the server accepts them: enough for a burst of
+/// clients reconnecting at once (a full queue drops connection attempts, which clients
+/// retry only after a second); Linux caps it at `net.core.somaxconn`.
+pub const LISTEN_BACKLOG: u32 = 4096;
 /// Time a client has to send its whole request head before a 408 and closing: slow or idle
 /// clients cannot keep connection slots for longer.
 pub const HEADER_READ_TIMEOUT_MS: u64 = 5000;

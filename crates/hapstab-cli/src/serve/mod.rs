@@ -90,8 +90,32 @@ struct AppState {
     hosts: host::HostPolicy,
 }
 
+/// Niceness of the threads that compute (the blocking pool's jobs and rayon's workers): the
+/// threads that accept connections and answer cheap requests run at the normal priority, so
+/// that the server stays responsive while its computations use every core.
+const COMPUTE_NICENESS: i32 = 10;
+
+/// Lowers the CPU priority of the calling thread to [`COMPUTE_NICENESS`] (Linux: niceness is
+/// per thread).
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: setpriority on this thread's own id; failure leaves the priority unchanged.
+    unsafe {
+        libc::setpriority(
+            libc::PRIO_PROCESS as _,
+            libc::gettid() as _,
+            COMPUTE_NICENESS,
+        );
+    }
+}
+
 /// Runs `hapstab serve` until Ctrl-C.
 pub fn run(a: &ServeArgs) -> Result<()> {
+    // rayon's workers do the parallel part of the computations: lower them too (ignored if
+    // the global pool already exists)
+    let _ = rayon::ThreadPoolBuilder::new()
+        .start_handler(|_| lower_priority())
+        .build_global();
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .max_blocking_threads(4 * a.jobs.max(1) + 4)
@@ -102,8 +126,7 @@ pub fn run(a: &ServeArgs) -> Result<()> {
 
 async fn serve(a: &ServeArgs) -> Result<()> {
     let addr = SocketAddr::new(a.host, a.port);
-    let listener = tokio::net::TcpListener::bind(addr)
-        .await
+    let listener = listen::bind(addr, limits::LISTEN_BACKLOG)
         .with_context(|| format!("cannot listen on {addr}"))?;
     let local = listener.local_addr()?;
     let state = AppState {
@@ -300,6 +323,7 @@ where
         })?;
     let handle = tokio::task::spawn_blocking(move || {
         let _permit = permit;
+        lower_priority();
         f()
     });
     match tokio::time::timeout(st.timeout, handle).await {
