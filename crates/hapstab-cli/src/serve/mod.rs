@@ -30,6 +30,8 @@ mod host;
 mod limits;
 mod listen;
 mod query;
+#[cfg(test)]
+mod query_props;
 mod simplify;
 
 use std::net::{IpAddr, SocketAddr};
