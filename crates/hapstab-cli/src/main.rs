@@ -101,6 +101,7 @@ fn main() {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    exit_2_when_stdout_fails();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
@@ -128,6 +129,26 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(2);
     }
+}
+
+/// `println!` panics when standard output cannot be written (a full disk, `> /dev/full`):
+/// report that as one line and exit 2 like every other output error; any other panic keeps
+/// the default report.
+fn exit_2_when_stdout_fails() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if let Some(why) = msg.strip_prefix("failed printing to stdout: ") {
+            eprintln!("error: cannot write to standard output: {why}");
+            std::process::exit(2);
+        }
+        default(info);
+    }));
 }
 
 /// clap's message as one line: its first paragraph (up to the first blank line), which names

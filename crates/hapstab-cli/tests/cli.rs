@@ -286,3 +286,19 @@ fn messages_name_the_flag_the_path_and_the_physical_parameter() {
         "mass m = 1e-320",
     );
 }
+
+#[test]
+fn a_full_standard_output_is_one_error_line_and_exit_2() {
+    for args in [&["check", "--json"][..], &["check"][..], &["ranges"][..]] {
+        let full = std::fs::File::create("/dev/full").unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hapstab"))
+            .args(args)
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains("standard output"), "{args:?}: {err}");
+    }
+}
