@@ -24,8 +24,10 @@ use proptest::test_runner::{Config, TestRunner};
 /// Cases run by default (CI).
 const CI_CASES: u32 = 1000;
 /// Longest a single command may run. Values are drawn either small or far beyond the
-/// limits, so every accepted command is a small analysis; refused ones end at once.
-const TIME_BOUND: Duration = Duration::from_secs(30);
+/// limits, so every accepted command is a small analysis (the slowest, the default
+/// `kmax --robust`, takes about 3 s alone) and refused ones end at once; the bound leaves
+/// room for a machine busy with other work and still catches a hang.
+const TIME_BOUND: Duration = Duration::from_secs(120);
 /// The commands fuzzed: every analysis command. Left out: `serve` (runs until stopped),
 /// `paper` (a fixed, minutes-long report), and `simulate`/`simboundary`, whose resource
 /// limits are still being built (add them here when they are bounded).
