@@ -187,14 +187,16 @@ impl Budget {
 
     /// Ok when the cost fits (NaN estimates, from absurd inputs, never fit).
     pub fn check(&self, cost: Cost) -> Result<(), Exceeded> {
-        if !(cost.memory <= self.memory) {
+        let fits =
+            |estimate: f64, limit: f64| estimate.partial_cmp(&limit).is_some_and(|o| o.is_le());
+        if !fits(cost.memory, self.memory) {
             return Err(Exceeded {
                 resource: Resource::Memory,
                 estimate: cost.memory,
                 limit: self.memory,
             });
         }
-        if !(cost.seconds <= self.seconds) {
+        if !fits(cost.seconds, self.seconds) {
             return Err(Exceeded {
                 resource: Resource::Time,
                 estimate: cost.seconds,
