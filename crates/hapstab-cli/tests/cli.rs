@@ -233,6 +233,9 @@ fn oversized_analyses_are_refused_before_they_start() {
             "--delay 100",
         ),
     ];
+    // about as many --levels as one argument can carry
+    let levels = vec!["0.1"; 30_000].join(",");
+    bad(&["linear", "--levels", &levels], "--levels (30000 values)");
     for (args, needle) in cases {
         let t = std::time::Instant::now();
         bad(args, needle);

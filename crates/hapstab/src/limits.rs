@@ -291,6 +291,20 @@ pub fn robust_kmax_cost(plants: f64, beta_samples: usize, d: usize) -> Cost {
     }
 }
 
+/// Interval sweeps of the geometric β scan of one validity point at most: from
+/// [`crate::linear::VALIDITY_BETA_START`] = 1e-7 by 1 % steps up to β ≈ 1 (ln 10⁷ / ln 1.01
+/// ≈ 1620) and the bisection after it (about 45 halvings).
+pub const VALIDITY_SCAN_SWEEPS: f64 = 1700.0;
+
+/// Cost of [`crate::linear::validity_points`] for `levels` error levels: one scan and
+/// bisection per level, at most.
+pub fn validity_points_cost(levels: usize, d: usize) -> Cost {
+    Cost {
+        seconds: sweeps(levels as f64 * VALIDITY_SCAN_SWEEPS, d),
+        memory: levels as f64 * SLICE_BYTES,
+    }
+}
+
 /// Cost of a stability map ([`crate::map::compute_map`]) of `points` grid points at delay d:
 /// one Schur–Cohn test per point, or one spectral radius per point with `radius`; one byte
 /// per point for the verdicts and eight more for the radii.
