@@ -9,8 +9,8 @@ mod serve_support;
 
 use std::io::{ErrorKind, Read, Write};
 use std::net::TcpStream;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Barrier};
 use std::thread;
 use std::time::{Duration, Instant};
 
@@ -115,9 +115,19 @@ fn slow_clients_and_heavy_requests_leave_the_server_responsive_and_small() {
         SLOW,
         "slow clients not connected"
     );
+    // the heavy clients' threads exist before the probes start (creating 200 threads is the
+    // test's own cost, not the server's); a barrier releases their requests all at once
+    let go = Arc::new(Barrier::new(HEAVY + 1));
     let heavy: Vec<_> = (0..HEAVY)
-        .map(|i| thread::spawn(move || request(port, "GET", &heavy_path(i), &[]).status))
+        .map(|i| {
+            let go = go.clone();
+            thread::spawn(move || {
+                go.wait();
+                request(port, "GET", &heavy_path(i), &[]).status
+            })
+        })
         .collect();
+    go.wait();
     let mut latencies = Vec::new();
     let mut rss_max = 0;
     let t0 = Instant::now();
