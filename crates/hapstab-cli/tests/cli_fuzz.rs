@@ -79,6 +79,15 @@ const VALUES: &[&str] = &[
     "/dev/full",
 ];
 
+/// Values of the flags that set the delay in seconds through the period: small delays or far
+/// beyond the limits. (Ordinary values such as 2 s would be a delay of 2000 samples, allowed
+/// and slow: the roots at degree 2003 take about a minute.)
+const TIME_VALUES: &[&str] = &[
+    "0", "0.001", "0.002", "1e-7", "-0.001", "NaN", "inf", "1e9", "1e-320", "abc", "",
+];
+/// Flags whose values come from [`TIME_VALUES`].
+const TIME_FLAGS: &[&str] = &["--delay-time", "--period"];
+
 /// A flag of a command and whether it takes a value.
 #[derive(Debug, Clone)]
 struct Flag {
@@ -162,7 +171,12 @@ fn args_of(cmd: usize, picks: &[(Index, usize)]) -> Vec<String> {
         let f = flag.get(&fl);
         args.push(f.name.clone());
         if f.takes_value {
-            args.push(VALUES[*value].to_string());
+            let v = if TIME_FLAGS.contains(&f.name.as_str()) {
+                TIME_VALUES[*value % TIME_VALUES.len()]
+            } else {
+                VALUES[*value]
+            };
+            args.push(v.to_string());
         }
     }
     args

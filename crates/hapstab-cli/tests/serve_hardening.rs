@@ -248,11 +248,10 @@ fn requests_beyond_one_requests_budget_are_refused_naming_the_parameter() {
 }
 
 #[test]
-#[ignore = "the region engine's coarse curve sampling still grows without bound here; its memory bound belongs to the numerical engine (hapstab::region)"]
 fn extreme_in_limit_region_is_answered_or_refused_within_memory() {
-    // Inside /api/limits (γ ≤ 1000, δ ≤ 100, d ≤ 200), this request used to grow past 10 GB
-    // in a minute. Once the region engine bounds its own sampling, the answer is a 200 or a
-    // JSON refusal, quickly, and the server stays small.
+    // Inside /api/limits (γ ≤ 1000, δ ≤ 100, d ≤ 200), and hard for the region engine, which
+    // bounds its own curve sampling: the answer is a 200 or a JSON refusal (the engine's
+    // honest error, or the computation's time limit), and the server stays small.
     let s = Server::start(&[]);
     let t = Instant::now();
     let r = s.get("/api/region?mode=normalized&gamma=967.8197089101616&delta=100&d=100");
@@ -262,6 +261,7 @@ fn extreme_in_limit_region_is_answered_or_refused_within_memory() {
         r.body
     );
     assert!(r.json().is_object());
+    // the computation's time limit is 10 s
     assert!(t.elapsed() < Duration::from_secs(15), "{:?}", t.elapsed());
     let rss = serve_support::peak_rss_bytes(s.pid());
     assert!(rss < 1 << 30, "peak RSS {rss} bytes");

@@ -43,15 +43,16 @@ pub const REFINEMENT_SWEEPS: f64 = 100.0;
 pub const CONFIG_BYTES: f64 = 256.0;
 /// Bytes held per β slice (the slice value, its interval ends and the refinement bookkeeping).
 pub const SLICE_BYTES: f64 = 96.0;
-/// Sampled points of the complex-root curve per degree of p(z) in the exact region
-/// construction (its arcs are resampled adaptively to 1e-10 of the region's size).
+/// Sampled points of the complex-root curve per degree of p(z) in a typical exact region
+/// construction (its arcs are resampled adaptively to the chord tolerance); the engine's
+/// own bound is [`crate::region::MAX_CURVE_POINTS`].
 pub const REGION_CURVE_POINTS_PER_DEGREE: f64 = 400.0;
 /// Core-seconds per sampled curve point and degree of p(z): evaluating the curve is O(n)
 /// (measured with `boundary`: 0.06 s at d = 50, 0.19 s at d = 200, wall time on two cores).
 pub const CURVE_POINT_SECONDS_PER_DEGREE: f64 = 2e-9;
-/// Bytes per sampled curve point of the region construction (θ, α, β and the arrangement's
-/// bookkeeping).
-pub const REGION_BYTES_PER_POINT: f64 = 128.0;
+/// Bytes per sampled curve point of the region construction (the engine documents 4·10⁶
+/// points as about 100 MB).
+pub const REGION_BYTES_PER_POINT: f64 = 25.0;
 /// Core-seconds of one simulated sample per state of the loop (d + 3 states: a matrix-vector
 /// step plus the nonlinear effects).
 pub const SIMULATION_SECONDS_PER_STATE: f64 = 20e-9;
@@ -66,9 +67,10 @@ pub const MAX_COMMAND_MEMORY: f64 = 2.0 * 1024.0 * 1024.0 * 1024.0;
 /// Largest estimated computing time of one request to the explorer: 5 core-seconds, half of
 /// its 10 s time limit, so that an estimate off by a factor of two still finishes.
 pub const MAX_JOB_SECONDS: f64 = 5.0;
-/// Largest estimated memory of one request to the explorer: 64 MiB, so that its few
-/// concurrent jobs stay far below 1 GB together.
-pub const MAX_JOB_MEMORY: f64 = 64.0 * 1024.0 * 1024.0;
+/// Largest estimated memory of one request to the explorer: 128 MiB, room for one exact
+/// region at the engine's bound (about 100 MB), so that the explorer's four concurrent jobs
+/// stay under 1 GB together.
+pub const MAX_JOB_MEMORY: f64 = 128.0 * 1024.0 * 1024.0;
 
 /// The estimated cost of an analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -322,14 +324,15 @@ pub fn map_cost(points: f64, d: usize, radius: bool) -> Cost {
 }
 
 /// Cost of one exact stable region ([`crate::region::stable_region`]) at delay d: the
-/// complex-root curve is sampled at about [`REGION_CURVE_POINTS_PER_DEGREE`] points per degree,
-/// each an O(n) evaluation, and the arrangement holds them all.
+/// complex-root curve is typically sampled at about [`REGION_CURVE_POINTS_PER_DEGREE`] points
+/// per degree, each an O(n) evaluation; the memory is the engine's own bound,
+/// [`crate::region::MAX_CURVE_POINTS`] points, past which it ends with an error.
 pub fn region_cost(d: usize) -> Cost {
     let n = d as f64 + 3.0;
     let points = REGION_CURVE_POINTS_PER_DEGREE * n;
     Cost {
         seconds: points * (POINT_TEST_SECONDS + CURVE_POINT_SECONDS_PER_DEGREE * n),
-        memory: points * REGION_BYTES_PER_POINT,
+        memory: crate::region::MAX_CURVE_POINTS as f64 * REGION_BYTES_PER_POINT,
     }
 }
 
