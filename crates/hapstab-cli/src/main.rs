@@ -151,23 +151,6 @@ fn exit_2_when_stdout_fails() {
     }));
 }
 
-/// clap's message as one line: its first paragraph (up to the first blank line), which names
-/// the flag and the value, with the indented continuation lines (e.g. the list of missing
-/// required flags) joined onto it.
-fn one_line(text: &str) -> String {
-    let line = text
-        .lines()
-        .take_while(|l| !l.trim().is_empty())
-        .map(str::trim)
-        .collect::<Vec<_>>()
-        .join(" ");
-    if line.is_empty() {
-        "error: invalid arguments".into()
-    } else {
-        line
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

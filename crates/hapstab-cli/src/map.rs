@@ -175,7 +175,14 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
 
 /// Refuses a map beyond the command-line budget (a point test is O(n²) in the degree n of
 /// p(z), a spectral radius O(n³)), naming --x, --y or what sets the degree.
-fn check_budget(a: &MapArgs, x: Grid, y: Grid, degree: usize, what: &str, value: &str) -> Result<()> {
+fn check_budget(
+    a: &MapArgs,
+    x: Grid,
+    y: Grid,
+    degree: usize,
+    what: &str,
+    value: &str,
+) -> Result<()> {
     let points = x.range.n as f64 * y.range.n as f64;
     let d = degree.saturating_sub(3);
     budget::check(
