@@ -612,12 +612,17 @@ pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
             ((6.0 * 2.0 * std::f64::consts::PI / w).ceil() as usize).clamp(300, 4000)
         }
     };
+    // a run may be extended up to the horizon until its verdict settles: budget for that
     within_budget(
-        simulation_cost(samples as f64, spec.d, samples.min(MAX_TRACE_POINTS) as f64)
-            .then(point_cost(spec.d)),
-        "the simulation",
-        "samples",
-        &samples.to_string(),
+        simulation_cost(
+            samples.max(SIM_HORIZON) as f64,
+            spec.d,
+            samples.min(MAX_TRACE_POINTS) as f64,
+        )
+        .then(point_cost(spec.d)),
+        "the simulation (extended up to its horizon)",
+        "d",
+        &spec.d.to_string(),
     )?;
     let push = p.num_or(
         "push",
