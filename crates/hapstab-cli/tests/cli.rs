@@ -305,3 +305,28 @@ fn a_full_standard_output_is_one_error_line_and_exit_2() {
         assert!(err.contains("standard output"), "{args:?}: {err}");
     }
 }
+
+/// d = 2000 (degree 2003): all roots in well under a second (the dense eigen-solver took
+/// 88 s), and a verdict that agrees with the spectral radius printed beside it.
+#[test]
+fn check_at_the_largest_delay_is_fast_and_consistent() {
+    let t = std::time::Instant::now();
+    let v = json(&["check", "--delay", "2000"]);
+    assert!(t.elapsed().as_secs_f64() < 5.0, "{:?}", t.elapsed());
+    assert_eq!(v["roots"].as_array().unwrap().len(), 2003);
+    let rho = v["spectral_radius"].as_f64().unwrap();
+    let expect = if rho < 1.0 { "stable" } else { "unstable" };
+    assert!((rho - 1.0).abs() > 1e-6, "{rho}");
+    assert_eq!(v["verdict"], expect, "ρ = {rho}");
+}
+
+/// γ = 1e10, δ = 1e4: the plant poles have modulus e^{−δ/2} = e^{−5000}, zero in double
+/// precision, so with α = β = 0 every root of p = z D(z) is 0: stable, ρ = 0.
+#[test]
+fn check_stiff_plant_has_its_roots_at_zero() {
+    let v = json(&[
+        "check", "--gamma", "1e10", "--delta", "1e4", "--alpha", "0", "--beta", "0",
+    ]);
+    assert_eq!(v["verdict"], "stable");
+    assert_eq!(v["spectral_radius"].as_f64().unwrap(), 0.0);
+}

@@ -193,7 +193,7 @@ fn split_zero_roots(c: &[f64]) -> Result<(usize, &[f64])> {
     }
     match c.last() {
         None => Err(Error::Numerical("polynomial has no coefficients".into())),
-        Some(&lead) if lead == 0.0 => Err(Error::Numerical(
+        Some(0.0) => Err(Error::Numerical(
             "leading coefficient of the polynomial is zero".into(),
         )),
         Some(_) => {
