@@ -46,6 +46,10 @@ pub struct RootEstimate {
     /// Radius of a disc about `z` that contains a root of p, allowing for the rounding
     /// error of evaluating p (see [`inclusion_radii`]).
     pub radius: f64,
+    /// First-order estimate of the error of `z`: (|p(z)| + rounding bound)/|p′(z)|, the size
+    /// of the Newton correction that the rounding of p still allows. For a simple root the
+    /// error is this to first order; `radius` (n times it) holds rigorously.
+    pub error: f64,
 }
 
 /// The nonzero terms of a polynomial, highest exponent first, ready for evaluation with
@@ -308,6 +312,7 @@ pub fn aberth(c: &[f64]) -> Result<Vec<RootEstimate>> {
         RootEstimate {
             z: Complex64::new(0.0, 0.0),
             radius: 0.0,
+            error: 0.0,
         };
         zeros
     ];
@@ -352,13 +357,14 @@ pub fn aberth(c: &[f64]) -> Result<Vec<RootEstimate>> {
         .zip(&im)
         .map(|(&x, &y)| Complex64::new(x, y))
         .collect();
-    let radii = radii_of(&poly, &roots);
-    out.extend(
-        roots
-            .iter()
-            .zip(radii)
-            .map(|(&z, radius)| RootEstimate { z, radius }),
-    );
+    out.extend(roots.iter().map(|&z| {
+        let error = error_of(&poly, z);
+        RootEstimate {
+            z,
+            radius: poly.degree as f64 * error,
+            error,
+        }
+    }));
     Ok(out)
 }
 
@@ -368,11 +374,14 @@ pub fn aberth(c: &[f64]) -> Result<Vec<RootEstimate>> {
 fn radii_of(poly: &Prepared, roots: &[Complex64]) -> Vec<f64> {
     roots
         .iter()
-        .map(|&z| {
-            let r = poly.degree as f64 * poly.newton(z).ratio_bound;
-            if r.is_nan() { f64::INFINITY } else { r }
-        })
+        .map(|&z| poly.degree as f64 * error_of(poly, z))
         .collect()
+}
+
+/// (|p| + rounding bound)/|p′| at z (infinite where p′ vanishes).
+fn error_of(poly: &Prepared, z: Complex64) -> f64 {
+    let e = poly.newton(z).ratio_bound;
+    if e.is_nan() { f64::INFINITY } else { e }
 }
 
 /// Inclusion radii of root approximations `roots` of the polynomial with ascending real

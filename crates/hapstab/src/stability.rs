@@ -24,9 +24,9 @@ pub const MARGINAL_BAND: f64 = 5e-11;
 pub enum Verdict {
     /// All roots strictly inside the circle of radius 1 − [`MARGINAL_BAND`].
     Stable,
-    /// Some root on the unit circle within [`MARGINAL_BAND`], or the spectral radius within its
-    /// error bound of that band, where double precision cannot tell the side (see
-    /// [`reconcile`]).
+    /// Some root on the unit circle within [`MARGINAL_BAND`], or the Schur–Cohn test and the
+    /// spectral radius on different sides with the radius within its error of that band,
+    /// where double precision cannot tell the side (see [`reconcile`]).
     Marginal,
     /// Some root outside the circle of radius 1 + [`MARGINAL_BAND`].
     Unstable,
@@ -188,8 +188,9 @@ pub struct Analysis {
     pub verdict: Verdict,
     /// Largest root modulus of p(z) (from the roots).
     pub spectral_radius: f64,
-    /// Bound on the error of `spectral_radius`: the true spectral radius lies within this
-    /// distance of it (from the inclusion discs of the roots, rounding of p included).
+    /// Estimated error of `spectral_radius`: the first-order (Newton) error of the roots with
+    /// the rounding of p included ([`crate::polyroots::RootEstimate::error`]); the rigorous
+    /// inclusion discs are at most the degree times wider.
     pub spectral_radius_error: f64,
     /// Roots of p(z), largest modulus first.
     pub roots: Vec<Complex64>,
@@ -207,21 +208,20 @@ pub fn verdict_of_radius(rho: f64) -> Verdict {
 }
 
 /// Reconciles the Schur–Cohn verdict with the spectral radius ρ ± `error` of the roots:
-/// their common answer when they agree and ρ is farther than its error bound from the
-/// marginal band; `Marginal` when ρ ± error reaches into the band (double precision cannot
-/// decide the side, e.g. a double root on the unit circle) and the Schur–Cohn verdict lies
-/// within that range; an [`Error::Numerical`] naming both when they differ by more than the
-/// rounding allows.
+/// their common answer when they agree; `Marginal` when they differ only because ρ is within
+/// its error of the marginal band (double precision cannot decide the side); an
+/// [`Error::Numerical`] naming both when they differ by more than the rounding allows.
 pub fn reconcile(algebraic: Verdict, rho: f64, error: f64) -> Result<Verdict> {
+    if algebraic == verdict_of_radius(rho) {
+        return Ok(algebraic);
+    }
     let (lo, hi) = (
         verdict_of_radius(rho - error),
         verdict_of_radius(rho + error),
     );
     // Stable < Marginal < Unstable in declaration order.
     let rank = |v: Verdict| v as u8;
-    if lo == hi && hi == algebraic {
-        Ok(algebraic)
-    } else if (rank(lo)..=rank(hi)).contains(&rank(algebraic)) {
+    if (rank(lo)..=rank(hi)).contains(&rank(algebraic)) {
         Ok(Verdict::Marginal)
     } else {
         Err(Error::Numerical(format!(
@@ -248,13 +248,13 @@ impl Analysis {
             .iter()
             .max_by(|a, b| a.z.norm().total_cmp(&b.z.norm()));
         let spectral_radius = top.map_or(0.0, |e| e.z.norm());
-        // Every root lies in one of the discs, so ρ lies within max(|z| + r) and the
-        // largest |z| − r.
+        // To first order every root lies within its error of its approximation, so ρ lies
+        // between the largest |z| − e and the largest |z| + e.
         let upper = estimates
             .iter()
-            .map(|e| e.z.norm() + e.radius)
+            .map(|e| e.z.norm() + e.error)
             .fold(0.0, f64::max);
-        let spectral_radius_error = (upper - spectral_radius).max(top.map_or(0.0, |e| e.radius));
+        let spectral_radius_error = (upper - spectral_radius).max(top.map_or(0.0, |e| e.error));
         let verdict = reconcile(classify(c), spectral_radius, spectral_radius_error)?;
         let mut roots: Vec<Complex64> = estimates.iter().map(|e| e.z).collect();
         sort_roots(&mut roots);
