@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Measures the 1000×1000 stability map with hapstab (criterion) and with numpy.roots point by
-# point (benches/baseline/numpy_map.py) in one run, and prints the ratio per point.
-# Usage: bash benches/compare.sh        (installs numpy into a venv under target/ if needed)
+# point (benches/baseline/numpy_map.py) in one run, and prints the ratio per point; likewise
+# the simulator, and all roots of p(z) at d = 10, 200, 2000 (benches/baseline/numpy_roots.py).
+# Usage: bash benches/compare.sh [all|map|roots]   (installs numpy into a venv under target/
+# if needed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=target/baseline-venv
@@ -9,6 +11,8 @@ if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
   "$venv/bin/pip" install --quiet numpy
 fi
+what=${1:-all}
+if [ "$what" = all ] || [ "$what" = map ]; then
 cargo bench -p hapstab --bench map -- --noplot >/dev/null 2>&1
 for d in 0 10; do
   est=target/criterion/map_1000x1000/schur/$d/new/estimates.json
@@ -37,3 +41,22 @@ rust_sps = 1e6 / (rust_ns * 1e-9)
 print(f"simulation: hapstab {rust_sps/1e6:.1f} M samples/s; numpy loop {py['samples_per_second']/1e3:.1f} k samples/s; "
       f"ratio {rust_sps/py['samples_per_second']:.0f}x")
 PY
+fi
+
+if [ "$what" = all ] || [ "$what" = roots ]; then
+# Roots: criterion (Aberth–Ehrlich, and the whole Analysis) vs numpy.roots, same polynomials.
+cargo bench -p hapstab --bench roots -- --noplot >/dev/null 2>&1
+# One BLAS thread: numpy.roots is 2-4x faster so on this shared 2-core machine.
+py=$(cd benches/baseline && env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE OPENBLAS_NUM_THREADS=1 "../../$venv/bin/python" numpy_roots.py 10 200 2000)
+python3 - "$py" <<'PY'
+import json, sys
+mean = lambda path: json.load(open(path))["mean"]["point_estimate"]
+for line in sys.argv[1].splitlines():
+    py = json.loads(line); d = py["d"]
+    ab = mean(f"target/criterion/roots/aberth/{d}/new/estimates.json")
+    an = mean(f"target/criterion/roots/analysis/{d}/new/estimates.json")
+    np_ns = py["seconds_per_call"] * 1e9
+    print(f"roots d={d}: hapstab Aberth {ab/1e3:.1f} us (Analysis {an/1e3:.1f} us); "
+          f"numpy.roots {np_ns/1e3:.1f} us ({py['calls']} calls); ratio {np_ns/ab:.0f}x")
+PY
+fi

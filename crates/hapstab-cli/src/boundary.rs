@@ -102,9 +102,17 @@ fn edge_tag(k: &EdgeKind) -> &'static str {
     }
 }
 
+/// Writes the vertices; every failure (open, write, flush) names the file.
 fn write_csv(path: &std::path::Path, r: &StableRegion, fam: Option<&AffineFamily>) -> Result<()> {
-    let mut w =
-        csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
+    write_vertices(path, r, fam).with_context(|| format!("cannot write {}", path.display()))
+}
+
+fn write_vertices(
+    path: &std::path::Path,
+    r: &StableRegion,
+    fam: Option<&AffineFamily>,
+) -> Result<()> {
+    let mut w = csv::Writer::from_path(path)?;
     let mut header = vec!["polygon", "vertex", "alpha", "beta", "theta", "edge"];
     if fam.is_some() {
         header.extend(["K", "B"]);

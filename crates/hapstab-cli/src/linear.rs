@@ -4,9 +4,11 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::PlantParams;
+use hapstab::limits::validity_points_cost;
 use hapstab::linear::validity_points;
 use serde::Serialize;
 
+use crate::budget::{self, Driver};
 use crate::model::PlantArgs;
 use crate::output::{print_json, sig};
 
@@ -63,6 +65,18 @@ pub fn run(a: &LinearArgs) -> Result<()> {
         bail!("--levels needs at least one value");
     }
     let pm = a.plant.resolve()?;
+    budget::check(
+        validity_points_cost(a.levels.len(), pm.d),
+        &format!("the validity points of {} levels", a.levels.len()),
+        &[
+            Driver {
+                flag: "--levels",
+                value: format!("({} values)", a.levels.len()),
+                factor: a.levels.len() as f64 / 2.0,
+            },
+            Driver::delay(pm.d),
+        ],
+    )?;
     let pts = validity_points(PlantParams::new(pm.gamma, pm.delta)?, pm.d, &a.levels)?;
     let scale = pm
         .physical

@@ -2,6 +2,7 @@
 //! the library and formats output; every analysis lives in the `hapstab` crate.
 
 mod boundary;
+mod budget;
 mod check;
 mod discretize;
 mod family;
@@ -13,6 +14,7 @@ mod nyquist;
 mod output;
 mod paper;
 mod plot;
+mod progress;
 mod ranges;
 mod robust;
 mod serve;
@@ -99,6 +101,7 @@ fn main() {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    exit_2_when_stdout_fails();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
@@ -125,5 +128,43 @@ fn main() {
     if let Err(e) = run(cli) {
         eprintln!("error: {e:#}");
         std::process::exit(2);
+    }
+}
+
+/// `println!` panics when standard output cannot be written (a full disk, `> /dev/full`):
+/// report that as one line and exit 2 like every other output error; any other panic keeps
+/// the default report.
+fn exit_2_when_stdout_fails() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if let Some(why) = msg.strip_prefix("failed printing to stdout: ") {
+            eprintln!("error: cannot write to standard output: {why}");
+            std::process::exit(2);
+        }
+        default(info);
+    }));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_required_flags_are_named_on_one_line() {
+        for (args, flag) in [
+            (vec!["hapstab", "map", "--x", "alpha:0:1:10"], "--y"),
+            (vec!["hapstab", "paper"], "--out"),
+        ] {
+            let e = Cli::try_parse_from(&args).err().expect("a parse error");
+            let line = one_line(&e.render().to_string());
+            assert!(line.contains(flag), "{args:?}: {line}");
+            assert!(!line.contains('\n'), "{line}");
+        }
     }
 }

@@ -1,16 +1,34 @@
 //! `hapstab map`: the paper's grid method (Section V) in parallel — over any two of α, β, γ,
 //! δ for the paper's normalized loop, or over the physical wall (K, B) of any loop.
+//!
+//! The grid goes to a file in one of two layouts, one record per grid point, the horizontal
+//! axis varying fastest (point (ix, iy) is record iy·nx + ix):
+//!
+//! - CSV: a header, then `x,y,stable[,spectral_radius]` with the axes' names as column names,
+//!   shortest round-trip floats and stable as 0/1;
+//! - NPY (NumPy format 1.0): a one-dimensional structured array of shape (nx·ny,) with the same
+//!   fields, x and y as `<f8`, `stable` as `|u1` and `spectral_radius` as `<f8`, packed
+//!   little-endian; `np.load(f)["stable"].reshape(ny, nx)` is the map as an image.
+//!
+//! `--plot` draws the map as a heatmap with the shared plotting module.
+
+use std::fs::File;
+use std::io::{BufWriter, IsTerminal, Write};
+use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
-use clap::Args;
+use clap::{Args, ValueEnum};
+use hapstab::limits::map_cost;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
 use indicatif::{ProgressBar, ProgressStyle};
+use plotters::style::RGBColor;
 use serde::Serialize;
-use std::io::IsTerminal;
 
+use crate::budget::{self, Driver};
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, PHYSICAL_PLANT_FLAGS};
 use crate::output::print_json;
+use crate::plot::{Figure, Legend, Saved, Series, palette};
 
 /// Arguments of `hapstab map`.
 #[derive(Args, Debug)]
@@ -35,9 +53,18 @@ pub struct MapArgs {
     /// Also compute the spectral radius at every point (slower).
     #[arg(long)]
     radius: bool,
-    /// Output CSV file (columns x, y, stable[, spectral_radius]).
+    /// Output file: one record per grid point, the x axis varying fastest, with the columns
+    /// x, y, stable (0/1)[, spectral_radius].
     #[arg(long)]
     out: Option<std::path::PathBuf>,
+    /// Layout of the --out file: csv (a header, shortest round-trip floats) or npy (a NumPy
+    /// structured array of shape (nx·ny,), fields x, y as <f8, stable as |u1,
+    /// spectral_radius as <f8; np.load(f)["stable"].reshape(ny, nx) is the map).
+    #[arg(long, value_enum, default_value_t = Format::Csv, requires = "out")]
+    format: Format,
+    /// Draw the map as a heatmap into FILE.svg and FILE.png.
+    #[arg(long)]
+    plot: Option<std::path::PathBuf>,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -109,6 +136,15 @@ struct Values {
     input: Option<LoopInput>,
 }
 
+/// Layout of the `--out` file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Format {
+    /// Comma-separated values with a header.
+    Csv,
+    /// NumPy .npy structured array.
+    Npy,
+}
+
 #[derive(Serialize)]
 struct MapSummary {
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -117,6 +153,8 @@ struct MapSummary {
     stable_points: usize,
     seconds: f64,
     out: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plot: Option<Saved>,
 }
 
 fn normalized_map(
@@ -141,6 +179,7 @@ fn normalized_map(
         d,
     )?;
     let spec = MapSpec::new(x.range, y.range, base)?;
+    check_budget(a, x, y, d + 3, "--delay", &d.to_string())?;
     let m = compute_map(&spec, kind, &|k| bar.set_position(k as u64));
     Ok(Values {
         stable: m.stable,
@@ -160,6 +199,8 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
     let xa = AxisRange::new(Axis::Alpha, a_lo, a_hi, x.range.n)?;
     let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
+    let n = fam.degree();
+    check_budget(a, x, y, n, "the loop's degree", &n.to_string())?;
     let m = wall_map(&fam, xa, yb, kind, &|k| bar.set_position(k as u64))?;
     Ok(Values {
         stable: m.stable,
@@ -168,30 +209,217 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     })
 }
 
-fn write_csv(path: &std::path::Path, x: Grid, y: Grid, v: &Values) -> Result<()> {
-    let mut w =
-        csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
-    let mut header = vec![axis_label(x.name), axis_label(y.name), "stable"];
+/// Refuses a map beyond the command-line budget (a point test is O(n²) in the degree n of
+/// p(z), a spectral radius O(n³)), naming --x, --y or what sets the degree.
+fn check_budget(
+    a: &MapArgs,
+    x: Grid,
+    y: Grid,
+    degree: usize,
+    what: &str,
+    value: &str,
+) -> Result<()> {
+    let points = x.range.n as f64 * y.range.n as f64;
+    let d = degree.saturating_sub(3);
+    budget::check(
+        map_cost(points, d, a.radius),
+        &format!("the map of {points} points"),
+        &[
+            Driver {
+                flag: "--x",
+                value: a.x.clone(),
+                factor: x.range.n as f64 / 100.0,
+            },
+            Driver {
+                flag: "--y",
+                value: a.y.clone(),
+                factor: y.range.n as f64 / 100.0,
+            },
+            Driver {
+                flag: what,
+                value: value.to_string(),
+                factor: (degree.max(3) as f64 / 3.0).powi(if a.radius { 3 } else { 2 }),
+            },
+        ],
+    )
+}
+
+/// The column names of the output file.
+fn columns(x: Grid, y: Grid, v: &Values) -> Vec<&'static str> {
+    let mut cols = vec![axis_label(x.name), axis_label(y.name), "stable"];
     if v.radius.is_some() {
-        header.push("spectral_radius");
+        cols.push("spectral_radius");
     }
-    w.write_record(&header)?;
-    for iy in 0..y.range.n {
-        for ix in 0..x.range.n {
-            let k = iy * x.range.n + ix;
-            let mut rec = vec![
-                format!("{:e}", x.range.value(ix)),
-                format!("{:e}", y.range.value(iy)),
-                (v.stable[k] as u8).to_string(),
-            ];
+    cols
+}
+
+/// The grid values of an axis as shortest round-trip decimal text, formatted once.
+fn axis_text(r: &AxisRange) -> Vec<String> {
+    let mut buf = ryu::Buffer::new();
+    (0..r.n)
+        .map(|i| buf.format(r.value(i)).to_owned())
+        .collect()
+}
+
+/// Writes the map as CSV: the axis values are formatted once per axis and every record is
+/// assembled from borrowed bytes (no allocation per field).
+fn write_csv(path: &Path, x: Grid, y: Grid, v: &Values) -> Result<()> {
+    let file = File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut w = csv::WriterBuilder::new()
+        .buffer_capacity(1 << 20)
+        .from_writer(file);
+    w.write_record(columns(x, y, v))?;
+    let (xs, ys) = (axis_text(&x.range), axis_text(&y.range));
+    let mut buf = ryu::Buffer::new();
+    for (iy, yt) in ys.iter().enumerate() {
+        for (ix, xt) in xs.iter().enumerate() {
+            let k = iy * xs.len() + ix;
+            w.write_field(xt)?;
+            w.write_field(yt)?;
+            w.write_field(if v.stable[k] { "1" } else { "0" })?;
             if let Some(r) = &v.radius {
-                rec.push(format!("{:e}", r[k]));
+                w.write_field(buf.format(r[k]))?;
             }
-            w.write_record(&rec)?;
+            w.write_record(None::<&[u8]>)?;
         }
     }
-    w.flush()?;
-    Ok(())
+    w.flush()
+        .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// The NPY 1.0 header for `points` records of the map's columns: magic, version, header
+/// length, and the dict padded with spaces to a multiple of 64 bytes ending in a newline.
+fn npy_header(cols: &[&str], points: usize) -> Vec<u8> {
+    let fields: Vec<String> = cols
+        .iter()
+        .map(|c| format!("('{c}', '{}')", if *c == "stable" { "|u1" } else { "<f8" }))
+        .collect();
+    let dict = format!(
+        "{{'descr': [{}], 'fortran_order': False, 'shape': ({points},), }}",
+        fields.join(", ")
+    );
+    let total = (10 + dict.len() + 1).div_ceil(64) * 64;
+    let mut h = b"\x93NUMPY\x01\x00".to_vec();
+    h.extend_from_slice(&((total - 10) as u16).to_le_bytes());
+    h.extend_from_slice(dict.as_bytes());
+    h.resize(total - 1, b' ');
+    h.push(b'\n');
+    h
+}
+
+/// Writes the map as a NumPy structured array (see the module documentation).
+fn write_npy(path: &Path, x: Grid, y: Grid, v: &Values) -> Result<()> {
+    let fail = || format!("cannot write {}", path.display());
+    let file = File::create(path).with_context(fail)?;
+    let mut w = BufWriter::with_capacity(1 << 20, file);
+    let (xr, yr) = (&x.range, &y.range);
+    w.write_all(&npy_header(&columns(x, y, v), xr.n * yr.n))
+        .with_context(fail)?;
+    let xs: Vec<[u8; 8]> = (0..xr.n).map(|i| xr.value(i).to_le_bytes()).collect();
+    for iy in 0..yr.n {
+        let yb = yr.value(iy).to_le_bytes();
+        for (ix, xb) in xs.iter().enumerate() {
+            let k = iy * xr.n + ix;
+            w.write_all(xb).with_context(fail)?;
+            w.write_all(&yb).with_context(fail)?;
+            w.write_all(&[v.stable[k] as u8]).with_context(fail)?;
+            if let Some(r) = &v.radius {
+                w.write_all(&r[k].to_le_bytes()).with_context(fail)?;
+            }
+        }
+    }
+    w.flush().with_context(fail)
+}
+
+/// Colour classes of a radius heatmap: (upper bound of ρ, colour, legend entry).
+fn radius_classes() -> [(f64, RGBColor, &'static str); 4] {
+    [
+        (0.99, palette::BLUE, "ρ < 0.99"),
+        (1.0, palette::SKY, "0.99 ≤ ρ < 1"),
+        (1.01, palette::ORANGE, "1 ≤ ρ < 1.01"),
+        (f64::INFINITY, palette::VERMILLION, "ρ ≥ 1.01"),
+    ]
+}
+
+/// The points of class `c` (by `class_of`, a function of the point's index) as rectangles
+/// merged into runs along each row: a few rectangles per row instead of one per point.
+fn runs(
+    x: &AxisRange,
+    y: &AxisRange,
+    class_of: &dyn Fn(usize) -> Option<usize>,
+    c: usize,
+) -> Vec<((f64, f64), (f64, f64))> {
+    let (hx, hy) = (x.step() / 2.0, y.step() / 2.0);
+    let mut out = Vec::new();
+    for iy in 0..y.n {
+        let yv = y.value(iy);
+        let mut ix = 0;
+        while ix < x.n {
+            if class_of(iy * x.n + ix) != Some(c) {
+                ix += 1;
+                continue;
+            }
+            let start = ix;
+            while ix < x.n && class_of(iy * x.n + ix) == Some(c) {
+                ix += 1;
+            }
+            out.push((
+                (x.value(start) - hx, yv - hy),
+                (x.value(ix - 1) + hx, yv + hy),
+            ));
+        }
+    }
+    out
+}
+
+/// The axis title of a gridded quantity, with units for the physical wall.
+fn axis_title(name: Name) -> &'static str {
+    match name {
+        Name::Normalized(Axis::Alpha) => "α",
+        Name::Normalized(Axis::Beta) => "β",
+        Name::Normalized(Axis::Gamma) => "γ",
+        Name::Normalized(Axis::Delta) => "δ",
+        Name::K => "K (N/m)",
+        Name::B => "B (Ns/m)",
+    }
+}
+
+/// The heatmap of a map: stable points (or the spectral radius in classes) as filled cells.
+fn heatmap(x: Grid, y: Grid, v: &Values) -> Figure {
+    let (xr, yr) = (&x.range, &y.range);
+    let (hx, hy) = (xr.step() / 2.0, yr.step() / 2.0);
+    let mut fig = Figure::new("Stability map")
+        .x_label(axis_title(x.name))
+        .y_label(axis_title(y.name))
+        .x_range(xr.lo - hx, xr.hi + hx)
+        .y_range(yr.lo - hy, yr.hi + hy)
+        .legend(Legend::UpperRight);
+    match &v.radius {
+        None => {
+            let stable = |k: usize| v.stable[k].then_some(0);
+            let cells = runs(xr, yr, &stable, 0);
+            add_cells(&mut fig, cells, palette::BLUE, "stable (Schur–Cohn)");
+        }
+        Some(r) => {
+            let classes = radius_classes();
+            let class_of = |k: usize| classes.iter().position(|(hi, _, _)| r[k] < *hi);
+            for (c, (_, color, label)) in classes.iter().enumerate() {
+                add_cells(&mut fig, runs(xr, yr, &class_of, c), *color, label);
+            }
+        }
+    }
+    fig
+}
+
+/// Adds rectangles as opaque, unoutlined polygons of one colour, the first one labelled.
+fn add_cells(fig: &mut Figure, rects: Vec<((f64, f64), (f64, f64))>, color: RGBColor, label: &str) {
+    for (i, ((x0, y0), (x1, y1))) in rects.into_iter().enumerate() {
+        let cell = Series::polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+            .color(color)
+            .alpha(1.0)
+            .no_outline();
+        fig.add(if i == 0 { cell.label(label) } else { cell });
+    }
 }
 
 fn progress_bar(a: &MapArgs, x: Grid, y: Grid) -> ProgressBar {
@@ -231,8 +459,19 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let secs = t.elapsed().as_secs_f64();
     bar.finish_and_clear();
     if let Some(path) = &a.out {
-        write_csv(path, x, y, &v)?;
+        match a.format {
+            Format::Csv => write_csv(path, x, y, &v)?,
+            Format::Npy => write_npy(path, x, y, &v)?,
+        }
     }
+    let plot = match &a.plot {
+        Some(p) => Some(
+            heatmap(x, y, &v)
+                .save(p)
+                .with_context(|| format!("plot {}", p.display()))?,
+        ),
+        None => None,
+    };
     let points = x.range.n * y.range.n;
     let stable_points = v.stable.iter().filter(|&&s| s).count();
     let out = a.out.as_ref().map(|p| p.display().to_string());
@@ -243,6 +482,7 @@ pub fn run(a: &MapArgs) -> Result<()> {
             stable_points,
             seconds: secs,
             out,
+            plot,
         });
     }
     println!(

@@ -468,8 +468,14 @@ impl LoopArgs {
             });
         }
         let period = self.plant.period.unwrap_or(DEFAULT_PERIOD);
-        let plant = Plant::new(self.plant_model()?, self.force_lag.unwrap_or(0.0))
-            .map_err(|e| tf_context(self, e))?;
+        let model = self.plant_model()?;
+        if let LibPlantModel::MassSpringDamper(eff) = &model {
+            // γ = kT²/m and δ = bT/m must be finite: a mass so small (or a stiffness so
+            // large) that they overflow is refused here, naming the physical parameter
+            hapstab::PlantParams::from_physical(eff, period)?;
+        }
+        let plant =
+            Plant::new(model, self.force_lag.unwrap_or(0.0)).map_err(|e| tf_context(self, e))?;
         let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
         Ok(ResolvedLoop {
             lp: Loop::new(plant, period, self.delay(period)?, velocity)?,

@@ -5,13 +5,26 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::boundary::AlphaBeta;
+use hapstab::limits::{Cost, gamma_sweep_cost, passive_check_cost, robust_region_cost};
 use hapstab::nyquist::{
-    NyquistStiffness, PassiveCheck, RegionSummary, RobustOptions, gamma_sweep, nyquist_gamma,
-    nyquist_stiffness, passive_inside_robust, passive_region, robust_region,
+    NyquistStiffness, PassiveCheck, RegionSummary, RobustOptions, gamma_sweep_with_progress,
+    nyquist_gamma, nyquist_stiffness, passive_inside_robust_with_progress, passive_region,
+    robust_region_with_progress,
 };
 use serde::Serialize;
 
+use crate::budget::{self, Driver};
 use crate::output::{print_json, sig};
+use crate::progress::Bar;
+
+/// Default of `--steps`.
+const DEFAULT_STEPS: usize = 4;
+/// Default of `--beta-samples`.
+const DEFAULT_BETA_SAMPLES: usize = 201;
+/// Default of `--gamma-samples`.
+const DEFAULT_GAMMA_SAMPLES: usize = 41;
+/// β samples of the passivity check (Section VIII-A).
+const PASSIVE_SAMPLES: usize = 41;
 
 /// Arguments of `hapstab nyquist`.
 #[derive(Args, Debug)]
@@ -26,13 +39,13 @@ pub struct NyquistArgs {
     #[arg(long, allow_hyphen_values = true, default_value_t = 1.0)]
     gamma_fraction: f64,
     /// Number of γ steps of the sweep.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = DEFAULT_STEPS)]
     steps: usize,
     /// β samples per stable region of the sweep.
-    #[arg(long, default_value_t = 201)]
+    #[arg(long, default_value_t = DEFAULT_BETA_SAMPLES)]
     beta_samples: usize,
     /// γ samples of the robust region.
-    #[arg(long, default_value_t = 41)]
+    #[arg(long, default_value_t = DEFAULT_GAMMA_SAMPLES)]
     gamma_samples: usize,
     /// Remark 4: effective mass m in kg.
     #[arg(long, allow_hyphen_values = true)]
@@ -109,17 +122,51 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     if a.steps == 0 {
         bail!("--steps must be >= 1");
     }
-    let gn = nyquist_gamma(delta);
-    let sweep = gamma_sweep(delta, a.delay, a.gamma_fraction, a.steps, a.beta_samples)?;
+    hapstab::params::check_delay(a.delay)?;
     let opts = RobustOptions {
         gamma_samples: a.gamma_samples.max(2),
         ..Default::default()
     };
+    let cost = estimate(a, delta, opts);
+    budget::check(
+        cost,
+        "the sweep and the robust region",
+        &[
+            Driver::count("--steps", a.steps, DEFAULT_STEPS),
+            Driver::count("--beta-samples", a.beta_samples, DEFAULT_BETA_SAMPLES),
+            Driver::count("--gamma-samples", a.gamma_samples, DEFAULT_GAMMA_SAMPLES),
+            Driver::delay(a.delay),
+        ],
+    )?;
+    let gn = nyquist_gamma(delta);
     let g_hi = gn * a.gamma_fraction;
-    let r = robust_region(delta, a.delay, 0.0, g_hi, opts)?;
+    // one bar over the three stages: sweep regions, robust slices, passivity slices
+    let stages = [a.steps + 1, opts.beta_samples.max(8), PASSIVE_SAMPLES];
+    let bar = Bar::new(
+        stages.iter().sum::<usize>(),
+        "steps",
+        !a.json && cost.seconds >= crate::progress::LONG_SECONDS,
+    );
+    let sweep = gamma_sweep_with_progress(
+        delta,
+        a.delay,
+        a.gamma_fraction,
+        a.steps,
+        a.beta_samples,
+        &bar.stage(0),
+    )?;
+    let r = robust_region_with_progress(delta, a.delay, 0.0, g_hi, opts, &bar.stage(stages[0]))?;
     let passive = if delta > 0.0 {
         let p = passive_region(delta)?;
-        let check = passive_inside_robust(delta, a.delay, 0.0, g_hi, 41, opts)?;
+        let check = passive_inside_robust_with_progress(
+            delta,
+            a.delay,
+            0.0,
+            g_hi,
+            PASSIVE_SAMPLES,
+            opts,
+            &bar.stage(stages[0] + stages[1]),
+        )?;
         Some(PassiveOut {
             area: p.area(),
             vertices: p.vertices,
@@ -129,6 +176,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     } else {
         None
     };
+    bar.finish();
     let out = NyquistOut {
         delta,
         d: a.delay,
@@ -152,6 +200,24 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     }
     print_text(&out);
     Ok(())
+}
+
+/// The estimated cost of the sweep, the robust region and the passivity check.
+fn estimate(a: &NyquistArgs, delta: f64, opts: RobustOptions) -> Cost {
+    let sweep = gamma_sweep_cost(a.steps, a.beta_samples, a.delay);
+    let robust = robust_region_cost(
+        opts.gamma_samples,
+        opts.beta_samples,
+        a.delay,
+        opts.refine_gamma,
+        opts.refine_beta_rounds,
+    );
+    let passive = if delta > 0.0 {
+        passive_check_cost(PASSIVE_SAMPLES, opts.gamma_samples, a.delay)
+    } else {
+        Cost::ZERO
+    };
+    sweep.then(robust).then(passive)
 }
 
 fn print_remark4(r: &NyquistStiffness) {

@@ -4,12 +4,18 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use hapstab::nyquist::{BoxOptions, PlantBox, RobustKmax, robust_kmax};
+use hapstab::limits::{box_plants, robust_kmax_cost};
+use hapstab::nyquist::{BoxOptions, PlantBox, RobustKmax, robust_kmax_with_progress};
 use hapstab::params::{Arm, Device};
 use serde::Serialize;
 
+use crate::budget::{self, Driver};
 use crate::model::PlantArgs;
 use crate::output::{print_json, sig};
+use crate::progress::Bar;
+
+/// Default of `--box-samples`.
+const DEFAULT_BOX_SAMPLES: usize = 33;
 
 /// Box flags of `hapstab kmax --robust`. Without them the box runs from the ungrabbed
 /// device (the device flags) to the device held by the arm (the arm flags, default a typical
@@ -32,7 +38,7 @@ pub struct RobustArgs {
     #[arg(long, value_delimiter = ',', num_args = 2, allow_hyphen_values = true)]
     pub box_stiffness: Option<Vec<f64>>,
     /// Stiffness (or γ) samples of the box before refinement.
-    #[arg(long, default_value_t = 33)]
+    #[arg(long, default_value_t = DEFAULT_BOX_SAMPLES)]
     pub box_samples: usize,
 }
 
@@ -118,7 +124,9 @@ pub fn run_robust(plant: &PlantArgs, b: &RobustArgs, json: bool) -> Result<()> {
         stiffness_samples: b.box_samples.max(2),
         ..Default::default()
     };
-    let r = robust_kmax(&pbox, opts)?;
+    let bar = checked_bar(&pbox, opts, b.box_samples, json)?;
+    let r = robust_kmax_with_progress(&pbox, opts, &bar.stage(0))?;
+    bar.finish();
     let tr = (pbox.d as f64 + 0.5) * pbox.period;
     let out = RobustOut {
         units: if normalized { "normalized" } else { "physical" },
@@ -184,6 +192,30 @@ pub fn run_robust(plant: &PlantArgs, b: &RobustArgs, json: bool) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Samples of a range: one when it is a single value.
+fn samples_of(range: [f64; 2], n: usize) -> usize {
+    if range[1] > range[0] { n } else { 1 }
+}
+
+/// Refuses a box search beyond the command-line budget (naming --box-samples or --delay)
+/// and returns the progress bar of the damping scan.
+fn checked_bar(pbox: &PlantBox, opts: BoxOptions, box_samples: usize, json: bool) -> Result<Bar> {
+    let plants = box_plants(
+        samples_of(pbox.mass, opts.mass_samples),
+        samples_of(pbox.damping, opts.damping_samples),
+        samples_of(pbox.stiffness, opts.stiffness_samples),
+    );
+    budget::check(
+        robust_kmax_cost(plants, opts.beta_samples, pbox.d),
+        &format!("the robust search over {} plants", sig(plants, 3)),
+        &[
+            Driver::count("--box-samples", box_samples, DEFAULT_BOX_SAMPLES),
+            Driver::delay(pbox.d),
+        ],
+    )?;
+    Ok(Bar::new(opts.beta_samples.max(8), "dampings", !json))
 }
 
 #[cfg(test)]

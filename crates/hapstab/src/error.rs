@@ -71,6 +71,19 @@ pub enum Error {
         /// Why, in words, starting with a verb ("must be …", "is …").
         reason: String,
     },
+    /// A physical parameter whose normalized form (Table I) overflows: the normalized value
+    /// derived from it is not a finite number.
+    #[error("{name} = {value:?} makes {derived} = {result:?}, not a finite number")]
+    Unrepresentable {
+        /// The physical parameter to blame.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The derived normalized quantity, e.g. "δ = bT/m".
+        derived: &'static str,
+        /// The derived value (±inf or NaN).
+        result: f64,
+    },
     /// A numerical routine did not converge.
     #[error("numerical failure: {0}")]
     Numerical(String),

@@ -12,6 +12,8 @@
 //! | [`plant`] | Section III, eq. (2)–(6), (10) |
 //! | [`closed_loop`] | eq. (7)–(9) |
 //! | [`stability`] | Section V (roots inside the unit circle) |
+//! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |
+//! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
 //!
 //! ```
 //! use hapstab::{Normalized, Analysis, Verdict};
@@ -26,6 +28,7 @@ pub mod argument;
 pub mod boundary;
 pub mod closed_loop;
 pub mod error;
+pub mod limits;
 pub mod linear;
 pub mod map;
 pub mod model;
@@ -33,6 +36,7 @@ pub mod nyquist;
 pub mod params;
 pub mod plant;
 pub mod poly;
+pub mod polyroots;
 pub mod ranges;
 pub mod region;
 pub mod simulation;

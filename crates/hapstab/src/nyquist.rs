@@ -38,6 +38,33 @@ use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::params::{PlantParams, check_delay};
 
 use std::f64::consts::PI;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// A progress callback of a long analysis: called, possibly from worker threads, with the
+/// number of its steps done so far (each function documents what a step is).
+pub type Progress<'a> = &'a (dyn Fn(usize) + Sync);
+
+/// A progress callback that does nothing.
+pub fn no_progress(_: usize) {}
+
+/// Counts finished steps across threads and reports each new count.
+struct Ticker<'a> {
+    done: AtomicUsize,
+    progress: Progress<'a>,
+}
+
+impl<'a> Ticker<'a> {
+    fn new(progress: Progress<'a>) -> Self {
+        Self {
+            done: AtomicUsize::new(0),
+            progress,
+        }
+    }
+
+    fn tick(&self) {
+        (self.progress)(self.done.fetch_add(1, Ordering::Relaxed) + 1);
+    }
+}
 
 /// Oscillation frequency of eq. (25) in rad/s, ω = √(k/m − b²/(4m²)), for k/m > b²/(4m²)
 /// (under-damped); None otherwise.
@@ -352,6 +379,18 @@ pub fn gamma_sweep(
     steps: usize,
     beta_samples: usize,
 ) -> Result<Vec<RegionSummary>> {
+    gamma_sweep_with_progress(delta, d, fraction, steps, beta_samples, &no_progress)
+}
+
+/// [`gamma_sweep`] reporting each finished region (steps + 1 in all) to `progress`.
+pub fn gamma_sweep_with_progress(
+    delta: f64,
+    d: usize,
+    fraction: f64,
+    steps: usize,
+    beta_samples: usize,
+    progress: Progress,
+) -> Result<Vec<RegionSummary>> {
     non_negative("delta", delta)?;
     non_negative("gamma fraction", fraction)?;
     check_delay(d)?;
@@ -365,7 +404,9 @@ pub fn gamma_sweep(
     (0..=steps)
         .map(|i| {
             let g = gn * i as f64 / steps as f64;
-            region_summary(PlantParams::new(g, delta)?, d, beta_samples)
+            let r = region_summary(PlantParams::new(g, delta)?, d, beta_samples);
+            progress(i + 1);
+            r
         })
         .collect()
 }
@@ -647,6 +688,20 @@ pub fn robust_region(
     gamma_hi: f64,
     opts: RobustOptions,
 ) -> Result<RobustRegion> {
+    robust_region_with_progress(delta, d, gamma_lo, gamma_hi, opts, &no_progress)
+}
+
+/// [`robust_region`] reporting each finished slice of the initial β grid
+/// (`opts.beta_samples`, at least 8, in all) to `progress`; the refinement rounds after it
+/// take about as long again.
+pub fn robust_region_with_progress(
+    delta: f64,
+    d: usize,
+    gamma_lo: f64,
+    gamma_hi: f64,
+    opts: RobustOptions,
+    progress: Progress,
+) -> Result<RobustRegion> {
     non_negative("delta", delta)?;
     non_negative("gamma_lo", gamma_lo)?;
     non_negative("gamma_hi", gamma_hi)?;
@@ -687,7 +742,15 @@ pub fn robust_region(
     let n = opts.beta_samples.max(8);
     let h = 2.0 * bb / n as f64;
     let mut betas: Vec<f64> = (0..n).map(|i| -bb + (i as f64 + 0.5) * h).collect();
-    let mut res: Vec<Option<Slice>> = betas.par_iter().map(|&b| slice(b)).collect();
+    let ticker = Ticker::new(progress);
+    let mut res: Vec<Option<Slice>> = betas
+        .par_iter()
+        .map(|&b| {
+            let s = slice(b);
+            ticker.tick();
+            s
+        })
+        .collect();
     // extents by bisection between empty and non-empty neighbours
     let nonempty = |b: f64| robust_at(&configs, b).0.iter().any(|iv| iv.lo < iv.hi);
     let mut extra: Vec<f64> = Vec::new();
@@ -839,6 +902,20 @@ pub fn passive_inside_robust(
     samples: usize,
     opts: RobustOptions,
 ) -> Result<PassiveCheck> {
+    passive_inside_robust_with_progress(delta, d, gamma_lo, gamma_hi, samples, opts, &no_progress)
+}
+
+/// [`passive_inside_robust`] reporting each checked β (`samples`, at least 3, in all) to
+/// `progress`.
+pub fn passive_inside_robust_with_progress(
+    delta: f64,
+    d: usize,
+    gamma_lo: f64,
+    gamma_hi: f64,
+    samples: usize,
+    opts: RobustOptions,
+    progress: Progress,
+) -> Result<PassiveCheck> {
     positive("delta", delta)?;
     check_delay(d)?;
     let (gs, _) = gamma_samples(gamma_lo, gamma_hi, opts.gamma_samples, delta);
@@ -864,14 +941,17 @@ pub fn passive_inside_robust(
     let betas: Vec<f64> = (0..n)
         .map(|i| delta * (1.0 - PASSIVE_END_GAP) * (2.0 * i as f64 / (n - 1) as f64 - 1.0))
         .collect();
+    let ticker = Ticker::new(progress);
     let margins: Vec<(f64, f64, f64)> = betas
         .par_iter()
         .map(|&b| {
             let need = 2.0 * (delta - b.abs());
-            match refined_slice(&configs, &gs, &neighbours, &make, b, opts.refine_gamma) {
+            let m = match refined_slice(&configs, &gs, &neighbours, &make, b, opts.refine_gamma) {
                 Some((iv, _, _, _)) => (b, iv.hi - need, -iv.lo),
                 None => (b, f64::NEG_INFINITY, f64::NEG_INFINITY),
-            }
+            };
+            ticker.tick();
+            m
         })
         .collect();
     let (mut mr, mut br, mut ml) = (f64::INFINITY, f64::NAN, f64::INFINITY);
@@ -1109,6 +1189,17 @@ fn box_slice(
 /// refinement) between the neighbours of the best sample. Damping could be sampled at its lower end only where the stable interval grows
 /// with damping (checked in the tests); the grid keeps all damping samples anyway.
 pub fn robust_kmax(pb: &PlantBox, opts: BoxOptions) -> Result<RobustKmax> {
+    robust_kmax_with_progress(pb, opts, &no_progress)
+}
+
+/// [`robust_kmax`] reporting each scanned damping (`opts.beta_samples`, at least 8, in
+/// all) to `progress`; the golden-section refinement after the scan takes about
+/// 100/`beta_samples` of the scan's time.
+pub fn robust_kmax_with_progress(
+    pb: &PlantBox,
+    opts: BoxOptions,
+    progress: Progress,
+) -> Result<RobustKmax> {
     let pb = pb.validated()?;
     let (configs, coords) = box_configs(&pb, opts)?;
     let t = pb.period;
@@ -1124,10 +1215,14 @@ pub fn robust_kmax(pb: &PlantBox, opts: BoxOptions) -> Result<RobustKmax> {
     let n = opts.beta_samples.max(8);
     let h = 2.0 * b_max / n as f64;
     let bs: Vec<f64> = (0..n).map(|i| -b_max + (i as f64 + 0.5) * h).collect();
+    let ticker = Ticker::new(progress);
     let his: Vec<f64> = bs
         .par_iter()
         .map(|&b| {
-            box_slice(&pb, &configs, &coords, opts, b, false).map_or(f64::NEG_INFINITY, |s| s.1)
+            let hi = box_slice(&pb, &configs, &coords, opts, b, false)
+                .map_or(f64::NEG_INFINITY, |s| s.1);
+            ticker.tick();
+            hi
         })
         .collect();
     let (ib, &hb) = his

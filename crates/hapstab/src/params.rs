@@ -182,17 +182,65 @@ impl Physical {
         })
     }
 
-    /// The dimensionless parameters of Table I.
+    /// The dimensionless parameters of Table I. Values that overflow are refused naming the
+    /// physical parameter to blame.
     pub fn normalized(&self) -> Result<Normalized> {
         let (m, t) = (self.plant.mass, self.sampling.period);
+        let plant = PlantParams::from_physical(&self.plant, t)?;
+        let alpha = per_mass(
+            "α = KT²/m",
+            [
+                ("wall stiffness K", self.wall.stiffness.abs()),
+                ("sampling period T", t),
+            ],
+            2,
+            m,
+        )?;
+        let beta = per_mass(
+            "β = BT/m",
+            [
+                ("wall damping B", self.wall.damping.abs()),
+                ("sampling period T", t),
+            ],
+            1,
+            m,
+        )?;
         Normalized::new(
-            self.wall.stiffness * t * t / m,
-            self.wall.damping * t / m,
-            self.plant.stiffness * t * t / m,
-            self.plant.damping * t / m,
+            alpha.copysign(self.wall.stiffness),
+            beta.copysign(self.wall.damping),
+            plant.gamma,
+            plant.delta,
             self.sampling.delay,
         )
     }
+}
+
+/// x·Tᵖ/m for a physical quantity x ≥ 0 (Table I), refused when it is not finite: the blame
+/// goes to x or T when x·Tᵖ alone overflows, else to the mass m.
+fn per_mass(
+    derived: &'static str,
+    [(x_name, x), (t_name, t)]: [(&'static str, f64); 2],
+    power: i32,
+    mass: f64,
+) -> Result<f64> {
+    let num = x * t.powi(power);
+    let result = num / mass;
+    if result.is_finite() {
+        return Ok(result);
+    }
+    let (name, value) = if num.is_finite() {
+        ("mass m", mass)
+    } else if x >= t {
+        (x_name, x)
+    } else {
+        (t_name, t)
+    };
+    Err(Error::Unrepresentable {
+        name,
+        value,
+        derived,
+        result,
+    })
 }
 
 /// The plant part of the normalized parameters: γ = kT²/m (eq. 4) and δ = bT/m (Table I).
@@ -213,13 +261,27 @@ impl PlantParams {
         })
     }
 
-    /// γ and δ of an effective plant sampled with period T (Table I, eq. 4).
+    /// γ and δ of an effective plant sampled with period T (Table I, eq. 4). A plant whose
+    /// γ or δ overflows is refused naming the physical parameter (e.g. a mass so small that
+    /// bT/m is infinite).
     pub fn from_physical(plant: &Effective, period: f64) -> Result<Self> {
         positive("sampling period T", period)?;
-        Self::new(
-            plant.stiffness * period * period / plant.mass,
-            plant.damping * period / plant.mass,
-        )
+        let gamma = per_mass(
+            "γ = kT²/m",
+            [
+                ("stiffness k", plant.stiffness),
+                ("sampling period T", period),
+            ],
+            2,
+            plant.mass,
+        )?;
+        let delta = per_mass(
+            "δ = bT/m",
+            [("damping b", plant.damping), ("sampling period T", period)],
+            1,
+            plant.mass,
+        )?;
+        Self::new(gamma, delta)
     }
 }
 
@@ -337,6 +399,13 @@ mod tests {
         assert!(Sampling::new(0.0, 0).is_err());
         assert!(Normalized::new(f64::NAN, 0.0, 0.0, 0.0, 0).is_err());
         assert!(Normalized::new(0.0, 0.0, -1.0, 0.0, 0).is_err());
+        // a mass so small that δ = bT/m overflows blames the mass, not δ
+        let tiny = Effective::new(1e-320, 7.5, 350.0).unwrap();
+        let e = PlantParams::from_physical(&tiny, 1e-3).unwrap_err();
+        assert!(e.to_string().starts_with("mass m = 1e-320"), "{e}");
+        let huge_k = Effective::new(1.0, 0.0, f64::MAX).unwrap();
+        let e = PlantParams::from_physical(&huge_k, 10.0).unwrap_err();
+        assert!(e.to_string().starts_with("stiffness k"), "{e}");
         let e = Sampling::from_delay_time(1e-3, 1.5e-3).unwrap_err();
         assert!(matches!(e, Error::FractionalDelay { .. }), "{e}");
         assert_eq!(Sampling::from_delay_time(1e-3, 3e-3).unwrap().delay, 3);

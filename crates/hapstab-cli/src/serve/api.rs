@@ -18,6 +18,27 @@ use serde::Serialize;
 use super::limits::*;
 use super::query::{ApiError, Params, PhysicalSpec, PlantSpec, clip, fmt, lib_error, plant_spec};
 use super::simplify::simplify_polygon;
+use hapstab::limits::{
+    Budget, Cost, point_cost, region_cost, region_summary_cost, robust_region_cost, simulation_cost,
+};
+
+/// β slices of the exact cross-check of an empty polygon result.
+const EMPTY_CHECK_SLICES: usize = 64;
+
+/// Refuses a computation whose estimated cost exceeds [`Budget::INTERACTIVE`], with a 400
+/// naming the parameter that drives it.
+pub fn within_budget(cost: Cost, what: &str, name: &str, value: &str) -> Result<(), ApiError> {
+    Budget::INTERACTIVE.check(cost).map_err(|e| {
+        ApiError::param(
+            name,
+            value,
+            format!(
+                "{what} {e}; reduce parameter '{name}' (got {}), see /api/limits",
+                clip(value)
+            ),
+        )
+    })
+}
 
 /// γ, δ, d of an answer.
 #[derive(Debug, Clone, Copy, Serialize)]
@@ -218,19 +239,23 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
             )?
             .unwrap_or(DEFAULT_ROBUST_BETA_SAMPLES);
         let refine = p.flag("refine")?;
-        let work = gs * bs * (spec.d + 4) * if refine { 4 } else { 1 };
-        if work > MAX_ROBUST_WORK {
-            return Err(ApiError::param(
-                "gamma_samples",
-                &gs.to_string(),
-                format!(
-                    "robust grid too large: gamma_samples × beta_samples × (d + 4){} = {gs} × {bs} × {}{} = {work} exceeds {MAX_ROBUST_WORK}",
-                    if refine { " × 4 (refine)" } else { "" },
-                    spec.d + 4,
-                    if refine { " × 4" } else { "" },
-                ),
-            ));
-        }
+        let cost = robust_cost(spec.d, gs, bs, refine);
+        let (name, value) = if gs * DEFAULT_ROBUST_BETA_SAMPLES >= bs * DEFAULT_ROBUST_GAMMA_SAMPLES
+        {
+            ("gamma_samples", gs)
+        } else {
+            ("beta_samples", bs)
+        };
+        within_budget(
+            cost,
+            &format!(
+                "the robust region over gamma_samples × beta_samples = {gs} × {bs} at d = {}{}",
+                spec.d,
+                if refine { " with refinement" } else { "" }
+            ),
+            name,
+            &value.to_string(),
+        )?;
         Some(RobustReq {
             lo,
             hi,
@@ -256,7 +281,26 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         }
         None
     };
+    let nominal = nominal_region_cost(spec.d);
+    within_budget(nominal, "the exact region", "d", &spec.d.to_string())?;
     Ok(RegionReq { spec, tol, robust })
+}
+
+/// Estimated cost of the nominal part of `/api/region`: the exact polygons and, when they
+/// come out empty, the cross-check by 64 exact α-interval slices.
+pub fn nominal_region_cost(d: usize) -> Cost {
+    region_cost(d).then(region_summary_cost(EMPTY_CHECK_SLICES, d))
+}
+
+/// Estimated cost of the robust region of `/api/region`.
+pub fn robust_cost(d: usize, gamma_samples: usize, beta_samples: usize, refine: bool) -> Cost {
+    robust_region_cost(
+        gamma_samples,
+        beta_samples,
+        d,
+        refine,
+        ROBUST_REFINE_BETA_ROUNDS,
+    )
 }
 
 fn edge_kind(k: &EdgeKind) -> &'static str {
@@ -334,7 +378,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         ));
     } else if region.empty {
         // Cross-check an empty polygon result by exact per-β α-intervals.
-        let summary = region_summary(spec.plant, spec.d, 64).map_err(lib_error)?;
+        let summary = region_summary(spec.plant, spec.d, EMPTY_CHECK_SLICES).map_err(lib_error)?;
         if !summary.empty {
             warnings.push(format!(
                 "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::nyquist::region_summary) find stable points up to α = {} at β = {}",
@@ -366,7 +410,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
                 gamma_samples: rr.gamma_samples,
                 beta_samples: rr.beta_samples,
                 refine_gamma: rr.refine,
-                refine_beta_rounds: 2,
+                refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
             };
             let r = robust_region(delta, spec.d, rr.lo, rr.hi, opts).map_err(lib_error)?;
             Some(RobustOut {
@@ -494,6 +538,16 @@ pub struct PointOut {
     pub server_ms: f64,
 }
 
+/// Refuses a point whose roots would cost more than one request may.
+pub fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
+    within_budget(
+        point_cost(spec.d),
+        "the roots at one point",
+        "d",
+        &spec.d.to_string(),
+    )
+}
+
 /// Computes `/api/point`.
 pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiError> {
     let t0 = Instant::now();
@@ -558,6 +612,18 @@ pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
             ((6.0 * 2.0 * std::f64::consts::PI / w).ceil() as usize).clamp(300, 4000)
         }
     };
+    // a run may be extended up to the horizon until its verdict settles: budget for that
+    within_budget(
+        simulation_cost(
+            samples.max(SIM_HORIZON) as f64,
+            spec.d,
+            samples.min(MAX_TRACE_POINTS) as f64,
+        )
+        .then(point_cost(spec.d)),
+        "the simulation (extended up to its horizon)",
+        "d",
+        &spec.d.to_string(),
+    )?;
     let push = p.num_or(
         "push",
         1.0,

@@ -1,5 +1,8 @@
 //! The limits of the interactive explorer. They keep one request cheap enough that no request
-//! can take the server down; `/api/limits` reports them and the page states them.
+//! can take the server down; `/api/limits` reports them and the page states them. The
+//! estimated time and memory of each computation are checked against
+//! `hapstab::limits::Budget::INTERACTIVE`, shared with the library; the transport limits
+//! below (connections, timeouts, sizes) belong to the HTTP server alone.
 
 use serde::Serialize;
 
@@ -36,9 +39,8 @@ pub const MAX_ROBUST_BETA_SAMPLES: usize = 256;
 pub const DEFAULT_ROBUST_BETA_SAMPLES: usize = 64;
 /// Robust region: largest d.
 pub const MAX_ROBUST_D: usize = 50;
-/// Robust region: largest γ-samples × β-slices × (d + 4) (× 4 with γ refinement), about the
-/// number of per-β D-decomposition sweeps (each 256 unit-circle evaluations) it costs.
-pub const MAX_ROBUST_WORK: usize = 120_000;
+/// Robust region: rounds of adaptive β refinement of the outline.
+pub const ROBUST_REFINE_BETA_ROUNDS: usize = 2;
 /// Simulation: samples.
 pub const MIN_SIM_SAMPLES: usize = 10;
 pub const MAX_SIM_SAMPLES: usize = 20_000;
@@ -61,6 +63,35 @@ pub const QUEUE_WAIT_MS: u64 = 3000;
 /// keeps its slot, so the number of running computations stays bounded).
 pub const COMPUTE_TIMEOUT_MS: u64 = 10_000;
 
+/// Connections open at once; more wait in the listen queue until one closes (bounded also
+/// by the open-file limit of the process, which the server raises to its hard limit).
+pub const MAX_CONNECTIONS: usize = 4096;
+/// Connections the kernel queues before the server accepts them: enough for a burst of
+/// clients reconnecting at once (a full queue drops connection attempts, which clients
+/// retry only after a second); Linux caps it at `net.core.somaxconn`.
+pub const LISTEN_BACKLOG: u32 = 4096;
+/// Time a client has to send its whole request head before a 408 and closing: slow or idle
+/// clients cannot keep connection slots for longer.
+pub const HEADER_READ_TIMEOUT_MS: u64 = 5000;
+/// Time limit of a whole request, from its head to its answer (503 beyond): the wait for a
+/// computation slot plus the computation's own limit, with 2 s to spare.
+pub const REQUEST_TIMEOUT_MS: u64 = QUEUE_WAIT_MS + COMPUTE_TIMEOUT_MS + 2000;
+/// Longest life of one connection (one request): the request's limit plus 15 s to send the
+/// answer to a slow reader.
+pub const CONNECTION_LIFETIME_MS: u64 = REQUEST_TIMEOUT_MS + 15_000;
+/// Largest request target (path and query) in bytes (414 beyond); the longest query the page
+/// sends is under 600 bytes.
+pub const MAX_URI_BYTES: usize = 4096;
+/// Largest request head (request line and header fields) in bytes (431 beyond).
+pub const MAX_HEAD_BYTES: usize = 16 * 1024;
+/// Most header fields of a request (431 beyond).
+pub const MAX_HEADERS: usize = 64;
+/// Largest request body in bytes (413 beyond): every endpoint is a GET without a body.
+pub const MAX_BODY_BYTES: usize = 1024;
+/// Bytes read and discarded after refusing a request head before the connection is closed,
+/// so that the client reads the refusal instead of a reset.
+pub const DRAIN_BYTES: u64 = 1 << 20;
+
 /// The limits as JSON (`GET /api/limits`).
 #[derive(Serialize)]
 pub struct Limits {
@@ -78,7 +109,7 @@ pub struct Limits {
     pub robust_gamma_samples: [usize; 2],
     pub robust_beta_samples: [usize; 2],
     pub robust_d_max: usize,
-    pub robust_work_max: usize,
+    pub robust_refine_beta_rounds: usize,
     pub sim_samples: [usize; 2],
     pub sim_horizon_samples: usize,
     pub sim_trace_points_max: usize,
@@ -86,6 +117,19 @@ pub struct Limits {
     pub concurrent_jobs: usize,
     pub queue_wait_ms: u64,
     pub compute_timeout_ms: u64,
+    /// Largest estimated computing time of one request, core-seconds
+    /// (`hapstab::limits::MAX_JOB_SECONDS`).
+    pub job_seconds_max: f64,
+    /// Largest estimated memory of one request, bytes (`hapstab::limits::MAX_JOB_MEMORY`).
+    pub job_memory_max_bytes: f64,
+    pub connections_max: usize,
+    pub header_read_timeout_ms: u64,
+    pub request_timeout_ms: u64,
+    pub connection_lifetime_ms: u64,
+    pub uri_bytes_max: usize,
+    pub head_bytes_max: usize,
+    pub headers_max: usize,
+    pub body_bytes_max: usize,
 }
 
 /// The current limits.
@@ -105,7 +149,7 @@ pub fn limits() -> Limits {
         robust_gamma_samples: [MIN_ROBUST_GAMMA_SAMPLES, MAX_ROBUST_GAMMA_SAMPLES],
         robust_beta_samples: [MIN_ROBUST_BETA_SAMPLES, MAX_ROBUST_BETA_SAMPLES],
         robust_d_max: MAX_ROBUST_D,
-        robust_work_max: MAX_ROBUST_WORK,
+        robust_refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
         sim_samples: [MIN_SIM_SAMPLES, MAX_SIM_SAMPLES],
         sim_horizon_samples: SIM_HORIZON,
         sim_trace_points_max: MAX_TRACE_POINTS,
@@ -113,5 +157,15 @@ pub fn limits() -> Limits {
         concurrent_jobs: MAX_JOBS,
         queue_wait_ms: QUEUE_WAIT_MS,
         compute_timeout_ms: COMPUTE_TIMEOUT_MS,
+        job_seconds_max: hapstab::limits::MAX_JOB_SECONDS,
+        job_memory_max_bytes: hapstab::limits::MAX_JOB_MEMORY,
+        connections_max: MAX_CONNECTIONS,
+        header_read_timeout_ms: HEADER_READ_TIMEOUT_MS,
+        request_timeout_ms: REQUEST_TIMEOUT_MS,
+        connection_lifetime_ms: CONNECTION_LIFETIME_MS,
+        uri_bytes_max: MAX_URI_BYTES,
+        head_bytes_max: MAX_HEAD_BYTES,
+        headers_max: MAX_HEADERS,
+        body_bytes_max: MAX_BODY_BYTES,
     }
 }

@@ -13,13 +13,25 @@
 //! | `GET /api/export` | the current view as SVG, CSV or JSON |
 //!
 //! Every parameter is validated; bad input is HTTP 400 with `{"error": ...}` naming the
-//! parameter and the value. Computations run on the blocking pool, at most
-//! [`limits::MAX_JOBS`] at once, each under a time limit, so no request can stall the server.
+//! parameter and the value. Each computation's time and memory are estimated before it
+//! starts and refused beyond `hapstab::limits::Budget::INTERACTIVE`; computations run on the
+//! blocking pool, at most [`limits::MAX_JOBS`] at once, each under a time limit, so no
+//! request can stall the server.
+//!
+//! The transport is hardened as well ([`listen`]): a connection limit, a header-read
+//! timeout, one request per connection, size limits of the request head ([`head`]) and body,
+//! a time limit per request, and strict Host validation ([`host`]). Every refusal, at any
+//! layer, has a JSON body.
 
 mod api;
 mod export;
+mod head;
+mod host;
 mod limits;
+mod listen;
 mod query;
+#[cfg(test)]
+mod query_props;
 mod simplify;
 
 use std::net::{IpAddr, SocketAddr};
@@ -37,6 +49,8 @@ use axum::routing::get;
 use clap::Args;
 use serde::Serialize;
 use tokio::sync::Semaphore;
+use tower_http::limit::RequestBodyLimitLayer;
+use tower_http::timeout::TimeoutLayer;
 
 use query::{ApiError, Params};
 
@@ -59,6 +73,12 @@ pub struct ServeArgs {
     /// Computations running at once.
     #[arg(long, default_value_t = limits::MAX_JOBS, hide = true)]
     jobs: usize,
+    /// Connections open at once.
+    #[arg(long, default_value_t = limits::MAX_CONNECTIONS, hide = true)]
+    connections: usize,
+    /// Time to send a whole request head in milliseconds (408 when exceeded).
+    #[arg(long, default_value_t = limits::HEADER_READ_TIMEOUT_MS, hide = true)]
+    header_timeout_ms: u64,
 }
 
 /// Shared server state.
@@ -68,12 +88,36 @@ struct AppState {
     max_jobs: usize,
     timeout: Duration,
     queue_wait: Duration,
-    /// Bound to a loopback address: only loopback Host headers are accepted.
-    loopback: bool,
+    /// Which Host headers and request targets are accepted.
+    hosts: host::HostPolicy,
+}
+
+/// Niceness of the threads that compute (the blocking pool's jobs and rayon's workers): the
+/// threads that accept connections and answer cheap requests run at the normal priority, so
+/// that the server stays responsive while its computations use every core.
+const COMPUTE_NICENESS: i32 = 10;
+
+/// Lowers the CPU priority of the calling thread to [`COMPUTE_NICENESS`] (Linux: niceness is
+/// per thread).
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: setpriority on this thread's own id; failure leaves the priority unchanged.
+    unsafe {
+        libc::setpriority(
+            libc::PRIO_PROCESS as _,
+            libc::gettid() as _,
+            COMPUTE_NICENESS,
+        );
+    }
 }
 
 /// Runs `hapstab serve` until Ctrl-C.
 pub fn run(a: &ServeArgs) -> Result<()> {
+    // rayon's workers do the parallel part of the computations: lower them too (ignored if
+    // the global pool already exists)
+    let _ = rayon::ThreadPoolBuilder::new()
+        .start_handler(|_| lower_priority())
+        .build_global();
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .max_blocking_threads(4 * a.jobs.max(1) + 4)
@@ -84,8 +128,7 @@ pub fn run(a: &ServeArgs) -> Result<()> {
 
 async fn serve(a: &ServeArgs) -> Result<()> {
     let addr = SocketAddr::new(a.host, a.port);
-    let listener = tokio::net::TcpListener::bind(addr)
-        .await
+    let listener = listen::bind(addr, limits::LISTEN_BACKLOG)
         .with_context(|| format!("cannot listen on {addr}"))?;
     let local = listener.local_addr()?;
     let state = AppState {
@@ -93,7 +136,21 @@ async fn serve(a: &ServeArgs) -> Result<()> {
         max_jobs: a.jobs.max(1),
         timeout: Duration::from_millis(a.timeout_ms.max(1)),
         queue_wait: Duration::from_millis(limits::QUEUE_WAIT_MS),
-        loopback: a.host.is_loopback(),
+        hosts: host::HostPolicy {
+            loopback_only: a.host.is_loopback(),
+            port: local.port(),
+        },
+    };
+    let transport = listen::Transport {
+        max_connections: listen::connection_capacity(a.connections),
+        header_read_timeout: Duration::from_millis(a.header_timeout_ms.max(1)),
+        connection_lifetime: Duration::from_millis(limits::CONNECTION_LIFETIME_MS),
+        head: head::HeadLimits {
+            max_head_bytes: limits::MAX_HEAD_BYTES,
+            max_uri_bytes: limits::MAX_URI_BYTES,
+            max_headers: limits::MAX_HEADERS,
+        },
+        drain_bytes: limits::DRAIN_BYTES,
     };
     let host = match local.ip() {
         IpAddr::V6(ip) => format!("[{ip}]"),
@@ -111,12 +168,23 @@ async fn serve(a: &ServeArgs) -> Result<()> {
     }
     use std::io::Write;
     let _ = std::io::stdout().flush();
-    axum::serve(listener, router(state))
-        .with_graceful_shutdown(async {
-            let _ = tokio::signal::ctrl_c().await;
-        })
-        .await
-        .context("server error")?;
+    if transport.max_connections < a.connections {
+        eprintln!(
+            "warning: the open-file limit allows {} connections at once (of {})",
+            transport.max_connections, a.connections
+        );
+    }
+    let shutdown = async {
+        let _ = tokio::signal::ctrl_c().await;
+    };
+    listen::serve(
+        listener,
+        router(state),
+        transport,
+        shutdown,
+        Duration::from_secs(2),
+    )
+    .await;
     Ok(())
 }
 
@@ -132,28 +200,25 @@ fn router(state: AppState) -> Router {
         .route("/api/export", get(api_export))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
+        // innermost first: body limit (413), then the request time limit (503), both with
+        // empty bodies that `json_errors` fills; the Host check runs before all of them
+        .layer(RequestBodyLimitLayer::new(limits::MAX_BODY_BYTES))
+        .layer(TimeoutLayer::with_status_code(
+            StatusCode::SERVICE_UNAVAILABLE,
+            Duration::from_millis(limits::REQUEST_TIMEOUT_MS),
+        ))
+        .layer(middleware::map_response(json_errors))
         .layer(middleware::from_fn_with_state(state.clone(), guard))
         .with_state(state)
 }
 
-/// Rejects non-loopback Host headers when bound to loopback (DNS rebinding) and sets the
-/// security headers of every answer.
+/// Refuses requests for other hosts (DNS rebinding) and sets the security headers of every
+/// answer.
 async fn guard(State(st): State<AppState>, req: Request, next: Next) -> Response {
-    let host = req
-        .headers()
-        .get(header::HOST)
-        .map(|h| h.to_str().unwrap_or("?").to_string());
-    if let Some(host) = host.filter(|h| st.loopback && !loopback_host(h)) {
-        return ApiError::status(
-            StatusCode::FORBIDDEN,
-            format!(
-                "host '{}' not allowed: this server answers loopback requests only",
-                host.chars().take(60).collect::<String>()
-            ),
-        )
-        .into_response();
-    }
-    let mut resp = next.run(req).await;
+    let mut resp = match host::check(st.hosts, req.headers(), req.uri()) {
+        Ok(()) => next.run(req).await,
+        Err(e) => e.into_response(),
+    };
     let h = resp.headers_mut();
     h.insert(
         header::X_CONTENT_TYPE_OPTIONS,
@@ -163,14 +228,29 @@ async fn guard(State(st): State<AppState>, req: Request, next: Next) -> Response
     resp
 }
 
-/// True for a Host header naming localhost or a loopback address (any port).
-fn loopback_host(host: &str) -> bool {
-    let name = match host.strip_prefix('[') {
-        Some(rest) => rest.split(']').next().unwrap_or(""),
-        None => host.split(':').next().unwrap_or(""),
+/// Gives the error answers of the middleware (body limit, request time limit), which have
+/// empty bodies, a JSON body like every other error.
+async fn json_errors(resp: Response) -> Response {
+    let status = resp.status();
+    let is_json = resp
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .is_some_and(|c| c.as_bytes().starts_with(b"application/json"));
+    if !(status.is_client_error() || status.is_server_error()) || is_json {
+        return resp;
+    }
+    let message = match status {
+        StatusCode::PAYLOAD_TOO_LARGE => format!(
+            "request body larger than {} bytes: every endpoint is a GET without a body",
+            limits::MAX_BODY_BYTES
+        ),
+        StatusCode::SERVICE_UNAVAILABLE => format!(
+            "request exceeded the time limit of {} ms",
+            limits::REQUEST_TIMEOUT_MS
+        ),
+        s => s.canonical_reason().unwrap_or("error").to_string(),
     };
-    name.eq_ignore_ascii_case("localhost")
-        || name.parse::<IpAddr>().is_ok_and(|ip| ip.is_loopback())
+    ApiError::status(status, message).into_response()
 }
 
 async fn index() -> Response {
@@ -245,6 +325,7 @@ where
         })?;
     let handle = tokio::task::spawn_blocking(move || {
         let _permit = permit;
+        lower_priority();
         f()
     });
     match tokio::time::timeout(st.timeout, handle).await {
@@ -297,6 +378,7 @@ async fn api_point(State(st): State<AppState>, q: RawQuery) -> Response {
         let p = params(q, &api::point_names())?;
         let spec = query::plant_spec(&p)?;
         let (a, b) = api::wall_point(&p, &spec)?;
+        api::point_budget(&spec)?;
         run_job(&st, move || api::point(&spec, a, b)).await
     }
     .await;

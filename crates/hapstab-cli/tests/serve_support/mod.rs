@@ -42,6 +42,11 @@ impl Server {
         Server { child, port }
     }
 
+    /// The server's process id.
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// The base URL.
     pub fn base(&self) -> String {
         format!("http://127.0.0.1:{}", self.port)
@@ -98,6 +103,19 @@ pub fn request(port: u16, method: &str, path: &str, headers: &[(&str, &str)]) ->
     }
     req.push_str("\r\n");
     s.write_all(req.as_bytes()).expect("send");
+    read_response(s)
+}
+
+/// Sends `bytes` as they are and reads the answer.
+pub fn raw_request(port: u16, bytes: &[u8]) -> Response {
+    let mut s = TcpStream::connect(("127.0.0.1", port)).expect("connect");
+    s.set_read_timeout(Some(Duration::from_secs(60))).ok();
+    s.write_all(bytes).expect("send");
+    read_response(s)
+}
+
+/// Reads one HTTP/1.1 response.
+fn read_response(mut s: TcpStream) -> Response {
     // Read the headers, then Content-Length bytes if given (some servers keep the
     // connection open), else to the end.
     let mut raw = Vec::new();
@@ -202,4 +220,19 @@ pub fn enc(s: &str) -> String {
             _ => format!("%{b:02X}"),
         })
         .collect()
+}
+
+/// A field of /proc/PID/status in bytes (VmRSS: resident now, VmHWM: peak resident).
+pub fn proc_status_bytes(pid: u32, field: &str) -> u64 {
+    let text = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc status");
+    text.lines()
+        .find_map(|l| l.strip_prefix(field)?.strip_prefix(':'))
+        .and_then(|v| v.split_whitespace().next()?.parse::<u64>().ok())
+        .map(|kb| kb * 1024)
+        .unwrap_or_else(|| panic!("no {field} in /proc/{pid}/status"))
+}
+
+/// Peak resident memory of a process in bytes.
+pub fn peak_rss_bytes(pid: u32) -> u64 {
+    proc_status_bytes(pid, "VmHWM")
 }

@@ -1,0 +1,48 @@
+//! Progress bars of long commands (indicatif): drawn on standard error only when it is a
+//! terminal, hidden otherwise (pipes, files, tests), so machine-readable output stays clean.
+
+use std::io::IsTerminal;
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+/// Estimated core-seconds from which a command shows a bar (shorter runs end before a bar
+/// would tell anything).
+pub const LONG_SECONDS: f64 = 2.0;
+
+/// A bar over `len` steps, possibly split into stages that report their own counts.
+pub struct Bar {
+    bar: ProgressBar,
+}
+
+impl Bar {
+    /// A bar of `len` `unit`s, visible when `show` and standard error is a terminal.
+    pub fn new(len: usize, unit: &str, show: bool) -> Self {
+        let bar = if show && std::io::stderr().is_terminal() {
+            ProgressBar::new(len as u64)
+        } else {
+            ProgressBar::hidden()
+        };
+        let template = format!("{{bar:40}} {{pos}}/{{len}} {unit} {{elapsed}} (eta {{eta}})");
+        bar.set_style(
+            ProgressStyle::with_template(&template)
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        Self { bar }
+    }
+
+    /// A progress callback for a stage whose steps start at `offset`.
+    pub fn stage(&self, offset: usize) -> impl Fn(usize) + Sync + '_ {
+        move |done| self.bar.set_position((offset + done) as u64)
+    }
+
+    /// Removes the bar.
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}

@@ -1,0 +1,404 @@
+//! Resource limits shared by every front end: each analysis estimates its computing time and
+//! memory from its inputs before it starts ([`Cost`]), and a front end refuses a request
+//! whose estimate exceeds its [`Budget`], naming the input that drives the cost.
+//!
+//! Costs are counted in *core-seconds* (seconds of one core of the 2-core reference machine
+//! the project is tested on) and bytes. They are estimates from the sizes of the inputs
+//! (samples, grid points, polynomial degree d + 3), calibrated by measurement; they are meant
+//! to be right within a factor of about three, which is what a limit needs: a request either
+//! fits with room to spare or is far beyond it.
+//!
+//! | budget | time | memory | used by |
+//! |---|---|---|---|
+//! | [`Budget::COMMAND_LINE`] | [`MAX_COMMAND_SECONDS`] | [`MAX_COMMAND_MEMORY`] | `hapstab` commands |
+//! | [`Budget::INTERACTIVE`] | [`MAX_JOB_SECONDS`] | [`MAX_JOB_MEMORY`] | one request to `hapstab serve` |
+
+use std::fmt;
+
+use serde::Serialize;
+
+pub use crate::map::MAX_POINTS as MAX_MAP_POINTS;
+pub use crate::params::MAX_DELAY;
+
+/// Core-seconds of one call of [`crate::boundary::stable_alpha_intervals`] per unit of
+/// (d + 4): the D-decomposition crossings and one Schur–Cohn test per gap grow linearly with
+/// the degree in practice. Measured with `kmax --robust` (10 µs at d = 0 and d = 12, golden
+/// refinements included) and `nyquist` (d = 0, 4, 12).
+pub const SWEEP_SECONDS_PER_DEGREE: f64 = 10e-6;
+/// Core-seconds of one Schur–Cohn point test: a fixed 100 ns (measured with `map`, 10⁶ points
+/// at d = 0) ...
+pub const POINT_TEST_SECONDS: f64 = 100e-9;
+/// ... plus 1 ns per n² for degree n = d + 3 (the test is O(n²); 400 ns per point at d = 20).
+pub const POINT_TEST_SECONDS_PER_N2: f64 = 1e-9;
+/// Core-seconds of one spectral radius (companion-matrix eigenvalues): a fixed 5 µs
+/// (measured with `map --radius`, 10⁶ points at d = 0) ...
+pub const RADIUS_SECONDS: f64 = 5e-6;
+/// ... plus 20 ns per n³ (dense Hessenberg QR is O(n³)).
+pub const RADIUS_SECONDS_PER_N3: f64 = 20e-9;
+/// Extra interval sweeps of a golden-section or bisection refinement (about 50 steps to full
+/// double precision, twice: one per end of an interval).
+pub const REFINEMENT_SWEEPS: f64 = 100.0;
+/// Bytes held per plant configuration of a robust analysis (the discretized plant, its
+/// scale and its coordinates, with allocator overhead).
+pub const CONFIG_BYTES: f64 = 256.0;
+/// Bytes held per β slice (the slice value, its interval ends and the refinement bookkeeping).
+pub const SLICE_BYTES: f64 = 96.0;
+/// Sampled points of the complex-root curve per degree of p(z) in a typical exact region
+/// construction (its arcs are resampled adaptively to the chord tolerance); the engine's
+/// own bound is [`crate::region::MAX_CURVE_POINTS`].
+pub const REGION_CURVE_POINTS_PER_DEGREE: f64 = 400.0;
+/// Core-seconds per sampled curve point and degree of p(z): evaluating the curve is O(n)
+/// (measured with `boundary`: 0.06 s at d = 50, 0.19 s at d = 200, wall time on two cores).
+pub const CURVE_POINT_SECONDS_PER_DEGREE: f64 = 2e-9;
+/// Bytes per sampled curve point of the region construction (the engine documents 4·10⁶
+/// points as about 100 MB).
+pub const REGION_BYTES_PER_POINT: f64 = 25.0;
+/// Core-seconds of one simulated sample per state of the loop (d + 3 states: a matrix-vector
+/// step plus the nonlinear effects).
+pub const SIMULATION_SECONDS_PER_STATE: f64 = 20e-9;
+/// Bytes per recorded row of a simulated trace (time, position, velocity, forces).
+pub const TRACE_ROW_BYTES: f64 = 64.0;
+
+/// Largest estimated computing time of one command: 600 core-seconds, about five minutes on
+/// the two cores of the reference machine (commands show a progress bar on a terminal).
+pub const MAX_COMMAND_SECONDS: f64 = 600.0;
+/// Largest estimated memory of one command: 2 GiB, a tenth of the reference machine.
+pub const MAX_COMMAND_MEMORY: f64 = 2.0 * 1024.0 * 1024.0 * 1024.0;
+/// Largest estimated computing time of one request to the explorer: 5 core-seconds, half of
+/// its 10 s time limit, so that an estimate off by a factor of two still finishes.
+pub const MAX_JOB_SECONDS: f64 = 5.0;
+/// Largest estimated memory of one request to the explorer: 128 MiB, room for one exact
+/// region at the engine's bound (about 100 MB), so that the explorer's four concurrent jobs
+/// stay under 1 GB together.
+pub const MAX_JOB_MEMORY: f64 = 128.0 * 1024.0 * 1024.0;
+
+/// The estimated cost of an analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Cost {
+    /// Computing time in core-seconds.
+    pub seconds: f64,
+    /// Peak memory of the analysis' own tables in bytes.
+    pub memory: f64,
+}
+
+impl Cost {
+    /// Nothing.
+    pub const ZERO: Cost = Cost {
+        seconds: 0.0,
+        memory: 0.0,
+    };
+
+    /// Two analyses run one after the other: times add, memory is the larger peak.
+    pub fn then(self, next: Cost) -> Cost {
+        Cost {
+            seconds: self.seconds + next.seconds,
+            memory: self.memory.max(next.memory),
+        }
+    }
+}
+
+/// Which resource a cost exceeds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Resource {
+    /// Computing time.
+    Time,
+    /// Memory.
+    Memory,
+}
+
+/// A cost beyond a budget: the resource, the estimate and the limit.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Exceeded {
+    /// The resource.
+    pub resource: Resource,
+    /// The estimate (core-seconds or bytes).
+    pub estimate: f64,
+    /// The limit (core-seconds or bytes).
+    pub limit: f64,
+}
+
+impl fmt::Display for Exceeded {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.resource {
+            Resource::Time => write!(
+                f,
+                "would need about {} of computing on one core (limit {})",
+                duration(self.estimate),
+                duration(self.limit)
+            ),
+            Resource::Memory => write!(
+                f,
+                "would hold about {} in memory (limit {})",
+                bytes(self.estimate),
+                bytes(self.limit)
+            ),
+        }
+    }
+}
+
+/// A duration in s, min, h or years for messages.
+fn duration(s: f64) -> String {
+    if !s.is_finite() || s > 3.15e9 {
+        "more than a century".into()
+    } else if s >= 2.0 * 86400.0 * 365.0 {
+        format!("{:.0} years", s / (86400.0 * 365.0))
+    } else if s >= 7200.0 {
+        format!("{:.0} h", s / 3600.0)
+    } else if s >= 120.0 {
+        format!("{:.0} min", s / 60.0)
+    } else {
+        format!("{:.2} s", s)
+    }
+}
+
+/// A byte count in kB, MB, GB or TB for messages.
+fn bytes(b: f64) -> String {
+    if !b.is_finite() || b >= 1e15 {
+        return format!("{b:.1e} bytes");
+    }
+    let (v, unit) = match b {
+        b if b >= 1e12 => (b / 1e12, "TB"),
+        b if b >= 1e9 => (b / 1e9, "GB"),
+        b if b >= 1e6 => (b / 1e6, "MB"),
+        b => (b / 1e3, "kB"),
+    };
+    format!("{v:.1} {unit}")
+}
+
+/// The largest cost a front end accepts for one analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Budget {
+    /// Core-seconds.
+    pub seconds: f64,
+    /// Bytes.
+    pub memory: f64,
+}
+
+impl Budget {
+    /// One `hapstab` command.
+    pub const COMMAND_LINE: Budget = Budget {
+        seconds: MAX_COMMAND_SECONDS,
+        memory: MAX_COMMAND_MEMORY,
+    };
+    /// One request to the explorer (`hapstab serve`).
+    pub const INTERACTIVE: Budget = Budget {
+        seconds: MAX_JOB_SECONDS,
+        memory: MAX_JOB_MEMORY,
+    };
+
+    /// Ok when the cost fits (NaN estimates, from absurd inputs, never fit).
+    pub fn check(&self, cost: Cost) -> Result<(), Exceeded> {
+        let fits =
+            |estimate: f64, limit: f64| estimate.partial_cmp(&limit).is_some_and(|o| o.is_le());
+        if !fits(cost.memory, self.memory) {
+            return Err(Exceeded {
+                resource: Resource::Memory,
+                estimate: cost.memory,
+                limit: self.memory,
+            });
+        }
+        if !fits(cost.seconds, self.seconds) {
+            return Err(Exceeded {
+                resource: Resource::Time,
+                estimate: cost.seconds,
+                limit: self.seconds,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// (d + 4) as a float: the per-degree factor of one interval sweep.
+fn degree_factor(d: usize) -> f64 {
+    d as f64 + 4.0
+}
+
+/// `count` interval sweeps at delay d.
+fn sweeps(count: f64, d: usize) -> f64 {
+    count * degree_factor(d) * SWEEP_SECONDS_PER_DEGREE
+}
+
+/// Cost of [`crate::nyquist::region_summary`] with `beta_samples` slices: one sweep per slice
+/// and the refinements of the extent and of α_max.
+pub fn region_summary_cost(beta_samples: usize, d: usize) -> Cost {
+    let n = (beta_samples as f64).max(8.0);
+    Cost {
+        seconds: sweeps(n + 2.0 * REFINEMENT_SWEEPS, d),
+        memory: n * SLICE_BYTES,
+    }
+}
+
+/// Cost of [`crate::nyquist::gamma_sweep`]: `steps + 1` region summaries, one at a time.
+pub fn gamma_sweep_cost(steps: usize, beta_samples: usize, d: usize) -> Cost {
+    let one = region_summary_cost(beta_samples, d);
+    Cost {
+        seconds: one.seconds * (steps as f64 + 1.0),
+        memory: one.memory,
+    }
+}
+
+/// Cost of [`crate::nyquist::robust_region`]: every β slice (initial grid, then up to
+/// `refine_beta_rounds` rounds that may double it) intersects the intervals of all γ
+/// samples, plus a golden-section search per slice end when refining in γ.
+pub fn robust_region_cost(
+    gamma_samples: usize,
+    beta_samples: usize,
+    d: usize,
+    refine_gamma: bool,
+    refine_beta_rounds: usize,
+) -> Cost {
+    let gs = (gamma_samples as f64).max(2.0);
+    let n = (beta_samples as f64).max(8.0);
+    // refinement rounds add midpoints where the outline bends: typically about one grid's
+    // worth per round (the memory bound below allows the full doubling)
+    let slices = n * (1.0 + refine_beta_rounds as f64);
+    let per_slice = gs + if refine_gamma { REFINEMENT_SWEEPS } else { 0.0 };
+    let max_slices = n * 2f64.powi(refine_beta_rounds.min(64) as i32);
+    Cost {
+        seconds: sweeps(slices * per_slice, d),
+        memory: gs * CONFIG_BYTES + max_slices * SLICE_BYTES,
+    }
+}
+
+/// Cost of [`crate::nyquist::passive_inside_robust`]: `samples` slices over `gamma_samples`
+/// configurations, each refined in γ.
+pub fn passive_check_cost(samples: usize, gamma_samples: usize, d: usize) -> Cost {
+    let gs = (gamma_samples as f64).max(2.0);
+    let n = (samples as f64).max(3.0);
+    Cost {
+        seconds: sweeps(n * (gs + REFINEMENT_SWEEPS), d),
+        memory: gs * CONFIG_BYTES + n * SLICE_BYTES,
+    }
+}
+
+/// Number of plants a robust K_max search samples: masses × dampings × stiffnesses (as a
+/// float, so that absurd sample counts do not overflow).
+pub fn box_plants(mass_samples: usize, damping_samples: usize, stiffness_samples: usize) -> f64 {
+    (mass_samples.max(1) as f64)
+        * (damping_samples.max(1) as f64)
+        * (stiffness_samples.max(1) as f64)
+}
+
+/// Cost of [`crate::nyquist::robust_kmax`]: a scan of `beta_samples` dampings over every
+/// sampled plant, then a golden-section search over B whose every step refines the
+/// stiffness.
+pub fn robust_kmax_cost(plants: f64, beta_samples: usize, d: usize) -> Cost {
+    let n = (beta_samples as f64).max(8.0);
+    let scan = n * plants;
+    let refine = REFINEMENT_SWEEPS * (plants + REFINEMENT_SWEEPS);
+    Cost {
+        seconds: sweeps(scan + refine, d),
+        memory: plants * CONFIG_BYTES + n * SLICE_BYTES,
+    }
+}
+
+/// Interval sweeps of the geometric β scan of one validity point at most: from
+/// [`crate::linear::VALIDITY_BETA_START`] = 1e-7 by 1 % steps up to β ≈ 1 (ln 10⁷ / ln 1.01
+/// ≈ 1620) and the bisection after it (about 45 halvings).
+pub const VALIDITY_SCAN_SWEEPS: f64 = 1700.0;
+
+/// Cost of [`crate::linear::validity_points`] for `levels` error levels: one scan and
+/// bisection per level, at most.
+pub fn validity_points_cost(levels: usize, d: usize) -> Cost {
+    Cost {
+        seconds: sweeps(levels as f64 * VALIDITY_SCAN_SWEEPS, d),
+        memory: levels as f64 * SLICE_BYTES,
+    }
+}
+
+/// Cost of a stability map ([`crate::map::compute_map`]) of `points` grid points at delay d:
+/// one Schur–Cohn test per point, or one spectral radius per point with `radius`; one byte
+/// per point for the verdicts and eight more for the radii.
+pub fn map_cost(points: f64, d: usize, radius: bool) -> Cost {
+    let n = d as f64 + 3.0;
+    let per_point = if radius {
+        RADIUS_SECONDS + RADIUS_SECONDS_PER_N3 * n * n * n
+    } else {
+        POINT_TEST_SECONDS + POINT_TEST_SECONDS_PER_N2 * n * n
+    };
+    Cost {
+        seconds: points * per_point,
+        memory: points * if radius { 9.0 } else { 1.0 },
+    }
+}
+
+/// Cost of one exact stable region ([`crate::region::stable_region`]) at delay d: the
+/// complex-root curve is typically sampled at about [`REGION_CURVE_POINTS_PER_DEGREE`] points
+/// per degree, each an O(n) evaluation; the memory is the engine's own bound,
+/// [`crate::region::MAX_CURVE_POINTS`] points, past which it ends with an error.
+pub fn region_cost(d: usize) -> Cost {
+    let n = d as f64 + 3.0;
+    let points = REGION_CURVE_POINTS_PER_DEGREE * n;
+    Cost {
+        seconds: points * (POINT_TEST_SECONDS + CURVE_POINT_SECONDS_PER_DEGREE * n),
+        memory: crate::region::MAX_CURVE_POINTS as f64 * REGION_BYTES_PER_POINT,
+    }
+}
+
+/// Cost of the verdict, roots and spectral radius at one point.
+pub fn point_cost(d: usize) -> Cost {
+    let n = d as f64 + 3.0;
+    Cost {
+        seconds: RADIUS_SECONDS + RADIUS_SECONDS_PER_N3 * n * n * n,
+        memory: 16.0 * n * n,
+    }
+}
+
+/// Cost of a simulation of `samples` samples at delay d recording `rows` trace rows.
+pub fn simulation_cost(samples: f64, d: usize, rows: f64) -> Cost {
+    let states = d as f64 + 3.0;
+    Cost {
+        seconds: samples * states * SIMULATION_SECONDS_PER_STATE,
+        memory: rows * TRACE_ROW_BYTES + states * 64.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn budgets_refuse_huge_inputs_and_nan() {
+        let c = robust_kmax_cost(box_plants(5, 3, 10_000_000), 97, 0);
+        let e = Budget::COMMAND_LINE.check(c).unwrap_err();
+        assert_eq!(e.resource, Resource::Memory, "{e}");
+        assert!(e.to_string().contains("GB"), "{e}");
+        // the default search fits easily
+        let c = robust_kmax_cost(box_plants(5, 3, 33), 97, 0);
+        assert!(Budget::COMMAND_LINE.check(c).is_ok(), "{c:?}");
+        assert!(c.seconds > 0.5 && c.seconds < 10.0, "{c:?}");
+        // sample counts near usize::MAX do not overflow and are refused
+        let c = gamma_sweep_cost(usize::MAX, usize::MAX, MAX_DELAY);
+        assert!(Budget::COMMAND_LINE.check(c).is_err());
+        let nan = Cost {
+            seconds: f64::NAN,
+            memory: 0.0,
+        };
+        assert!(Budget::INTERACTIVE.check(nan).is_err());
+    }
+
+    #[test]
+    fn costs_scale_with_samples_and_degree() {
+        let a = robust_region_cost(10, 64, 0, false, 2);
+        let b = robust_region_cost(20, 64, 0, false, 2);
+        let c = robust_region_cost(10, 64, 12, false, 2);
+        assert!((b.seconds / a.seconds - 2.0).abs() < 1e-12);
+        assert!((c.seconds / a.seconds - 4.0).abs() < 1e-12);
+        let m1 = map_cost(1e6, 0, false);
+        let m2 = map_cost(1e6, 20, true);
+        assert!(m2.seconds > 10.0 * m1.seconds && m2.memory == 9.0 * m1.memory);
+        let s = Cost::ZERO.then(a).then(c);
+        assert_eq!(s.seconds, a.seconds + c.seconds);
+        assert_eq!(s.memory, a.memory.max(c.memory));
+    }
+
+    #[test]
+    fn messages_use_readable_units() {
+        assert_eq!(duration(30.0), "30.00 s");
+        assert_eq!(duration(600.0), "10 min");
+        assert_eq!(duration(1e20), "more than a century");
+        assert_eq!(bytes(3.7e9), "3.7 GB");
+        assert_eq!(bytes(2048.0), "2.0 kB");
+    }
+}
