@@ -6,12 +6,11 @@ use anyhow::Result;
 use clap::Args;
 use hapstab::boundary::Interval;
 use hapstab::params::Wall;
-use hapstab::stability::Analysis;
 use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::family::{characteristic, linear_k, pick_interval, stable_intervals, wall_units};
+use crate::family::{linear_k, pick_interval, stable_intervals, wall_units};
 use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
@@ -97,7 +96,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
     let units = wall_units(&rl.lp, &fam, w)?;
-    let analysis = Analysis::of_poly(&characteristic(&rl.lp, &fam, units)?)?;
+    let analysis = crate::family::analysis(&rl.lp, &fam, units)?;
     let k_interval = if rl.normalized {
         None
     } else {

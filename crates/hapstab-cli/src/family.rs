@@ -5,6 +5,7 @@ use anyhow::Result;
 use hapstab::boundary::{Interval, stable_alpha_intervals};
 use hapstab::params::{Physical, Sampling, Wall};
 use hapstab::region::{StableRegion, stable_region};
+use hapstab::stability::Analysis;
 use hapstab::{AffineFamily, Loop, PlantModel, PolyFamily};
 
 /// The paper's family of a loop that has the normalized view (eq. 9 in (α, β), as every
@@ -67,11 +68,11 @@ pub fn wall_units(lp: &Loop, fam: &AffineFamily, w: Wall) -> Result<(f64, f64)> 
     Ok(fam.to_units(w.stiffness, w.damping))
 }
 
-/// The ascending coefficients of p(z) for a wall in the family's units; for the paper's loop
-/// through the paper's family (eq. 9) in (α, β), as every other command forms it.
-pub fn characteristic(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Result<Vec<f64>> {
+/// The full stability answer (verdict, radius, roots) for a wall in the family's units; for
+/// the paper's loop through the paper's family, as every other command forms it.
+pub fn analysis(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Result<Analysis> {
     Ok(match paper_family(lp)? {
-        Some(pf) => pf.coefficients(a, b),
-        None => fam.coefficients(a, b),
+        Some(pf) => Analysis::of_family(&pf, a, b)?,
+        None => Analysis::of_family(fam, a, b)?,
     })
 }

@@ -9,10 +9,10 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::closed_loop::ClosedLoop;
+use crate::closed_loop::{AffineFamily, ClosedLoop, PolyFamily};
 use crate::error::{Error, Result};
 use crate::params::Normalized;
-use crate::polyroots::{aberth, companion};
+use crate::polyroots::{RootEstimate, aberth, companion};
 
 /// Half-width of the marginal band in spectral radius: a point is `Marginal` when the
 /// spectral radius lies in [1 − MARGINAL_BAND, 1 + MARGINAL_BAND), so the band is 1e-10 wide.
@@ -232,18 +232,35 @@ pub fn reconcile(algebraic: Verdict, rho: f64, error: f64) -> Result<Verdict> {
 }
 
 impl Analysis {
-    /// Runs the algebraic test and the root finder on the closed loop of `params`.
+    /// Runs the point test and the root finder on the closed loop of `params` (the paper's
+    /// loop through [`Analysis::of_family`]).
     pub fn new(params: Normalized) -> Result<Self> {
-        let cl = ClosedLoop::new(params)?;
-        Self::of_poly(&cl.poly)
+        let params = params.validated()?;
+        let fam = PolyFamily::new(params.plant(), params.d)?;
+        Self::of_family(&fam, params.alpha, params.beta)
     }
 
-    /// As [`Analysis::new`] for given ascending coefficients: the Schur–Cohn verdict
-    /// ([`classify`]), the roots with their inclusion radii ([`crate::polyroots::aberth`]),
-    /// and the verdict reconciled with the spectral radius ([`reconcile`]), so that a verdict
-    /// never contradicts the radius reported with it.
+    /// The full answer for the wall (a, b) of a loop's family: the verdict of
+    /// [`crate::argument::verdict_at`] (Schur–Cohn where well-conditioned, the argument
+    /// principle where not), the roots by Aberth–Ehrlich with those near z = 1 polished in the
+    /// shifted variable (where z-coefficients have lost their digits), and the two reconciled
+    /// ([`reconcile`]) so that the verdict never contradicts the radius reported with it.
+    pub fn of_family(fam: &AffineFamily, a: f64, b: f64) -> Result<Self> {
+        let mut c = fam.coefficients(a, b);
+        let mut estimates = aberth(&c)?;
+        polish_near_one(fam, a, b, &mut estimates);
+        let algebraic = crate::argument::verdict_at(fam, a, b, &mut c);
+        Self::from_estimates(algebraic, &estimates)
+    }
+
+    /// As [`Analysis::of_family`] for bare ascending coefficients (no shifted form): the
+    /// Schur–Cohn verdict ([`classify`]), the roots with their inclusion radii
+    /// ([`crate::polyroots::aberth`]), and the two reconciled ([`reconcile`]).
     pub fn of_poly(c: &[f64]) -> Result<Self> {
-        let estimates = aberth(c)?;
+        Self::from_estimates(classify(c), &aberth(c)?)
+    }
+
+    fn from_estimates(algebraic: Verdict, estimates: &[RootEstimate]) -> Result<Self> {
         let top = estimates
             .iter()
             .max_by(|a, b| a.z.norm().total_cmp(&b.z.norm()));
@@ -255,7 +272,7 @@ impl Analysis {
             .map(|e| e.z.norm() + e.error)
             .fold(0.0, f64::max);
         let spectral_radius_error = (upper - spectral_radius).max(top.map_or(0.0, |e| e.error));
-        let verdict = reconcile(classify(c), spectral_radius, spectral_radius_error)?;
+        let verdict = reconcile(algebraic, spectral_radius, spectral_radius_error)?;
         let mut roots: Vec<Complex64> = estimates.iter().map(|e| e.z).collect();
         sort_roots(&mut roots);
         Ok(Self {
@@ -271,6 +288,68 @@ impl Analysis {
         self.verdict == Verdict::Stable
     }
 }
+
+/// Roots closer to z = 1 than this are polished in the shifted variable w = z − 1.
+const POLISH_RADIUS: f64 = 0.5;
+
+/// Refines the roots near z = 1 by Aberth–Ehrlich steps in the shifted variable
+/// (p(1 + w) from [`AffineFamily::parts_shifted_with_derivative`], free of the cancellation
+/// of z-coefficients), all other roots held fixed; each root's error becomes its last
+/// correction or the rounding of p at it over |p′|, whichever is larger.
+fn polish_near_one(fam: &AffineFamily, a: f64, b: f64, est: &mut [RootEstimate]) {
+    let Some(sh) = fam.shifted.as_ref() else {
+        return;
+    };
+    let near: Vec<usize> = (0..est.len())
+        .filter(|&i| (est[i].z - 1.0).norm() < POLISH_RADIUS)
+        .collect();
+    if near.is_empty() {
+        return;
+    }
+    let mut w: Vec<Complex64> = est.iter().map(|e| e.z - 1.0).collect();
+    let mut err = vec![0.0; est.len()];
+    for _ in 0..POLISH_SWEEPS {
+        let mut biggest = 0.0_f64;
+        for &i in &near {
+            let [(p0, d0), (pk, dk), (pb, db)] = fam.parts_shifted_with_derivative(w[i]);
+            let (p, dp) = (p0 + pk * a + pb * b, d0 + dk * a + db * b);
+            if dp.norm() == 0.0 {
+                continue;
+            }
+            let n = p / dp;
+            let sum: Complex64 = (0..w.len())
+                .filter(|&j| j != i)
+                .map(|j| (w[i] - w[j]).inv())
+                .sum();
+            let step = n / (1.0 - n * sum);
+            if !step.re.is_finite() || !step.im.is_finite() {
+                continue;
+            }
+            w[i] -= step;
+            let r = w[i].norm();
+            let abs = |c: &[f64]| c.iter().rev().fold(0.0, |acc, &q| acc * r + q.abs());
+            let rounding = 4.0
+                * (sh.p0_core.len() + sh.pk.len()) as f64
+                * f64::EPSILON
+                * (abs(&sh.p0_core) * (1.0 + r).powi(fam.k as i32)
+                    + a.abs() * abs(&sh.pk)
+                    + b.abs() * abs(&sh.pb));
+            err[i] = step.norm().max(rounding / dp.norm());
+            biggest = biggest.max(step.norm() / w[i].norm().max(f64::MIN_POSITIVE));
+        }
+        if biggest < 4.0 * f64::EPSILON {
+            break;
+        }
+    }
+    for &i in &near {
+        est[i].z = w[i] + 1.0;
+        est[i].error = err[i];
+    }
+}
+
+/// Polishing sweeps near z = 1: Aberth steps converge cubically from the z-domain roots;
+/// clusters converge more slowly, and their error estimate says so.
+const POLISH_SWEEPS: usize = 12;
 
 /// Fast stability check of one normalized parameter set by the Schur–Cohn test (strict:
 /// every root inside |z| < 1).
