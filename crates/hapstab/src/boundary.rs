@@ -14,6 +14,8 @@
 //! α + 2β = (−1)^{d+1} D(−1)/N(−1)). Between these sets the number of roots outside the
 //! unit circle is constant, so one Schur–Cohn test per piece decides it.
 
+use std::f64::consts::PI;
+
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -192,19 +194,74 @@ fn theta_samples(fam: &AffineFamily) -> usize {
     256 * (fam.degree() + 1)
 }
 
-/// Im(Q conj PK) with Q = P0 + b·PB at z = e^{iθ}: zero where a real a puts a root there;
-/// and that a.
-fn crossing_function(fam: &AffineFamily, beta: f64, theta: f64) -> (f64, f64) {
-    let z = Complex64::from_polar(1.0, theta);
-    let zk = Complex64::from_polar(1.0, theta * fam.k as f64);
-    crossing_at(fam, beta, z, zk)
+/// A line in the wall plane, from + t·dir (t real): the stiffness axis at fixed damping
+/// (from = (0, b), dir = (1, 0)) or the ray through a wall from the origin (from = (0, 0),
+/// dir = the wall), along which gain margins are measured.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WallLine {
+    /// The point at t = 0.
+    pub from: AlphaBeta,
+    /// The direction (the point at t = 1 minus `from`).
+    pub dir: AlphaBeta,
 }
 
-fn crossing_at(fam: &AffineFamily, beta: f64, z: Complex64, zk: Complex64) -> (f64, f64) {
+impl WallLine {
+    /// The stiffness axis at damping b: a = t.
+    pub fn stiffness_axis(beta: f64) -> Self {
+        Self {
+            from: AlphaBeta { alpha: 0.0, beta },
+            dir: AlphaBeta {
+                alpha: 1.0,
+                beta: 0.0,
+            },
+        }
+    }
+
+    /// The ray from the origin through a wall: the wall scaled by t.
+    pub fn ray(wall: AlphaBeta) -> Self {
+        Self {
+            from: AlphaBeta {
+                alpha: 0.0,
+                beta: 0.0,
+            },
+            dir: wall,
+        }
+    }
+
+    /// The point at parameter t.
+    pub fn at(&self, t: f64) -> AlphaBeta {
+        AlphaBeta {
+            alpha: self.from.alpha + t * self.dir.alpha,
+            beta: self.from.beta + t * self.dir.beta,
+        }
+    }
+}
+
+/// A parameter t at which the line's p(z) has a root on the unit circle, and the angle θ of
+/// that root (0 on the z = 1 line, π on the z = −1 line, else the complex pair e^{±iθ}).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LineCrossing {
+    /// The line parameter.
+    pub t: f64,
+    /// The root's angle in [0, π].
+    pub theta: f64,
+}
+
+/// Im(Q conj D) with Q = P0 + from·(PK, PB), D = dir·(PK, PB) at z = e^{iθ}: zero where a real
+/// t puts a root there; and that t = −Re(Q conj D)/|D|².
+fn crossing_function(fam: &AffineFamily, line: &WallLine, theta: f64) -> (f64, f64) {
+    let z = Complex64::from_polar(1.0, theta);
+    let zk = Complex64::from_polar(1.0, theta * fam.k as f64);
+    crossing_at(fam, line, z, zk)
+}
+
+fn crossing_at(fam: &AffineFamily, line: &WallLine, z: Complex64, zk: Complex64) -> (f64, f64) {
     let (p0, pk, pb) = fam.parts_with_power(z, zk);
-    let qc = (p0 + pb * beta) * pk.conj();
-    let nk = pk.norm_sqr();
-    (qc.im, if nk > 0.0 { -qc.re / nk } else { f64::NAN })
+    let q = p0 + pk * line.from.alpha + pb * line.from.beta;
+    let d = pk * line.dir.alpha + pb * line.dir.beta;
+    let qc = q * d.conj();
+    let nd = d.norm_sqr();
+    (qc.im, if nd > 0.0 { -qc.re / nd } else { f64::NAN })
 }
 
 /// Steps of the bracketing scan between exact re-evaluations of e^{iθ} and e^{ikθ}: the
@@ -214,14 +271,31 @@ const RESYNC: usize = 256;
 /// All a at which, for fixed b, p(z) has a root on the unit circle (D-decomposition along
 /// the stiffness, Section V): the z = ±1 lines and a = −Q/PK where Im(Q conj PK) = 0.
 pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
-    let mut out: Vec<f64> = [plus_one_line(fam), minus_one_line(fam)]
-        .iter()
-        .flatten()
-        .filter_map(|l| l.alpha_at(beta))
-        .collect();
-    let f = |t: f64| crossing_function(fam, beta, t).0;
+    line_crossings(fam, &WallLine::stiffness_axis(beta))
+        .into_iter()
+        .map(|c| c.t)
+        .collect()
+}
+
+/// The t on a root line where the wall line meets it (None when parallel).
+fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
+    let t = -l.value(line.from) / (line.dir.alpha * l.pk + line.dir.beta * l.pb);
+    t.is_finite().then_some(t)
+}
+
+/// All t at which p(z) of the wall from + t·dir has a root on the unit circle, with the
+/// root's angle, sorted by t (D-decomposition along a line, Section V): the z = ±1 lines
+/// and the sign changes of Im(Q conj D) on a θ scan, each refined by bisection.
+pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> {
+    let mut out: Vec<LineCrossing> = Vec::new();
+    for (l, theta) in [(plus_one_line(fam), 0.0), (minus_one_line(fam), PI)] {
+        if let Some(t) = l.and_then(|l| root_line_t(&l, line)) {
+            out.push(LineCrossing { t, theta });
+        }
+    }
+    let f = |t: f64| crossing_function(fam, line, t).0;
     let m = theta_samples(fam);
-    let h = std::f64::consts::PI / m as f64;
+    let h = PI / m as f64;
     let (w, wk) = (
         Complex64::from_polar(1.0, h),
         Complex64::from_polar(1.0, h * fam.k as f64),
@@ -231,7 +305,7 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
     let (mut z, mut zk) = (Complex64::new(1.0, 0.0), Complex64::new(1.0, 0.0));
     for i in 1..=m {
         let t = if i == m {
-            std::f64::consts::PI * (1.0 - 1e-12)
+            PI * (1.0 - 1e-12)
         } else {
             i as f64 * h
         };
@@ -242,19 +316,19 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
             z *= w;
             zk *= wk;
         }
-        let v = crossing_at(fam, beta, z, zk).0;
+        let v = crossing_at(fam, line, z, zk).0;
         if v == 0.0 || (v > 0.0) != (prev > 0.0) {
             let tr = if v == 0.0 { t } else { bisect(prev_t, t, f) };
-            let a = crossing_function(fam, beta, tr).1;
+            let a = crossing_function(fam, line, tr).1;
             if a.is_finite() {
-                out.push(a);
+                out.push(LineCrossing { t: a, theta: tr });
             }
         }
         prev = v;
         prev_t = t;
     }
-    out.sort_by(f64::total_cmp);
-    out.dedup_by(|a, b| (*a - *b).abs() <= 1e-15 * a.abs().max(b.abs()));
+    out.sort_by(|a, b| a.t.total_cmp(&b.t));
+    out.dedup_by(|a, b| (a.t - b.t).abs() <= 1e-15 * a.t.abs().max(b.t.abs()));
     out
 }
 
@@ -271,14 +345,31 @@ pub struct Interval {
 /// consecutive boundary crossings the number of unstable roots is constant, so one
 /// Schur–Cohn test per gap decides it.
 pub fn stable_alpha_intervals(fam: &AffineFamily, beta: f64) -> Vec<Interval> {
-    let xs = alpha_crossings(fam, beta);
+    stable_line_intervals(fam, &WallLine::stiffness_axis(beta))
+}
+
+/// The stable intervals of t on a wall line (see [`stable_alpha_intervals`], Section V).
+pub fn stable_line_intervals(fam: &AffineFamily, line: &WallLine) -> Vec<Interval> {
+    stable_between(fam, line, &line_crossings(fam, line))
+}
+
+/// The stable intervals of t on a wall line from its crossings (as returned by
+/// [`line_crossings`], sorted by t): one Schur–Cohn test in each gap, merged into intervals.
+/// Every finite interval end is one of the crossings' t, exactly.
+pub fn stable_between(
+    fam: &AffineFamily,
+    line: &WallLine,
+    crossings: &[LineCrossing],
+) -> Vec<Interval> {
+    let xs: Vec<f64> = crossings.iter().map(|c| c.t).collect();
     if xs.is_empty() {
         return Vec::new();
     }
     let scale = xs.iter().fold(1e-3_f64, |m, x| m.max(x.abs()));
     let mut coeffs = vec![0.0; fam.degree() + 1];
-    let mut stable_at = |a: f64| {
-        fam.coefficients_into(a, beta, &mut coeffs);
+    let mut stable_at = |t: f64| {
+        let p = line.at(t);
+        fam.coefficients_into(p.alpha, p.beta, &mut coeffs);
         schur_stable(&coeffs)
     };
     let mut out: Vec<Interval> = Vec::new();
