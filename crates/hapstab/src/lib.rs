@@ -43,7 +43,9 @@ pub mod region;
 pub mod simulation;
 pub mod spec;
 pub mod stability;
+pub mod sweep;
 pub mod zoh;
+pub mod zwidth;
 
 pub use closed_loop::{AffineFamily, ClosedLoop, PolyFamily};
 pub use error::{Error, Result};

@@ -666,6 +666,11 @@ pub fn passive_region(sw: &SampledWall, b: f64) -> Result<PassiveRegion> {
         damping: 0.0,
     }];
     vertices.extend(pts.iter().map(to_wall));
+    // The end directions lie on the line W(1) = 0 exactly (cos(±π/2) rounds to 6e-17).
+    let v1 = sw.dc_velocity();
+    for i in [1, vertices.len() - 1] {
+        vertices[i].stiffness = -vertices[i].damping * v1;
+    }
     let (k_max, b_at_k_max) = if bounded {
         largest_stiffness(sw, b, &pts)
     } else {

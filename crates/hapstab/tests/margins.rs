@@ -86,7 +86,11 @@ fn random_loop(rng: &mut SplitMix, i: usize) -> Loop {
             den: vec![0.3, 2.0, 100.0],
         },
     };
-    let lag = if i % 4 == 3 { rng.range(1e-5, 3e-4) } else { 0.0 };
+    let lag = if i % 4 == 3 {
+        rng.range(1e-5, 3e-4)
+    } else {
+        0.0
+    };
     let delay = Delay {
         samples: rng.below(3),
         fraction: if i % 2 == 1 { rng.range(0.0, 1.0) } else { 0.0 },
@@ -134,21 +138,38 @@ fn gain_margins_cross_the_boundary() {
     cases(40, 0x6A1A).par_iter().for_each(|(lp, w)| {
         let m = margins(lp, *w).unwrap();
         assert!(m.stable, "{lp:?} {w:?}");
-        let g = m.gain.unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
+        let g = m
+            .gain
+            .unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
         assert!(g.factor > 1.0);
         let (k, b) = (w.stiffness, w.damping);
-        assert!(stable(lp, k * g.factor * (1.0 - EPS), b), "{lp:?} {w:?} {g:?}");
-        assert!(!stable(lp, k * g.factor * (1.0 + EPS), b), "{lp:?} {w:?} {g:?}");
+        assert!(
+            stable(lp, k * g.factor * (1.0 - EPS), b),
+            "{lp:?} {w:?} {g:?}"
+        );
+        assert!(
+            !stable(lp, k * g.factor * (1.0 + EPS), b),
+            "{lp:?} {w:?} {g:?}"
+        );
         let (off, angle) = critical_root(lp, k * g.factor, b);
         assert!(off.abs() < 1e-7, "{lp:?}: root off the circle by {off}");
         assert!((angle - g.theta).abs() < 1e-6, "{angle} vs {}", g.theta);
         let f = angle / (2.0 * PI * lp.period);
         let fc = m.critical_frequency_hz.unwrap();
-        assert!((f - fc).abs() <= 1e-6 * (1.0 / lp.period), "{f} Hz vs {fc} Hz");
+        assert!(
+            (f - fc).abs() <= 1e-6 * (1.0 / lp.period),
+            "{f} Hz vs {fc} Hz"
+        );
         if let Some(gk) = m.gain_kb {
             let s = gk.factor;
-            assert!(stable(lp, k * s * (1.0 - EPS), b * s * (1.0 - EPS)), "{gk:?}");
-            assert!(!stable(lp, k * s * (1.0 + EPS), b * s * (1.0 + EPS)), "{gk:?}");
+            assert!(
+                stable(lp, k * s * (1.0 - EPS), b * s * (1.0 - EPS)),
+                "{gk:?}"
+            );
+            assert!(
+                !stable(lp, k * s * (1.0 + EPS), b * s * (1.0 + EPS)),
+                "{gk:?}"
+            );
         }
     });
 }
@@ -159,15 +180,23 @@ fn gain_margins_cross_the_boundary() {
 fn delay_margin_crosses_the_boundary() {
     cases(30, 0xDE1A).par_iter().for_each(|(lp, w)| {
         let m = margins(lp, *w).unwrap();
-        let dm = m.delay.unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
+        let dm = m
+            .delay
+            .unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
         assert!(dm.seconds > 0.0);
         let at = |extra: f64| {
             let delay = Delay::from_time(lp.delay_time() + extra, lp.period).unwrap();
             lp.with_delay(delay).unwrap()
         };
         let (k, b) = (w.stiffness, w.damping);
-        assert!(stable(&at(dm.seconds * (1.0 - EPS)), k, b), "{lp:?} {w:?} {dm:?}");
-        assert!(!stable(&at(dm.seconds * (1.0 + EPS)), k, b), "{lp:?} {w:?} {dm:?}");
+        assert!(
+            stable(&at(dm.seconds * (1.0 - EPS)), k, b),
+            "{lp:?} {w:?} {dm:?}"
+        );
+        assert!(
+            !stable(&at(dm.seconds * (1.0 + EPS)), k, b),
+            "{lp:?} {w:?} {dm:?}"
+        );
         let (off, angle) = critical_root(&at(dm.seconds), k, b);
         assert!(off.abs() < 1e-6, "{off}");
         assert!((angle - dm.theta).abs() < 1e-5, "{angle} vs {}", dm.theta);
@@ -196,7 +225,10 @@ fn phase_margin_and_delay_margin_agree() {
         if pm.theta < 0.3 && pm.degrees > 0.0 && (dm.theta - pm.theta).abs() < 0.05 * pm.theta {
             let classical = pm.degrees.to_radians() / pm.theta * lp.period;
             let r = dm.seconds / classical;
-            assert!((r - 1.0).abs() < 0.1, "{lp:?} {w:?}: {dm:?} vs PM/ω = {classical}");
+            assert!(
+                (r - 1.0).abs() < 0.1,
+                "{lp:?} {w:?}: {dm:?} vs PM/ω = {classical}"
+            );
             checked += 1;
         }
     }
@@ -237,6 +269,10 @@ fn pure_mass_gain_margin_closed_form() {
         .unwrap();
         let want = 2.0 * beta * (2.0 - beta) / (2.0 + beta) / alpha;
         let g = m.gain.unwrap();
-        assert!((g.factor - want).abs() < 1e-12 * want, "{} vs {want}", g.factor);
+        assert!(
+            (g.factor - want).abs() < 1e-12 * want,
+            "{} vs {want}",
+            g.factor
+        );
     }
 }
