@@ -200,7 +200,7 @@ pub fn phase_margin(
     hz: impl Fn(f64) -> f64,
 ) -> Option<PhaseMargin> {
     let g = |theta: f64| {
-        let (p0, pk, pb) = fam.parts_at(Complex64::from_polar(1.0, theta));
+        let (p0, pk, pb) = fam.parts_on_circle(theta);
         let w = pk * wall.alpha + pb * wall.beta;
         (w.norm_sqr() - p0.norm_sqr(), w / p0)
     };
@@ -311,7 +311,7 @@ fn robustness(fam: &AffineFamily, a: f64, b: f64) -> f64 {
     (1..=m)
         .map(|i| {
             let t = pi * i as f64 / m as f64;
-            let (p0, pk, pb) = fam.parts_at(Complex64::from_polar(1.0, t));
+            let (p0, pk, pb) = fam.parts_on_circle(t);
             let w = pk * a + pb * b;
             (p0 + w).norm() / (t * w.norm())
         })

@@ -641,11 +641,7 @@ pub fn passive_region(sw: &SampledWall, b: f64) -> Result<PassiveRegion> {
         });
     }
     let half_t = 0.5 * sw.period;
-    let center = sw.dc_velocity().atan2(2.0 / sw.period);
-    let (lo, hi) = (
-        center - std::f64::consts::FRAC_PI_2,
-        center + std::f64::consts::FRAC_PI_2,
-    );
+    let (lo, hi) = direction_range(sw);
     let pts = boundary_points(sw, b, lo, hi);
     let bounded = pts.iter().all(|p| p.1.is_some());
     let size = pts
@@ -742,6 +738,44 @@ fn chord_distance(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
     }
     let t = (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0);
     (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
+}
+
+/// The largest passive stiffness for device damping b, and the damping where it is reached
+/// (exact, without building the polygon): the best of [`INITIAL_DIRECTIONS`] boundary points,
+/// refined by golden-section search over the direction. None when b <= 0; K infinite when
+/// the region is unbounded.
+pub fn passive_k_max(sw: &SampledWall, b: f64) -> Option<Wall> {
+    if !(b > 0.0 && b.is_finite()) {
+        return None;
+    }
+    let (lo, hi) = direction_range(sw);
+    let pts: Vec<RayPoint> = (0..=INITIAL_DIRECTIONS)
+        .map(|i| {
+            let phi = lo + (hi - lo) * i as f64 / INITIAL_DIRECTIONS as f64;
+            (phi, ray_point(sw, b, phi))
+        })
+        .collect();
+    if pts.iter().any(|p| p.1.is_none()) {
+        return Some(Wall {
+            stiffness: f64::INFINITY,
+            damping: f64::NAN,
+        });
+    }
+    let (k, d) = largest_stiffness(sw, b, &pts);
+    Some(Wall {
+        stiffness: k,
+        damping: d,
+    })
+}
+
+/// The admissible directions (W(1) >= 0) in the (KT/2, B)-plane: a half-turn centred on the
+/// normal of the line W(1) = 0.
+fn direction_range(sw: &SampledWall) -> (f64, f64) {
+    let center = sw.dc_velocity().atan2(2.0 / sw.period);
+    (
+        center - std::f64::consts::FRAC_PI_2,
+        center + std::f64::consts::FRAC_PI_2,
+    )
 }
 
 /// The largest passive K and its B: the best vertex, refined by golden-section search over the

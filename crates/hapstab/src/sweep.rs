@@ -14,9 +14,14 @@ use crate::error::{Error, Result, finite};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
 use crate::params::Effective;
 use crate::passivity::{
-    DeviceDamping, SampledWall, device_damping, k_max_passive_at, passive_region,
+    DeviceDamping, SampledWall, device_damping, k_max_passive_at, passive_k_max,
 };
-use crate::region::{alpha_max_within, stable_region};
+use crate::region::{alpha_max_within, stable_region_with};
+
+/// Chord tolerance of the regions a sweep computes (relative to their size): a sweep reports
+/// only K_max, which is refined exactly on its arc (da/dθ = 0) whatever the chords, so the
+/// polygon may be 1000 times coarser than a drawn region's (four times faster).
+pub const SWEEP_REL_TOL: f64 = 1e-6;
 
 /// A parameter of the loop that a sweep varies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -419,13 +424,13 @@ fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
                 .map(|a| (a, beta))
         }
         KmaxAt::Overall => {
-            let r = stable_region(&fam)?;
+            let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
             r.alpha_max
                 .is_finite()
                 .then_some((r.alpha_max, r.beta_at_alpha_max))
         }
         KmaxAt::Band { lo, hi } => {
-            let r = stable_region(&fam)?;
+            let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
             let (_, b0) = fam.to_units(0.0, lo);
             let (_, b1) = fam.to_units(0.0, hi);
             alpha_max_within(&fam, &r, b0, b1).map(|p| (p.alpha, p.beta))
@@ -442,16 +447,16 @@ fn passive_kmax(lp: &Loop, at: KmaxAt) -> Option<f64> {
         return None;
     };
     let sw = SampledWall::new(lp).ok()?;
-    let region = || passive_region(&sw, b).ok().filter(|r| r.k_max.is_finite());
+    let best = || passive_k_max(&sw, b).filter(|w| w.stiffness.is_finite());
     match at {
         KmaxAt::Damping { damping } => k_max_passive_at(&sw, b, damping),
-        KmaxAt::Overall => region().map(|r| r.k_max),
+        KmaxAt::Overall => best().map(|w| w.stiffness),
         KmaxAt::Band { lo, hi } => {
-            let r = region()?;
-            if (lo..=hi).contains(&r.b_at_k_max) {
-                Some(r.k_max)
+            let w = best()?;
+            if (lo..=hi).contains(&w.damping) {
+                Some(w.stiffness)
             } else {
-                let edge = if r.b_at_k_max < lo { lo } else { hi };
+                let edge = if w.damping < lo { lo } else { hi };
                 k_max_passive_at(&sw, b, edge)
             }
         }

@@ -82,11 +82,11 @@ pub struct ZWidth {
     pub table: Vec<ZWidthRow>,
 }
 
-/// Rows of the default table: the virtual damping from 0 to the stable region's largest B.
+/// Rows of the default table: the virtual damping from 0 toward the stable region's largest B.
 pub const DEFAULT_TABLE_ROWS: usize = 11;
 
-/// The Z-width of a loop; `dampings` are the table's B values in Ns/m (None: [`DEFAULT_TABLE_ROWS`]
-/// values from 0 to the largest stable B).
+/// The Z-width of a loop; `dampings` are the table's B values in Ns/m (None:
+/// [`DEFAULT_TABLE_ROWS`] values from 0 in steps of 1/11 of the largest stable B).
 pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
     let fam = AffineFamily::of_loop(lp)?;
     let region = stable_region(&fam)?;
@@ -150,7 +150,8 @@ fn k_max_of(fam: &AffineFamily, region: &StableRegion) -> Option<Wall> {
     })
 }
 
-/// [`DEFAULT_TABLE_ROWS`] dampings from 0 to the largest B of the stable polygons.
+/// [`DEFAULT_TABLE_ROWS`] dampings in steps of 1/n of the largest B of the stable polygons,
+/// from 0 (the region's tip at the largest B itself has no width).
 fn default_dampings(stable: &[Vec<Wall>]) -> Vec<f64> {
     let top = stable
         .iter()
@@ -158,7 +159,7 @@ fn default_dampings(stable: &[Vec<Wall>]) -> Vec<f64> {
         .map(|w| w.damping)
         .fold(0.0_f64, f64::max);
     let n = DEFAULT_TABLE_ROWS;
-    (0..n).map(|i| top * i as f64 / (n - 1) as f64).collect()
+    (0..n).map(|i| top * i as f64 / n as f64).collect()
 }
 
 fn table_row(

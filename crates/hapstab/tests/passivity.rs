@@ -406,6 +406,8 @@ fn passive_region_of_the_paper_loop_is_the_triangle() {
             2.0 * b / t
         );
         assert!(r.b_at_k_max.abs() < 1e-9 * b, "{}", r.b_at_k_max);
+        let best = hapstab::passivity::passive_k_max(&sw, b).unwrap();
+        assert!(rel(best.stiffness, 2.0 * b / t) < 1e-12 && best.damping.abs() < 1e-9 * b);
         assert!(
             rel(r.area, 2.0 * b * b / t) < 1e-6,
             "{} vs {}",
