@@ -14,6 +14,10 @@
 //! | [`stability`] | Section V (roots inside the unit circle) |
 //! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |
 //! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
+//! | [`passivity`] | Section VIII, eq. (28), for any loop (Colgate & Schenkel 1997) |
+//! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
+//! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
+//! | [`sweep`] | K_max against a parameter of the loop |
 //!
 //! ```
 //! use hapstab::{Normalized, Analysis, Verdict};
