@@ -146,9 +146,13 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
             println!("{line}");
         }
     }
-    let what = if rl.normalized { "δ" } else { "b" };
+    let (what, k, b, area_unit) = if rl.normalized {
+        ("δ", "α", "β", "")
+    } else {
+        ("b", "K", "B", " N/m·Ns/m")
+    };
     println!(
-        "wall        K = {}, B = {}",
+        "wall        {k} = {}, {b} = {}",
         num(w.stiffness, k_unit),
         num(w.damping, b_unit)
     );
@@ -168,7 +172,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
     println!("stability   {stable}{both}");
     if let Some(r) = &o.passive_region {
         println!(
-            "passive     K_max = {} at B = {}; region area {} N/m·Ns/m ({} vertices)",
+            "passive     {k}_max = {} at {b} = {}; region area {}{area_unit} ({} vertices)",
             num(r.k_max, k_unit),
             num(r.b_at_k_max, b_unit),
             sig(r.area, 6),
