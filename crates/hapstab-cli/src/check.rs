@@ -1,10 +1,12 @@
 //! `hapstab check`: verdict, spectral radius, roots and the stable stiffness range at the
 //! given damping, for any loop (Sections III, V); for the paper's loop also the normalized
-//! view and the linear condition (eq. 22–23).
+//! view and the linear condition (eq. 22–23); the wall's gain, phase and delay margins and the
+//! frequency at which it would oscillate.
 
 use anyhow::Result;
 use clap::Args;
 use hapstab::boundary::Interval;
+use hapstab::margins::margins;
 use hapstab::params::Wall;
 use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
@@ -15,7 +17,7 @@ use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
 };
-use crate::output::{print_json, sig};
+use crate::output::{eng, print_json, sig};
 
 /// Arguments of `hapstab check`.
 #[derive(Args, Debug)]
@@ -57,6 +59,71 @@ struct CheckOut {
     k_interval: Option<Option<[f64; 2]>>,
     #[serde(flatten)]
     paper: Option<PaperView>,
+    #[serde(flatten)]
+    margins: MarginsOut,
+}
+
+/// The wall's stability margins (null when the wall is not stable or a margin is unbounded;
+/// `margin_notes` says which).
+#[derive(Serialize)]
+struct MarginsOut {
+    /// Factor on K at the given B that reaches the stability boundary.
+    gain_margin: Option<f64>,
+    /// Factor on K and B together.
+    gain_margin_kb: Option<f64>,
+    /// Phase margin in degrees at the gain crossover.
+    phase_margin_deg: Option<f64>,
+    /// Phase crossover frequency, Hz.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    phase_crossover_hz: Option<f64>,
+    /// Extra delay that the loop tolerates, s.
+    delay_margin: Option<f64>,
+    /// Frequency of the oscillation at the delay margin, Hz.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delay_margin_frequency_hz: Option<f64>,
+    /// Frequency of the critical root pair on the unit circle at K × gain margin, Hz.
+    critical_frequency_hz: Option<f64>,
+    /// Why a margin is null.
+    margin_notes: Vec<String>,
+}
+
+impl MarginsOut {
+    /// The margins of the wall, or none with the reason when the check's verdict says the wall
+    /// is not stable, or when the verdict and the margins' own test disagree (a wall on the
+    /// boundary to rounding).
+    fn new(rl: &ResolvedLoop, w: Wall, stable: bool) -> Result<Self> {
+        let none = |note: &str| MarginsOut {
+            gain_margin: None,
+            gain_margin_kb: None,
+            phase_margin_deg: None,
+            phase_crossover_hz: None,
+            delay_margin: None,
+            delay_margin_frequency_hz: None,
+            critical_frequency_hz: None,
+            margin_notes: vec![note.to_string()],
+        };
+        if !stable {
+            return Ok(none(
+                "the wall is not stable: margins are defined for stable walls",
+            ));
+        }
+        let m = margins(&rl.lp, w)?;
+        if !m.stable {
+            return Ok(none(
+                "undecided: the wall lies on the stability boundary to rounding",
+            ));
+        }
+        Ok(MarginsOut {
+            gain_margin: m.gain.map(|g| g.factor),
+            gain_margin_kb: m.gain_kb.map(|g| g.factor),
+            phase_margin_deg: m.phase.map(|p| p.degrees),
+            phase_crossover_hz: m.phase.map(|p| p.frequency_hz),
+            delay_margin: m.delay.map(|d| d.seconds),
+            delay_margin_frequency_hz: m.delay.map(|d| d.frequency_hz),
+            critical_frequency_hz: m.critical_frequency_hz,
+            margin_notes: m.notes,
+        })
+    }
 }
 
 /// The stable interval of the wall's stiffness in the loop's units (a, b) at its damping
@@ -110,6 +177,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         roots: analysis.roots.clone(),
         k_interval,
         paper: paper_view(&rl, &fam, w)?,
+        margins: MarginsOut::new(&rl, w, analysis.stable())?,
     };
     if a.json {
         return print_json(&out);
@@ -149,6 +217,54 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {
         print_alpha_interval(o);
     } else {
         print_k_interval(w, o);
+    }
+    print_margins(rl, &o.margins);
+}
+
+fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
+    let hz = |f: f64| {
+        if rl.normalized {
+            format!("{} cycles/sample", sig(f, 6))
+        } else {
+            eng(f, "Hz", 5)
+        }
+    };
+    let secs = |s: f64| {
+        if rl.normalized {
+            format!("{} samples", sig(s, 8))
+        } else {
+            eng(s, "s", 6)
+        }
+    };
+    let mut parts: Vec<String> = Vec::new();
+    if let Some(g) = m.gain_margin {
+        let at = m
+            .critical_frequency_hz
+            .map(|f| format!(" (oscillates at {})", hz(f)))
+            .unwrap_or_default();
+        parts.push(format!("gain ×{} on K{at}", sig(g, 8)));
+    }
+    if let Some(g) = m.gain_margin_kb {
+        parts.push(format!("×{} on (K, B)", sig(g, 8)));
+    }
+    if let (Some(p), Some(f)) = (m.phase_margin_deg, m.phase_crossover_hz) {
+        parts.push(format!("phase {}° at {}", sig(p, 6), hz(f)));
+    }
+    if let Some(d) = m.delay_margin {
+        let at = m
+            .delay_margin_frequency_hz
+            .map(|f| format!(" (oscillates at {})", hz(f)))
+            .unwrap_or_default();
+        parts.push(format!("delay +{}{at}", secs(d)));
+    }
+    let mut label = "margins    ";
+    if !parts.is_empty() {
+        println!("{label} {}", parts.join("; "));
+        label = "           ";
+    }
+    for n in &m.margin_notes {
+        println!("{label} {n}");
+        label = "           ";
     }
 }
 

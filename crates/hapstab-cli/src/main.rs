@@ -13,12 +13,15 @@ mod model;
 mod nyquist;
 mod output;
 mod paper;
+mod passivity;
 mod plot;
 mod progress;
 mod ranges;
 mod robust;
 mod serve;
 mod simulate;
+mod sweep;
+mod zwidth;
 
 use clap::{Parser, Subcommand};
 
@@ -44,6 +47,12 @@ enum Command {
     Boundary(boundary::BoundaryArgs),
     /// Largest stable virtual stiffness K in N/m, beside the linear condition (22)
     Kmax(kmax::KmaxArgs),
+    /// Device damping a wall needs to be passive (Colgate–Schenkel, eq. 28) and the passive region
+    Passivity(passivity::PassivityArgs),
+    /// Z-width: stable and passive (K, B) regions of a device, K_max table; compare loops
+    Zwidth(zwidth::ZwidthArgs),
+    /// K_max (stable and passive) against delay, period, filter cut-off or a plant parameter
+    Sweep(sweep::SweepArgs),
     /// Grid map of stability over two of α, β, γ, δ (the paper's method), in parallel
     Map(map::MapArgs),
     /// Interactive explorer in the browser: local web server with the exact region (issue 7)
@@ -66,6 +75,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Discretize(a) => discretize::run(&a),
         Command::Boundary(a) => boundary::run(&a),
         Command::Kmax(a) => kmax::run(&a),
+        Command::Passivity(a) => passivity::run(&a),
+        Command::Zwidth(a) => zwidth::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
         Command::Map(a) => map::run(&a),
         Command::Serve(a) => serve::run(&a),
         Command::Ranges(a) => ranges::run(&a),

@@ -14,6 +14,8 @@
 //! α + 2β = (−1)^{d+1} D(−1)/N(−1)). Between these sets the number of roots outside the
 //! unit circle is constant, so one Schur–Cohn test per piece decides it.
 
+use std::f64::consts::PI;
+
 use num_complex::Complex64;
 use serde::Serialize;
 
@@ -185,17 +187,72 @@ pub(crate) fn bisect(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     0.5 * (a + b)
 }
 
-/// Im(Q conj PK) with Q = P0 + b·PB at z = e^{iθ}: zero where a real a puts a root there;
-/// and that a.
-fn crossing_function(fam: &AffineFamily, beta: f64, theta: f64) -> (f64, f64) {
-    let (p0, pk, pb) = fam.parts_on_circle(theta);
-    let qc = (p0 + pb * beta) * pk.conj();
-    let nk = pk.norm_sqr();
-    (qc.im, if nk > 0.0 { -qc.re / nk } else { f64::NAN })
+/// A line in the wall plane, from + t·dir (t real): the stiffness axis at fixed damping
+/// (from = (0, b), dir = (1, 0)) or the ray through a wall from the origin (from = (0, 0),
+/// dir = the wall), along which gain margins are measured.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WallLine {
+    /// The point at t = 0.
+    pub from: AlphaBeta,
+    /// The direction (the point at t = 1 minus `from`).
+    pub dir: AlphaBeta,
 }
 
-/// d/dθ of Im(Q conj PK) at z = e^{iθ} (d/dθ = iz·d/dz), from the shifted form near z = 1.
-fn crossing_slope(fam: &AffineFamily, beta: f64, theta: f64) -> f64 {
+impl WallLine {
+    /// The stiffness axis at damping b: a = t.
+    pub fn stiffness_axis(beta: f64) -> Self {
+        Self {
+            from: AlphaBeta { alpha: 0.0, beta },
+            dir: AlphaBeta {
+                alpha: 1.0,
+                beta: 0.0,
+            },
+        }
+    }
+
+    /// The ray from the origin through a wall: the wall scaled by t.
+    pub fn ray(wall: AlphaBeta) -> Self {
+        Self {
+            from: AlphaBeta {
+                alpha: 0.0,
+                beta: 0.0,
+            },
+            dir: wall,
+        }
+    }
+
+    /// The point at parameter t.
+    pub fn at(&self, t: f64) -> AlphaBeta {
+        AlphaBeta {
+            alpha: self.from.alpha + t * self.dir.alpha,
+            beta: self.from.beta + t * self.dir.beta,
+        }
+    }
+}
+
+/// A parameter t at which the line's p(z) has a root on the unit circle, and the angle θ of
+/// that root (0 on the z = 1 line, π on the z = −1 line, else the complex pair e^{±iθ}).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LineCrossing {
+    /// The line parameter.
+    pub t: f64,
+    /// The root's angle in [0, π].
+    pub theta: f64,
+}
+
+/// Im(Q conj D) with Q = P0 + from·(PK, PB), D = dir·(PK, PB) at z = e^{iθ} (the shifted
+/// form near z = 1): zero where a real t puts a root there; and that t = −Re(Q conj D)/|D|².
+fn crossing_function(fam: &AffineFamily, line: &WallLine, theta: f64) -> (f64, f64) {
+    let (p0, pk, pb) = fam.parts_on_circle(theta);
+    let q = p0 + pk * line.from.alpha + pb * line.from.beta;
+    let d = pk * line.dir.alpha + pb * line.dir.beta;
+    let qc = q * d.conj();
+    let nd = d.norm_sqr();
+    (qc.im, if nd > 0.0 { -qc.re / nd } else { f64::NAN })
+}
+
+/// d/dθ of Im(Q conj D) at z = e^{iθ} (d/dθ = iz·d/dz), from the shifted form near z = 1.
+fn crossing_slope(fam: &AffineFamily, line: &WallLine, theta: f64) -> f64 {
     let z = Complex64::from_polar(1.0, theta);
     let parts = if theta < crate::closed_loop::SHIFTED_THETA {
         let h = (0.5 * theta).sin();
@@ -205,8 +262,11 @@ fn crossing_slope(fam: &AffineFamily, beta: f64, theta: f64) -> f64 {
     };
     let [(p0, d0), (pk, dk), (pb, db)] = parts;
     let iz = Complex64::i() * z;
-    let (q, dq) = (p0 + pb * beta, (d0 + db * beta) * iz);
-    (dq * pk.conj() + q * (dk * iz).conj()).im
+    let (fa, fb) = (line.from.alpha, line.from.beta);
+    let (da, db_) = (line.dir.alpha, line.dir.beta);
+    let (q, dq) = (p0 + pk * fa + pb * fb, (d0 + dk * fa + db * fb) * iz);
+    let (d, dd) = (pk * da + pb * db_, (dk * da + db * db_) * iz);
+    (dq * d.conj() + q * dd.conj()).im
 }
 
 /// The θ grid of the crossing scan: p has at most `degree` roots, so its phase turns at most
@@ -214,9 +274,8 @@ fn crossing_slope(fam: &AffineFamily, beta: f64, theta: f64) -> f64 {
 /// geometric run from 1e-12 up to the first step brackets roots close to z = 1 (fast
 /// sampling, slow modes), which cross at angles far below the uniform step.
 fn scan_thetas(fam: &AffineFamily) -> Vec<f64> {
-    let pi = std::f64::consts::PI;
     let m = 256 * (fam.degree() + 1);
-    let h = pi / m as f64;
+    let h = PI / m as f64;
     let mut ts = Vec::with_capacity(m + 256);
     let mut t = 1e-12_f64.min(1e-9 * h);
     while t < h {
@@ -224,28 +283,44 @@ fn scan_thetas(fam: &AffineFamily) -> Vec<f64> {
         t *= NEAR_ONE_RATIO;
     }
     ts.extend((1..m).map(|i| i as f64 * h));
-    ts.push(pi * (1.0 - 1e-12));
+    ts.push(PI * (1.0 - 1e-12));
     ts
 }
 
 /// All a at which, for fixed b, p(z) has a root on the unit circle (D-decomposition along
-/// the stiffness, Section V): the z = ±1 lines and a = −Q/PK where Im(Q conj PK) = 0. Sign
-/// changes between samples are bisected; where the sign does not change but the slope does,
-/// the extremum between is located and, if it crosses zero, both zeros on either side of it
-/// are kept (two crossings closer than a sample, as a thin region of a lightly damped loop
-/// makes them).
+/// the stiffness, Section V); see [`line_crossings`].
 pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
-    let mut out: Vec<f64> = [plus_one_line(fam), minus_one_line(fam)]
-        .iter()
-        .flatten()
-        .filter_map(|l| l.alpha_at(beta))
-        .collect();
-    let f = |t: f64| crossing_function(fam, beta, t).0;
-    let df = |t: f64| crossing_slope(fam, beta, t);
-    let mut push = |t: f64| {
-        let a = crossing_function(fam, beta, t).1;
-        if a.is_finite() {
-            out.push(a);
+    line_crossings(fam, &WallLine::stiffness_axis(beta))
+        .into_iter()
+        .map(|c| c.t)
+        .collect()
+}
+
+/// The t on a root line where the wall line meets it (None when parallel).
+fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
+    let t = -l.value(line.from) / (line.dir.alpha * l.pk + line.dir.beta * l.pb);
+    t.is_finite().then_some(t)
+}
+
+/// All t at which p(z) of the wall from + t·dir has a root on the unit circle, with the
+/// root's angle, sorted by t (D-decomposition along a line, Section V): the z = ±1 lines
+/// and the zeros of Im(Q conj D) on a θ scan. Sign changes between samples are bisected;
+/// where the sign does not change but the slope does, the extremum between is located and,
+/// if it crosses zero, both zeros on either side of it are kept (two crossings closer than
+/// a sample, as a thin region of a lightly damped loop makes them).
+pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> {
+    let mut out: Vec<LineCrossing> = Vec::new();
+    for (l, theta) in [(plus_one_line(fam), 0.0), (minus_one_line(fam), PI)] {
+        if let Some(t) = l.and_then(|l| root_line_t(&l, line)) {
+            out.push(LineCrossing { t, theta });
+        }
+    }
+    let f = |t: f64| crossing_function(fam, line, t).0;
+    let df = |t: f64| crossing_slope(fam, line, t);
+    let mut push = |theta: f64| {
+        let t = crossing_function(fam, line, theta).1;
+        if t.is_finite() {
+            out.push(LineCrossing { t, theta });
         }
     };
     let ts = scan_thetas(fam);
@@ -272,8 +347,8 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
             }
         }
     }
-    out.sort_by(f64::total_cmp);
-    out.dedup_by(|a, b| (*a - *b).abs() <= 1e-15 * a.abs().max(b.abs()));
+    out.sort_by(|a, b| a.t.total_cmp(&b.t));
+    out.dedup_by(|a, b| (a.t - b.t).abs() <= 1e-15 * a.t.abs().max(b.t.abs()));
     out
 }
 
@@ -293,13 +368,32 @@ pub struct Interval {
 /// consecutive boundary crossings the number of unstable roots is constant, so one
 /// Schur–Cohn test per gap decides it.
 pub fn stable_alpha_intervals(fam: &AffineFamily, beta: f64) -> Vec<Interval> {
-    let xs = alpha_crossings(fam, beta);
+    stable_line_intervals(fam, &WallLine::stiffness_axis(beta))
+}
+
+/// The stable intervals of t on a wall line (see [`stable_alpha_intervals`], Section V).
+pub fn stable_line_intervals(fam: &AffineFamily, line: &WallLine) -> Vec<Interval> {
+    stable_between(fam, line, &line_crossings(fam, line))
+}
+
+/// The stable intervals of t on a wall line from its crossings (as returned by
+/// [`line_crossings`], sorted by t): one Schur–Cohn test in each gap, merged into intervals.
+/// Every finite interval end is one of the crossings' t, exactly.
+pub fn stable_between(
+    fam: &AffineFamily,
+    line: &WallLine,
+    crossings: &[LineCrossing],
+) -> Vec<Interval> {
+    let xs: Vec<f64> = crossings.iter().map(|c| c.t).collect();
     if xs.is_empty() {
         return Vec::new();
     }
     let scale = xs.iter().fold(1e-3_f64, |m, x| m.max(x.abs()));
     let mut coeffs = vec![0.0; fam.degree() + 1];
-    let mut stable_at = |a: f64| crate::argument::stable_at(fam, a, beta, &mut coeffs);
+    let mut stable_at = |t: f64| {
+        let p = line.at(t);
+        crate::argument::stable_at(fam, p.alpha, p.beta, &mut coeffs)
+    };
     let mut out: Vec<Interval> = Vec::new();
     let push = |lo: f64, hi: f64, out: &mut Vec<Interval>| match out.last_mut() {
         Some(last) if last.hi == lo => last.hi = hi,

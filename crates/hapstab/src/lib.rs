@@ -14,6 +14,10 @@
 //! | [`stability`] | Section V (roots inside the unit circle) |
 //! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |
 //! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
+//! | [`passivity`] | Section VIII, eq. (28), for any loop (Colgate & Schenkel 1997) |
+//! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
+//! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
+//! | [`sweep`] | K_max against a parameter of the loop |
 //!
 //! ```
 //! use hapstab::{Normalized, Analysis, Verdict};
@@ -31,9 +35,11 @@ pub mod error;
 pub mod limits;
 pub mod linear;
 pub mod map;
+pub mod margins;
 pub mod model;
 pub mod nyquist;
 pub mod params;
+pub mod passivity;
 pub mod plant;
 pub mod poly;
 pub mod polyroots;
@@ -42,7 +48,9 @@ pub mod region;
 pub mod simulation;
 pub mod spec;
 pub mod stability;
+pub mod sweep;
 pub mod zoh;
+pub mod zwidth;
 
 pub use closed_loop::{AffineFamily, ClosedLoop, PolyFamily};
 pub use error::{Error, Result};

@@ -1,0 +1,209 @@
+//! `hapstab passivity`: the device damping a wall requires to be passive (Colgate–Schenkel;
+//! eq. 28 for the paper's loop, Section VIII), whether the device has it, and the passive
+//! region of the device beside the wall's stability.
+
+use anyhow::Result;
+use clap::Args;
+use hapstab::AffineFamily;
+use hapstab::params::Wall;
+use hapstab::passivity::{
+    DeviceDamping, PassiveRegion, Passivity, PassivityVerdict, SampledWall, passive_region,
+    passivity_with,
+};
+use serde::Serialize;
+
+use crate::family::{analysis, wall_units};
+use crate::model::{
+    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
+    resolve_loop_wall,
+};
+use crate::output::{eng, print_json, sig};
+
+/// Arguments of `hapstab passivity`.
+#[derive(Args, Debug)]
+#[command(mut_arg("alpha", |a| a.conflicts_with_all(NON_PAPER_PLANT_FLAGS)))]
+#[command(mut_arg("beta", |a| a.conflicts_with_all(NON_PAPER_PLANT_FLAGS)))]
+pub struct PassivityArgs {
+    #[command(flatten)]
+    lp: LoopArgs,
+    #[command(flatten)]
+    wall: WallArgs,
+    /// Print one JSON object instead of text (b_required in Ns/m; δ for a normalized plant).
+    #[arg(long)]
+    json: bool,
+}
+
+/// The passive region in the output: its largest stiffness and its polygon.
+#[derive(Serialize)]
+struct RegionOut {
+    k_max: f64,
+    b_at_k_max: f64,
+    area: f64,
+    bounded: bool,
+    /// Counter-clockwise vertices [K, B].
+    vertices: Vec<[f64; 2]>,
+}
+
+#[derive(Serialize)]
+struct PassivityOut {
+    input: LoopInput,
+    /// The device damping the wall requires, Ns/m (δ for a normalized plant).
+    b_required: f64,
+    /// Where the requirement binds, Hz (cycles per sample for a normalized plant).
+    binding_frequency_hz: f64,
+    /// The same as θ = ωT in [0, π].
+    binding_theta: f64,
+    /// The wall's static stiffness K + B·V(1), N/m (must be >= 0).
+    dc_stiffness: f64,
+    /// The device's damping b (null when the argument does not apply).
+    device_damping: Option<f64>,
+    /// True when b > b_required and the static stiffness is >= 0; null when not applicable.
+    meets: Option<bool>,
+    verdict: PassivityVerdict,
+    /// Why the verdict is not applicable.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    note: Option<String>,
+    /// The wall's stability (Schur–Cohn), to read beside the passivity verdict.
+    stable: bool,
+    /// The passive region for the device's damping (null when not applicable).
+    passive_region: Option<RegionOut>,
+}
+
+/// Runs `hapstab passivity`.
+pub fn run(a: &PassivityArgs) -> Result<()> {
+    let rl = a.lp.resolve(a.wall.normalized())?;
+    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
+    let sw = SampledWall::new(&rl.lp)?;
+    let p = passivity_with(&sw, &rl.lp, w);
+    let units = wall_units(&rl.lp, &fam, w)?;
+    let stable = analysis(&rl.lp, &fam, units)?.verdict == hapstab::stability::Verdict::Stable;
+    let region = match &p.device {
+        DeviceDamping::Known { damping } => Some(passive_region(&sw, *damping)?),
+        DeviceDamping::NotApplicable { .. } => None,
+    };
+    let out = output(&rl, &p, stable, region.as_ref());
+    if a.json {
+        return print_json(&out);
+    }
+    print_text(&rl, w, &out);
+    Ok(())
+}
+
+fn output(
+    rl: &ResolvedLoop,
+    p: &Passivity,
+    stable: bool,
+    region: Option<&PassiveRegion>,
+) -> PassivityOut {
+    let (device_damping, note) = match &p.device {
+        DeviceDamping::Known { damping } => (Some(*damping), None),
+        DeviceDamping::NotApplicable { reason } => (None, Some(reason.clone())),
+    };
+    PassivityOut {
+        input: LoopInput::new(rl, Some(p.wall)),
+        b_required: p.requirement.b_required,
+        binding_frequency_hz: p.requirement.frequency_hz,
+        binding_theta: p.requirement.theta,
+        dc_stiffness: p.dc_stiffness,
+        device_damping,
+        meets: match p.verdict {
+            PassivityVerdict::NotApplicable => None,
+            v => Some(v == PassivityVerdict::Passive),
+        },
+        verdict: p.verdict,
+        note,
+        stable,
+        passive_region: region.map(|r| RegionOut {
+            k_max: r.k_max,
+            b_at_k_max: r.b_at_k_max,
+            area: r.area,
+            bounded: r.bounded,
+            vertices: r
+                .vertices
+                .iter()
+                .map(|v| [v.stiffness, v.damping])
+                .collect(),
+        }),
+    }
+}
+
+fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
+    let (k_unit, b_unit, f_unit) = if rl.normalized {
+        ("", "", "cycles/sample")
+    } else {
+        ("N/m", "Ns/m", "Hz")
+    };
+    let num = |x: f64, unit: &str| {
+        if unit.is_empty() {
+            sig(x, 8)
+        } else {
+            eng(x, unit, 6)
+        }
+    };
+    if !rl.normalized {
+        for line in describe_loop(&rl.lp) {
+            println!("{line}");
+        }
+    }
+    let (what, k, b, area_unit) = if rl.normalized {
+        ("δ", "α", "β", "")
+    } else {
+        ("b", "K", "B", " N/m·Ns/m")
+    };
+    println!(
+        "wall        {k} = {}, {b} = {}",
+        num(w.stiffness, k_unit),
+        num(w.damping, b_unit)
+    );
+    println!(
+        "required    {what} > {} (Colgate–Schenkel; binds at {} {f_unit}, ωT = {})",
+        num(o.b_required, b_unit),
+        sig(o.binding_frequency_hz, 6),
+        sig(o.binding_theta, 6)
+    );
+    println!("passivity   {}", verdict_text(o, what, b_unit, &num));
+    let stable = if o.stable { "STABLE" } else { "NOT STABLE" };
+    let both = match (o.stable, o.meets) {
+        (true, Some(false)) => " (stable but not passive)",
+        (false, Some(true)) => " (passive but not asymptotically stable)",
+        _ => "",
+    };
+    println!("stability   {stable}{both}");
+    if let Some(r) = &o.passive_region {
+        println!(
+            "passive     {k}_max = {} at {b} = {}; region area {}{area_unit} ({} vertices)",
+            num(r.k_max, k_unit),
+            num(r.b_at_k_max, b_unit),
+            sig(r.area, 6),
+            r.vertices.len()
+        );
+    }
+}
+
+fn verdict_text(
+    o: &PassivityOut,
+    what: &str,
+    b_unit: &str,
+    num: &dyn Fn(f64, &str) -> String,
+) -> String {
+    let Some(b) = o.device_damping else {
+        return format!(
+            "not applicable: {}",
+            o.note.as_deref().unwrap_or("no device damper")
+        );
+    };
+    let have = format!("device {what} = {}", num(b, b_unit));
+    match o.verdict {
+        PassivityVerdict::Passive => format!("PASSIVE ({have})"),
+        PassivityVerdict::Boundary => format!("ON THE BOUNDARY ({have}, equal to the requirement)"),
+        PassivityVerdict::NotPassive if o.dc_stiffness < 0.0 => format!(
+            "NOT PASSIVE ({have}; the wall's static stiffness {} is negative)",
+            sig(o.dc_stiffness, 6)
+        ),
+        _ => format!(
+            "NOT PASSIVE ({have}, {} short)",
+            num(o.b_required - b, b_unit)
+        ),
+    }
+}

@@ -1,0 +1,243 @@
+//! `hapstab sweep`: K_max (stable, exact; and passive) against one parameter of the loop —
+//! delay, sampling period, filter cut-off or any plant parameter — as text, CSV, JSON and a
+//! plot, computed in parallel.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use hapstab::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange, sweep_param};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+
+use crate::model::{LoopArgs, LoopInput, describe_loop};
+use crate::output::{eng, print_json, sig};
+use crate::plot::{Figure, Legend, Marker, Series, palette};
+
+/// Arguments of `hapstab sweep`.
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    lp: LoopArgs,
+    /// The swept parameter as NAME:START:END:POINTS, e.g. delay-time:0:0.005:50. NAME is one
+    /// of delay-time, period (the delay time is kept), cutoff (with --velocity lowpass:FC),
+    /// window (with --velocity average:N), force-lag, mass, damping, stiffness (the effective
+    /// m, b, k of eq. 1), motor-mass, motor-damping, handle-mass, transmission-stiffness,
+    /// transmission-damping, arm-mass, arm-damping, arm-stiffness (of a two-mass device).
+    #[arg(long, value_name = "NAME:START:END:N")]
+    param: String,
+    /// K_max at this virtual damping B in Ns/m [default: over every B].
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "damping_band")]
+    wall_damping: Option<f64>,
+    /// K_max with the virtual damping B in LO:HI (Ns/m; `inf` allowed), e.g. 0:inf for a
+    /// device that cannot render negative damping.
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
+    damping_band: Option<String>,
+    /// Write the points as CSV.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// Write the plot as FILE.svg and FILE.png.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct SweepOut {
+    input: LoopInput,
+    param: SweepParam,
+    unit: &'static str,
+    k_max_at: KmaxAt,
+    points: Vec<SweepPoint>,
+    /// Wall-clock time of the analysis, s.
+    seconds: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plot: Option<crate::plot::Saved>,
+}
+
+fn k_max_at(a: &SweepArgs) -> Result<KmaxAt> {
+    if let Some(b) = a.wall_damping {
+        if !b.is_finite() {
+            bail!("--wall-damping B must be a finite number of Ns/m (got {b})");
+        }
+        return Ok(KmaxAt::Damping { damping: b });
+    }
+    let Some(band) = &a.damping_band else {
+        return Ok(KmaxAt::Overall);
+    };
+    let parse = |t: &str| -> Result<f64> {
+        let v: f64 = t
+            .trim()
+            .parse()
+            .with_context(|| format!("--damping-band '{band}': '{t}' is not a number"))?;
+        if v.is_nan() {
+            bail!("--damping-band '{band}': '{t}' is not a number");
+        }
+        Ok(v)
+    };
+    let Some((lo, hi)) = band.split_once(':') else {
+        bail!("--damping-band '{band}' must be LO:HI in Ns/m, e.g. 0:inf");
+    };
+    let (lo, hi) = (parse(lo)?, parse(hi)?);
+    if lo > hi {
+        bail!("--damping-band '{band}': LO must not exceed HI");
+    }
+    Ok(KmaxAt::Band { lo, hi })
+}
+
+fn progress_bar(a: &SweepArgs, n: usize) -> ProgressBar {
+    let bar = if !a.json && std::io::stderr().is_terminal() {
+        ProgressBar::new(n as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} points {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// Runs `hapstab sweep`.
+pub fn run(a: &SweepArgs) -> Result<()> {
+    let range: SweepRange = a.param.parse().context("--param")?;
+    let at = k_max_at(a)?;
+    let rl = a.lp.resolve(false)?;
+    if rl.normalized {
+        bail!("sweep works in physical units; give the device, not --gamma/--delta");
+    }
+    let bar = progress_bar(a, range.n);
+    let t = std::time::Instant::now();
+    let points = sweep_param(&rl.lp, &range, at, &|k| bar.set_position(k as u64))?;
+    let seconds = t.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    if let Some(path) = &a.csv {
+        write_csv(path, range.param, &points)?;
+    }
+    let plot = match &a.plot {
+        Some(p) => Some(figure(range.param, at, &points).save(p)?),
+        None => None,
+    };
+    let out = SweepOut {
+        input: LoopInput::new(&rl, None),
+        param: range.param,
+        unit: range.param.unit(),
+        k_max_at: at,
+        points,
+        seconds,
+        plot,
+    };
+    if a.json {
+        return print_json(&out);
+    }
+    print_text(&rl.lp, &out);
+    Ok(())
+}
+
+fn value_text(p: SweepParam, v: f64) -> String {
+    match p {
+        SweepParam::Window => format!("{v}"),
+        _ => eng(v, p.unit(), 5),
+    }
+}
+
+fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
+    for line in describe_loop(lp) {
+        println!("{line}");
+    }
+    let at = match o.k_max_at {
+        KmaxAt::Overall => "over every damping B".to_string(),
+        KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 5)),
+        KmaxAt::Band { lo, hi } => format!("for {} ≤ B ≤ {} Ns/m", sig(lo, 6), sig(hi, 6)),
+    };
+    println!(
+        "sweep       {} ({} points), K_max {at}",
+        o.param.name(),
+        o.points.len()
+    );
+    println!(
+        "  {:>14}  {:>14}  {:>14}  {:>14}",
+        o.param.name(),
+        "K_max stable",
+        "B at K_max",
+        "K_max passive"
+    );
+    let k = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| eng(v, "N/m", 5));
+    for p in &o.points {
+        let b = p
+            .b_at_k_max
+            .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 5));
+        println!(
+            "  {:>14}  {:>14}  {:>14}  {:>14}",
+            value_text(o.param, p.value),
+            k(p.k_max),
+            b,
+            k(p.k_max_passive)
+        );
+        if let Some(n) = &p.note {
+            println!("  {:>14}  undecided: {n}", "");
+        }
+    }
+    if let Some(s) = &o.plot {
+        println!("plot        {} and {}", s.svg.display(), s.png.display());
+    }
+}
+
+fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -> Result<()> {
+    let mut w =
+        csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
+    w.write_record([param.name(), "k_max", "b_at_k_max", "k_max_passive", "note"])?;
+    let cell = |x: Option<f64>| x.map(|v| v.to_string()).unwrap_or_default();
+    for p in points {
+        w.write_record([
+            p.value.to_string(),
+            cell(p.k_max),
+            cell(p.b_at_k_max),
+            cell(p.k_max_passive),
+            p.note.clone().unwrap_or_default(),
+        ])?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter.
+fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
+    let series = |f: fn(&SweepPoint) -> Option<f64>| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .map(|p| (p.value, f(p).unwrap_or(f64::NAN)))
+            .collect()
+    };
+    let title = match at {
+        KmaxAt::Overall => "Largest stable stiffness (over every damping)".to_string(),
+        KmaxAt::Damping { damping } => format!("Largest stable stiffness at B = {damping} Ns/m"),
+        KmaxAt::Band { lo, hi } => format!("Largest stable stiffness for {lo} ≤ B ≤ {hi} Ns/m"),
+    };
+    let mut f = Figure::new(title)
+        .x_label(format!("{} [{}]", param.name(), param.unit()))
+        .y_label("K_max [N/m]")
+        .legend(Legend::UpperRight);
+    let stable = series(|p| p.k_max);
+    f.add(
+        Series::line(stable.clone())
+            .color(palette::BLUE)
+            .label("stable (exact)"),
+    );
+    f.add(
+        Series::scatter(stable, Marker::Circle)
+            .color(palette::BLUE)
+            .size(4),
+    );
+    if points.iter().any(|p| p.k_max_passive.is_some()) {
+        f.add(
+            Series::dashed(series(|p| p.k_max_passive))
+                .color(palette::GREEN)
+                .label("passive (Colgate–Schenkel)"),
+        );
+    }
+    f
+}

@@ -1,0 +1,464 @@
+//! K_max against one parameter of the loop (delay, sampling period, filter cut-off, any plant
+//! parameter): the exact largest stable stiffness of Section V and the largest passive one
+//! (Section VIII) at every value, computed in parallel.
+
+use std::str::FromStr;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::boundary::stable_alpha_intervals;
+use crate::closed_loop::AffineFamily;
+use crate::error::{Error, Result, finite};
+use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
+use crate::params::Effective;
+use crate::passivity::{
+    DeviceDamping, SampledWall, device_damping, k_max_passive_at, passive_k_max,
+};
+use crate::region::{alpha_max_within, stable_region_with};
+
+/// Chord tolerance of the regions a sweep computes (relative to their size): a sweep reports
+/// only K_max, which is refined exactly on its arc (da/dθ = 0) whatever the chords, so the
+/// polygon may be 1000 times coarser than a drawn region's (four times faster).
+pub const SWEEP_REL_TOL: f64 = 1e-6;
+
+/// A parameter of the loop that a sweep varies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SweepParam {
+    /// Delay t_d in s (any fraction of a sample).
+    DelayTime,
+    /// Sampling period T in s; the delay time t_d is kept.
+    Period,
+    /// Cut-off f_c in Hz of the low-pass velocity estimator.
+    Cutoff,
+    /// Window N in samples of the averaging velocity estimator.
+    Window,
+    /// Actuator lag τ in s.
+    ForceLag,
+    /// Effective mass m in kg of the one-mass plant (eq. 1).
+    Mass,
+    /// Effective damping b in Ns/m of the one-mass plant.
+    Damping,
+    /// Effective stiffness k in N/m of the one-mass plant.
+    Stiffness,
+    /// Motor-side mass in kg of a two-mass device.
+    MotorMass,
+    /// Motor-side damping in Ns/m of a two-mass device.
+    MotorDamping,
+    /// Handle mass in kg of a two-mass device.
+    HandleMass,
+    /// Transmission stiffness in N/m of a two-mass device.
+    TransmissionStiffness,
+    /// Transmission damping in Ns/m of a two-mass device.
+    TransmissionDamping,
+    /// Arm mass m_H in kg (a two-mass device's arm).
+    ArmMass,
+    /// Arm damping b_H in Ns/m (a two-mass device's arm).
+    ArmDamping,
+    /// Arm stiffness k_H in N/m (a two-mass device's arm; k of the one-mass plant).
+    ArmStiffness,
+}
+
+impl SweepParam {
+    /// Every parameter, in the order of the help text.
+    pub const ALL: [SweepParam; 16] = [
+        SweepParam::DelayTime,
+        SweepParam::Period,
+        SweepParam::Cutoff,
+        SweepParam::Window,
+        SweepParam::ForceLag,
+        SweepParam::Mass,
+        SweepParam::Damping,
+        SweepParam::Stiffness,
+        SweepParam::MotorMass,
+        SweepParam::MotorDamping,
+        SweepParam::HandleMass,
+        SweepParam::TransmissionStiffness,
+        SweepParam::TransmissionDamping,
+        SweepParam::ArmMass,
+        SweepParam::ArmDamping,
+        SweepParam::ArmStiffness,
+    ];
+
+    /// The name used on the command line and in CSV/JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            SweepParam::DelayTime => "delay-time",
+            SweepParam::Period => "period",
+            SweepParam::Cutoff => "cutoff",
+            SweepParam::Window => "window",
+            SweepParam::ForceLag => "force-lag",
+            SweepParam::Mass => "mass",
+            SweepParam::Damping => "damping",
+            SweepParam::Stiffness => "stiffness",
+            SweepParam::MotorMass => "motor-mass",
+            SweepParam::MotorDamping => "motor-damping",
+            SweepParam::HandleMass => "handle-mass",
+            SweepParam::TransmissionStiffness => "transmission-stiffness",
+            SweepParam::TransmissionDamping => "transmission-damping",
+            SweepParam::ArmMass => "arm-mass",
+            SweepParam::ArmDamping => "arm-damping",
+            SweepParam::ArmStiffness => "arm-stiffness",
+        }
+    }
+
+    /// The parameter's SI unit.
+    pub fn unit(self) -> &'static str {
+        match self {
+            SweepParam::DelayTime | SweepParam::Period | SweepParam::ForceLag => "s",
+            SweepParam::Cutoff => "Hz",
+            SweepParam::Window => "samples",
+            SweepParam::Mass
+            | SweepParam::MotorMass
+            | SweepParam::HandleMass
+            | SweepParam::ArmMass => "kg",
+            SweepParam::Damping
+            | SweepParam::MotorDamping
+            | SweepParam::TransmissionDamping
+            | SweepParam::ArmDamping => "Ns/m",
+            SweepParam::Stiffness
+            | SweepParam::TransmissionStiffness
+            | SweepParam::ArmStiffness => "N/m",
+        }
+    }
+
+    /// The loop with this parameter set to `v` (validated like any loop). Fails, naming the
+    /// parameter, when the loop has no such parameter (a cut-off without a low-pass estimator,
+    /// a motor mass without a two-mass device, …).
+    pub fn apply(self, lp: &Loop, v: f64) -> Result<Loop> {
+        finite(self.name(), v)?;
+        let mut out = lp.clone();
+        match self {
+            SweepParam::DelayTime => out.delay = Delay::from_time(v, lp.period)?,
+            SweepParam::Period => {
+                crate::error::positive("sampling period T", v)?;
+                out.delay = Delay::from_time(lp.delay_time(), v)?;
+                out.period = v;
+            }
+            SweepParam::Cutoff => match out.velocity {
+                VelocityEstimator::LowPass { .. } => {
+                    out.velocity = VelocityEstimator::LowPass { cutoff_hz: v };
+                }
+                _ => return Err(missing(self, "a low-pass velocity estimator (lowpass:FC)")),
+            },
+            SweepParam::Window => match out.velocity {
+                VelocityEstimator::Average { .. } => {
+                    out.velocity = VelocityEstimator::Average {
+                        samples: whole_window(v)?,
+                    };
+                }
+                _ => return Err(missing(self, "an averaging velocity estimator (average:N)")),
+            },
+            SweepParam::ForceLag => out.plant.force_lag = v,
+            _ => out.plant = set_plant(self, &lp.plant, v)?,
+        }
+        Loop::new(out.plant, out.period, out.delay, out.velocity)
+    }
+}
+
+fn missing(p: SweepParam, needs: &str) -> Error {
+    Error::Invalid {
+        name: "sweep parameter",
+        reason: format!("{} needs {needs}", p.name()),
+    }
+}
+
+fn whole_window(v: f64) -> Result<usize> {
+    if v < 1.0 || v.fract() != 0.0 {
+        return Err(Error::OutOfRange {
+            name: "velocity average window N",
+            value: v,
+            range: "whole numbers 1..=2000",
+        });
+    }
+    Ok(v as usize)
+}
+
+/// Sets a plant parameter on the plant model that carries it.
+fn set_plant(p: SweepParam, plant: &Plant, v: f64) -> Result<Plant> {
+    let model = match (&plant.model, p) {
+        (PlantModel::MassSpringDamper(e), _) => PlantModel::MassSpringDamper(set_msd(p, e, v)?),
+        (PlantModel::TwoMass(t), _) => {
+            let mut t = *t;
+            match p {
+                SweepParam::MotorMass => t.motor_mass = v,
+                SweepParam::MotorDamping => t.motor_damping = v,
+                SweepParam::HandleMass => t.handle_mass = v,
+                SweepParam::TransmissionStiffness => t.transmission_stiffness = v,
+                SweepParam::TransmissionDamping => t.transmission_damping = v,
+                SweepParam::ArmMass => t.arm.mass = v,
+                SweepParam::ArmDamping => t.arm.damping = v,
+                SweepParam::ArmStiffness => t.arm.stiffness = v,
+                _ => {
+                    return Err(missing(
+                        p,
+                        "the one-mass plant (a two-mass device is given)",
+                    ));
+                }
+            }
+            PlantModel::TwoMass(t)
+        }
+        (PlantModel::TransferFunction { .. }, _) => {
+            return Err(missing(
+                p,
+                "a physical plant (a transfer function is given)",
+            ));
+        }
+    };
+    Plant::new(model, plant.force_lag)
+}
+
+fn set_msd(p: SweepParam, e: &Effective, v: f64) -> Result<Effective> {
+    match p {
+        SweepParam::Mass => Effective::new(v, e.damping, e.stiffness),
+        SweepParam::Damping => Effective::new(e.mass, v, e.stiffness),
+        SweepParam::Stiffness | SweepParam::ArmStiffness => Effective::new(e.mass, e.damping, v),
+        SweepParam::ArmMass | SweepParam::ArmDamping => Err(Error::Invalid {
+            name: "sweep parameter",
+            reason: format!(
+                "{} is part of the one-mass plant's effective m = m_L + m_H and b = b_L + b_H; \
+                 sweep mass or damping",
+                p.name()
+            ),
+        }),
+        _ => Err(missing(p, "a two-mass device")),
+    }
+}
+
+impl FromStr for SweepParam {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        SweepParam::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| Error::Invalid {
+                name: "sweep parameter",
+                reason: format!(
+                    "'{s}' is not one of {}",
+                    SweepParam::ALL.map(|p| p.name()).join(", ")
+                ),
+            })
+    }
+}
+
+/// Largest number of sweep points.
+pub const MAX_SWEEP_POINTS: usize = 100_000;
+
+/// n values from lo to hi inclusive of one parameter: `NAME:LO:HI:N` on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SweepRange {
+    /// The parameter.
+    pub param: SweepParam,
+    /// First value.
+    pub lo: f64,
+    /// Last value.
+    pub hi: f64,
+    /// Number of values (>= 2).
+    pub n: usize,
+}
+
+impl SweepRange {
+    /// Validates lo, hi finite and 2 <= n <= [`MAX_SWEEP_POINTS`].
+    pub fn new(param: SweepParam, lo: f64, hi: f64, n: usize) -> Result<Self> {
+        finite("sweep start", lo)?;
+        finite("sweep end", hi)?;
+        if !(2..=MAX_SWEEP_POINTS).contains(&n) {
+            return Err(Error::OutOfRange {
+                name: "sweep points N",
+                value: n as f64,
+                range: "2..=100000",
+            });
+        }
+        Ok(Self { param, lo, hi, n })
+    }
+
+    /// The i-th value.
+    pub fn value(&self, i: usize) -> f64 {
+        self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64
+    }
+
+    /// All values.
+    pub fn values(&self) -> Vec<f64> {
+        (0..self.n).map(|i| self.value(i)).collect()
+    }
+}
+
+impl FromStr for SweepRange {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        let parts: Vec<&str> = s.split(':').collect();
+        let [name, lo, hi, n] = parts[..] else {
+            return Err(Error::Invalid {
+                name: "sweep range",
+                reason: format!("'{s}' must be NAME:START:END:POINTS, e.g. delay-time:0:0.005:50"),
+            });
+        };
+        let num = |what: &'static str, t: &str| {
+            t.trim().parse::<f64>().map_err(|_| Error::Invalid {
+                name: what,
+                reason: format!("'{t}' is not a number"),
+            })
+        };
+        let count = n.trim().parse::<usize>().map_err(|_| Error::Invalid {
+            name: "sweep points N",
+            reason: format!("'{n}' is not a whole number"),
+        })?;
+        Self::new(
+            name.trim().parse()?,
+            num("sweep start", lo)?,
+            num("sweep end", hi)?,
+            count,
+        )
+    }
+}
+
+/// Where K_max is taken.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum KmaxAt {
+    /// Over every damping B: the stable region's largest K (Section V).
+    Overall,
+    /// At one virtual damping B in Ns/m: the top of the exact stable interval.
+    Damping {
+        /// B in Ns/m.
+        damping: f64,
+    },
+    /// Over a damping band lo <= B <= hi in Ns/m.
+    Band {
+        /// Lowest B.
+        lo: f64,
+        /// Highest B.
+        hi: f64,
+    },
+}
+
+/// K_max at one parameter value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepPoint {
+    /// The parameter's value.
+    pub value: f64,
+    /// Largest stable K in N/m (None when none is stable, or undecided: see `note`).
+    pub k_max: Option<f64>,
+    /// The B in Ns/m where it is reached.
+    pub b_at_k_max: Option<f64>,
+    /// Largest passive K in N/m under the same damping constraint (None when passivity does
+    /// not apply or nothing is passive).
+    pub k_max_passive: Option<f64>,
+    /// Why a value is missing, when the analysis could not decide.
+    pub note: Option<String>,
+}
+
+/// K_max (stable and passive) of the loops `loop_at(v)` for every value, in parallel;
+/// `progress` is called with the number of points done. Every loop is built (and so
+/// validated) before any analysis, so a bad value fails the whole sweep with its message.
+pub fn kmax_sweep<F>(
+    values: &[f64],
+    loop_at: F,
+    at: KmaxAt,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<SweepPoint>>
+where
+    F: Fn(f64) -> Result<Loop>,
+{
+    let loops: Vec<Loop> = values.iter().map(|&v| loop_at(v)).collect::<Result<_>>()?;
+    let done = AtomicUsize::new(0);
+    Ok(values
+        .par_iter()
+        .zip(loops.par_iter())
+        .map(|(&v, lp)| {
+            let p = sweep_point(v, lp, at);
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            p
+        })
+        .collect())
+}
+
+/// The sweep of one parameter of a base loop (see [`SweepParam::apply`]).
+pub fn sweep_param(
+    base: &Loop,
+    range: &SweepRange,
+    at: KmaxAt,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<SweepPoint>> {
+    kmax_sweep(
+        &range.values(),
+        |v| range.param.apply(base, v),
+        at,
+        progress,
+    )
+}
+
+fn sweep_point(value: f64, lp: &Loop, at: KmaxAt) -> SweepPoint {
+    let mut p = SweepPoint {
+        value,
+        k_max: None,
+        b_at_k_max: None,
+        k_max_passive: None,
+        note: None,
+    };
+    match stable_kmax(lp, at) {
+        Ok(Some((k, b))) => {
+            p.k_max = Some(k);
+            p.b_at_k_max = Some(b);
+        }
+        Ok(None) => {}
+        Err(e) => p.note = Some(e.to_string()),
+    }
+    p.k_max_passive = passive_kmax(lp, at);
+    p
+}
+
+/// The largest stable K and its B in physical units.
+fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
+    let fam = AffineFamily::of_loop(lp)?;
+    let best = match at {
+        KmaxAt::Damping { damping } => {
+            let (_, beta) = fam.to_units(0.0, damping);
+            stable_alpha_intervals(&fam, beta)
+                .iter()
+                .map(|iv| iv.hi)
+                .filter(|h| h.is_finite())
+                .reduce(f64::max)
+                .map(|a| (a, beta))
+        }
+        KmaxAt::Overall => {
+            let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
+            r.alpha_max
+                .is_finite()
+                .then_some((r.alpha_max, r.beta_at_alpha_max))
+        }
+        KmaxAt::Band { lo, hi } => {
+            let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
+            let (_, b0) = fam.to_units(0.0, lo);
+            let (_, b1) = fam.to_units(0.0, hi);
+            alpha_max_within(&fam, &r, b0, b1).map(|p| (p.alpha, p.beta))
+        }
+    };
+    Ok(best.map(|(a, b)| fam.to_physical(a, b)))
+}
+
+/// The largest passive K under the same damping constraint; the passive region is convex, so
+/// over a band it is the region's maximum if its B lies in the band, else the band's nearer
+/// edge.
+fn passive_kmax(lp: &Loop, at: KmaxAt) -> Option<f64> {
+    let DeviceDamping::Known { damping: b } = device_damping(&lp.plant) else {
+        return None;
+    };
+    let sw = SampledWall::new(lp).ok()?;
+    let best = || passive_k_max(&sw, b).filter(|w| w.stiffness.is_finite());
+    match at {
+        KmaxAt::Damping { damping } => k_max_passive_at(&sw, b, damping),
+        KmaxAt::Overall => best().map(|w| w.stiffness),
+        KmaxAt::Band { lo, hi } => {
+            let w = best()?;
+            if (lo..=hi).contains(&w.damping) {
+                Some(w.stiffness)
+            } else {
+                let edge = if w.damping < lo { lo } else { hi };
+                k_max_passive_at(&sw, b, edge)
+            }
+        }
+    }
+}

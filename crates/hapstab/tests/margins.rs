@@ -1,0 +1,278 @@
+//! Stability margins of a wall on any loop. Each margin is checked against the Schur–Cohn test
+//! on the perturbed loop (just inside and just beyond the margin) and against the roots, never
+//! against the margins module itself.
+
+use hapstab::boundary::stable_alpha_intervals;
+use hapstab::margins::margins;
+use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+use hapstab::params::{Arm, Effective, Wall};
+use hapstab::stability::roots;
+use hapstab::{AffineFamily, schur_stable};
+use num_complex::Complex64;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next_f64()
+    }
+    fn below(&mut self, n: usize) -> usize {
+        ((self.next_f64() * n as f64) as usize).min(n - 1)
+    }
+}
+
+/// Schur–Cohn stability of a physical wall on a loop.
+fn stable(lp: &Loop, k: f64, b: f64) -> bool {
+    let fam = AffineFamily::of_loop(lp).unwrap();
+    let (a, bb) = fam.to_units(k, b);
+    schur_stable(&fam.coefficients(a, bb))
+}
+
+/// The root closest to the unit circle at a physical wall: (|z| − 1, arg z).
+fn critical_root(lp: &Loop, k: f64, b: f64) -> (f64, f64) {
+    let fam = AffineFamily::of_loop(lp).unwrap();
+    let (a, bb) = fam.to_units(k, b);
+    let z: Complex64 = roots(&fam.coefficients(a, bb))
+        .unwrap()
+        .into_iter()
+        .min_by(|x, y| (x.norm() - 1.0).abs().total_cmp(&(y.norm() - 1.0).abs()))
+        .unwrap();
+    (z.norm() - 1.0, z.arg().abs())
+}
+
+fn random_loop(rng: &mut SplitMix, i: usize) -> Loop {
+    let v = match rng.below(4) {
+        0 => VelocityEstimator::Backward,
+        1 => VelocityEstimator::LowPass {
+            cutoff_hz: rng.range(30.0, 300.0),
+        },
+        2 => VelocityEstimator::Average {
+            samples: 1 + rng.below(8),
+        },
+        _ => VelocityEstimator::Iir {
+            b: vec![500.0, -500.0],
+            a: vec![1.0, -0.5],
+        },
+    };
+    let arm = Arm {
+        mass: rng.range(0.0, 1.5),
+        damping: rng.range(0.0, 6.0),
+        stiffness: rng.range(0.0, 500.0),
+    };
+    let model = match i % 3 {
+        0 => PlantModel::MassSpringDamper(
+            Effective::new(0.1 + arm.mass, 1.5 + arm.damping, arm.stiffness).unwrap(),
+        ),
+        1 => PlantModel::TwoMass(TwoMass {
+            motor_mass: rng.range(0.03, 0.2),
+            motor_damping: rng.range(0.2, 3.0),
+            handle_mass: rng.range(0.01, 0.1),
+            transmission_stiffness: 10f64.powf(rng.range(4.0, 6.0)),
+            transmission_damping: rng.range(0.0, 3.0),
+            arm,
+        }),
+        _ => PlantModel::TransferFunction {
+            num: vec![1.0],
+            den: vec![0.3, 2.0, 100.0],
+        },
+    };
+    let lag = if i % 4 == 3 {
+        rng.range(1e-5, 3e-4)
+    } else {
+        0.0
+    };
+    let delay = Delay {
+        samples: rng.below(3),
+        fraction: if i % 2 == 1 { rng.range(0.0, 1.0) } else { 0.0 },
+    };
+    Loop::new(Plant::new(model, lag).unwrap(), 1e-3, delay, v).unwrap()
+}
+
+/// A stable wall inside the stable K interval at a random damping.
+fn stable_wall(rng: &mut SplitMix, lp: &Loop) -> Option<Wall> {
+    let fam = AffineFamily::of_loop(lp).unwrap();
+    let b = rng.range(0.0, 20.0);
+    let (_, beta) = fam.to_units(0.0, b);
+    let iv = stable_alpha_intervals(&fam, beta)
+        .into_iter()
+        .find(|iv| iv.hi.is_finite() && iv.hi > 0.0)?;
+    let lo = iv.lo.max(0.0);
+    let a = lo + (iv.hi - lo) * rng.range(0.2, 0.9);
+    let (k, _) = fam.to_physical(a, beta);
+    Some(Wall {
+        stiffness: k,
+        damping: b,
+    })
+}
+
+fn cases(n: usize, seed: u64) -> Vec<(Loop, Wall)> {
+    let mut rng = SplitMix(seed);
+    let mut out = Vec::new();
+    let mut i = 0;
+    while out.len() < n {
+        let lp = random_loop(&mut rng, i);
+        i += 1;
+        if let Some(w) = stable_wall(&mut rng, &lp) {
+            out.push((lp, w));
+        }
+    }
+    out
+}
+
+const EPS: f64 = 1e-6;
+
+/// Acceptance: K × gain margin (±1e-6) crosses the boundary, on K alone and on (K, B)
+/// together, and the critical frequency is the angle of the root pair on the unit circle there.
+#[test]
+fn gain_margins_cross_the_boundary() {
+    cases(40, 0x6A1A).par_iter().for_each(|(lp, w)| {
+        let m = margins(lp, *w).unwrap();
+        assert!(m.stable, "{lp:?} {w:?}");
+        let g = m
+            .gain
+            .unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
+        assert!(g.factor > 1.0);
+        let (k, b) = (w.stiffness, w.damping);
+        assert!(
+            stable(lp, k * g.factor * (1.0 - EPS), b),
+            "{lp:?} {w:?} {g:?}"
+        );
+        assert!(
+            !stable(lp, k * g.factor * (1.0 + EPS), b),
+            "{lp:?} {w:?} {g:?}"
+        );
+        let (off, angle) = critical_root(lp, k * g.factor, b);
+        assert!(off.abs() < 1e-7, "{lp:?}: root off the circle by {off}");
+        assert!((angle - g.theta).abs() < 1e-6, "{angle} vs {}", g.theta);
+        let f = angle / (2.0 * PI * lp.period);
+        let fc = m.critical_frequency_hz.unwrap();
+        assert!(
+            (f - fc).abs() <= 1e-6 * (1.0 / lp.period),
+            "{f} Hz vs {fc} Hz"
+        );
+        if let Some(gk) = m.gain_kb {
+            let s = gk.factor;
+            assert!(
+                stable(lp, k * s * (1.0 - EPS), b * s * (1.0 - EPS)),
+                "{gk:?}"
+            );
+            assert!(
+                !stable(lp, k * s * (1.0 + EPS), b * s * (1.0 + EPS)),
+                "{gk:?}"
+            );
+        }
+    });
+}
+
+/// Acceptance: adding the delay margin (±1e-6) as fractional delay crosses the boundary; the
+/// root pair on the unit circle there has the reported frequency.
+#[test]
+fn delay_margin_crosses_the_boundary() {
+    cases(30, 0xDE1A).par_iter().for_each(|(lp, w)| {
+        let m = margins(lp, *w).unwrap();
+        let dm = m
+            .delay
+            .unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
+        assert!(dm.seconds > 0.0);
+        let at = |extra: f64| {
+            let delay = Delay::from_time(lp.delay_time() + extra, lp.period).unwrap();
+            lp.with_delay(delay).unwrap()
+        };
+        let (k, b) = (w.stiffness, w.damping);
+        assert!(
+            stable(&at(dm.seconds * (1.0 - EPS)), k, b),
+            "{lp:?} {w:?} {dm:?}"
+        );
+        assert!(
+            !stable(&at(dm.seconds * (1.0 + EPS)), k, b),
+            "{lp:?} {w:?} {dm:?}"
+        );
+        let (off, angle) = critical_root(&at(dm.seconds), k, b);
+        assert!(off.abs() < 1e-6, "{off}");
+        assert!((angle - dm.theta).abs() < 1e-5, "{angle} vs {}", dm.theta);
+    });
+}
+
+/// The phase margin is where |L| = 1 and a phase lag of that many degrees puts L on −1; and,
+/// well below the Nyquist frequency where the hold acts as a pure delay, the delay margin is
+/// close to the classical PM/ω_c (two independent methods: frequency response and the exact
+/// sampled loop's roots).
+#[test]
+fn phase_margin_and_delay_margin_agree() {
+    let mut checked = 0;
+    for (lp, w) in cases(30, 0xFA5E) {
+        let m = margins(&lp, w).unwrap();
+        let (Some(pm), Some(dm)) = (m.phase, m.delay) else {
+            continue;
+        };
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        let (a, b) = fam.to_units(w.stiffness, w.damping);
+        let (p0, pk, pb) = fam.parts_at(Complex64::from_polar(1.0, pm.theta));
+        let l = (pk * a + pb * b) / p0;
+        assert!((l.norm() - 1.0).abs() < 1e-9, "|L| = {}", l.norm());
+        let rotated = l * Complex64::from_polar(1.0, -pm.degrees.to_radians());
+        assert!((rotated + 1.0).norm() < 1e-9, "{rotated}");
+        if pm.theta < 0.3 && pm.degrees > 0.0 && (dm.theta - pm.theta).abs() < 0.05 * pm.theta {
+            let classical = pm.degrees.to_radians() / pm.theta * lp.period;
+            let r = dm.seconds / classical;
+            assert!(
+                (r - 1.0).abs() < 0.1,
+                "{lp:?} {w:?}: {dm:?} vs PM/ω = {classical}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 5, "{checked}");
+}
+
+/// A wall that is not stable has no margins, and says why.
+#[test]
+fn unstable_wall_has_no_margins() {
+    let lp = Loop::paper(Effective::new(1.1, 7.5, 350.0).unwrap(), 1e-3, 0).unwrap();
+    let m = margins(
+        &lp,
+        Wall {
+            stiffness: 1e6,
+            damping: 0.0,
+        },
+    )
+    .unwrap();
+    assert!(!m.stable);
+    assert!(m.gain.is_none() && m.delay.is_none() && m.phase.is_none());
+    assert!(m.notes[0].contains("not stable"));
+}
+
+/// The paper's pure mass without delay: the stable α interval at β is (0, 2β(2 − β)/(2 + β))
+/// (closed form), so the gain margin on K is that end over α, with the root pair at the
+/// angle where the curve meets it.
+#[test]
+fn pure_mass_gain_margin_closed_form() {
+    let lp = Loop::paper(Effective::new(1.0, 0.0, 0.0).unwrap(), 1.0, 0).unwrap();
+    for (alpha, beta) in [(0.1, 0.5), (0.3, 1.0), (0.01, 0.2)] {
+        let m = margins(
+            &lp,
+            Wall {
+                stiffness: alpha,
+                damping: beta,
+            },
+        )
+        .unwrap();
+        let want = 2.0 * beta * (2.0 - beta) / (2.0 + beta) / alpha;
+        let g = m.gain.unwrap();
+        assert!(
+            (g.factor - want).abs() < 1e-12 * want,
+            "{} vs {want}",
+            g.factor
+        );
+    }
+}
