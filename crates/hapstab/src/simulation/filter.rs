@@ -18,6 +18,9 @@ pub(super) struct VelocityFilter {
     estimates: Vec<(usize, f64)>,
     /// The degree m of den: the oldest sample the filter reads is m back.
     order: usize,
+    /// The common difference form (backward, average): two position taps and no recursion,
+    /// summed in the same order as the general form.
+    two_taps: Option<[(usize, f64); 2]>,
 }
 
 impl VelocityFilter {
@@ -32,10 +35,17 @@ impl VelocityFilter {
                 .map(|(i, &x)| (order - i, x))
                 .collect()
         };
+        let positions = taps(num, order + 1);
+        let estimates = taps(den, order);
+        let two_taps = match (positions.as_slice(), estimates.is_empty()) {
+            (&[a, b], true) => Some([a, b]),
+            _ => None,
+        };
         Self {
-            positions: taps(num, order + 1),
-            estimates: taps(den, order),
+            positions,
+            estimates,
             order,
+            two_taps,
         }
     }
 
@@ -53,6 +63,9 @@ impl VelocityFilter {
     /// `v(lag)` = v_{j−lag}.
     #[inline(always)]
     pub(super) fn output(&self, y: impl Fn(usize) -> f64, v: impl Fn(usize) -> f64) -> f64 {
+        if let Some([(l0, c0), (l1, c1)]) = self.two_taps {
+            return 0.0 + c0 * y(l0) + c1 * y(l1);
+        }
         let mut acc = 0.0;
         for &(lag, c) in &self.positions {
             acc += c * y(lag);

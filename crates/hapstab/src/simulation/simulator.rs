@@ -29,17 +29,42 @@ struct WallSample {
 struct Engine<const N: usize> {
     free: Kernel<N>,
     stuck: Option<StuckKernels<N>>,
-    output: [f64; N],
-    velocity: [f64; N],
+    output: Row<N>,
+    velocity: Row<N>,
+}
+
+/// A row read from the state: one state itself (the mechanical models' position and
+/// velocity) or a combination of states (a transfer function's realization).
+#[derive(Debug, Clone, Copy)]
+enum Row<const N: usize> {
+    State(usize),
+    Combination([f64; N]),
+}
+
+impl<const N: usize> Row<N> {
+    fn new(row: &[f64]) -> Self {
+        let ones: Vec<usize> = (0..row.len()).filter(|&i| row[i] != 0.0).collect();
+        match ones.as_slice() {
+            &[i] if row[i] == 1.0 => Row::State(i),
+            _ => {
+                let mut a = [0.0; N];
+                a[..row.len()].copy_from_slice(row);
+                Row::Combination(a)
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn read(&self, x: &[f64; N]) -> f64 {
+        match self {
+            Row::State(i) => x[*i],
+            Row::Combination(c) => dot(c, x),
+        }
+    }
 }
 
 impl<const N: usize> Engine<N> {
     fn new(parts: &Parts, continuous: Option<&Continuous>) -> Self {
-        let pad = |v: &[f64]| {
-            let mut a = [0.0; N];
-            a[..v.len()].copy_from_slice(v);
-            a
-        };
         let dl = &parts.dl;
         Self {
             free: Kernel::new(
@@ -47,8 +72,8 @@ impl<const N: usize> Engine<N> {
                 [&dl.gamma0, &dl.gamma1, &parts.human, &parts.friction],
             ),
             stuck: continuous.map(Continuous::stuck_kernels),
-            output: pad(&dl.c),
-            velocity: pad(&parts.ports.velocity),
+            output: Row::new(&dl.c),
+            velocity: Row::new(&parts.ports.velocity),
         }
     }
 }
@@ -197,20 +222,6 @@ struct Memory {
     recorder: Option<Recorder>,
     blown_up: bool,
     friction_events: usize,
-}
-
-impl Memory {
-    #[inline(always)]
-    fn record(&mut self, laws: &Laws, row: [f64; 4]) {
-        let k = self.k;
-        if let Some(r) = self.recorder.as_mut()
-            && r.next == k
-        {
-            let [y, v, uw, uh] = row;
-            let (t, s) = (laws.period, laws.scale);
-            r.push([k as f64 * t, y, v / t, uw / s, uh / s]);
-        }
-    }
 }
 
 /// The time-domain simulator of Fig. 3 for any loop (see the module documentation).
@@ -403,27 +414,39 @@ fn run_loop<const LINEAR: bool, const N: usize>(
     if mem.blown_up {
         return Ok(0);
     }
-    let recording = mem.recorder.is_some();
-    let (d, mask, vmask) = (laws.d, mem.mask, mem.vmask);
+    let Memory {
+        k: mem_k,
+        x: mem_x,
+        ring,
+        mask,
+        vring,
+        vmask,
+        prev_force,
+        log,
+        recorder,
+        blown_up,
+        friction_events,
+    } = mem;
+    let (d, mask, vmask) = (laws.d, *mask, *vmask);
+    let (ring, vring) = (&mut ring[..], &mut vring[..]);
     let recursive = laws.filter.recursive();
-    let mut x: [f64; N] = std::array::from_fn(|i| mem.x[i]);
+    let direct = laws.direct_actuator != 0.0 || laws.direct_human != 0.0;
+    let mut x: [f64; N] = std::array::from_fn(|i| mem_x[i]);
+    let (mut k, mut prev) = (*mem_k, *prev_force);
     let mut done = 0;
+    let mut result = Ok(());
     while done < n {
-        let k = mem.k;
-        let pos = dot(&e.output, &x);
+        let pos = e.output.read(&x);
         let y = if LINEAR { pos } else { laws.sense(pos) };
-        mem.ring[k & mask] = y;
+        ring[k & mask] = y;
         let j = k.wrapping_sub(d);
-        let yd = mem.ring[j & mask];
-        let v = {
-            let (ring, vring) = (&mem.ring, &mem.vring);
-            laws.filter.output(
-                |lag| ring[j.wrapping_sub(lag) & mask],
-                |lag| vring[j.wrapping_sub(lag) & vmask],
-            )
-        };
+        let yd = ring[j & mask];
+        let v = laws.filter.output(
+            |lag| ring[j.wrapping_sub(lag) & mask],
+            |lag| vring[j.wrapping_sub(lag) & vmask],
+        );
         if recursive {
-            mem.vring[j & vmask] = v;
+            vring[j & vmask] = v;
         }
         let wall = if LINEAR {
             WallSample {
@@ -434,14 +457,26 @@ fn run_loop<const LINEAR: bool, const N: usize>(
         } else {
             laws.wall(yd, v)
         };
-        let uh = laws.human_at(k)?;
-        let u = [-wall.force, -mem.prev_force, uh, 0.0];
-        let ua = if laws.fractional { u[WALL_PREV] } else { u[WALL_NOW] };
-        let vel = dot(&e.velocity, &x) + laws.direct_actuator * ua + laws.direct_human * u[HUMAN];
-        if recording {
-            mem.record(laws, [pos, vel, wall.force, uh]);
+        let uh = match laws.human_at(k) {
+            Ok(uh) => uh,
+            Err(err) => {
+                result = Err(err);
+                break;
+            }
+        };
+        let u = [-wall.force, -prev, uh, 0.0];
+        let mut vel = e.velocity.read(&x);
+        if direct {
+            let ua = if laws.fractional { u[WALL_PREV] } else { u[WALL_NOW] };
+            vel += laws.direct_actuator * ua + laws.direct_human * u[HUMAN];
         }
-        mem.log.push(SampleFacts {
+        if let Some(r) = recorder.as_mut()
+            && r.next == k
+        {
+            let (t, s) = (laws.period, laws.scale);
+            r.push([k as f64 * t, pos, vel / t, wall.force / s, uh / s]);
+        }
+        log.push(SampleFacts {
             position: pos,
             velocity: vel,
             in_contact: wall.in_contact,
@@ -449,21 +484,22 @@ fn run_loop<const LINEAR: bool, const N: usize>(
         });
         x = match (&laws.continuous, &e.stuck, laws.friction) {
             (Some(c), Some(stuck), Some(fr)) if !LINEAR => {
-                mem.friction_events += c.friction_sample(&e.free, stuck, &mut x, u, fr);
+                *friction_events += c.friction_sample(&e.free, stuck, &mut x, u, fr);
                 x
             }
             _ => e.free.step(&x, u),
         };
-        mem.prev_force = wall.force;
-        mem.k += 1;
+        prev = wall.force;
+        k += 1;
         done += 1;
         if !x.iter().all(|v| v.abs() < BLOW_UP) {
-            mem.blown_up = true;
+            *blown_up = true;
             break;
         }
     }
-    mem.x[..N].copy_from_slice(&x);
-    Ok(done)
+    mem_x[..N].copy_from_slice(&x);
+    (*mem_k, *prev_force) = (k, prev);
+    result.map(|()| done)
 }
 
 /// The loop's state as one vector, for measuring its growth ([`super::growth`]): plant

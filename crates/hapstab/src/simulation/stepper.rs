@@ -9,10 +9,10 @@
 //! x_{k+1} = x_k + E x_k + Γ0 u_{k−d} + Γ1 u_{k−d−1} + Ψ(1)b_h u_h + Ψ(1)b_f u_f,
 //! ```
 //!
-//! exact for inputs held over the sample (the wall force switching at λT). Inputs that share
-//! a column (the paper's plant: wall, human and friction all act on the mass) are summed
-//! first and multiply it once. A [`Kernel`] has a fixed state size N, so small plants run
-//! on unrolled loops; a plant of order n < N is padded with zero states, which stays exact.
+//! exact for inputs held over the sample (the wall force switching at λT); the kernel steps
+//! it as Φ x + Σ columns·inputs with Φ = I + E, as the paper's 2×2 plant was stepped. A
+//! [`Kernel`] has a fixed state size N, so small plants run on unrolled loops; a plant of
+//! order n < N is padded with zero states, which stays exact.
 //!
 //! # Within a sample
 //!
@@ -51,8 +51,6 @@ pub(super) const WALL_PREV: usize = 1;
 pub(super) const HUMAN: usize = 2;
 /// Channel of the friction force.
 pub(super) const FRICTION: usize = 3;
-/// Where channels with a zero column go.
-const VOID: usize = CHANNELS;
 
 /// Most friction events (reversals, breakaways) handled within one sample: more would need
 /// dynamics far faster than the sampling.
@@ -63,63 +61,45 @@ const LOCATE_TOL: f64 = 1e-15;
 /// [`LOCATE_TOL`] takes 50).
 const LOCATE_STEPS: usize = 200;
 
-/// The one-sample map x ↦ x + E x + Σ columns·inputs for a state of size N.
+/// The one-sample map x ↦ Φ x + Σ columns·inputs for a state of size N (Φ = I + E).
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Kernel<const N: usize> {
-    e: [[f64; N]; N],
+    phi: [[f64; N]; N],
     cols: [[f64; N]; CHANNELS],
-    ncols: usize,
-    map: [usize; CHANNELS],
 }
 
 impl<const N: usize> Kernel<N> {
-    /// The kernel of E and the input column of each channel (zero columns are dropped,
-    /// equal columns merged).
+    /// The kernel of E = Φ − I and the input column of each channel (zero-padded to N).
     pub(super) fn new(e: &Mat, channels: [&[f64]; CHANNELS]) -> Self {
         let mut k = Self {
-            e: [[0.0; N]; N],
+            phi: [[0.0; N]; N],
             cols: [[0.0; N]; CHANNELS],
-            ncols: 0,
-            map: [VOID; CHANNELS],
         };
-        for (row, src) in k.e.iter_mut().zip(e) {
+        for (i, (row, src)) in k.phi.iter_mut().zip(e).enumerate() {
             row[..src.len()].copy_from_slice(src);
+            row[i] += 1.0;
         }
-        for (ch, col) in channels.iter().enumerate() {
-            if col.iter().all(|&v| v == 0.0) {
-                continue;
-            }
-            let mut padded = [0.0; N];
-            padded[..col.len()].copy_from_slice(col);
-            k.map[ch] = match (0..k.ncols).find(|&c| k.cols[c] == padded) {
-                Some(c) => c,
-                None => {
-                    k.cols[k.ncols] = padded;
-                    k.ncols += 1;
-                    k.ncols - 1
-                }
-            };
+        for (col, src) in k.cols.iter_mut().zip(channels) {
+            col[..src.len()].copy_from_slice(src);
         }
         k
     }
 
-    /// One sample with the inputs of each channel held.
+    /// One sample with the inputs of each channel held. The inputs are summed first, off
+    /// the state's dependency chain from sample to sample; zero columns add exact zeros.
     #[inline(always)]
     pub(super) fn step(&self, x: &[f64; N], u: [f64; CHANNELS]) -> [f64; N] {
-        let mut uc = [0.0; CHANNELS + 1];
-        for (ch, &v) in u.iter().enumerate() {
-            uc[self.map[ch]] += v;
-        }
         let mut out = [0.0; N];
-        for i in 0..N {
-            let mut s = 0.0;
+        for (i, o) in out.iter_mut().enumerate() {
+            let c = &self.cols;
+            let mut s = c[WALL_PREV][i] * u[WALL_PREV]
+                + c[HUMAN][i] * u[HUMAN]
+                + c[FRICTION][i] * u[FRICTION]
+                + c[WALL_NOW][i] * u[WALL_NOW];
             for j in 0..N {
-                s += self.e[i][j] * x[j];
+                s += self.phi[i][j] * x[j];
             }
-            for c in 0..self.ncols {
-                s += self.cols[c][i] * uc[c];
-            }
-            out[i] = x[i] + s;
+            *o = s;
         }
         out
     }
