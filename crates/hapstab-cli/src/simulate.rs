@@ -13,7 +13,8 @@ use hapstab::boundary::AlphaBeta;
 use hapstab::region::stable_region;
 use hapstab::simulation::{
     BoundarySearch, Config, Contact, DEFAULT_MAX_SAMPLES, Effects, EmpiricalPoint, Friction,
-    HumanForce, Initial, MAX_TRACE_ROWS, MIN_REL_TOLERANCE, Model, Outcome, RunResult, StableWhen,
+    HumanForce, Initial, MAX_TRACE_ROWS, MIN_REL_TOLERANCE, Model, Outcome, RunResult, SimModel,
+    StableWhen,
     Trace, empirical_boundary, samples_for_duration, simulate,
 };
 use hapstab::{Normalized, PolyFamily, Verdict};
@@ -219,6 +220,30 @@ impl RunArgs {
         cfg.initial = s.initial;
         cfg.validate()?;
         Ok((cfg, s))
+    }
+}
+
+/// A one-line caption of the simulated loop: (α, β, γ, δ, d) for the paper's loop, the wall
+/// and the delay otherwise.
+fn model_caption(m: &SimModel) -> String {
+    match m {
+        SimModel::Paper(m) => {
+            let p = m.params;
+            format!(
+                "α = {}, β = {}, γ = {}, δ = {}, d = {}",
+                sig(p.alpha, 4),
+                sig(p.beta, 4),
+                sig(p.gamma, 3),
+                sig(p.delta, 3),
+                p.d
+            )
+        }
+        SimModel::Loop(l) => format!(
+            "K = {}, B = {}, t_d = {}",
+            eng(l.wall.stiffness, "N/m", 4),
+            eng(l.wall.damping, "Ns/m", 4),
+            eng(l.lp.delay_time(), "s", 4)
+        ),
     }
 }
 
@@ -535,16 +560,8 @@ fn outcome_summary(r: &RunResult, units: Units) -> String {
 }
 
 fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: Units) -> Grid {
-    let p = cfg.model.params;
     let verdict = outcome_summary(r, units);
-    let params = format!(
-        "α = {}, β = {}, γ = {}, δ = {}, d = {}",
-        sig(p.alpha, 4),
-        sig(p.beta, 4),
-        sig(p.gamma, 3),
-        sig(p.delta, 3),
-        p.d
-    );
+    let params = model_caption(&cfg.model);
     let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let xw = cfg.effects.wall_position;
     let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
@@ -560,7 +577,7 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
             .collect();
         crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
     };
-    let t_end = tr.time.last().copied().unwrap_or(1.0).max(cfg.model.period);
+    let t_end = tr.time.last().copied().unwrap_or(1.0).max(cfg.model.period());
     let tlabel = format!("time t ({})", units.time());
     let mut pos = Figure::new(params)
         .x_label(&tlabel)
@@ -575,8 +592,8 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
             (a.min(x), b.max(x))
         });
     let (j0, j1) = (
-        r.verdict.judged_from_sample as f64 * cfg.model.period,
-        r.verdict.judged_to_sample as f64 * cfg.model.period,
+        r.verdict.judged_from_sample as f64 * cfg.model.period(),
+        r.verdict.judged_to_sample as f64 * cfg.model.period(),
     );
     if hi > lo {
         let (lo, hi) = (lo * xs, hi * xs);

@@ -527,7 +527,9 @@ impl PlantPorts {
             PlantModel::MassSpringDamper(_) => Self::on_mass(padded(base.b.clone(), n), &base, n),
             PlantModel::TwoMass(t) => {
                 let on_handle = plant.reference_mass(period) / (t.handle_mass + t.arm.mass);
-                let human = (0..n).map(|i| if i == 3 { on_handle } else { 0.0 }).collect();
+                let human = (0..n)
+                    .map(|i| if i == 3 { on_handle } else { 0.0 })
+                    .collect();
                 Self::on_mass(human, &base, n)
             }
             PlantModel::TransferFunction { .. } => {

@@ -533,9 +533,9 @@ impl Config {
     pub fn loop_facts(&self) -> LoopFacts {
         let e = &self.effects;
         let linear = self.model.analysis().ok().map(|a| LinearReference {
-                spectral_radius: a.spectral_radius,
-                verdict: a.verdict,
-            });
+            spectral_radius: a.spectral_radius,
+            verdict: a.verdict,
+        });
         LoopFacts {
             contact_can_be_lost: e.contact != Contact::Bilateral,
             force_limited: e.saturation.is_some(),

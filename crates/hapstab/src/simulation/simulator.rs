@@ -244,11 +244,7 @@ impl Simulator {
         let laws = Self::laws(config, &parts)?;
         let engines = Engines::new(&parts, laws.continuous.as_ref());
         let mem = Self::memory(config, &lp, &laws)?;
-        Ok(Self {
-            laws,
-            engines,
-            mem,
-        })
+        Ok(Self { laws, engines, mem })
     }
 
     fn laws(config: &Config, parts: &Parts) -> Result<Laws> {
@@ -467,7 +463,11 @@ fn run_loop<const LINEAR: bool, const N: usize>(
         let u = [-wall.force, -prev, uh, 0.0];
         let mut vel = e.velocity.read(&x);
         if direct {
-            let ua = if laws.fractional { u[WALL_PREV] } else { u[WALL_NOW] };
+            let ua = if laws.fractional {
+                u[WALL_PREV]
+            } else {
+                u[WALL_NOW]
+            };
             vel += laws.direct_actuator * ua + laws.direct_human * u[HUMAN];
         }
         if let Some(r) = recorder.as_mut()
@@ -617,4 +617,3 @@ impl Recorder {
         self.next = self.next.div_ceil(self.stride) * self.stride;
     }
 }
-

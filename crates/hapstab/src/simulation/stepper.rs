@@ -228,7 +228,11 @@ impl Continuous {
         let (e, psi) = exp_and_integral(a, h);
         let ex = poly::mat_vec(&e, x);
         let pf = poly::mat_vec(&psi, f);
-        let mut out: Vec<f64> = x.iter().zip(ex.iter().zip(&pf)).map(|(x, (e, p))| x + e + p).collect();
+        let mut out: Vec<f64> = x
+            .iter()
+            .zip(ex.iter().zip(&pf))
+            .map(|(x, (e, p))| x + e + p)
+            .collect();
         if stuck {
             out[self.point.state] = 0.0;
         }
@@ -342,7 +346,11 @@ impl Continuous {
                     .unwrap_or_else(|| self.mode_at(x, ua, u[HUMAN], fr));
                 let last = events >= MAX_EVENTS;
                 let step = self.sub_step(x, mode, ua, u[HUMAN], fr, end - t, last);
-                t = if step.elapsed >= end - t { end } else { t + step.elapsed };
+                t = if step.elapsed >= end - t {
+                    end
+                } else {
+                    t + step.elapsed
+                };
                 events += usize::from(step.event.is_some());
                 reversals += usize::from(matches!(step.event, Some(Event::Reversal)));
                 if let Some(Event::Breakaway(s)) = step.event {
