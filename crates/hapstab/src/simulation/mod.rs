@@ -1,27 +1,30 @@
-//! Time-domain simulation of the sampled-data loop of Fig. 3 (Section II), including the
+//! Time-domain simulation of the sampled-data loop of Fig. 3 (Section II) for any loop
+//! ([`crate::Loop`]: plant, actuator lag, fractional delay, velocity estimator), including the
 //! nonlinear effects that the paper leaves to future work (Remark 1 and Section IX): a
 //! unilateral wall, Coulomb and static friction, position-sensor quantization and actuator
 //! force saturation.
 //!
 //! # Model
 //!
-//! The continuous plant m ẍ + b ẋ + k x = F (eq. 1; the arm's spring k_H pulls toward the
-//! origin, the hand's rest position) is stepped *exactly* from sample to sample with the
-//! zero-order-hold matrices of [`DiscretePlant`] (Section III, eq. 2–6), in the normalized
-//! state (x, T·ẋ):
+//! The simulator steps the exact discrete loop of [`crate::DiscreteLoop`], the same matrices
+//! the analysis closes into p(z) ([`crate::closed_loop`]), in normalized time (one unit per
+//! sample) and wall units (forces divided by k_u = m/T², Table I, m the plant's reference
+//! mass):
 //!
 //! ```text
-//! (x, Tẋ)[k+1] = Φ (x, Tẋ)[k] + Γ · u[k],      u[k] = (T²/m) · F[k]   (Table I),
-//! F[k] = F_H[k] − F_wall[k] − F_friction,
-//! F_wall[k] = K (y[k−d] − x_w) + B (y[k−d] − y[k−d−1]) / T,
+//! x[k+1] = Φ x[k] + Γ0 u_w[k−d] + Γ1 u_w[k−d−1] + Ψ b_h u_H[k] + Ψ b_f u_f,
+//! y[k] = C x[k] (sensed: optionally quantized),   v = V(z)·y (the loop's estimator),
+//! u_w[j] = −F_wall[j]/k_u,   F_wall[j] = K (y[j] − x_w) + B v[j],
 //! ```
 //!
-//! where y is the sampled (optionally quantized) position, d the delay in samples and x_w
-//! the wall position. In normalized units (T²/m)·F_wall = α (y[k−d] − x_w) + β (y[k−d] −
-//! y[k−d−1]), so the linear bilateral loop has exactly the characteristic polynomial
-//! p(z) = z^{d+1} D(z) + N(z)((α + β) z − β) of eq. (9) (see [`crate::closed_loop`]).
-//! Positions are in metres, velocities in m/s and forces in newtons throughout the API;
-//! internally all forces are scaled by T²/m.
+//! with t_d = (d + λ)T: the wall force computed at sample j acts from jT + t_d, so over one
+//! sample the force of k − d − 1 acts on [0, λT) and that of k − d on [λT, T) (Γ1 = 0 for
+//! a whole number of samples). The human force u_H and friction u_f act on the plant
+//! directly, not through the actuator lag (see [`crate::zoh::PlantPorts`]). The linear
+//! bilateral loop therefore has exactly the characteristic polynomial
+//! p(z) = P0 + a·PK + b·PB of [`crate::AffineFamily`]; for the paper's loop, stepped in the
+//! state (x, T·ẋ) with (a, b) = (α, β), that is eq. (9). Positions are in metres, velocities
+//! in m/s and forces in newtons throughout the API.
 //!
 //! # Sign conventions
 //!
@@ -38,19 +41,16 @@
 //!
 //! # Friction (stick–slip within exact ZOH stepping)
 //!
-//! Coulomb friction F_c opposes the velocity, static friction F_s ≥ F_c holds the device at
-//! rest. Friction is not held at its sampled value: within a sample the applied force is
-//! constant, so the motion between velocity reversals is an exact ZOH step with the
-//! constant input F − F_c·sgn(ẋ). When the velocity at the end of a (sub)step has changed
-//! sign, the reversal instant τ* ∈ (0, 1) is located by bisection on the exact sub-step
-//! solution (the plant over τT is the ZOH plant with γτ², δτ, see [`DiscretePlant`]). At
-//! τ* the velocity is zero and the *stick rule* applies: the device sticks for the rest of
-//! the sample if the non-friction force |F − k x| ≤ F_s (the damper force is zero at rest);
-//! otherwise it slips on in the direction of that force with friction −F_c·sgn. A stuck
-//! device stays exactly at rest over a sample iff |F − k x| ≤ F_s at the sample instant,
-//! since F and x are then constant over the sample. Two reversals within one sample with
-//! equal end signs are missed; that needs a plant half-period shorter than one sample
-//! (γ > π², beyond the Nyquist frequency of Section VIII).
+//! Coulomb friction F_c opposes the velocity of the point where it acts, static friction
+//! F_s ≥ F_c holds that point at rest: the device of the paper's plant, the motor side of a
+//! two-mass device. A transfer function names no mass, so friction is refused for it.
+//! Friction is not held at its sampled value: between events the motion is an exact ZOH
+//! (sub)step with constant inputs, and events inside a sample (velocity reversals, breakaway
+//! of a stuck point) are located on the exact sub-step solution, with the stick rule at each
+//! reversal (stick if the rest of the plant pushes the point with at most F_s, otherwise
+//! slip in that direction). While stuck, the point is held and the rest of the plant moves
+//! on (a two-mass device's handle, an actuator lag). See `stepper.rs` for the method and
+//! its limits (two reversals within one sample need dynamics faster than the sampling).
 //!
 //! # Verdict
 //!
