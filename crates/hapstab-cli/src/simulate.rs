@@ -282,7 +282,7 @@ fn describe_effects(s: &RunSettings, force_unit: &str) -> String {
         ));
     }
     if parts.is_empty() {
-        "none: the paper's linear bilateral loop".to_string()
+        "none: the linear bilateral loop".to_string()
     } else {
         parts.join(", ")
     }
