@@ -214,7 +214,10 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
             return Err(ApiError::param(
                 "robust",
                 p.raw("robust").unwrap_or(""),
-                "the robust region over a range of γ belongs to the paper's loop (device + arm, backward velocity, whole-sample delay, no actuator lag)".into(),
+                format!(
+                    "parameter 'robust' (got '{}'): the robust region over a range of γ belongs to the paper's loop (device + arm, backward velocity, whole-sample delay, no actuator lag)",
+                    clip(p.raw("robust").unwrap_or(""))
+                ),
             ));
         }
         let lo = p.num_in("gamma_lo", 0.0, MAX_GAMMA, " (robust range, lower γ)")?;

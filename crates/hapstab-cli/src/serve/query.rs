@@ -649,11 +649,13 @@ fn general_delay(p: &Params, period: f64) -> Result<Delay, ApiError> {
         (None, None) => return Err(missing("delay_time")),
     };
     if delay.samples > MAX_D {
+        let v = p.raw("delay_time").unwrap_or("");
         return Err(ApiError::param(
             "delay_time",
-            &fmt(delay.in_samples() * period),
+            v,
             format!(
-                "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} periods)",
+                "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} s = {} periods)",
+                clip(v),
                 fmt(delay.in_samples())
             ),
         ));
@@ -679,7 +681,12 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
         PlantModel::MassSpringDamper(_) => "device_mass",
     };
     let plant = Plant::new(model, lag).map_err(|e| {
-        ApiError::param(name, p.raw(name).unwrap_or(""), format!("the plant: {e}"))
+        let v = p.raw(name).unwrap_or("");
+        ApiError::param(
+            name,
+            v,
+            format!("parameter '{name}' (got '{}'): {e}", clip(v)),
+        )
     })?;
     let delay = general_delay(p, period)?;
     let lp = Loop::new(plant, period, delay, velocity).map_err(lib_error)?;
