@@ -10,18 +10,22 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use hapstab::boundary::AlphaBeta;
-use hapstab::region::stable_region;
+use hapstab::params::Wall;
 use hapstab::simulation::{
     BoundarySearch, Config, Contact, DEFAULT_MAX_SAMPLES, Effects, EmpiricalPoint, Friction,
-    HumanForce, Initial, MAX_TRACE_ROWS, MIN_REL_TOLERANCE, Model, Outcome, RunResult, StableWhen,
-    Trace, empirical_boundary, samples_for_duration, simulate,
+    HumanForce, Initial, LoopModel, MAX_TRACE_ROWS, MIN_REL_TOLERANCE, Model, Outcome, RunResult,
+    SimModel, StableWhen, Trace, empirical_boundary, samples_for_duration, simulate,
 };
-use hapstab::{Normalized, PolyFamily, Verdict};
+use hapstab::zoh::WallScale;
+use hapstab::{AffineFamily, Normalized, PlantModel as LibPlantModel, Verdict};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::model::{PlantArgs, PlantModel, WallArgs, resolve_point};
+use crate::model::{
+    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, PlantModel, ResolvedLoop, WallArgs, describe_loop,
+    resolve_loop_wall, resolve_point,
+};
 use crate::output::{eng, print_json, sig};
 use crate::plot::{Figure, Grid, Legend, Marker, Saved, Series, palette};
 
@@ -210,8 +214,8 @@ impl RunArgs {
         })
     }
 
-    fn config(&self, model: Model, physical: bool) -> Result<(Config, RunSettings)> {
-        let s = self.resolve(physical, model.period)?;
+    fn config(&self, model: SimModel, physical: bool) -> Result<(Config, RunSettings)> {
+        let s = self.resolve(physical, model.period())?;
         let mut cfg = Config::new(model, s.samples);
         cfg.max_samples = s.max_samples;
         cfg.effects = s.effects;
@@ -219,6 +223,30 @@ impl RunArgs {
         cfg.initial = s.initial;
         cfg.validate()?;
         Ok((cfg, s))
+    }
+}
+
+/// A one-line caption of the simulated loop: (α, β, γ, δ, d) for the paper's loop, the wall
+/// and the delay otherwise.
+fn model_caption(m: &SimModel) -> String {
+    match m {
+        SimModel::Paper(m) => {
+            let p = m.params;
+            format!(
+                "α = {}, β = {}, γ = {}, δ = {}, d = {}",
+                sig(p.alpha, 4),
+                sig(p.beta, 4),
+                sig(p.gamma, 3),
+                sig(p.delta, 3),
+                p.d
+            )
+        }
+        SimModel::Loop(l) => format!(
+            "K = {}, B = {}, t_d = {}",
+            eng(l.wall.stiffness, "N/m", 4),
+            eng(l.wall.damping, "Ns/m", 4),
+            eng(l.lp.delay_time(), "s", 4)
+        ),
     }
 }
 
@@ -254,7 +282,7 @@ fn describe_effects(s: &RunSettings, force_unit: &str) -> String {
         ));
     }
     if parts.is_empty() {
-        "none: the paper's linear bilateral loop".to_string()
+        "none: the linear bilateral loop".to_string()
     } else {
         parts.join(", ")
     }
@@ -292,9 +320,11 @@ impl Units {
 /// Arguments of `hapstab simulate`.
 #[derive(Args, Debug)]
 #[command(after_help = UNITS_HELP)]
+#[command(mut_arg("alpha", |a| a.conflicts_with_all(NON_PAPER_PLANT_FLAGS)))]
+#[command(mut_arg("beta", |a| a.conflicts_with_all(NON_PAPER_PLANT_FLAGS)))]
 pub struct SimulateArgs {
     #[command(flatten)]
-    plant: PlantArgs,
+    lp: LoopArgs,
     #[command(flatten)]
     wall: WallArgs,
     #[command(flatten)]
@@ -338,9 +368,14 @@ struct SimulateOut<'a> {
     judged_from: f64,
     judged_to: f64,
     units: &'static str,
-    mass: f64,
+    /// The paper's loop: its mass m in kg and normalized point (Table I).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mass: Option<f64>,
     period: f64,
-    normalized: Normalized,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<Normalized>,
+    /// The loop and its wall as given.
+    input: LoopInput,
     effects: Effects,
     human_force: f64,
     initial: Initial,
@@ -386,18 +421,56 @@ fn check_simulate_args(a: &SimulateArgs) -> Result<()> {
     Ok(())
 }
 
+/// The simulated loop: the paper's loop in its normalized view (the (α, β) every command
+/// reports), or any other loop with its physical wall.
+struct SimLoop {
+    rl: ResolvedLoop,
+    wall: Wall,
+    model: SimModel,
+}
+
+impl SimLoop {
+    fn resolve(lp: &LoopArgs, wall: &WallArgs, run: &RunArgs) -> Result<Self> {
+        let rl = lp.resolve(wall.normalized())?;
+        let fam = AffineFamily::of_loop(&rl.lp)?;
+        let w = resolve_loop_wall(&rl, &fam, wall)?;
+        friction_defined(&rl, run)?;
+        let model = if rl.lp.paper_view().is_some() {
+            let pm = resolve_point(&lp.plant, wall)?;
+            SimModel::Paper(match &pm.physical {
+                Some(p) => Model::from_physical(p)?,
+                None => Model::unit(pm.normalized)?,
+            })
+        } else {
+            SimModel::Loop(LoopModel::new(rl.lp.clone(), w)?)
+        };
+        Ok(Self {
+            rl,
+            wall: w,
+            model,
+        })
+    }
+
+    fn units(&self) -> Units {
+        Units {
+            physical: !self.rl.normalized,
+        }
+    }
+
+    fn paper(&self) -> Option<&Model> {
+        match &self.model {
+            SimModel::Paper(m) => Some(m),
+            SimModel::Loop(_) => None,
+        }
+    }
+}
+
 /// Runs `hapstab simulate`.
 pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     check_simulate_args(a)?;
-    let pm = resolve_point(&a.plant, &a.wall)?;
-    let units = Units {
-        physical: pm.physical.is_some(),
-    };
-    let model = match &pm.physical {
-        Some(p) => Model::from_physical(p)?,
-        None => Model::unit(pm.normalized)?,
-    };
-    let (mut cfg, settings) = a.run.config(model, units.physical)?;
+    let sl = SimLoop::resolve(&a.lp, &a.wall, &a.run)?;
+    let units = sl.units();
+    let (mut cfg, settings) = a.run.config(sl.model.clone(), units.physical)?;
     let files_wanted = a.csv.is_some() || a.plot.is_some();
     cfg.trace_rows = if files_wanted { a.max_rows } else { 0 };
     let mut result = simulate(&cfg)?;
@@ -407,15 +480,17 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     } else {
         None
     };
+    let period = sl.model.period();
     let out = SimulateOut {
         run: &result,
-        duration: result.samples as f64 * model.period,
-        judged_from: result.verdict.judged_from_sample as f64 * model.period,
-        judged_to: result.verdict.judged_to_sample as f64 * model.period,
+        duration: result.samples as f64 * period,
+        judged_from: result.verdict.judged_from_sample as f64 * period,
+        judged_to: result.verdict.judged_to_sample as f64 * period,
         units: units.name(),
-        mass: model.mass,
-        period: model.period,
-        normalized: model.params,
+        mass: sl.paper().map(|m| m.mass),
+        period,
+        normalized: sl.paper().map(|m| m.params),
+        input: LoopInput::new(&sl.rl, Some(sl.wall)),
         effects: settings.effects,
         human_force: settings.human_force,
         initial: settings.initial,
@@ -424,7 +499,7 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     if a.json {
         return print_json(&out);
     }
-    print_simulate(&out, &settings, units);
+    print_simulate(&out, &sl, &settings, units);
     Ok(())
 }
 
@@ -535,16 +610,8 @@ fn outcome_summary(r: &RunResult, units: Units) -> String {
 }
 
 fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: Units) -> Grid {
-    let p = cfg.model.params;
     let verdict = outcome_summary(r, units);
-    let params = format!(
-        "α = {}, β = {}, γ = {}, δ = {}, d = {}",
-        sig(p.alpha, 4),
-        sig(p.beta, 4),
-        sig(p.gamma, 3),
-        sig(p.delta, 3),
-        p.d
-    );
+    let params = model_caption(&cfg.model);
     let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let xw = cfg.effects.wall_position;
     let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
@@ -560,7 +627,7 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
             .collect();
         crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
     };
-    let t_end = tr.time.last().copied().unwrap_or(1.0).max(cfg.model.period);
+    let t_end = tr.time.last().copied().unwrap_or(1.0).max(cfg.model.period());
     let tlabel = format!("time t ({})", units.time());
     let mut pos = Figure::new(params)
         .x_label(&tlabel)
@@ -575,8 +642,8 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
             (a.min(x), b.max(x))
         });
     let (j0, j1) = (
-        r.verdict.judged_from_sample as f64 * cfg.model.period,
-        r.verdict.judged_to_sample as f64 * cfg.model.period,
+        r.verdict.judged_from_sample as f64 * cfg.model.period(),
+        r.verdict.judged_to_sample as f64 * cfg.model.period(),
     );
     if hi > lo {
         let (lo, hi) = (lo * xs, hi * xs);
@@ -708,10 +775,19 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
     g
 }
 
-fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
-    let r = o.run;
-    let v = &r.verdict;
-    let n = &o.normalized;
+/// The simulated loop in words: the paper's normalized point, or the loop and its wall.
+fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
+    let Some(n) = &o.normalized else {
+        for line in describe_loop(&sl.rl.lp) {
+            println!("{line}");
+        }
+        println!(
+            "wall      K = {} N/m, B = {} Ns/m",
+            sig(sl.wall.stiffness, 6),
+            sig(sl.wall.damping, 6)
+        );
+        return;
+    };
     println!(
         "model       α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
         sig(n.alpha, 8),
@@ -719,16 +795,19 @@ fn print_simulate(o: &SimulateOut, s: &RunSettings, units: Units) {
         sig(n.gamma, 8),
         sig(n.delta, 8),
         n.d,
-        if units.physical {
-            format!(
-                " (m = {} kg, T = {})",
-                sig(o.mass, 6),
-                eng(o.period, "s", 6)
-            )
-        } else {
-            " (normalized: time in samples, forces as T²F/m)".to_string()
+        match o.mass {
+            Some(m) if units.physical => {
+                format!(" (m = {} kg, T = {})", sig(m, 6), eng(o.period, "s", 6))
+            }
+            _ => " (normalized: time in samples, forces as T²F/m)".to_string(),
         }
     );
+}
+
+fn print_simulate(o: &SimulateOut, sl: &SimLoop, s: &RunSettings, units: Units) {
+    let r = o.run;
+    let v = &r.verdict;
+    print_model(o, sl, units);
     println!("effects     {}", describe_effects(s, units.force()));
     println!("run         {}", run_text(o, units));
     let outcome = outcome_summary(r, units);
@@ -903,10 +982,11 @@ fn hint_text(r: &RunResult, s: &RunSettings, units: Units, period: f64) -> Optio
 #[command(after_help = UNITS_HELP)]
 pub struct SimboundaryArgs {
     #[command(flatten)]
-    plant: PlantArgs,
+    lp: LoopArgs,
     #[command(flatten)]
     run: RunArgs,
-    /// Smallest normalized damping β = BT/m [default: 10 % of the exact region's top].
+    /// Smallest normalized damping β = BT/m (for other plants the wall unit b = B·T/m with m
+    /// the plant's reference mass) [default: 10 % of the exact region's top].
     #[arg(long, allow_hyphen_values = true)]
     beta_min: Option<f64>,
     /// Largest β [default: 90 % of the exact region's top].
@@ -915,7 +995,8 @@ pub struct SimboundaryArgs {
     /// Number of β values, evenly spaced.
     #[arg(long, value_name = "N", default_value_t = 8)]
     beta_count: usize,
-    /// Upper end of the α scan [default: 3× the exact linear boundary at each β].
+    /// Upper end of the α scan (wall unit a = K·T²/m for other plants) [default: 3× the
+    /// exact linear boundary at each β].
     #[arg(long, allow_hyphen_values = true)]
     alpha_max: Option<f64>,
     /// Coarse α scan points before bisection.
@@ -961,12 +1042,22 @@ struct BoundaryRow {
 
 #[derive(Serialize)]
 struct SimboundaryOut {
-    gamma: f64,
-    delta: f64,
-    d: usize,
+    /// The paper's loop: γ, δ, d and m (Table I); absent for other loops.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gamma: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delta: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    d: Option<usize>,
     units: &'static str,
-    mass: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mass: Option<f64>,
     period: f64,
+    /// The loop as given.
+    input: LoopInput,
+    /// Other loops: K = a·stiffness (N/m) and B = b·damping (Ns/m) for the a, b columns.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_units: Option<WallScale>,
     effects: Effects,
     human_force: f64,
     initial: Initial,
@@ -995,20 +1086,38 @@ fn model_of(pm: &PlantModel) -> Result<Model> {
     })
 }
 
-/// Runs `hapstab simboundary`.
-pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
+/// Refuses friction on a plant that names no mass.
+fn friction_defined(rl: &ResolvedLoop, run: &RunArgs) -> Result<()> {
+    let friction = run.coulomb.is_some() || run.stiction.is_some();
+    if friction && matches!(rl.lp.plant.model, LibPlantModel::TransferFunction { .. }) {
+        bail!(
+            "--coulomb/--stiction: friction is not defined for a transfer-function plant (--plant-num/--plant-den), which names no mass for it to act on; describe the device as a mass-spring-damper or a two-mass device instead"
+        );
+    }
+    Ok(())
+}
+
+/// The template model of a boundary search: the paper's loop in its normalized view, or any
+/// loop (its wall is replaced by every run).
+fn boundary_template(a: &SimboundaryArgs, rl: &ResolvedLoop) -> Result<(SimModel, Option<PlantModel>)> {
+    if rl.lp.paper_view().is_some() {
+        let pm = a.lp.plant.resolve()?;
+        return Ok((SimModel::Paper(model_of(&pm)?), Some(pm)));
+    }
+    let wall = Wall {
+        stiffness: 0.0,
+        damping: 0.0,
+    };
+    Ok((SimModel::Loop(LoopModel::new(rl.lp.clone(), wall)?), None))
+}
+
+fn check_boundary_args(a: &SimboundaryArgs) -> Result<StableWhen> {
     if let Some(p) = &a.csv {
         check_output_path("--csv", p)?;
     }
     if let Some(p) = &a.plot {
         check_output_path("--plot", p)?;
     }
-    let pm = a.plant.resolve()?;
-    let units = Units {
-        physical: pm.physical.is_some(),
-    };
-    let model = model_of(&pm)?;
-    let (template, settings) = a.run.config(model, units.physical)?;
     if a.beta_count == 0 || a.beta_count > 10_000 {
         bail!("--beta-count must be in [1, 10000] (got {})", a.beta_count);
     }
@@ -1029,14 +1138,20 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     {
         bail!("--alpha-max must be a positive number (got {m})");
     }
-    let stable_when = match a.stable_amplitude {
+    Ok(match a.stable_amplitude {
         None => StableWhen::Decaying,
         Some(m) if m.is_finite() && m > 0.0 => StableWhen::AmplitudeBelow(m),
         Some(m) => bail!("--stable-amplitude must be a positive number of metres (got {m})"),
-    };
-    let fam = PolyFamily::new(model.params.plant(), pm.d)?;
-    let region = stable_region(&fam)?;
-    let betas = beta_values(a, &region)?;
+    })
+}
+
+/// The simulated boundary at each β, in parallel, with a progress bar on a terminal.
+fn boundary_points(
+    a: &SimboundaryArgs,
+    template: &Config,
+    betas: &[f64],
+    stable_when: StableWhen,
+) -> Result<Vec<EmpiricalPoint>> {
     let bar = if a.json || !std::io::stdout().is_terminal() {
         ProgressBar::hidden()
     } else {
@@ -1065,53 +1180,72 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         })
         .collect::<hapstab::Result<_>>()?;
     bar.finish_and_clear();
-    let rows: Vec<BoundaryRow> = points
-        .iter()
-        .map(|p| {
-            let ratio = match (p.alpha_simulated, p.alpha_linear) {
-                (Some(s), Some(l)) if l.is_finite() && l > 0.0 => Some(s / l),
-                _ => None,
-            };
-            let (kb, k) = match pm.physical {
-                Some((eff, s)) => (eff.mass / s.period, eff.mass / (s.period * s.period)),
-                None => (f64::NAN, f64::NAN),
-            };
-            let phys = units.physical;
-            BoundaryRow {
-                point: *p,
-                ratio,
-                wall_damping: phys.then_some(p.beta * kb),
-                k_linear: if phys {
-                    p.alpha_linear.map(|x| x * k)
-                } else {
-                    None
-                },
-                k_simulated: if phys {
-                    p.alpha_simulated.map(|x| x * k)
-                } else {
-                    None
-                },
-            }
-        })
-        .collect();
+    Ok(points)
+}
+
+/// A row with its physical columns: K = a·k, B = b·kb (None in normalized mode).
+fn boundary_row(p: &EmpiricalPoint, scale: Option<(f64, f64)>) -> BoundaryRow {
+    let ratio = match (p.alpha_simulated, p.alpha_linear) {
+        (Some(s), Some(l)) if l.is_finite() && l > 0.0 => Some(s / l),
+        _ => None,
+    };
+    BoundaryRow {
+        point: *p,
+        ratio,
+        wall_damping: scale.map(|(_, kb)| p.beta * kb),
+        k_linear: scale.and_then(|(k, _)| p.alpha_linear.map(|x| x * k)),
+        k_simulated: scale.and_then(|(k, _)| p.alpha_simulated.map(|x| x * k)),
+    }
+}
+
+/// Runs `hapstab simboundary`.
+pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
+    let stable_when = check_boundary_args(a)?;
+    let rl = a.lp.resolve(false)?;
+    friction_defined(&rl, &a.run)?;
+    let units = Units {
+        physical: !rl.normalized,
+    };
+    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let (model, pm) = boundary_template(a, &rl)?;
+    let (template, settings) = a.run.config(model.clone(), units.physical)?;
+    let region = crate::family::region(&rl.lp, &fam)?;
+    let betas = beta_values(a, &region)?;
+    let points = boundary_points(a, &template, &betas, stable_when)?;
+    let scale = match (&pm, units.physical) {
+        (Some(pm), _) => pm
+            .physical
+            .map(|(eff, s)| (eff.mass / (s.period * s.period), eff.mass / s.period)),
+        (None, _) => Some((fam.scale.stiffness, fam.scale.damping)),
+    };
+    let rows: Vec<BoundaryRow> = points.iter().map(|p| boundary_row(p, scale)).collect();
     if let Some(path) = &a.csv {
         write_boundary_csv(path, &rows)?;
     }
+    let paper = match &model {
+        SimModel::Paper(m) => Some(m.params),
+        SimModel::Loop(_) => None,
+    };
     let saved = match &a.plot {
         Some(stem) => Some(
-            boundary_plot(&region, &points, &model.params, &settings, units)
+            boundary_plot(&region, &points, paper.as_ref(), &settings, units)
                 .save(stem)
                 .with_context(|| format!("--plot {}", stem.display()))?,
         ),
         None => None,
     };
     let out = SimboundaryOut {
-        gamma: pm.gamma,
-        delta: pm.delta,
-        d: pm.d,
+        gamma: pm.map(|p| p.gamma),
+        delta: pm.map(|p| p.delta),
+        d: pm.map(|p| p.d),
         units: units.name(),
-        mass: model.mass,
-        period: model.period,
+        mass: match &model {
+            SimModel::Paper(m) => Some(m.mass),
+            SimModel::Loop(_) => None,
+        },
+        period: model.period(),
+        input: LoopInput::new(&rl, None),
+        wall_units: pm.is_none().then_some(fam.scale),
         effects: settings.effects,
         human_force: settings.human_force,
         initial: settings.initial,
@@ -1130,7 +1264,7 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     if a.json {
         return print_json(&out);
     }
-    print_simboundary(&out, &settings, units);
+    print_simboundary(&out, &rl, &settings, units);
     Ok(())
 }
 
@@ -1246,19 +1380,30 @@ fn write_boundary_csv(path: &Path, rows: &[BoundaryRow]) -> Result<()> {
 fn boundary_plot(
     region: &hapstab::region::StableRegion,
     points: &[EmpiricalPoint],
-    p: &Normalized,
+    paper: Option<&Normalized>,
     s: &RunSettings,
     units: Units,
 ) -> Figure {
-    let title = format!(
-        "Simulated vs exact linear boundary (γ = {}, δ = {}, d = {})",
-        sig(p.gamma, 3),
-        sig(p.delta, 3),
-        p.d
-    );
+    let (title, xl, yl) = match paper {
+        Some(p) => (
+            format!(
+                "Simulated vs exact linear boundary (γ = {}, δ = {}, d = {})",
+                sig(p.gamma, 3),
+                sig(p.delta, 3),
+                p.d
+            ),
+            "virtual stiffness α = KT²/m",
+            "virtual damping β = BT/m",
+        ),
+        None => (
+            "Simulated vs exact linear boundary".to_string(),
+            "wall stiffness a = K/k_u",
+            "wall damping b = B/(k_u·T)",
+        ),
+    };
     let mut f = Figure::new(title)
-        .x_label("virtual stiffness α = KT²/m")
-        .y_label("virtual damping β = BT/m")
+        .x_label(xl)
+        .y_label(yl)
         .legend(Legend::UpperRight);
     for (i, poly) in region.polygons.iter().enumerate() {
         let pts = poly.vertices.iter().map(|v: &AlphaBeta| (v.alpha, v.beta));
@@ -1332,22 +1477,38 @@ fn boundary_plot(
     f
 }
 
-fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
+/// The loop of a boundary search: the paper's (γ, δ, d), or the loop in words with its wall
+/// units.
+fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
+    let (Some(gamma), Some(delta), Some(d)) = (o.gamma, o.delta, o.d) else {
+        for line in describe_loop(&rl.lp) {
+            println!("{line}");
+        }
+        if let Some(w) = o.wall_units {
+            println!(
+                "units     a = K/k_u, b = B/(k_u·T) with k_u = {} N/m, k_u·T = {} Ns/m (the α and β columns and flags)",
+                sig(w.stiffness, 6),
+                sig(w.damping, 6)
+            );
+        }
+        return;
+    };
     println!(
         "plant       γ = {}, δ = {}, d = {}{}",
-        sig(o.gamma, 8),
-        sig(o.delta, 8),
-        o.d,
-        if units.physical {
-            format!(
-                " (m = {} kg, T = {} ms)",
-                sig(o.mass, 6),
-                sig(o.period * 1e3, 6)
-            )
-        } else {
-            String::new()
+        sig(gamma, 8),
+        sig(delta, 8),
+        d,
+        match o.mass {
+            Some(m) if units.physical => {
+                format!(" (m = {} kg, T = {} ms)", sig(m, 6), sig(o.period * 1e3, 6))
+            }
+            _ => String::new(),
         }
     );
+}
+
+fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, units: Units) {
+    print_boundary_loop(o, rl, units);
     println!("effects     {}", describe_effects(s, units.force()));
     println!(
         "runs        {} samples each (extended up to {} until settled) from x(0) = {}; stable = {}",
@@ -1362,17 +1523,37 @@ fn print_simboundary(o: &SimboundaryOut, s: &RunSettings, units: Units) {
             ),
         }
     );
-    println!(
-        "exact       α_max = {} at β = {} (linear stable region, Section V)",
-        sig(o.exact_alpha_max, 8),
-        sig(o.exact_beta_at_alpha_max, 8)
-    );
+    match o.wall_units {
+        None => println!(
+            "exact       α_max = {} at β = {} (linear stable region, Section V)",
+            sig(o.exact_alpha_max, 8),
+            sig(o.exact_beta_at_alpha_max, 8)
+        ),
+        Some(w) => println!(
+            "exact       K_max = {} N/m at B = {} Ns/m (a = {}, b = {}; linear stable region)",
+            sig(o.exact_alpha_max * w.stiffness, 8),
+            sig(o.exact_beta_at_alpha_max * w.damping, 8),
+            sig(o.exact_alpha_max, 8),
+            sig(o.exact_beta_at_alpha_max, 8)
+        ),
+    }
     println!();
     let phys = units.physical;
+    let (sa, sb) = if o.wall_units.is_some() {
+        ("a", "b")
+    } else {
+        ("α", "β")
+    };
     if phys {
         println!(
             "{:>10} {:>10} {:>14} {:>14} {:>8} {:>12} {:>12}  note",
-            "β", "B (Ns/m)", "α linear", "α simulated", "ratio", "K lin (N/m)", "K sim (N/m)"
+            sb,
+            "B (Ns/m)",
+            format!("{sa} linear"),
+            format!("{sa} simulated"),
+            "ratio",
+            "K lin (N/m)",
+            "K sim (N/m)"
         );
     } else {
         println!(

@@ -124,11 +124,6 @@ fn bad_input_is_400_with_a_json_error_naming_parameter_and_value() {
             "0",
         ),
         (
-            "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=1&arm_stiffness=0&period=0.001&delay_time=0.0015",
-            "delay_time",
-            "0.0015",
-        ),
-        (
             "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=-1&arm_stiffness=0&period=0.001&d=0",
             "arm_damping",
             "-1",
@@ -534,4 +529,139 @@ fn timeouts_and_bursts_do_not_take_the_server_down() {
         assert!(st == 200 || st == 503, "{st}");
     }
     assert_eq!(s.get(&format!("/api/region?{PLANT}")).status, 200);
+}
+
+/// A two-mass device held by the default arm, with an actuator lag, a low-pass velocity and a
+/// fractional delay (t_d = 1.4 T): a loop beyond the paper's.
+const TWO_MASS_LOOP: &str = "mode=physical&motor_mass=0.05&handle_mass=0.05&transmission_stiffness=5000&transmission_damping=1&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&delay_time=0.0014&estimator=lowpass%3A150&force_lag=0.0002";
+
+/// The same loop's flags for `hapstab`.
+const TWO_MASS_FLAGS: [&str; 14] = [
+    "--motor-mass",
+    "0.05",
+    "--handle-mass",
+    "0.05",
+    "--transmission-stiffness",
+    "5000",
+    "--transmission-damping",
+    "1",
+    "--force-lag",
+    "0.0002",
+    "--velocity",
+    "lowpass:150",
+    "--delay-time",
+    "0.0014",
+];
+
+fn hapstab_json(args: &[&str]) -> serde_json::Value {
+    let out = assert_cmd::Command::cargo_bin("hapstab")
+        .unwrap()
+        .args(args)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// A loop beyond the paper's in the explorer: the region is the loop's (its vertices, given
+/// back as walls, have a root on the unit circle), the point is `hapstab check`'s, and the
+/// simulated contact is `hapstab simulate`'s, key for key; the paper's overlays are absent.
+#[test]
+fn general_loop_region_point_and_simulation_match_the_cli() {
+    let s = Server::start(&[]);
+    let r = s.get(&format!("/api/region?{TWO_MASS_LOOP}"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    assert!(j["linear"].is_null() && j["passive"].is_null(), "{j}");
+    assert_eq!(j["loop"]["velocity"]["kind"], "low_pass");
+    let (kpa, bpb) = (
+        j["physical"]["k_per_alpha"].as_f64().unwrap(),
+        j["physical"]["b_per_beta"].as_f64().unwrap(),
+    );
+    let poly = j["region"]["polygons"][0].as_array().unwrap();
+    assert!(poly.len() > 10, "{j}");
+    // Vertices on the z = 1 line a = −γ are double roots at z = 1 amid the plant's cluster
+    // of roots near 1, where roots of the z-coefficients are ill-conditioned: sample the rest.
+    let gamma = j["params"]["gamma"].as_f64().unwrap();
+    let arcs: Vec<&serde_json::Value> = poly
+        .iter()
+        .filter(|v| (v[0].as_f64().unwrap() + gamma).abs() > 1e-6 * gamma)
+        .collect();
+    assert!(arcs.len() > 8, "{j}");
+    for v in arcs.iter().step_by(arcs.len() / 8) {
+        let (a, b) = (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+        let p = s.get(&format!("/api/point?{TWO_MASS_LOOP}&alpha={a}&beta={b}")).json();
+        let rho = p["spectral_radius"].as_f64().unwrap();
+        assert!((rho - 1.0).abs() < 1e-6, "vertex ({a}, {b}): rho {rho}");
+    }
+    // A wall inside: the explorer's point is check's.
+    let (k, b) = (0.5 * j["region"]["alpha_max"].as_f64().unwrap() * kpa, 0.5 * j["region"]["beta_at_alpha_max"].as_f64().unwrap() * bpb);
+    let (ks, bs) = (k.to_string(), b.to_string());
+    let p = s
+        .get(&format!("/api/point?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"))
+        .json();
+    let mut args = vec!["check"];
+    args.extend(TWO_MASS_FLAGS);
+    args.extend(["--wall-stiffness", &ks, "--wall-damping", &bs]);
+    let check = hapstab_json(&args);
+    assert_eq!(p["verdict"], check["verdict"]);
+    let (r1, r2) = (p["spectral_radius"].as_f64().unwrap(), check["spectral_radius"].as_f64().unwrap());
+    assert!((r1 - r2).abs() <= 1e-12, "{r1} vs {r2}");
+    assert!(p["linear"].is_null());
+    // The simulated contact: the explorer's run is hapstab simulate's.
+    let sim = s
+        .get(&format!("/api/simulate?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"))
+        .json();
+    let samples = sim["requested_samples"].as_u64().unwrap().to_string();
+    let mut args = vec!["simulate"];
+    args.extend(TWO_MASS_FLAGS);
+    args.extend(["--wall-stiffness", &ks, "--wall-damping", &bs, "--unilateral", "--push", "1"]);
+    args.extend(["--initial-position", "0", "--initial-velocity", "0.01"]);
+    args.extend(["--duration-samples", &samples]);
+    let cli = hapstab_json(&args);
+    for key in [
+        "outcome",
+        "reason",
+        "limit_cycle",
+        "contact",
+        "samples",
+        "judged_from_sample",
+        "measured_growth_per_sample",
+        "spectral_radius",
+        "linear_verdict",
+        "linear_window",
+    ] {
+        assert_eq!(cli[key], sim[key], "{key}");
+    }
+    assert_eq!(sim["linear_verdict"], "stable");
+}
+
+/// Bad loop input is a 400 naming the parameter and the value; a fractional delay time is
+/// a loop, discretized exactly (λ = 0.5 here).
+#[test]
+fn bad_loop_input_is_400_naming_the_parameter() {
+    let s = Server::start(&[]);
+    let r = s.get("/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=1&arm_stiffness=0&period=0.001&delay_time=0.0015");
+    assert_eq!(r.status, 200, "{}", r.body);
+    assert_eq!(r.json()["loop"]["delay"]["fraction"], 0.5);
+    let tf = "mode=physical&period=0.001&d=0&alpha=1&beta=1";
+    let cases: &[(String, &str, &str)] = &[
+        (format!("/api/point?{tf}&plant_num=1&plant_den=0.001%2Cx"), "plant_den", "0.001,x"),
+        (format!("/api/point?{tf}&plant_num=1,2,3&plant_den=1,2"), "plant_den", "1,2"),
+        (format!("/api/point?{tf}&plant_num=1&plant_den=1,0,0&device_mass=1"), "device_mass", "1"),
+        (format!("/api/region?{TWO_MASS_LOOP}&robust=1"), "robust", "1"),
+        (format!("/api/region?{}", TWO_MASS_LOOP.replace("lowpass%3A150", "bogus")), "estimator", "bogus"),
+        (format!("/api/region?{}", TWO_MASS_LOOP.replace("force_lag=0.0002", "force_lag=-1")), "force_lag", "-1"),
+        (format!("/api/region?{}", TWO_MASS_LOOP.replace("delay_time=0.0014", "delay_time=0.5")), "delay_time", "0.5"),
+        (format!("/api/region?gamma=0&delta=0&d=0&estimator=backward"), "estimator", "backward"),
+    ];
+    for (path, name, value) in cases {
+        let r = s.get(path);
+        assert_eq!(r.status, 400, "{path}: {}", r.body);
+        let j = r.json();
+        assert_eq!(j["parameter"], *name, "{path}: {j}");
+        let msg = j["error"].as_str().unwrap();
+        assert!(msg.contains(name) && msg.contains(value), "{path}: {msg}");
+    }
 }

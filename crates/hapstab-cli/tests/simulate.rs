@@ -649,3 +649,116 @@ fn simboundary_does_not_count_separation_as_stability() {
         "{v}"
     );
 }
+
+/// The loop flags of a general loop: a two-mass device with an actuator lag, a low-pass
+/// velocity and a fractional delay (order 5, t_d = 1.4 T).
+const TWO_MASS: [&str; 14] = [
+    "--motor-mass",
+    "0.05",
+    "--handle-mass",
+    "0.05",
+    "--transmission-stiffness",
+    "5000",
+    "--transmission-damping",
+    "1",
+    "--force-lag",
+    "0.0002",
+    "--velocity",
+    "lowpass:150",
+    "--delay-time",
+    "0.0014",
+];
+
+/// A transfer-function plant with an average velocity (order 3 with a real pole).
+const TF: [&str; 6] = [
+    "--plant-num",
+    "1",
+    "--plant-den",
+    "0.001,0.21,3,300",
+    "--velocity",
+    "average:3",
+];
+
+/// `simulate` on general loops: its spectral radius is `check`'s for the same flags, its
+/// verdict agrees with check's stability on both sides of the boundary, the measured growth
+/// lies on the same side of 1, and the input echo is the loop.
+#[test]
+fn general_loops_simulate_like_check() {
+    for plant in [&TWO_MASS[..], &TF[..]] {
+        let mut seen = Vec::new();
+        for (k, b) in [("1000", "4"), ("60000", "4")] {
+            let mut args: Vec<&str> = plant.to_vec();
+            args.extend(["--wall-stiffness", k, "--wall-damping", b]);
+            let mut c = vec!["check"];
+            c.extend(&args);
+            let check = json(&c);
+            let mut s = vec!["simulate"];
+            s.extend(&args);
+            let sim = json(&s);
+            let tag = format!("{args:?}: {sim}");
+            assert_eq!(sim["spectral_radius"], check["spectral_radius"], "{tag}");
+            let stable = check["stable"].as_bool().unwrap();
+            seen.push(stable);
+            let outcome = sim["outcome"].as_str().unwrap();
+            assert_eq!(outcome, if stable { "decaying" } else { "growing" }, "{tag}");
+            let g = f(&sim["measured_growth_per_sample"]);
+            assert_eq!(g < 1.0, stable, "{tag}");
+            assert_eq!(sim["input"]["wall"]["stiffness"], k.parse::<f64>().unwrap());
+            assert!(sim["input"]["loop"]["plant"].is_object(), "{tag}");
+            assert!(sim.get("normalized").is_none(), "{tag}");
+        }
+        assert_eq!(seen, [true, false], "both sides of the boundary: {plant:?}");
+    }
+}
+
+/// Friction acts on a mass: on a transfer-function plant it is refused with one line naming
+/// the flags, exit 2; on a two-mass device it acts on the motor side and runs.
+#[test]
+fn friction_needs_a_mass() {
+    let mut args = vec!["simulate"];
+    args.extend(TF);
+    args.extend(["--coulomb", "0.1"]);
+    let out = hapstab().args(&args).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("--coulomb/--stiction") && err.contains("--plant-num"), "{err}");
+    let mut args = vec!["simulate"];
+    args.extend(TWO_MASS);
+    args.extend(["--wall-stiffness", "1000", "--coulomb", "0.2", "--push", "1"]);
+    let v = json(&args);
+    assert_eq!(v["effects"]["friction"]["coulomb"], 0.2);
+}
+
+/// `simboundary` on a general loop, linear and bilateral: at every damping the simulated
+/// boundary brackets the exact one (from the loop's family) within the bisection tolerance,
+/// and the K columns are the wall units times k_u; the exact K at a row's B equals the upper
+/// end of `check`'s stable K interval there.
+#[test]
+fn simboundary_of_a_general_loop_brackets_the_exact_boundary() {
+    let mut args = vec!["simboundary"];
+    args.extend(TWO_MASS);
+    args.extend(["--beta-count", "3", "--grid", "6", "--rel-tol", "1e-3"]);
+    args.extend(["--initial-velocity", "0.05", "--duration", "3"]);
+    let v = json(&args);
+    let ku = f(&v["wall_units"]["stiffness"]);
+    assert!(v.get("gamma").is_none());
+    for p in v["points"].as_array().unwrap() {
+        let lin = f(&p["alpha_linear"]);
+        let sim = f(&p["alpha_simulated"]);
+        let hi = p["inconclusive"]["alpha"]
+            .as_f64()
+            .or(p["alpha_unstable"].as_f64())
+            .unwrap();
+        assert!(sim <= lin * (1.0 + 1e-9) && lin <= hi * (1.0 + 2e-3), "{p}");
+        assert!((hi - sim) <= 1e-3 * hi, "{p}");
+        assert!((f(&p["k_linear"]) - lin * ku).abs() <= 1e-12 * lin * ku);
+        let b = p["wall_damping"].as_f64().unwrap().to_string();
+        let mut c = vec!["check"];
+        c.extend(TWO_MASS);
+        c.extend(["--wall-stiffness", "1", "--wall-damping", &b]);
+        let iv = json(&c)["k_interval"].clone();
+        let k_hi = f(&iv[1]);
+        assert!((k_hi - f(&p["k_linear"])).abs() <= 1e-9 * k_hi, "{iv} vs {p}");
+    }
+}

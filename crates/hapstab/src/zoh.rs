@@ -139,18 +139,23 @@ fn add_identity(e: &Mat, c: f64) -> Mat {
 impl StateSpace {
     /// The plant of a loop in normalized time and wall units, with the actuator lag.
     pub fn of_plant(plant: &Plant, period: f64) -> Result<Self> {
+        let base = Self::mechanical(plant, period)?;
+        Ok(if plant.force_lag > 0.0 {
+            base.with_lag(period / plant.force_lag)
+        } else {
+            base
+        })
+    }
+
+    /// The plant without its actuator lag: the mechanics from force to measured position.
+    fn mechanical(plant: &Plant, period: f64) -> Result<Self> {
         let m_ref = plant.reference_mass(period);
-        let base = match &plant.model {
+        Ok(match &plant.model {
             PlantModel::MassSpringDamper(e) => mass_spring_damper(e, period),
             PlantModel::TwoMass(t) => two_mass(t, period, m_ref),
             PlantModel::TransferFunction { num, den } => {
                 transfer_function(num, den, period, m_ref)?
             }
-        };
-        Ok(if plant.force_lag > 0.0 {
-            base.with_lag(period / plant.force_lag)
-        } else {
-            base
         })
     }
 
@@ -334,21 +339,10 @@ impl DiscreteLoop {
     /// Discretizes a loop exactly (see the module doc).
     pub fn new(lp: &Loop) -> Result<Self> {
         let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
-        let lambda = lp.delay.fraction;
         let (e1, psi1) = exp_and_integral(&ss.a, 1.0);
-        let (gamma0, gamma1) = if lambda == 0.0 {
-            (poly::mat_vec(&psi1, &ss.b), vec![0.0; ss.order()])
-        } else {
-            let (e_rest, psi_rest) = exp_and_integral(&ss.a, 1.0 - lambda);
-            let (_, psi_l) = exp_and_integral(&ss.a, lambda);
-            let g0 = poly::mat_vec(&psi_rest, &ss.b);
-            let inner = poly::mat_vec(&psi_l, &ss.b);
-            let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &inner);
-            (g0, g1)
-        };
+        let (gamma0, gamma1) = split_hold(&ss.a, &psi1, &ss.b, lp.delay.fraction);
         let (velocity_num, velocity_den) = lp.velocity.per_sample_filter(lp.period);
-        let m = lp.plant.reference_mass(lp.period);
-        let k_u = m / (lp.period * lp.period);
+        let scale = lp.wall_scale();
         let dl = Self {
             phi_minus_identity: e1,
             gamma0,
@@ -357,12 +351,9 @@ impl DiscreteLoop {
             delay: lp.delay,
             velocity_num,
             velocity_den,
-            scale: WallScale {
-                stiffness: k_u,
-                damping: k_u * lp.period,
-            },
+            scale,
             period: lp.period,
-            dc_stiffness: lp.plant.dc_stiffness().map(|k| k / k_u),
+            dc_stiffness: lp.plant.dc_stiffness().map(|k| k / scale.stiffness),
         };
         dl.check_finite()?;
         Ok(dl)
@@ -481,10 +472,178 @@ impl DiscreteLoop {
     }
 }
 
+/// Where a friction force acts: on one velocity state of the plant (the state holds T·v of
+/// that point in normalized time), with its input gain in wall units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FrictionPoint {
+    /// Index of the state T·v of the point where friction acts.
+    pub state: usize,
+    /// A force u (wall units) there adds gain·u to the derivative of that state.
+    pub gain: f64,
+}
+
+/// What the time-domain simulation needs of a plant beyond the wall's input B and the
+/// measured position C (same state, normalized time and wall units as [`StateSpace`]): where
+/// the human operator pushes, the velocity of the measured point, and where friction acts.
+/// Neither the human force nor friction passes through the actuator lag.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlantPorts {
+    /// Input column of the human force: on the device mass (the paper's plant, eq. 1), on the
+    /// handle (two-mass device), at the plant's input (transfer function).
+    pub human: Vec<f64>,
+    /// T·ẏ = velocity·x + direct_actuator·u_a + direct_human·u_h: the velocity of the
+    /// measured point just after a sample instant (u_a the actuator input, u_h the human
+    /// force then; the direct terms vanish unless a transfer function has relative degree 1).
+    pub velocity: Vec<f64>,
+    /// See `velocity`.
+    pub direct_actuator: f64,
+    /// See `velocity`.
+    pub direct_human: f64,
+    /// The friction point: the device mass of the paper's plant, the motor side of a two-mass
+    /// device. None for a transfer function, which names no mass.
+    pub friction: Option<FrictionPoint>,
+}
+
+fn padded(mut v: Vec<f64>, n: usize) -> Vec<f64> {
+    v.resize(n, 0.0);
+    v
+}
+
+fn unit(i: usize, n: usize) -> Vec<f64> {
+    let mut v = vec![0.0; n];
+    v[i] = 1.0;
+    v
+}
+
+impl PlantPorts {
+    /// The ports of a plant (see the type's doc).
+    pub fn of_plant(plant: &Plant, period: f64) -> Result<Self> {
+        let base = StateSpace::mechanical(plant, period)?;
+        let full = StateSpace::of_plant(plant, period)?;
+        let n = full.order();
+        let lagged = n > base.order();
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        Ok(match &plant.model {
+            PlantModel::MassSpringDamper(_) => Self::on_mass(padded(base.b.clone(), n), &base, n),
+            PlantModel::TwoMass(t) => {
+                let on_handle = plant.reference_mass(period) / (t.handle_mass + t.arm.mass);
+                let human = (0..n)
+                    .map(|i| if i == 3 { on_handle } else { 0.0 })
+                    .collect();
+                Self::on_mass(human, &base, n)
+            }
+            PlantModel::TransferFunction { .. } => {
+                let velocity: Vec<f64> = (0..n)
+                    .map(|j| (0..n).map(|i| full.c[i] * full.a[i][j]).sum())
+                    .collect();
+                let cb = dot(&base.c, &base.b);
+                Self {
+                    human: padded(base.b.clone(), n),
+                    velocity,
+                    direct_actuator: if lagged { 0.0 } else { cb },
+                    direct_human: cb,
+                    friction: None,
+                }
+            }
+        })
+    }
+
+    /// Ports of a plant whose state 1 is T·v of the mass that the actuator drives (the
+    /// paper's device, the motor side of a two-mass device): velocity and friction there.
+    fn on_mass(human: Vec<f64>, base: &StateSpace, n: usize) -> Self {
+        Self {
+            human,
+            velocity: unit(1, n),
+            direct_actuator: 0.0,
+            direct_human: 0.0,
+            friction: Some(FrictionPoint {
+                state: 1,
+                gain: base.b[1],
+            }),
+        }
+    }
+}
+
+/// The state at rest-like start: the measured point at `position` (m) moving at T·ẏ =
+/// `velocity` (m per sample), with `held` the actuator input (wall units) held before t = 0.
+/// The paper's plant: (x, T·ẋ). A two-mass device: motor and handle together at the
+/// position, moving together. A transfer function: the state whose free motion starts with
+/// y = position, T·ẏ = velocity and zero higher derivatives (least squares if the
+/// realization is not observable). An actuator lag has settled on the held input.
+pub fn initial_state(
+    plant: &Plant,
+    period: f64,
+    position: f64,
+    velocity: f64,
+    held: f64,
+) -> Result<Vec<f64>> {
+    let base = StateSpace::mechanical(plant, period)?;
+    let mut x = match &plant.model {
+        PlantModel::MassSpringDamper(_) => vec![position, velocity],
+        PlantModel::TwoMass(_) => vec![position, velocity, position, velocity],
+        PlantModel::TransferFunction { .. } => observable_start(&base, position, velocity),
+    };
+    if plant.force_lag > 0.0 {
+        x.push(held);
+    }
+    Ok(x)
+}
+
+/// Solves [C; CA; …; CA^{n−1}]·x = (position, velocity, 0, …) by SVD (least squares).
+fn observable_start(ss: &StateSpace, position: f64, velocity: f64) -> Vec<f64> {
+    let n = ss.order();
+    let mut rows = Vec::with_capacity(n);
+    let mut row = ss.c.clone();
+    for _ in 0..n {
+        let next = (0..n)
+            .map(|j| (0..n).map(|i| row[i] * ss.a[i][j]).sum())
+            .collect();
+        rows.push(std::mem::replace(&mut row, next));
+    }
+    let o = nalgebra::DMatrix::from_fn(n, n, |i, j| rows[i][j]);
+    let mut rhs = nalgebra::DVector::zeros(n);
+    rhs[0] = position;
+    if n > 1 {
+        rhs[1] = velocity;
+    }
+    let svd = o.svd(true, true);
+    let eps = f64::EPSILON * n as f64 * svd.singular_values.max();
+    match svd.solve(&rhs, eps) {
+        Ok(x) => x.iter().copied().collect(),
+        Err(_) => vec![0.0; n],
+    }
+}
+
+/// The inputs (Γ0, Γ1) of a force held over one sample and delayed by a fraction λ of it
+/// (module doc): Γ0 = Ψ(1 − λ)b, Γ1 = e^{A(1−λ)}Ψ(λ)b; for λ = 0, Γ0 = Ψ(1)b (given as
+/// `psi1`) and Γ1 = 0.
+pub fn split_hold(a: &Mat, psi1: &Mat, b: &[f64], lambda: f64) -> (Vec<f64>, Vec<f64>) {
+    if lambda == 0.0 {
+        return (poly::mat_vec(psi1, b), vec![0.0; b.len()]);
+    }
+    let (e_rest, psi_rest) = exp_and_integral(a, 1.0 - lambda);
+    let (_, psi_l) = exp_and_integral(a, lambda);
+    let g0 = poly::mat_vec(&psi_rest, b);
+    let inner = poly::mat_vec(&psi_l, b);
+    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &inner);
+    (g0, g1)
+}
+
 impl Loop {
     /// The exact discrete loop (see [`DiscreteLoop`]).
     pub fn discretize(&self) -> Result<DiscreteLoop> {
         DiscreteLoop::new(self)
+    }
+
+    /// The wall's units (Table I generalized): k_u = m/T² per unit of a, k_u·T per unit of
+    /// b, with m the plant's [`Plant::reference_mass`].
+    pub fn wall_scale(&self) -> WallScale {
+        let m = self.plant.reference_mass(self.period);
+        let k_u = m / (self.period * self.period);
+        WallScale {
+            stiffness: k_u,
+            damping: k_u * self.period,
+        }
     }
 }
 

@@ -3,7 +3,9 @@
 
 use std::time::Instant;
 
-use hapstab::PolyFamily;
+use hapstab::params::Wall;
+use hapstab::simulation::{LoopModel, SimModel};
+use hapstab::{Loop, PolyFamily};
 use hapstab::boundary::AlphaBeta;
 use hapstab::linear::{linear_alpha_limit, linear_check};
 use hapstab::nyquist::{
@@ -16,7 +18,9 @@ use hapstab::stability::Analysis;
 use serde::Serialize;
 
 use super::limits::*;
-use super::query::{ApiError, Params, PhysicalSpec, PlantSpec, clip, fmt, lib_error, plant_spec};
+use super::query::{
+    ApiError, GeneralLoop, Params, PhysicalSpec, PlantSpec, clip, fmt, lib_error, plant_spec,
+};
 use super::simplify::simplify_polygon;
 use hapstab::limits::{
     Budget, Cost, point_cost, region_cost, region_summary_cost, robust_region_cost, simulation_cost,
@@ -145,10 +149,17 @@ pub struct Timing {
 /// Answer of `/api/region`.
 #[derive(Debug, Clone, Serialize)]
 pub struct RegionOut {
+    /// (γ, δ, d); for a loop beyond the paper's, γ is its static stiffness in wall units
+    /// (the z = 1 line a = −γ) and δ = 0: the loop itself is under `loop`.
     pub params: PlantOut,
     pub physical: Option<PhysicalSpec>,
+    /// A loop beyond the paper's: plant, period, delay and velocity estimator; the region
+    /// is drawn in its wall units a = K/k_per_alpha, b = B/b_per_beta.
+    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
+    pub lp: Option<Loop>,
     pub region: RegionJson,
-    pub linear: LinearOut,
+    /// The paper's linear condition (null for other loops).
+    pub linear: Option<LinearOut>,
     pub passive: Option<PassiveOut>,
     pub robust: Option<RobustOut>,
     pub warnings: Vec<String>,
@@ -199,6 +210,16 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         " (drawing tolerance relative to the region's size)",
     )?;
     let robust = if p.flag("robust")? {
+        if spec.general.is_some() {
+            return Err(ApiError::param(
+                "robust",
+                p.raw("robust").unwrap_or(""),
+                format!(
+                    "parameter 'robust' (got '{}'): the robust region over a range of γ belongs to the paper's loop (device + arm, backward velocity, whole-sample delay, no actuator lag)",
+                    clip(p.raw("robust").unwrap_or(""))
+                ),
+            ));
+        }
         let lo = p.num_in("gamma_lo", 0.0, MAX_GAMMA, " (robust range, lower γ)")?;
         let hi = p.num_in("gamma_hi", 0.0, MAX_GAMMA, " (robust range, upper γ)")?;
         if hi < lo {
@@ -281,7 +302,7 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         }
         None
     };
-    let nominal = nominal_region_cost(spec.d);
+    let nominal = nominal_region_cost(spec.cost_d());
     within_budget(nominal, "the exact region", "d", &spec.d.to_string())?;
     Ok(RegionReq { spec, tol, robust })
 }
@@ -316,15 +337,8 @@ fn ab(p: &AlphaBeta) -> [f64; 2] {
     [p.alpha, p.beta]
 }
 
-/// Computes the answer of `/api/region`.
-pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
-    let t0 = Instant::now();
-    let spec = &req.spec;
-    let fam = PolyFamily::new(spec.plant, spec.d).map_err(lib_error)?;
-    let r = stable_region(&fam).map_err(lib_error)?;
-    let t_region = t0.elapsed().as_secs_f64() * 1e3;
-    let mut warnings = Vec::new();
-    // Region size for the drawing tolerance.
+/// The exact region drawn with the tolerance relative to its size.
+fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -338,11 +352,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         y1 = y1.max(v.beta);
     }
     let size = (x1 - x0).max(y1 - y0);
-    let abs_tol = if size.is_finite() {
-        req.tol * size
-    } else {
-        0.0
-    };
+    let abs_tol = if size.is_finite() { tol * size } else { 0.0 };
     let mut polygons = Vec::with_capacity(r.polygons.len());
     let mut edges = Vec::with_capacity(r.polygons.len());
     for poly in &r.polygons {
@@ -359,8 +369,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
                 .collect::<Vec<_>>(),
         );
     }
-    let vertices_exact: usize = r.polygons.iter().map(|p| p.vertices.len()).sum();
-    let region = RegionJson {
+    RegionJson {
         vertices_sent: polygons.iter().map(Vec::len).sum(),
         polygons,
         edges,
@@ -368,9 +377,47 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         beta_at_alpha_max: r.beta_at_alpha_max,
         area: r.area,
         empty: r.polygons.is_empty(),
-        vertices_exact,
-        tol: req.tol,
-    };
+        vertices_exact: r.polygons.iter().map(|p| p.vertices.len()).sum(),
+        tol,
+    }
+}
+
+/// `/api/region` for a loop beyond the paper's: the exact region of its family in wall
+/// units; the paper's overlays (linear condition, passive region) do not apply.
+fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiError> {
+    let t0 = Instant::now();
+    let r = stable_region(&g.family).map_err(lib_error)?;
+    let region = region_json(&r, req.tol);
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    Ok(RegionOut {
+        params: PlantOut::from(&req.spec),
+        physical: req.spec.physical,
+        lp: Some(g.lp.clone()),
+        region,
+        linear: None,
+        passive: None,
+        robust: None,
+        warnings: Vec::new(),
+        server_ms: Timing {
+            region: ms,
+            robust: 0.0,
+            total: ms,
+        },
+    })
+}
+
+/// Computes the answer of `/api/region`.
+pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
+    if let Some(g) = &req.spec.general {
+        return general_region(req, g);
+    }
+    let t0 = Instant::now();
+    let spec = &req.spec;
+    let fam = PolyFamily::new(spec.plant, spec.d).map_err(lib_error)?;
+    let r = stable_region(&fam).map_err(lib_error)?;
+    let t_region = t0.elapsed().as_secs_f64() * 1e3;
+    let mut warnings = Vec::new();
+    let region = region_json(&r, req.tol);
     if unit_circle_pole(spec.plant).is_some() {
         warnings.push(format!(
             "δ = 0 and γ = {} = (jπ)²: p(z) has a root on the unit circle for every (α, β) (Section VIII-B), so no point is strictly stable",
@@ -388,12 +435,12 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         }
     }
     let delta = spec.plant.delta;
-    let linear = LinearOut {
+    let linear = Some(LinearOut {
         equation: "α < (β + δ)/(d + 1/2)  (eq. 23),  α > −γ  (eq. 19)",
         slope: 1.0 / (spec.d as f64 + 0.5),
         alpha_at_beta0: linear_alpha_limit(0.0, delta, spec.d),
         alpha_lower: -spec.plant.gamma,
-    };
+    });
     let passive = if spec.d == 0 {
         let pr = passive_region(delta).map_err(lib_error)?;
         Some(PassiveOut {
@@ -435,6 +482,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     Ok(RegionOut {
         params: PlantOut::from(spec),
         physical: spec.physical,
+        lp: None,
         region,
         linear,
         passive,
@@ -522,7 +570,11 @@ pub struct PointLinear {
 /// Answer of `/api/point`.
 #[derive(Debug, Clone, Serialize)]
 pub struct PointOut {
+    /// (α, β, γ, δ, d); for a loop beyond the paper's the wall in wall units (a, b) with γ
+    /// its static stiffness in wall units and δ = 0 (the loop is under `loop`).
     pub params: Normalized,
+    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
+    pub lp: Option<Loop>,
     pub wall: Option<WallOut>,
     /// stable | marginal | unstable (Schur–Cohn with a 5e-11 marginal band).
     pub verdict: &'static str,
@@ -531,8 +583,8 @@ pub struct PointOut {
     pub spectral_radius: f64,
     /// Roots of p(z) as [re, im], largest modulus first.
     pub roots: Vec<[f64; 2]>,
-    /// Linear condition (19), (23).
-    pub linear: PointLinear,
+    /// Linear condition (19), (23) of the paper's loop (null for other loops).
+    pub linear: Option<PointLinear>,
     /// Inside Colgate's passive region (28) (d = 0 only).
     pub passive: Option<bool>,
     pub server_ms: f64,
@@ -541,36 +593,54 @@ pub struct PointOut {
 /// Refuses a point whose roots would cost more than one request may.
 pub fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
     within_budget(
-        point_cost(spec.d),
+        point_cost(spec.cost_d()),
         "the roots at one point",
         "d",
         &spec.d.to_string(),
     )
 }
 
+/// The wall of a point in physical units, if the request is physical.
+fn wall_out(spec: &PlantSpec, alpha: f64, beta: f64) -> Option<WallOut> {
+    spec.physical.map(|ph| WallOut {
+        stiffness: alpha * ph.k_per_alpha,
+        damping: beta * ph.b_per_beta,
+    })
+}
+
+/// The point's (α, β, γ, δ, d) (see [`PointOut::params`]).
+fn point_params(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<Normalized, ApiError> {
+    Normalized::new(alpha, beta, spec.plant.gamma, spec.plant.delta, spec.d).map_err(lib_error)
+}
+
 /// Computes `/api/point`.
 pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiError> {
     let t0 = Instant::now();
-    let n = Normalized::new(alpha, beta, spec.plant.gamma, spec.plant.delta, spec.d)
-        .map_err(lib_error)?;
-    let a = Analysis::new(n).map_err(lib_error)?;
-    let lc = linear_check(&n);
-    let passive = (spec.d == 0).then(|| alpha >= 0.0 && n.delta > alpha / 2.0 + beta.abs());
+    let n = point_params(spec, alpha, beta)?;
+    let a = match &spec.general {
+        Some(g) => Analysis::of_poly(&g.family.coefficients(alpha, beta)),
+        None => Analysis::new(n),
+    }
+    .map_err(lib_error)?;
+    let paper = spec.general.is_none();
+    let linear = paper.then(|| {
+        let lc = linear_check(&n);
+        PointLinear {
+            alpha_lower: lc.alpha_lower,
+            alpha_upper: lc.alpha_upper,
+            satisfied: lc.satisfied,
+        }
+    });
+    let passive = (paper && spec.d == 0).then(|| alpha >= 0.0 && n.delta > alpha / 2.0 + beta.abs());
     Ok(PointOut {
         params: n,
-        wall: spec.physical.map(|ph| WallOut {
-            stiffness: alpha * ph.k_per_alpha,
-            damping: beta * ph.b_per_beta,
-        }),
+        lp: spec.general.as_ref().map(|g| g.lp.clone()),
+        wall: wall_out(spec, alpha, beta),
         verdict: a.verdict.as_str(),
         stable: a.stable(),
         spectral_radius: a.spectral_radius,
         roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
-        linear: PointLinear {
-            alpha_lower: lc.alpha_lower,
-            alpha_upper: lc.alpha_upper,
-            satisfied: lc.satisfied,
-        },
+        linear,
         passive,
         server_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
@@ -616,10 +686,10 @@ pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
     within_budget(
         simulation_cost(
             samples.max(SIM_HORIZON) as f64,
-            spec.d,
+            spec.cost_d(),
             samples.min(MAX_TRACE_POINTS) as f64,
         )
-        .then(point_cost(spec.d)),
+        .then(point_cost(spec.cost_d())),
         "the simulation (extended up to its horizon)",
         "d",
         &spec.d.to_string(),
@@ -673,7 +743,10 @@ pub struct TraceOut {
 /// simulate` for the same setting) with a decimated trace of the whole run.
 #[derive(Debug, Clone, Serialize)]
 pub struct SimOut {
+    /// As [`PointOut::params`].
     pub params: Normalized,
+    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
+    pub lp: Option<Loop>,
     /// Mass m in kg and period T in s used for units.
     pub mass: f64,
     pub period: f64,
@@ -696,14 +769,7 @@ pub struct SimOut {
 pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     let t0 = Instant::now();
     let spec = &req.spec;
-    let n = Normalized::new(
-        req.alpha,
-        req.beta,
-        spec.plant.gamma,
-        spec.plant.delta,
-        spec.d,
-    )
-    .map_err(lib_error)?;
+    let n = point_params(spec, req.alpha, req.beta)?;
     let (mass, period, units_note) = match spec.physical {
         Some(ph) => (ph.mass, ph.period, "physical units of the request"),
         None => (
@@ -712,7 +778,16 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
             "normalized mode: shown for m = 1 kg and T = 1 ms (only the shape depends on α, β, γ, δ, d)",
         ),
     };
-    let model = Model::new(n, mass, period).map_err(lib_error)?;
+    let model = match (&spec.general, wall_out(spec, req.alpha, req.beta)) {
+        (Some(g), Some(w)) => {
+            let wall = Wall {
+                stiffness: w.stiffness,
+                damping: w.damping,
+            };
+            SimModel::Loop(LoopModel::new(g.lp.clone(), wall).map_err(lib_error)?)
+        }
+        _ => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
+    };
     let mut cfg = Config::new(model, req.samples);
     cfg.effects = Effects {
         contact: req.contact,
@@ -728,6 +803,7 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     let trace = run.trace.take().unwrap_or_default();
     Ok(SimOut {
         params: n,
+        lp: spec.general.as_ref().map(|g| g.lp.clone()),
         mass,
         period,
         units_note,

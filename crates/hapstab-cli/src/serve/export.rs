@@ -221,9 +221,10 @@ fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
             out.region.beta_at_alpha_max,
         );
     }
-    let l = &out.linear;
-    for (i, b) in [view[2], view[3]].into_iter().enumerate() {
-        row("linear", 0, i, l.alpha_at_beta0 + l.slope * b, b);
+    if let Some(l) = &out.linear {
+        for (i, b) in [view[2], view[3]].into_iter().enumerate() {
+            row("linear", 0, i, l.alpha_at_beta0 + l.slope * b, b);
+        }
     }
     if let Some(pa) = &out.passive {
         for (i, v) in pa.vertices.iter().enumerate() {
@@ -389,23 +390,24 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
             d.join(" ")
         );
     }
-    let l = &out.linear;
-    let (b0, b1) = (view[2], view[3]);
-    let _ = writeln!(
-        s,
-        "<line class=\"linear\" x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"8 4\"/>",
-        px(l.alpha_at_beta0 + l.slope * b0),
-        py(b0),
-        px(l.alpha_at_beta0 + l.slope * b1),
-        py(b1)
-    );
-    let _ = writeln!(
-        s,
-        "<line x1=\"{:.2}\" y1=\"{mt}\" x2=\"{:.2}\" y2=\"{}\" stroke=\"#d62728\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>",
-        px(l.alpha_lower),
-        px(l.alpha_lower),
-        mt + ph
-    );
+    if let Some(l) = &out.linear {
+        let (b0, b1) = (view[2], view[3]);
+        let _ = writeln!(
+            s,
+            "<line class=\"linear\" x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"8 4\"/>",
+            px(l.alpha_at_beta0 + l.slope * b0),
+            py(b0),
+            px(l.alpha_at_beta0 + l.slope * b1),
+            py(b1)
+        );
+        let _ = writeln!(
+            s,
+            "<line x1=\"{:.2}\" y1=\"{mt}\" x2=\"{:.2}\" y2=\"{}\" stroke=\"#d62728\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>",
+            px(l.alpha_lower),
+            px(l.alpha_lower),
+            mt + ph
+        );
+    }
     let am = out.region.alpha_max;
     if am.is_finite() {
         let (x, y) = (px(am), py(out.region.beta_at_alpha_max));
@@ -438,7 +440,9 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
     );
     // legend
     let mut items: Vec<(String, &str)> = vec![("exact stable region".into(), "#4c8fd6")];
-    items.push(("linear condition (23), α > −γ (19)".into(), "#d62728"));
+    if out.linear.is_some() {
+        items.push(("linear condition (23), α > −γ (19)".into(), "#d62728"));
+    }
     if am.is_finite() {
         let v = match &out.physical {
             Some(ph) => format!("K_max = {} N/m", sig(am * ph.k_per_alpha, 6)),

@@ -8,6 +8,7 @@ use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use hapstab::params::{Arm, Device, Effective, PlantParams, Sampling};
+use hapstab::{AffineFamily, Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use serde::Serialize;
 
 use super::limits::{
@@ -325,12 +326,33 @@ pub struct PhysicalSpec {
     pub b_per_beta: f64,
 }
 
-/// The plant (γ, δ, d) of a request, from normalized or physical parameters.
-#[derive(Debug, Clone, Copy)]
+/// The plant (γ, δ, d) of a request, from normalized or physical parameters; for a loop
+/// beyond the paper's (another plant, an actuator lag, a velocity filter, a fractional
+/// delay) the loop itself with its family, and (γ, δ) hold only the static stiffness.
+#[derive(Debug, Clone)]
 pub struct PlantSpec {
     pub plant: PlantParams,
     pub d: usize,
     pub physical: Option<PhysicalSpec>,
+    pub general: Option<GeneralLoop>,
+}
+
+/// A loop beyond the paper's and its affine family p = P0 + a·PK + b·PB.
+#[derive(Debug, Clone)]
+pub struct GeneralLoop {
+    pub lp: Loop,
+    pub family: AffineFamily,
+}
+
+impl PlantSpec {
+    /// The delay that prices a computation: d for the paper's loop; for a general loop the
+    /// d of a paper loop of the same degree of p(z) (degree d + 3).
+    pub fn cost_d(&self) -> usize {
+        match &self.general {
+            Some(g) => g.family.degree().saturating_sub(3),
+            None => self.d,
+        }
+    }
 }
 
 /// Parameter names of the plant (both modes).
@@ -346,6 +368,15 @@ pub const PLANT_PARAMS: &[&str] = &[
     "arm_stiffness",
     "period",
     "delay_time",
+    "estimator",
+    "force_lag",
+    "motor_mass",
+    "motor_damping",
+    "handle_mass",
+    "transmission_stiffness",
+    "transmission_damping",
+    "plant_num",
+    "plant_den",
 ];
 
 /// The plant parameters that only the physical mode accepts (the tail of [`PLANT_PARAMS`]).
@@ -384,7 +415,11 @@ pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
             plant,
             d,
             physical: None,
+            general: None,
         });
+    }
+    if LOOP_ONLY.iter().any(|n| p.has(n)) || fractional_delay(p)? {
+        return general_spec(p);
     }
     for name in ["gamma", "delta"] {
         if let Some(v) = p.raw(name) {
@@ -480,5 +515,223 @@ pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
             k_per_alpha: eff.mass / (period * period),
             b_per_beta: eff.mass / period,
         }),
+        general: None,
     })
+}
+
+/// Parameters that make a physical loop other than the paper's.
+const LOOP_ONLY: &[&str] = &[
+    "estimator",
+    "force_lag",
+    "motor_mass",
+    "motor_damping",
+    "handle_mass",
+    "transmission_stiffness",
+    "transmission_damping",
+    "plant_num",
+    "plant_den",
+];
+
+/// No one-mass device (a two-mass device or a transfer function describes the plant).
+const NO_DEVICE: Device = Device {
+    mass: 0.0,
+    damping: 0.0,
+};
+
+/// Longest actuator time constant accepted: a current loop is far faster than 1 s.
+const MAX_FORCE_LAG: f64 = 1.0;
+
+/// True when `delay_time` is not a whole number of periods (the paper's loop needs one).
+fn fractional_delay(p: &Params) -> Result<bool, ApiError> {
+    let (Some(td), Some(t)) = (p.opt_num("delay_time")?, p.opt_num("period")?) else {
+        return Ok(false);
+    };
+    Ok(Delay::from_time(td, t).is_ok_and(|d| d.fraction > 0.0))
+}
+
+fn refuse(p: &Params, names: &[&str], why: &str) -> Result<(), ApiError> {
+    for &name in names {
+        if let Some(v) = p.raw(name) {
+            return Err(ApiError::param(
+                name,
+                v,
+                format!("parameter '{name}' (got '{}') {why}", clip(v)),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn arm(p: &Params) -> Result<Arm, ApiError> {
+    Ok(Arm {
+        mass: p.num_in("arm_mass", 0.0, MAX_MASS, " kg")?,
+        damping: p.num_in("arm_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
+        stiffness: p.num_in("arm_stiffness", 0.0, MAX_PHYS_STIFFNESS, " N/m")?,
+    })
+}
+
+fn coefficients(p: &Params, name: &'static str) -> Result<Vec<f64>, ApiError> {
+    let v = p.raw(name).ok_or_else(|| missing(name))?;
+    hapstab::spec::parse_coefficients(name, v)
+        .map_err(|e| ApiError::param(name, v, format!("parameter '{name}': {e}")))
+}
+
+/// The plant model of a general loop: a transfer function (plant_num, plant_den), a two-mass
+/// device (motor_mass, transmission_stiffness, …, the arm on the handle) or the paper's
+/// device + arm.
+fn plant_model(p: &Params) -> Result<PlantModel, ApiError> {
+    const DEVICE: &[&str] = &["device_mass", "device_damping"];
+    const ARM: &[&str] = &["arm_mass", "arm_damping", "arm_stiffness"];
+    const TWO_MASS: &[&str] = &[
+        "motor_mass",
+        "motor_damping",
+        "handle_mass",
+        "transmission_stiffness",
+        "transmission_damping",
+    ];
+    if p.has("plant_num") || p.has("plant_den") {
+        let why = "does not combine with a transfer-function plant (plant_num/plant_den)";
+        refuse(p, DEVICE, why)?;
+        refuse(p, ARM, why)?;
+        refuse(p, TWO_MASS, why)?;
+        let num = coefficients(p, "plant_num")?;
+        let den = coefficients(p, "plant_den")?;
+        return Ok(PlantModel::TransferFunction { num, den });
+    }
+    if TWO_MASS.iter().any(|n| p.has(n)) {
+        refuse(p, DEVICE, "does not combine with a two-mass device (motor_mass, …)")?;
+        return Ok(PlantModel::TwoMass(TwoMass {
+            motor_mass: p.num_in("motor_mass", 0.0, MAX_MASS, " kg")?,
+            motor_damping: p.num_or("motor_damping", 0.0, 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
+            handle_mass: p.num_or("handle_mass", 0.0, 0.0, MAX_MASS, " kg")?,
+            transmission_stiffness: p.num_in(
+                "transmission_stiffness",
+                0.0,
+                MAX_PHYS_STIFFNESS,
+                " N/m",
+            )?,
+            transmission_damping: p.num_or(
+                "transmission_damping",
+                0.0,
+                0.0,
+                MAX_PHYS_DAMPING,
+                " Ns/m",
+            )?,
+            arm: arm(p)?,
+        }));
+    }
+    let device = Device {
+        mass: p.num_in("device_mass", 0.0, MAX_MASS, " kg")?,
+        damping: p.num_in("device_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
+    };
+    let eff = Effective::combine(device, arm(p)?).map_err(lib_error)?;
+    Ok(PlantModel::MassSpringDamper(eff))
+}
+
+/// The delay of a general loop: d whole samples or t_d = (d + λ)T in seconds.
+fn general_delay(p: &Params, period: f64) -> Result<Delay, ApiError> {
+    let delay = match (p.raw("d"), p.opt_num("delay_time")?) {
+        (Some(v), Some(_)) => {
+            return Err(ApiError::param(
+                "d",
+                v,
+                "give either 'd' (samples) or 'delay_time' (s), not both".into(),
+            ));
+        }
+        (Some(_), None) => Delay::samples(delay(p)?).map_err(lib_error)?,
+        (None, Some(td)) => Delay::from_time(td, period).map_err(|e| {
+            ApiError::param(
+                "delay_time",
+                &fmt(td),
+                format!("parameter 'delay_time': {e}"),
+            )
+        })?,
+        (None, None) => return Err(missing("delay_time")),
+    };
+    if delay.samples > MAX_D {
+        let v = p.raw("delay_time").unwrap_or("");
+        return Err(ApiError::param(
+            "delay_time",
+            v,
+            format!(
+                "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} s = {} periods)",
+                clip(v),
+                fmt(delay.in_samples())
+            ),
+        ));
+    }
+    Ok(delay)
+}
+
+/// A physical loop beyond the paper's: its plant model, actuator lag, velocity estimator
+/// and (possibly fractional) delay, validated, with its family.
+fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
+    let model = plant_model(p)?;
+    let period = p.num_in("period", MIN_PERIOD, MAX_PERIOD, " s (sampling period T)")?;
+    let lag = p.num_or("force_lag", 0.0, 0.0, MAX_FORCE_LAG, " s (actuator time constant τ)")?;
+    let velocity = match p.raw("estimator") {
+        Some(v) => v
+            .parse::<VelocityEstimator>()
+            .map_err(|e| ApiError::param("estimator", v, format!("parameter 'estimator': {e}")))?,
+        None => VelocityEstimator::Backward,
+    };
+    let name = match &model {
+        PlantModel::TransferFunction { .. } => "plant_den",
+        PlantModel::TwoMass(_) => "motor_mass",
+        PlantModel::MassSpringDamper(_) => "device_mass",
+    };
+    let plant = Plant::new(model, lag).map_err(|e| {
+        let v = p.raw(name).unwrap_or("");
+        ApiError::param(
+            name,
+            v,
+            format!("parameter '{name}' (got '{}'): {e}", clip(v)),
+        )
+    })?;
+    let delay = general_delay(p, period)?;
+    let lp = Loop::new(plant, period, delay, velocity).map_err(lib_error)?;
+    let family = AffineFamily::of_loop(&lp).map_err(lib_error)?;
+    Ok(general_plant_spec(lp, family))
+}
+
+/// The [`PlantSpec`] of a general loop: its units for the page (K = a·k_per_alpha, B =
+/// b·b_per_beta) and its static stiffness.
+fn general_plant_spec(lp: Loop, family: AffineFamily) -> PlantSpec {
+    let (dev, arm_, eff) = match &lp.plant.model {
+        PlantModel::MassSpringDamper(e) => (
+            Device {
+                mass: e.mass,
+                damping: e.damping,
+            },
+            Arm::NONE,
+            Some(*e),
+        ),
+        PlantModel::TwoMass(t) => (NO_DEVICE, t.arm, None),
+        PlantModel::TransferFunction { .. } => (NO_DEVICE, Arm::NONE, None),
+    };
+    let s = family.scale;
+    let static_k = lp.plant.dc_stiffness().unwrap_or(0.0);
+    let physical = PhysicalSpec {
+        device_mass: dev.mass,
+        device_damping: dev.damping,
+        arm_mass: arm_.mass,
+        arm_damping: arm_.damping,
+        arm_stiffness: arm_.stiffness,
+        period: lp.period,
+        delay_time: lp.delay_time(),
+        mass: lp.plant.reference_mass(lp.period),
+        damping: eff.map_or(0.0, |e| e.damping),
+        stiffness: static_k,
+        k_per_alpha: s.stiffness,
+        b_per_beta: s.damping,
+    };
+    PlantSpec {
+        plant: PlantParams {
+            gamma: (static_k / s.stiffness).max(0.0),
+            delta: 0.0,
+        },
+        d: lp.delay.samples,
+        physical: Some(physical),
+        general: Some(GeneralLoop { lp, family }),
+    }
 }

@@ -102,7 +102,7 @@ enum RunClass {
 
 fn classify_run(template: &Config, alpha: f64, beta: f64, when: StableWhen) -> Result<RunClass> {
     let mut cfg = template.clone();
-    cfg.model = template.model.with_wall(alpha, beta)?;
+    cfg.model = template.model.with_wall_units(alpha, beta)?;
     cfg.trace_rows = 0;
     let v = simulate(&cfg)?.verdict;
     let small = |a: f64| v.limit_cycle.is_some_and(|c| c.peak_to_peak < a);
@@ -166,8 +166,7 @@ fn bisect(
 }
 
 fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
-    let p = search.template.model.params;
-    let alpha_linear = exact_alpha_limit(p.plant(), p.d, beta)?;
+    let alpha_linear = search.template.model.exact_upper_a(beta)?;
     let alpha_max = match search.alpha_max {
         Some(a) => positive("alpha_max", a)?,
         None => match alpha_linear {

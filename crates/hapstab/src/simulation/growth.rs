@@ -5,10 +5,9 @@ use nalgebra::{DMatrix, Schur};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::{Kernel, wall_linear};
+use super::{Config, Effects, Model, SimModel, Simulator};
 use crate::error::{Error, Result};
 use crate::params::Normalized;
-use crate::plant::DiscretePlant;
 
 /// Growth of the homogeneous linear bilateral loop, measured by stepping the simulator.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -38,19 +37,31 @@ impl LinearGrowth {
 /// Largest block of the power iteration.
 const BLOCK: usize = 6;
 
-/// One homogeneous step of the linear bilateral loop on the state (x, Tẋ, y[k−1], …,
-/// y[k−d−1]) with the simulator's kernel and wall law.
-fn homogeneous_step(k: &Kernel, alpha: f64, beta: f64, d: usize, src: &[f64], dst: &mut [f64]) {
-    let (x, w) = (src[0], src[1]);
-    let h = &src[2..];
-    let yd = if d == 0 { x } else { h[d - 1] };
-    let yd1 = h[d];
-    let u = -wall_linear(alpha, beta, 0.0, yd, yd1);
-    let (x1, w1) = k.step(x, w, u);
-    dst[0] = x1;
-    dst[1] = w1;
-    dst[2] = x;
-    dst[3..].copy_from_slice(&h[..d]);
+/// The homogeneous linear bilateral loop's one-sample map: the simulator with the wall at
+/// the origin, no human force and no nonlinear effect, stepped once from a given state.
+struct HomogeneousMap {
+    sim: Simulator,
+}
+
+impl HomogeneousMap {
+    fn new(model: &SimModel) -> Result<Self> {
+        let mut cfg = Config::new(model.clone(), 2);
+        cfg.effects = Effects::LINEAR;
+        Ok(Self {
+            sim: Simulator::new(&cfg)?,
+        })
+    }
+
+    fn len(&self) -> usize {
+        self.sim.state_len()
+    }
+
+    fn apply(&mut self, src: &[f64], dst: &mut [f64]) -> Result<()> {
+        self.sim.load_state(src);
+        self.sim.advance(1)?;
+        self.sim.store_state(dst);
+        Ok(())
+    }
 }
 
 /// Modified Gram–Schmidt on p columns of length n (column-major); returns false if the
@@ -152,19 +163,23 @@ fn dominant_ritz(t: &[f64], p: usize, q: &[f64], aq: &[f64], n: usize) -> Option
     Some((lam, res.sqrt() / lam.norm().max(f64::MIN_POSITIVE)))
 }
 
-/// Measures the growth per sample of the homogeneous linear bilateral loop (eq. 9,
-/// Section V) by stepping the simulator's own one-sample map: block power iteration with a
-/// block of min(d + 3, 6) generic state vectors (position, velocity *and* the delay line),
-/// re-orthonormalized every step, and Rayleigh–Ritz on the block. The modulus of the
-/// dominant Ritz value is the envelope factor of the dominant mode, so a complex dominant
-/// pair is tracked as the growth of a rotating plane rather than by the oscillating norm of
-/// one trajectory. Stops when the dominant Ritz pair's relative residual is below 1e-11 or
-/// after a work budget.
+/// Measures the growth per sample of the homogeneous linear bilateral loop of the paper
+/// (eq. 9, Section V) in normalized units: [`linear_growth_of`] the loop of `params`.
 pub fn linear_growth(params: &Normalized) -> Result<LinearGrowth> {
-    let params = params.validated()?;
-    let kernel = Kernel::new(&DiscretePlant::from_params(params.plant()));
-    let (alpha, beta, d) = (params.alpha, params.beta, params.d);
-    let n = d + 3;
+    linear_growth_of(&SimModel::Paper(Model::unit(*params)?))
+}
+
+/// Measures the growth per sample of any homogeneous linear bilateral loop (Section V) by
+/// stepping the simulator's own one-sample map: block power iteration with a block of
+/// min(state, 6) generic state vectors (plant state *and* the loop's memory: delay line,
+/// estimator, previous force), re-orthonormalized every step, and Rayleigh–Ritz on the
+/// block. The modulus of the dominant Ritz value is the envelope factor of the dominant mode,
+/// so a complex dominant pair is tracked as the growth of a rotating plane rather than by the
+/// oscillating norm of one trajectory. Stops when the dominant Ritz pair's relative residual
+/// is below 1e-11 or after a work budget.
+pub fn linear_growth_of(model: &SimModel) -> Result<LinearGrowth> {
+    let mut map = HomogeneousMap::new(model)?;
+    let n = map.len();
     let p = n.min(BLOCK);
     let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
     let mut q: Vec<f64> = (0..n * p)
@@ -187,7 +202,7 @@ pub fn linear_growth(params: &Normalized) -> Result<LinearGrowth> {
     loop {
         for j in 0..p {
             let (src, dst) = (&q[j * n..(j + 1) * n], &mut aq[j * n..(j + 1) * n]);
-            homogeneous_step(&kernel, alpha, beta, d, src, dst);
+            map.apply(src, dst)?;
         }
         steps += 1;
         if steps >= next_check || steps >= max_steps {

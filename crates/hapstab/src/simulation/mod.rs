@@ -1,27 +1,30 @@
-//! Time-domain simulation of the sampled-data loop of Fig. 3 (Section II), including the
+//! Time-domain simulation of the sampled-data loop of Fig. 3 (Section II) for any loop
+//! ([`crate::Loop`]: plant, actuator lag, fractional delay, velocity estimator), including the
 //! nonlinear effects that the paper leaves to future work (Remark 1 and Section IX): a
 //! unilateral wall, Coulomb and static friction, position-sensor quantization and actuator
 //! force saturation.
 //!
 //! # Model
 //!
-//! The continuous plant m ẍ + b ẋ + k x = F (eq. 1; the arm's spring k_H pulls toward the
-//! origin, the hand's rest position) is stepped *exactly* from sample to sample with the
-//! zero-order-hold matrices of [`DiscretePlant`] (Section III, eq. 2–6), in the normalized
-//! state (x, T·ẋ):
+//! The simulator steps the exact discrete loop of [`crate::DiscreteLoop`], the same matrices
+//! the analysis closes into p(z) ([`crate::closed_loop`]), in normalized time (one unit per
+//! sample) and wall units (forces divided by k_u = m/T², Table I, m the plant's reference
+//! mass):
 //!
 //! ```text
-//! (x, Tẋ)[k+1] = Φ (x, Tẋ)[k] + Γ · u[k],      u[k] = (T²/m) · F[k]   (Table I),
-//! F[k] = F_H[k] − F_wall[k] − F_friction,
-//! F_wall[k] = K (y[k−d] − x_w) + B (y[k−d] − y[k−d−1]) / T,
+//! x[k+1] = Φ x[k] + Γ0 u_w[k−d] + Γ1 u_w[k−d−1] + Ψ b_h u_H[k] + Ψ b_f u_f,
+//! y[k] = C x[k] (sensed: optionally quantized),   v = V(z)·y (the loop's estimator),
+//! u_w[j] = −F_wall[j]/k_u,   F_wall[j] = K (y[j] − x_w) + B v[j],
 //! ```
 //!
-//! where y is the sampled (optionally quantized) position, d the delay in samples and x_w
-//! the wall position. In normalized units (T²/m)·F_wall = α (y[k−d] − x_w) + β (y[k−d] −
-//! y[k−d−1]), so the linear bilateral loop has exactly the characteristic polynomial
-//! p(z) = z^{d+1} D(z) + N(z)((α + β) z − β) of eq. (9) (see [`crate::closed_loop`]).
-//! Positions are in metres, velocities in m/s and forces in newtons throughout the API;
-//! internally all forces are scaled by T²/m.
+//! with t_d = (d + λ)T: the wall force computed at sample j acts from jT + t_d, so over one
+//! sample the force of k − d − 1 acts on [0, λT) and that of k − d on [λT, T) (Γ1 = 0 for
+//! a whole number of samples). The human force u_H and friction u_f act on the plant
+//! directly, not through the actuator lag (see [`crate::zoh::PlantPorts`]). The linear
+//! bilateral loop therefore has exactly the characteristic polynomial
+//! p(z) = P0 + a·PK + b·PB of [`crate::AffineFamily`]; for the paper's loop, stepped in the
+//! state (x, T·ẋ) with (a, b) = (α, β), that is eq. (9). Positions are in metres, velocities
+//! in m/s and forces in newtons throughout the API.
 //!
 //! # Sign conventions
 //!
@@ -38,19 +41,16 @@
 //!
 //! # Friction (stick–slip within exact ZOH stepping)
 //!
-//! Coulomb friction F_c opposes the velocity, static friction F_s ≥ F_c holds the device at
-//! rest. Friction is not held at its sampled value: within a sample the applied force is
-//! constant, so the motion between velocity reversals is an exact ZOH step with the
-//! constant input F − F_c·sgn(ẋ). When the velocity at the end of a (sub)step has changed
-//! sign, the reversal instant τ* ∈ (0, 1) is located by bisection on the exact sub-step
-//! solution (the plant over τT is the ZOH plant with γτ², δτ, see [`DiscretePlant`]). At
-//! τ* the velocity is zero and the *stick rule* applies: the device sticks for the rest of
-//! the sample if the non-friction force |F − k x| ≤ F_s (the damper force is zero at rest);
-//! otherwise it slips on in the direction of that force with friction −F_c·sgn. A stuck
-//! device stays exactly at rest over a sample iff |F − k x| ≤ F_s at the sample instant,
-//! since F and x are then constant over the sample. Two reversals within one sample with
-//! equal end signs are missed; that needs a plant half-period shorter than one sample
-//! (γ > π², beyond the Nyquist frequency of Section VIII).
+//! Coulomb friction F_c opposes the velocity of the point where it acts, static friction
+//! F_s ≥ F_c holds that point at rest: the device of the paper's plant, the motor side of a
+//! two-mass device. A transfer function names no mass, so friction is refused for it.
+//! Friction is not held at its sampled value: between events the motion is an exact ZOH
+//! (sub)step with constant inputs, and events inside a sample (velocity reversals, breakaway
+//! of a stuck point) are located on the exact sub-step solution, with the stick rule at each
+//! reversal (stick if the rest of the plant pushes the point with at most F_s, otherwise
+//! slip in that direction). While stuck, the point is held and the rest of the plant moves
+//! on (a two-mass device's handle, an actuator lag). See `stepper.rs` for the method and
+//! its limits (two reversals within one sample need dynamics faster than the sampling).
 //!
 //! # Verdict
 //!
@@ -64,20 +64,25 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
+use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
-use crate::params::{Normalized, Physical, PlantParams};
-use crate::plant::DiscretePlant;
+use crate::model::{Loop, PlantModel};
+use crate::params::{Normalized, Physical, Wall};
 use crate::stability::Analysis;
 
 mod boundary;
+mod filter;
 mod growth;
+mod simulator;
+mod stepper;
 pub mod verdict;
 
 pub use boundary::{
     BoundarySearch, EmpiricalPoint, InconclusiveRun, MAX_BISECTION_STEPS, MIN_REL_TOLERANCE,
     StableWhen, empirical_boundary, exact_alpha_limit,
 };
-pub use growth::{LinearGrowth, linear_growth};
+pub use growth::{LinearGrowth, linear_growth, linear_growth_of};
+pub use simulator::Simulator;
 pub use verdict::{
     ContactSummary, LimitCycle, LinearReference, LoopFacts, Outcome, RunLog, RunVerdict,
     SampleFacts,
@@ -140,6 +145,163 @@ impl Model {
         self.period * self.period / self.mass
     }
 }
+
+/// Any loop ([`Loop`]: plant, period, delay, velocity estimator) with its wall, in
+/// physical units.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LoopModel {
+    /// The loop.
+    pub lp: Loop,
+    /// The wall's stiffness K (N/m) and damping B (Ns/m).
+    pub wall: Wall,
+}
+
+impl LoopModel {
+    /// Bundles a loop and its wall; the wall must be finite.
+    pub fn new(lp: Loop, wall: Wall) -> Result<Self> {
+        finite("wall stiffness K", wall.stiffness)?;
+        finite("wall damping B", wall.damping)?;
+        Ok(Self { lp, wall })
+    }
+}
+
+/// The linear part of a simulated loop: the paper's loop in Table I's coordinates, or any
+/// loop. Both are stepped through the same engine, the exact discrete loop of
+/// [`crate::DiscreteLoop`]; the paper's loop as its normalized loop ([`Loop::normalized`],
+/// m = T = 1, so that its wall units are (α, β) and its analysis is the paper's, eq. 9).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum SimModel {
+    /// The paper's loop (eq. 1, Table I) with the mass and period that give it units.
+    Paper(Model),
+    /// Any loop with a physical wall.
+    Loop(LoopModel),
+}
+
+impl From<Model> for SimModel {
+    fn from(m: Model) -> Self {
+        SimModel::Paper(m)
+    }
+}
+
+impl From<LoopModel> for SimModel {
+    fn from(m: LoopModel) -> Self {
+        SimModel::Loop(m)
+    }
+}
+
+impl SimModel {
+    /// The loop that is stepped (see the type's doc), in normalized time and wall units.
+    pub fn stepped_loop(&self) -> Result<Loop> {
+        match self {
+            SimModel::Paper(m) => Loop::normalized(m.params.plant(), m.params.d),
+            SimModel::Loop(m) => Ok(m.lp.clone()),
+        }
+    }
+
+    /// The wall in the stepped loop's wall units (a, b) = (K/k_u, B/(k_u·T)): (α, β) of
+    /// Table I for the paper's loop.
+    pub fn wall_units(&self) -> (f64, f64) {
+        match self {
+            SimModel::Paper(m) => (m.params.alpha, m.params.beta),
+            SimModel::Loop(m) => {
+                let s = m.lp.wall_scale();
+                (m.wall.stiffness / s.stiffness, m.wall.damping / s.damping)
+            }
+        }
+    }
+
+    /// The same loop with another wall in wall units (a, b).
+    pub fn with_wall_units(&self, a: f64, b: f64) -> Result<Self> {
+        Ok(match self {
+            SimModel::Paper(m) => SimModel::Paper(m.with_wall(a, b)?),
+            SimModel::Loop(m) => {
+                let s = m.lp.wall_scale();
+                let wall = Wall {
+                    stiffness: finite("a", a)? * s.stiffness,
+                    damping: finite("b", b)? * s.damping,
+                };
+                SimModel::Loop(LoopModel::new(m.lp.clone(), wall)?)
+            }
+        })
+    }
+
+    /// Sampling period T in s.
+    pub fn period(&self) -> f64 {
+        match self {
+            SimModel::Paper(m) => m.period,
+            SimModel::Loop(m) => m.lp.period,
+        }
+    }
+
+    /// Wall units per newton, 1/k_u = T²/m (Table I; m the plant's reference mass).
+    pub fn force_scale(&self) -> f64 {
+        match self {
+            SimModel::Paper(m) => m.force_scale(),
+            SimModel::Loop(m) => 1.0 / m.lp.wall_scale().stiffness,
+        }
+    }
+
+    /// The affine family p(z) = P0 + a·PK + b·PB of the stepped loop ([`AffineFamily`]).
+    pub fn family(&self) -> Result<AffineFamily> {
+        AffineFamily::of_loop(&self.stepped_loop()?)
+    }
+
+    /// The analysis of the linear bilateral loop (Section V): verdict, spectral radius, roots
+    /// of p(z) at this wall.
+    pub fn analysis(&self) -> Result<Analysis> {
+        match self {
+            SimModel::Paper(m) => Analysis::new(m.params),
+            SimModel::Loop(_) => {
+                let (a, b) = self.wall_units();
+                Analysis::of_poly(&self.family()?.coefficients(a, b))
+            }
+        }
+    }
+
+    /// The exact linear boundary along a at damping b (wall units): the upper end of the
+    /// stable a-interval that starts at the z = 1 line (Section V: α = −γ for the paper's
+    /// loop) and reaches a > 0. None if there is none; `f64::INFINITY` if it is unbounded.
+    pub fn exact_upper_a(&self, b: f64) -> Result<Option<f64>> {
+        finite("b", b)?;
+        match self {
+            SimModel::Paper(m) => exact_alpha_limit(m.params.plant(), m.params.d, b),
+            SimModel::Loop(_) => {
+                let fam = self.family()?;
+                Ok(crate::boundary::stable_alpha_intervals(&fam, b)
+                    .into_iter()
+                    .find(|iv| iv.lo <= UPPER_A_START * iv.hi.abs().min(1.0) && iv.hi > 0.0)
+                    .map(|iv| iv.hi))
+            }
+        }
+    }
+
+    /// Friction acts on a mass of the plant: the paper's device, a two-mass device's motor
+    /// side. A transfer function names no mass, so friction is not defined for it.
+    pub fn friction_defined(&self) -> bool {
+        match self {
+            SimModel::Paper(_) => true,
+            SimModel::Loop(m) => !matches!(m.lp.plant.model, PlantModel::TransferFunction { .. }),
+        }
+    }
+
+    /// Checks the loop and the wall.
+    pub fn validate(&self) -> Result<()> {
+        match self {
+            SimModel::Paper(m) => Model::new(m.params, m.mass, m.period).map(|_| ()),
+            SimModel::Loop(m) => {
+                let lp = &m.lp;
+                Loop::new(lp.plant.clone(), lp.period, lp.delay, lp.velocity.clone())?;
+                LoopModel::new(lp.clone(), m.wall).map(|_| ())
+            }
+        }
+    }
+}
+
+/// A stable a-interval "starts at the z = 1 line" when its lower end is at most this fraction
+/// of its upper end above 0 (the line a = −s lies at a ≤ 0 for every plant with a
+/// non-negative static stiffness s; rounding of the crossing may put it a few ulps above).
+const UPPER_A_START: f64 = 1e-12;
 
 /// How the virtual wall touches the device (Remark 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -285,8 +447,8 @@ pub struct Initial {
 /// Everything one run needs.
 #[derive(Debug, Clone)]
 pub struct Config {
-    /// Linear loop (eq. 1, Table I).
-    pub model: Model,
+    /// The linear loop: the paper's (eq. 1, Table I) or any loop with its wall.
+    pub model: SimModel,
     /// Nonlinear effects.
     pub effects: Effects,
     /// Human push F_H.
@@ -314,9 +476,9 @@ impl Config {
     /// A linear bilateral run of `samples` samples from rest at the origin with no human
     /// force and no trace, extended up to [`DEFAULT_MAX_SAMPLES`] (or `samples`, if more)
     /// until its verdict settles.
-    pub fn new(model: Model, samples: usize) -> Self {
+    pub fn new(model: impl Into<SimModel>, samples: usize) -> Self {
         Self {
-            model,
+            model: model.into(),
             effects: Effects::LINEAR,
             human: HumanForce::default(),
             initial: Initial::default(),
@@ -328,8 +490,17 @@ impl Config {
 
     /// Validates every field.
     pub fn validate(&self) -> Result<()> {
-        Model::new(self.model.params, self.model.mass, self.model.period)?;
+        self.model.validate()?;
         self.effects.validate()?;
+        if self.effects.friction.is_some() && !self.model.friction_defined() {
+            return Err(Error::Invalid {
+                name: "friction",
+                reason: "is not defined for a transfer-function plant: it acts on a mass, which \
+                         a transfer function does not name (use the mass-spring-damper or the \
+                         two-mass plant)"
+                    .into(),
+            });
+        }
         self.human.validate()?;
         finite("initial position", self.initial.position)?;
         finite("initial velocity", self.initial.velocity)?;
@@ -361,18 +532,16 @@ impl Config {
     /// the bilateral loop (Section V) as the reference for linear windows.
     pub fn loop_facts(&self) -> LoopFacts {
         let e = &self.effects;
-        let linear = Analysis::new(self.model.params)
-            .ok()
-            .map(|a| LinearReference {
-                spectral_radius: a.spectral_radius,
-                verdict: a.verdict,
-            });
+        let linear = self.model.analysis().ok().map(|a| LinearReference {
+            spectral_radius: a.spectral_radius,
+            verdict: a.verdict,
+        });
         LoopFacts {
             contact_can_be_lost: e.contact != Contact::Bilateral,
             force_limited: e.saturation.is_some(),
             static_nonlinearity: e.friction.is_some() || e.quantization.is_some(),
             quantum: e.quantization,
-            period: self.model.period,
+            period: self.model.period(),
             linear,
         }
     }
@@ -434,436 +603,6 @@ pub struct RunResult {
     pub trace: Option<Trace>,
 }
 
-/// One-sample ZOH step of the normalized plant (Section III).
-#[derive(Debug, Clone, Copy)]
-struct Kernel {
-    p00: f64,
-    p01: f64,
-    p10: f64,
-    p11: f64,
-    g0: f64,
-    g1: f64,
-}
-
-impl Kernel {
-    fn new(p: &DiscretePlant) -> Self {
-        Self {
-            p00: p.phi[0][0],
-            p01: p.phi[0][1],
-            p10: p.phi[1][0],
-            p11: p.phi[1][1],
-            g0: p.input[0],
-            g1: p.input[1],
-        }
-    }
-
-    #[inline(always)]
-    fn step(&self, x: f64, w: f64, u: f64) -> (f64, f64) {
-        (
-            self.p00 * x + self.p01 * w + self.g0 * u,
-            self.p10 * x + self.p11 * w + self.g1 * u,
-        )
-    }
-}
-
-/// Exact ZOH step over a fraction τ ∈ (0, 1] of a sample with constant normalized input u:
-/// the plant over τT is the ZOH plant with (γτ², δτ) in the state (x, τTẋ).
-fn sub_step(gamma: f64, delta: f64, x: f64, w: f64, u: f64, tau: f64) -> (f64, f64) {
-    if tau <= 0.0 {
-        return (x, w);
-    }
-    let p = DiscretePlant::from_params(PlantParams {
-        gamma: gamma * tau * tau,
-        delta: delta * tau,
-    });
-    let ws = tau * w;
-    let us = tau * tau * u;
-    let x1 = p.phi[0][0] * x + p.phi[0][1] * ws + p.input[0] * us;
-    let w1 = p.phi[1][0] * x + p.phi[1][1] * ws + p.input[1] * us;
-    (x1, w1 / tau)
-}
-
-/// The linear wall law in normalized units: α (y_d − x_w) + β (y_d − y_{d+1}).
-#[inline(always)]
-fn wall_linear(alpha: f64, beta: f64, xw: f64, yd: f64, yd1: f64) -> f64 {
-    alpha * (yd - xw) + beta * (yd - yd1)
-}
-
-/// The wall's normalized force on one sample and how it relates to the linear law.
-#[derive(Debug, Clone, Copy)]
-struct WallSample {
-    force: f64,
-    in_contact: bool,
-    linear: bool,
-}
-
-/// A trace that keeps at most `cap` rows: every `stride`-th sample from k = 0, thinned by
-/// half (stride doubled) whenever it fills up, so an extended run never exceeds `cap`.
-#[derive(Debug, Clone)]
-struct Recorder {
-    trace: Trace,
-    cap: usize,
-    stride: usize,
-    next: usize,
-}
-
-impl Recorder {
-    fn new(cap: usize, planned: usize) -> Self {
-        let stride = planned.div_ceil(cap - 1).max(1);
-        let rows = (planned / stride + 1).min(cap);
-        Self {
-            trace: Trace {
-                time: Vec::with_capacity(rows),
-                position: Vec::with_capacity(rows),
-                velocity: Vec::with_capacity(rows),
-                wall_force: Vec::with_capacity(rows),
-                human_force: Vec::with_capacity(rows),
-            },
-            cap,
-            stride,
-            next: 0,
-        }
-    }
-
-    fn push(&mut self, row: [f64; 5]) {
-        let t = &mut self.trace;
-        let cols = [
-            &mut t.time,
-            &mut t.position,
-            &mut t.velocity,
-            &mut t.wall_force,
-            &mut t.human_force,
-        ];
-        for (col, v) in cols.into_iter().zip(row) {
-            col.push(v);
-        }
-        self.next += self.stride;
-        if self.trace.time.len() == self.cap {
-            self.thin();
-        }
-    }
-
-    /// Keeps every other row (those at multiples of the doubled stride).
-    fn thin(&mut self) {
-        let t = &mut self.trace;
-        for col in [
-            &mut t.time,
-            &mut t.position,
-            &mut t.velocity,
-            &mut t.wall_force,
-            &mut t.human_force,
-        ] {
-            let kept: Vec<f64> = col.iter().step_by(2).copied().collect();
-            *col = kept;
-        }
-        self.stride *= 2;
-        self.next = self.next.div_ceil(self.stride) * self.stride;
-    }
-}
-
-/// The time-domain simulator of Fig. 3 (see the module documentation). Stepping is
-/// allocation-free except when a block of the run's log closes: the delay line is a ring
-/// buffer of sensed positions, the log ([`RunLog`]) and the trace have bounded size
-/// whatever the run length.
-#[derive(Debug, Clone)]
-pub struct Simulator {
-    kernel: Kernel,
-    alpha: f64,
-    beta: f64,
-    gamma: f64,
-    delta: f64,
-    d: usize,
-    scale: f64,
-    period: f64,
-    xw: f64,
-    contact: Contact,
-    quant: Option<f64>,
-    u_max: f64,
-    friction: Option<(f64, f64)>,
-    linear: bool,
-    human: HumanForce,
-    k: usize,
-    x: f64,
-    w: f64,
-    ring: Vec<f64>,
-    mask: usize,
-    log: RunLog,
-    recorder: Option<Recorder>,
-    blown_up: bool,
-    friction_events: usize,
-}
-
-/// Most velocity reversals handled within one sample.
-const MAX_EVENTS: usize = 16;
-
-impl Simulator {
-    /// Builds a simulator from a validated configuration (Fig. 3, Section III).
-    pub fn new(config: &Config) -> Result<Self> {
-        config.validate()?;
-        let model = config.model;
-        let p = model.params;
-        let plant = DiscretePlant::from_params(p.plant());
-        let scale = model.force_scale();
-        let cap = (p.d + 2).next_power_of_two();
-        let quant = config.effects.quantization;
-        let x0 = config.initial.position;
-        let y0 = match quant {
-            Some(q) => (x0 / q).round() * q,
-            None => x0,
-        };
-        Ok(Self {
-            kernel: Kernel::new(&plant),
-            alpha: p.alpha,
-            beta: p.beta,
-            gamma: p.gamma,
-            delta: p.delta,
-            d: p.d,
-            scale,
-            period: model.period,
-            xw: config.effects.wall_position,
-            contact: config.effects.contact,
-            quant,
-            u_max: config
-                .effects
-                .saturation
-                .map_or(f64::INFINITY, |f| f * scale),
-            friction: config
-                .effects
-                .friction
-                .map(|f| (f.coulomb * scale, f.stiction * scale)),
-            linear: config.effects.is_linear(),
-            human: config.human.clone(),
-            k: 0,
-            x: x0,
-            w: config.initial.velocity * model.period,
-            ring: vec![y0; cap],
-            mask: cap - 1,
-            log: RunLog::new(config.samples),
-            recorder: (config.trace_rows > 0)
-                .then(|| Recorder::new(config.trace_rows, config.samples)),
-            blown_up: false,
-            friction_events: 0,
-        })
-    }
-
-    /// Index k of the next sample.
-    pub fn sample_index(&self) -> usize {
-        self.k
-    }
-
-    /// Current time kT in s.
-    pub fn time(&self) -> f64 {
-        self.k as f64 * self.period
-    }
-
-    /// Current position x in m.
-    pub fn position(&self) -> f64 {
-        self.x
-    }
-
-    /// Current velocity ẋ in m/s.
-    pub fn velocity(&self) -> f64 {
-        self.w / self.period
-    }
-
-    /// True once the state exceeded [`BLOW_UP`] (the run has stopped).
-    pub fn blown_up(&self) -> bool {
-        self.blown_up
-    }
-
-    /// Number of friction velocity reversals located so far.
-    pub fn friction_events(&self) -> usize {
-        self.friction_events
-    }
-
-    /// The recorded trace so far, if recording.
-    pub fn trace(&self) -> Option<&Trace> {
-        self.recorder.as_ref().map(|r| &r.trace)
-    }
-
-    /// The run's log so far.
-    pub fn log(&self) -> &RunLog {
-        &self.log
-    }
-
-    /// Judges the run so far ([`verdict::judge`]); `last_chance` reports growth that contact
-    /// loss or a force limit could still bound as growing.
-    pub fn verdict(&self, facts: &LoopFacts, last_chance: bool) -> RunVerdict {
-        verdict::judge(&self.log, facts, self.blown_up, last_chance)
-    }
-
-    /// Normalized human force at sample k (T²/m · F_H).
-    #[inline(always)]
-    fn human_at(&self, k: usize) -> Result<f64> {
-        Ok(match &self.human {
-            HumanForce::Constant(f) => *f * self.scale,
-            HumanForce::Samples(v) => v.get(k).or(v.last()).copied().unwrap_or(0.0) * self.scale,
-            HumanForce::Function(f) => {
-                let v = f(k as f64 * self.period);
-                finite("human force F_H(t)", v)? * self.scale
-            }
-        })
-    }
-
-    /// Simulates up to `n` more samples and returns how many were simulated (fewer only if
-    /// the state blew up). Errors only if a human force function returns a non-finite value.
-    pub fn advance(&mut self, n: usize) -> Result<usize> {
-        if self.linear {
-            self.run_loop::<true>(n)
-        } else {
-            self.run_loop::<false>(n)
-        }
-    }
-
-    #[inline(always)]
-    fn record(&mut self, x: f64, w: f64, uw: f64, uh: f64) {
-        let (k, period, scale) = (self.k, self.period, self.scale);
-        if let Some(r) = self.recorder.as_mut()
-            && r.next == k
-        {
-            r.push([k as f64 * period, x, w / period, uw / scale, uh / scale]);
-        }
-    }
-
-    fn run_loop<const LINEAR: bool>(&mut self, n: usize) -> Result<usize> {
-        if self.blown_up {
-            return Ok(0);
-        }
-        let recording = self.recorder.is_some();
-        let (d, mask) = (self.d, self.mask);
-        let (alpha, beta, xw) = (self.alpha, self.beta, self.xw);
-        let kernel = self.kernel;
-        let (mut x, mut w) = (self.x, self.w);
-        let mut done = 0;
-        while done < n {
-            let k = self.k;
-            // Sample and delay line: y[k] at (k + d + 1) & mask, y[k−d] at (k + 1) & mask.
-            let y = if LINEAR { x } else { self.sense(x) };
-            self.ring[(k + d + 1) & mask] = y;
-            let yd = self.ring[(k + 1) & mask];
-            let yd1 = self.ring[k & mask];
-            let wall = if LINEAR {
-                WallSample {
-                    force: wall_linear(alpha, beta, xw, yd, yd1),
-                    in_contact: true,
-                    linear: true,
-                }
-            } else {
-                self.wall(yd, yd1)
-            };
-            let uw = wall.force;
-            let uh = self.human_at(k)?;
-            if recording {
-                self.record(x, w, uw, uh);
-            }
-            self.log.push(SampleFacts {
-                position: x,
-                velocity: w,
-                in_contact: wall.in_contact,
-                linear: wall.linear,
-            });
-            let ua = uh - uw;
-            (x, w) = if LINEAR || self.friction.is_none() {
-                kernel.step(x, w, ua)
-            } else {
-                self.friction_step(x, w, ua)
-            };
-            self.k += 1;
-            done += 1;
-            if !(x.abs() < BLOW_UP && w.abs() < BLOW_UP) {
-                self.blown_up = true;
-                break;
-            }
-        }
-        self.x = x;
-        self.w = w;
-        Ok(done)
-    }
-
-    #[inline(always)]
-    fn sense(&self, x: f64) -> f64 {
-        match self.quant {
-            Some(q) => (x / q).round() * q,
-            None => x,
-        }
-    }
-
-    /// The wall force on one sample: the linear law while the sensed, delayed position
-    /// penetrates a unilateral wall (never pulling if so configured), limited to ±F_max.
-    #[inline(always)]
-    fn wall(&self, yd: f64, yd1: f64) -> WallSample {
-        let law = wall_linear(self.alpha, self.beta, self.xw, yd, yd1);
-        let in_contact = self.contact == Contact::Bilateral || yd > self.xw;
-        let acting = match self.contact {
-            _ if !in_contact => 0.0,
-            Contact::UnilateralNoPull => law.max(0.0),
-            _ => law,
-        };
-        let force = acting.clamp(-self.u_max, self.u_max);
-        WallSample {
-            force,
-            in_contact,
-            linear: force == law,
-        }
-    }
-
-    /// One sample with Coulomb/static friction and exact location of velocity reversals
-    /// (module documentation, "Friction").
-    fn friction_step(&mut self, mut x: f64, mut w: f64, ua: f64) -> (f64, f64) {
-        let (uc, us) = self.friction.unwrap_or((0.0, 0.0));
-        let (g, dl) = (self.gamma, self.delta);
-        let mut remaining = 1.0_f64;
-        for event in 0..=MAX_EVENTS {
-            let sign = if w == 0.0 {
-                let net = ua - g * x;
-                if net.abs() <= us {
-                    return (x, 0.0); // stuck for the rest of the sample
-                }
-                net.signum()
-            } else {
-                w.signum()
-            };
-            let u = ua - uc * sign;
-            let (x1, w1) = if remaining == 1.0 {
-                self.kernel.step(x, w, u)
-            } else {
-                sub_step(g, dl, x, w, u, remaining)
-            };
-            if w1 * sign > 0.0 || event == MAX_EVENTS {
-                return (x1, w1);
-            }
-            if w1 == 0.0 {
-                self.friction_events += 1;
-                return (x1, 0.0);
-            }
-            // Velocity reversal inside (0, remaining]: bisect on the exact solution.
-            let (mut lo, mut hi) = (0.0_f64, remaining);
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi || hi - lo <= 1e-15 {
-                    break;
-                }
-                let (_, wm) = sub_step(g, dl, x, w, u, mid);
-                if wm * sign > 0.0 {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let tau = 0.5 * (lo + hi);
-            let (xs, _) = sub_step(g, dl, x, w, u, tau);
-            self.friction_events += 1;
-            x = xs;
-            w = 0.0;
-            remaining -= tau;
-            if remaining <= 1e-15 {
-                return (x, 0.0);
-            }
-        }
-        (x, w)
-    }
-}
-
 /// Runs one simulation of Fig. 3 and judges its steady state ([`verdict`]).
 ///
 /// The run lasts `config.samples` samples; if its second half has not settled (see
@@ -877,7 +616,7 @@ pub fn simulate(config: &Config) -> Result<RunResult> {
     let mut target = config.samples;
     let verdict = loop {
         sim.advance(target - sim.sample_index())?;
-        let last_chance = target >= config.max_samples || sim.blown_up;
+        let last_chance = target >= config.max_samples || sim.blown_up();
         let v = sim.verdict(&facts, last_chance);
         if v.outcome != Outcome::Undecided || last_chance {
             break v;
@@ -886,13 +625,13 @@ pub fn simulate(config: &Config) -> Result<RunResult> {
     };
     Ok(RunResult {
         verdict,
-        samples: sim.k,
+        samples: sim.sample_index(),
         requested_samples: config.samples,
         max_samples: config.max_samples,
-        blown_up: sim.blown_up,
+        blown_up: sim.blown_up(),
         final_position: sim.position(),
         final_velocity: sim.velocity(),
-        trace_stride: sim.recorder.as_ref().map_or(0, |r| r.stride),
-        trace: sim.recorder.take().map(|r| r.trace),
+        trace_stride: sim.trace_stride(),
+        trace: sim.take_trace(),
     })
 }
