@@ -11,12 +11,14 @@ use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::family::{characteristic, linear_k, pick_interval, stable_intervals, wall_units};
 use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
 };
 use crate::output::{print_json, sig};
+use hapstab::loop_analysis::{
+    characteristic, linear_k, pick_interval, stable_intervals, wall_units,
+};
 
 /// Arguments of `hapstab check`.
 #[derive(Args, Debug)]

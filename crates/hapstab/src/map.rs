@@ -285,6 +285,115 @@ pub fn wall_map(
     })
 }
 
+/// Stable flags (and spectral radii) of a map whose points are given by value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapValues {
+    /// Stable flag per point.
+    pub stable: Vec<bool>,
+    /// Spectral radius per point (only for `MapKind::SpectralRadius`).
+    pub radius: Option<Vec<f64>>,
+}
+
+fn check_values(name: &'static str, v: &[f64]) -> Result<()> {
+    v.iter()
+        .try_for_each(|&x| crate::error::finite(name, x).map(|_| ()))
+}
+
+/// The grid method of Section V over axes given by value, not necessarily uniform: the
+/// wall's stiffness a[ix] along x and damping b[iy] along y, in wall units, one Schur–Cohn
+/// test per point, in parallel over rows; row-major, value (ix, iy) at index iy·nx + ix.
+/// The same computation as [`wall_map`] at the same values.
+pub fn wall_map_values(
+    fam: &AffineFamily,
+    a: &[f64],
+    b: &[f64],
+    kind: MapKind,
+) -> Result<MapValues> {
+    check_values("wall stiffness", a)?;
+    check_values("wall damping", b)?;
+    if a.len().saturating_mul(b.len()) > MAX_POINTS {
+        return Err(Error::OutOfRange {
+            name: "map points",
+            value: (a.len() as f64) * (b.len() as f64),
+            range: "[0, 1e8]",
+        });
+    }
+    let coefficients = |ix: usize, iy: usize, c: &mut [f64]| fam.coefficients_into(a[ix], b[iy], c);
+    let (stable, radius) = grid(a.len(), b.len(), fam.degree(), kind, &|_| {}, coefficients);
+    Ok(MapValues { stable, radius })
+}
+
+/// Points per parallel task of [`wall_map_points`]: enough Schur–Cohn tests (tens of ns each)
+/// to outweigh rayon's task overhead (about a microsecond).
+const POINTS_PER_TASK: usize = 1024;
+
+/// Stability (and spectral radius) at the walls (a[i], b[i]), i = 0..n, in wall units, in
+/// parallel (Section V's test at scattered points; a and b have the same length).
+pub fn wall_map_points(
+    fam: &AffineFamily,
+    a: &[f64],
+    b: &[f64],
+    kind: MapKind,
+) -> Result<MapValues> {
+    if a.len() != b.len() {
+        return Err(Error::Invalid {
+            name: "wall damping",
+            reason: format!(
+                "has {} values where the wall stiffness has {}",
+                b.len(),
+                a.len()
+            ),
+        });
+    }
+    check_values("wall stiffness", a)?;
+    check_values("wall damping", b)?;
+    let deg = fam.degree();
+    let chunks: Vec<(Vec<bool>, Vec<f64>)> = a
+        .par_chunks(POINTS_PER_TASK)
+        .zip(b.par_chunks(POINTS_PER_TASK))
+        .map(|(ac, bc)| {
+            let mut c = vec![0.0; deg + 1];
+            let mut st = Vec::with_capacity(ac.len());
+            let mut rad = Vec::new();
+            for (&x, &y) in ac.iter().zip(bc) {
+                fam.coefficients_into(x, y, &mut c);
+                push_point(&c, kind, &mut st, &mut rad);
+            }
+            (st, rad)
+        })
+        .collect();
+    let (stable, radius) = concat(chunks, kind);
+    Ok(MapValues { stable, radius })
+}
+
+/// One point of a map: the Schur–Cohn verdict, or the spectral radius and whether it is < 1.
+fn push_point(c: &[f64], kind: MapKind, st: &mut Vec<bool>, rad: &mut Vec<f64>) {
+    match kind {
+        MapKind::Stability => st.push(schur_stable(c)),
+        MapKind::SpectralRadius => {
+            let r = spectral_radius_schur(c);
+            st.push(r < 1.0);
+            rad.push(r);
+        }
+    }
+}
+
+/// Joins per-task results in order.
+fn concat(parts: Vec<(Vec<bool>, Vec<f64>)>, kind: MapKind) -> (Vec<bool>, Option<Vec<f64>>) {
+    let n = parts.iter().map(|p| p.0.len()).sum();
+    let mut stable = Vec::with_capacity(n);
+    let mut radius = Vec::with_capacity(if kind == MapKind::SpectralRadius {
+        n
+    } else {
+        0
+    });
+    for (s, r) in parts {
+        stable.extend(s);
+        radius.extend(r);
+    }
+    (stable, (kind == MapKind::SpectralRadius).then_some(radius))
+}
+
 /// Stable flags (and spectral radii) over an nx × ny grid whose coefficients `coefficients`
 /// writes, in parallel over rows.
 fn grid(
@@ -304,25 +413,12 @@ fn grid(
             let mut rad = Vec::new();
             for ix in 0..nx {
                 coefficients(ix, iy, &mut c);
-                match kind {
-                    MapKind::Stability => st.push(schur_stable(&c)),
-                    MapKind::SpectralRadius => {
-                        let r = spectral_radius_schur(&c);
-                        st.push(r < 1.0);
-                        rad.push(r);
-                    }
-                }
+                push_point(&c, kind, &mut st, &mut rad);
             }
             let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress(k);
             (st, rad)
         })
         .collect();
-    let mut stable = Vec::with_capacity(nx * ny);
-    let mut radius = Vec::new();
-    for (s, r) in rows {
-        stable.extend(s);
-        radius.extend(r);
-    }
-    (stable, (kind == MapKind::SpectralRadius).then_some(radius))
+    concat(rows, kind)
 }

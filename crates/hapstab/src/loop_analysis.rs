@@ -1,0 +1,115 @@
+//! The answers every front end gives about one [`Loop`] and its wall, computed once here so
+//! that the command line, the explorer and the Python package report the same numbers: the
+//! wall in the loop's units, the characteristic polynomial at a wall, the stable stiffness
+//! intervals at a damping, the stable region, K_max (overall, at a damping, or over a damping
+//! band) and the paper's linear condition (22).
+//!
+//! Everything is in the loop family's wall units (a, b) (α, β of Table I for the paper's
+//! loop); convert with [`AffineFamily::to_physical`]. A loop with the paper's normalized view
+//! ([`Loop::paper_view`]) is analysed through the paper's family (eq. 9 in (α, β)), as every
+//! command has always formed it.
+
+use crate::boundary::{AlphaBeta, Interval, stable_alpha_intervals};
+use crate::closed_loop::{AffineFamily, PolyFamily};
+use crate::error::Result;
+use crate::model::{Loop, PlantModel};
+use crate::params::{Physical, Sampling, Wall};
+use crate::region::{StableRegion, alpha_max_within, stable_region};
+
+/// The paper's family of a loop that has the normalized view (eq. 9 in (α, β)); its (α, β)
+/// are the loop family's wall units (a, b).
+fn paper_family(lp: &Loop) -> Result<Option<PolyFamily>> {
+    lp.paper_view()
+        .map(|pp| PolyFamily::new(pp, lp.delay.samples))
+        .transpose()
+}
+
+/// Stable intervals lo < a < hi of the wall's stiffness at fixed damping b, in wall units
+/// (Section V).
+pub fn stable_intervals(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<Vec<Interval>> {
+    Ok(match paper_family(lp)? {
+        Some(pf) => stable_alpha_intervals(&pf, b),
+        None => stable_alpha_intervals(fam, b),
+    })
+}
+
+/// The stable region in the wall plane, in wall units (Section V, Figs. 4–6).
+pub fn region(lp: &Loop, fam: &AffineFamily) -> Result<StableRegion> {
+    Ok(match paper_family(lp)? {
+        Some(pf) => stable_region(&pf)?,
+        None => stable_region(fam)?,
+    })
+}
+
+/// The stable interval that contains a, or else the one reaching furthest (largest upper
+/// end); None when there is none.
+pub fn pick_interval(ivs: &[Interval], a: f64) -> Option<Interval> {
+    ivs.iter()
+        .find(|iv| iv.lo < a && a < iv.hi)
+        .or_else(|| highest_interval(ivs))
+        .copied()
+}
+
+fn highest_interval(ivs: &[Interval]) -> Option<&Interval> {
+    ivs.iter().max_by(|x, y| x.hi.total_cmp(&y.hi))
+}
+
+/// K_max at a fixed damping b (wall units): the stable stiffness interval with the largest
+/// upper end (Section V); None when no stiffness is stable at that damping.
+pub fn k_max_at_damping(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<Option<Interval>> {
+    Ok(highest_interval(&stable_intervals(lp, fam, b)?).copied())
+}
+
+/// K_max with the damping restricted to the band b_lo ≤ b ≤ b_hi (wall units; either end may
+/// be infinite), and the damping that reaches it: the region's α_max when its damping lies in
+/// the band, else the best of the region's arcs and the exact intervals on the band's edges
+/// ([`alpha_max_within`]). None when nothing in the band is stable.
+pub fn k_max_within(
+    lp: &Loop,
+    fam: &AffineFamily,
+    b_lo: f64,
+    b_hi: f64,
+) -> Result<Option<AlphaBeta>> {
+    let r = region(lp, fam)?;
+    Ok(match paper_family(lp)? {
+        Some(pf) => alpha_max_within(&pf, &r, b_lo, b_hi),
+        None => alpha_max_within(fam, &r, b_lo, b_hi),
+    })
+}
+
+/// The linear condition (22) K < (b + B)/(t_d + T/2) in N/m for the paper's loop in physical
+/// units (Section VI); None for other loops.
+pub fn linear_k(lp: &Loop, wall_damping: f64) -> Option<f64> {
+    lp.paper_view()?;
+    let PlantModel::MassSpringDamper(e) = &lp.plant.model else {
+        return None;
+    };
+    let wall = Wall {
+        stiffness: 0.0,
+        damping: wall_damping,
+    };
+    let sampling = Sampling::new(lp.period, lp.delay.samples).ok()?;
+    let p = Physical::new(*e, wall, sampling).ok()?;
+    Some(crate::linear::linear_stiffness_limit(&p))
+}
+
+/// The wall in the family's units (a, b): for the paper's loop the (α, β) of Table I exactly
+/// as [`Physical::normalized`] forms them (α = KT²/m, β = BT/m), so that every front end
+/// reports the same α and β; otherwise (K/k_u, B/(k_u T)) ([`AffineFamily::to_units`]).
+pub fn wall_units(lp: &Loop, fam: &AffineFamily, w: Wall) -> Result<(f64, f64)> {
+    if let (Some(_), PlantModel::MassSpringDamper(e)) = (lp.paper_view(), &lp.plant.model) {
+        let sampling = Sampling::new(lp.period, lp.delay.samples)?;
+        let n = Physical::new(*e, w, sampling)?.normalized()?;
+        return Ok((n.alpha, n.beta));
+    }
+    Ok(fam.to_units(w.stiffness, w.damping))
+}
+
+/// The ascending coefficients of p(z) (eq. 9, generalized) for a wall in the family's units;
+/// for the paper's loop through the paper's family in (α, β).
+pub fn characteristic(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Result<Vec<f64>> {
+    Ok(match paper_family(lp)? {
+        Some(pf) => pf.coefficients(a, b),
+        None => fam.coefficients(a, b),
+    })
+}
