@@ -4,7 +4,7 @@
 use hapstab::AffineFamily;
 use hapstab::boundary::Interval;
 use hapstab::loop_analysis::{
-    characteristic, k_max_at_damping, k_max_within, linear_k, pick_interval, region as loop_region,
+    characteristic, damping_units, k_max_at_damping, k_max_within, linear_k, pick_interval, region as loop_region,
     stable_intervals, wall_units,
 };
 use hapstab::region::{EdgeKind, Polygon, StableRegion};
@@ -340,7 +340,7 @@ fn damping_band(range: (f64, f64)) -> PyResult<(f64, f64)> {
 
 fn kmax_at(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<PyKmax> {
     let b = crate::errors::finite("wall_damping", b)?;
-    let (_, bu) = fam.to_units(0.0, b);
+    let bu = damping_units(&lp.lp, fam, b).py()?;
     let best = k_max_at_damping(&lp.lp, fam, bu).py()?;
     let k = |a: f64| fam.to_physical(a, 0.0).0;
     Ok(PyKmax {
@@ -353,6 +353,14 @@ fn kmax_at(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<PyKmax> {
     })
 }
 
+/// An end of a damping band in wall units (infinite ends stay infinite).
+fn band_units(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<f64> {
+    if b.is_infinite() {
+        return Ok(b);
+    }
+    damping_units(&lp.lp, fam, b).py()
+}
+
 fn kmax_within(
     lp: &PyLoop,
     fam: &AffineFamily,
@@ -360,8 +368,8 @@ fn kmax_within(
     py: Python<'_>,
 ) -> PyResult<PyKmax> {
     let (lo, hi) = damping_band(band)?;
-    let (_, blo) = fam.to_units(0.0, lo);
-    let (_, bhi) = fam.to_units(0.0, hi);
+    let blo = band_units(lp, fam, lo)?;
+    let bhi = band_units(lp, fam, hi)?;
     let best = py.detach(|| k_max_within(&lp.lp, fam, blo, bhi)).py()?;
     Ok(overall_from(lp, fam, best.map(|p| (p.alpha, p.beta))))
 }

@@ -105,6 +105,17 @@ pub fn wall_units(lp: &Loop, fam: &AffineFamily, w: Wall) -> Result<(f64, f64)> 
     Ok(fam.to_units(w.stiffness, w.damping))
 }
 
+/// A wall damping B in Ns/m in the family's units b, formed as [`wall_units`] forms it (β =
+/// BT/m for the paper's loop), so that K_max at a damping and the check of a wall at that
+/// damping see the same b.
+pub fn damping_units(lp: &Loop, fam: &AffineFamily, wall_damping: f64) -> Result<f64> {
+    let w = Wall {
+        stiffness: 0.0,
+        damping: wall_damping,
+    };
+    Ok(wall_units(lp, fam, w)?.1)
+}
+
 /// The ascending coefficients of p(z) (eq. 9, generalized) for a wall in the family's units;
 /// for the paper's loop through the paper's family in (α, β).
 pub fn characteristic(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Result<Vec<f64>> {
