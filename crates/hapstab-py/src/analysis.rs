@@ -4,8 +4,8 @@
 use hapstab::AffineFamily;
 use hapstab::boundary::Interval;
 use hapstab::loop_analysis::{
-    characteristic, damping_units, k_max_at_damping, k_max_within, linear_k, pick_interval, region as loop_region,
-    stable_intervals, wall_units,
+    characteristic, damping_units, k_max_at_damping, k_max_within, linear_k, pick_interval,
+    region as loop_region, stable_intervals, wall_units,
 };
 use hapstab::region::{EdgeKind, Polygon, StableRegion};
 use hapstab::stability::Analysis;

@@ -84,7 +84,8 @@ fn parameter(e: &Error) -> Option<&'static str> {
         | Error::NotPositive { name, .. }
         | Error::Negative { name, .. }
         | Error::OutOfRange { name, .. }
-        | Error::Invalid { name, .. } => Some(name),
+        | Error::Invalid { name, .. }
+        | Error::Unrepresentable { name, .. } => Some(name),
         Error::FractionalDelay { .. } => Some("delay time t_d"),
         Error::DelayTooLarge { .. } => Some("delay d"),
         Error::Numerical(_) => None,

@@ -331,9 +331,18 @@ impl PyLoop {
         force_lag: f64,
     ) -> PyResult<Self> {
         let model = plant_model(plant)?;
+        hapstab::params::Sampling::new(period, 0).py()?;
+        if let PlantModel::MassSpringDamper(e) = &model {
+            // γ = kT²/m and δ = bT/m must be finite (Table I): a mass far too small for the
+            // period is named here rather than as an overflow of the discretization.
+            PlantParams::from_physical(e, period).py_with(&[
+                ("mass m", "plant.mass"),
+                ("damping b", "plant.damping"),
+                ("stiffness k", "plant.stiffness"),
+            ])?;
+        }
         let plant = Plant::new(model, force_lag).py()?;
         let velocity: VelocityEstimator = velocity.parse().py()?;
-        hapstab::params::Sampling::new(period, 0).py()?;
         let delay = delay_of(delay, delay_samples, period)?;
         Ok(Self {
             lp: Loop::new(plant, period, delay, velocity).py()?,

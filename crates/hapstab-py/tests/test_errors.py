@@ -87,3 +87,8 @@ def test_a_wrong_plant_type_is_a_type_error():
 
 def test_numerical_error_is_a_runtime_error():
     assert issubclass(hs.NumericalError, RuntimeError)
+
+
+def test_a_mass_too_small_for_the_period_is_named():
+    with pytest.raises(ValueError, match=r"^plant.mass: mass m = 1e-310 makes δ = bT/m = inf"):
+        hs.Loop(hs.MassSpringDamper(1e-310, 1e6, 0.0), period=1e-3)
