@@ -76,8 +76,6 @@ fn k_pair(fam: &AffineFamily, iv: Interval) -> (f64, f64) {
     (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0)
 }
 
-/// check(loop, wall_stiffness=None, wall_damping=None, *, alpha=None, beta=None)
-///
 /// Is the virtual wall F = K·y + B·v on this loop stable? The closed loop's characteristic
 /// polynomial p(z) = z^k·D(z)·Vd(z) + N(z)·(K·Vd(z) + B·Vn(z)) (eq. 9, generalized; for the
 /// paper's loop p(z) = z^{d+1}D(z) + N(z)((α + β)z − β)) is tested by the Schur–Cohn
@@ -278,8 +276,6 @@ fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResu
     })
 }
 
-/// region(loop)
-///
 /// The exact stable region of the wall (K, B) by D-decomposition (Section V, Figs. 4–6):
 /// closed polygons bounded by the z = 1 line (α = −γ for the paper's loop), the z = −1 line
 /// and the complex-pair curve, where p(e^{iθ}) = 0 gives
@@ -386,8 +382,6 @@ fn overall_from(lp: &PyLoop, fam: &AffineFamily, best: Option<(f64, f64)>) -> Py
     }
 }
 
-/// kmax(loop, *, wall_damping=None, damping_range=None)
-///
 /// The largest stable virtual stiffness K_max in N/m (Section V). With wall_damping B in
 /// Ns/m: the upper end of the stable K interval reaching furthest at that B. With
 /// damping_range (B_lo, B_hi) in Ns/m (ends may be ±inf): the largest stable K over that

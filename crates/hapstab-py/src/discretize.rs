@@ -79,8 +79,6 @@ fn parts(fam: &AffineFamily) -> [Vec<f64>; 3] {
     ]
 }
 
-/// discretize(loop, wall_stiffness=None, wall_damping=None, *, alpha=None, beta=None)
-///
 /// The exact discrete loop (Section III, eq. 2–9, generalized): the plant behind a
 /// zero-order hold with its delay t_d = (d + λ)T (modified z-transform, no Padé or Thiran
 /// approximation), the velocity estimator, and the closed loop's characteristic polynomial

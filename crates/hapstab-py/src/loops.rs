@@ -12,7 +12,8 @@ use pyo3::prelude::*;
 use crate::errors::{Context, bad};
 use crate::text::{fmt_list, num};
 
-/// The paper's plant 1/(m s² + b s + k) from force (N) to position (m) (eq. 1).
+/// The paper's plant 1/(m s² + b s + k) from force (N) to position (m) (eq. 1): the
+/// effective mass m in kg (> 0), damping b in Ns/m (>= 0) and stiffness k in N/m (>= 0).
 #[pyclass(frozen, module = "hapstab", name = "MassSpringDamper", eq)]
 #[derive(Clone, PartialEq)]
 pub struct PyMassSpringDamper {
@@ -21,10 +22,6 @@ pub struct PyMassSpringDamper {
 
 #[pymethods]
 impl PyMassSpringDamper {
-    /// MassSpringDamper(mass, damping=0.0, stiffness=0.0)
-    ///
-    /// The effective plant of eq. (1): mass m in kg (> 0), damping b in Ns/m (>= 0) and
-    /// stiffness k in N/m (>= 0).
     #[new]
     #[pyo3(signature = (mass, damping = 0.0, stiffness = 0.0))]
     fn new(mass: f64, damping: f64, stiffness: f64) -> PyResult<Self> {
@@ -93,8 +90,10 @@ impl PyMassSpringDamper {
     }
 }
 
-/// A two-mass device: the motor-side mass (where the actuator pushes and the encoder
-/// measures) coupled to the handle by a compliant transmission; the arm holds the handle.
+/// A two-mass device: the motor-side mass J in kg (> 0, where the actuator pushes and the
+/// encoder measures, with damping b_m in Ns/m) coupled to the handle (mass m_h in kg) by a
+/// compliant transmission (stiffness k_t in N/m > 0, damping b_t in Ns/m); the arm (m_H kg,
+/// b_H Ns/m, k_H N/m; all zero: the ungrabbed device) holds the handle.
 #[pyclass(frozen, module = "hapstab", name = "TwoMass", eq)]
 #[derive(Clone, PartialEq)]
 pub struct PyTwoMass {
@@ -103,12 +102,6 @@ pub struct PyTwoMass {
 
 #[pymethods]
 impl PyTwoMass {
-    /// TwoMass(motor_mass, transmission_stiffness, *, motor_damping=0.0, handle_mass=0.0,
-    /// transmission_damping=0.0, arm_mass=1.0, arm_damping=6.0, arm_stiffness=350.0)
-    ///
-    /// motor_mass J in kg (> 0), transmission_stiffness k_t in N/m (> 0), motor_damping b_m,
-    /// transmission_damping b_t in Ns/m, handle_mass m_h in kg; the arm (m_H kg, b_H Ns/m,
-    /// k_H N/m) holds the handle (all zero: the ungrabbed device).
     #[new]
     #[pyo3(signature = (motor_mass, transmission_stiffness, *, motor_damping = 0.0,
                         handle_mass = 0.0, transmission_damping = 0.0, arm_mass = 1.0,
@@ -197,7 +190,9 @@ impl PyTwoMass {
     }
 }
 
-/// A strictly proper plant P(s) = num(s)/den(s) from force (N) to position (m).
+/// A strictly proper plant P(s) = num(s)/den(s) from force (N) to position (m),
+/// coefficients in SI units, highest power of s first (as python-control's and MATLAB's
+/// `tf`); order <= 12.
 #[pyclass(frozen, module = "hapstab", name = "TransferFunction", eq)]
 #[derive(Clone, PartialEq)]
 pub struct PyTransferFunction {
@@ -207,10 +202,6 @@ pub struct PyTransferFunction {
 
 #[pymethods]
 impl PyTransferFunction {
-    /// TransferFunction(num, den)
-    ///
-    /// Coefficients in SI units, highest power of s first (as python-control's and
-    /// MATLAB's `tf`); strictly proper, order <= 12.
     #[new]
     fn new(
         num: PyArrayLike1<'_, f64, AllowTypeChange>,
@@ -287,6 +278,18 @@ fn plant_object(py: Python<'_>, model: &PlantModel) -> PyResult<Py<PyAny>> {
 }
 
 /// The loop of Fig. 3, generalized: plant, sampling period, delay, velocity estimator.
+///
+/// plant: MassSpringDamper, TwoMass or TransferFunction (force in N to position in m).
+/// period: sampling period T in s. delay: t_d = (d + λ)T in s, a fraction λ of a sample
+/// discretized exactly (modified z-transform); or delay_samples: whole samples d.
+/// velocity: the wall damper's velocity estimator, as the command line's --velocity text:
+///   "backward"             v_k = (y_k − y_{k−1})/T (the paper's)
+///   "lowpass:FC"           v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T, a = exp(−2π·f_c·T),
+///                          f_c = FC in Hz
+///   "average:N"            v_k = (y_k − y_{k−N})/(N·T)
+///   "iir:b0,b1,…/a0,a1,…"  v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …)·y in m/s
+/// force_lag: actuator time constant τ in s of 1/(τs + 1) between commanded and applied
+/// force (0: none).
 #[pyclass(frozen, module = "hapstab", name = "Loop")]
 #[derive(Clone)]
 pub struct PyLoop {
@@ -309,16 +312,6 @@ fn delay_of(delay: Option<f64>, delay_samples: Option<usize>, period: f64) -> Py
 
 #[pymethods]
 impl PyLoop {
-    /// Loop(plant, *, period=0.001, delay=None, delay_samples=None, velocity="backward",
-    /// force_lag=0.0)
-    ///
-    /// plant: MassSpringDamper, TwoMass or TransferFunction (force in N to position in m).
-    /// period: sampling period T in s. delay: t_d = (d + λ)T in s, a fraction λ of a sample
-    /// discretized exactly (modified z-transform); or delay_samples: whole samples d.
-    /// velocity: the wall damper's velocity estimator, "backward" (v_k = (y_k − y_{k−1})/T,
-    /// the paper's), "lowpass:FC" (f_c in Hz), "average:N" (v_k = (y_k − y_{k−N})/(N T)) or
-    /// "iir:b0,b1,…/a0,a1,…" (coefficients in powers of z⁻¹, output in m/s). force_lag:
-    /// actuator time constant τ in s of 1/(τs + 1) (0: none).
     #[new]
     #[pyo3(signature = (plant, *, period = 1e-3, delay = None, delay_samples = None,
                         velocity = "backward", force_lag = 0.0))]

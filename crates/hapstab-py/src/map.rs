@@ -51,8 +51,6 @@ fn shaped<'py, T: numpy::Element>(
     PyArray1::from_vec(py, v).reshape(IxDyn(shape))
 }
 
-/// stability_map(loop, wall_stiffness, wall_damping, *, spectral_radius=False)
-///
 /// Stability of the wall over a grid (the paper's grid method, Section V): at each wall
 /// (K, B) the Schur–Cohn test of p(z) = P0(z) + K·PK(z) + B·PB(z) (eq. 9, generalized), in
 /// parallel on all cores with the GIL released.

@@ -198,12 +198,6 @@ fn result_object(py: Python<'_>, r: RunResult) -> PyResult<PySimulation> {
     })
 }
 
-/// simulate(loop, wall_stiffness=None, wall_damping=None, *, alpha=None, beta=None,
-/// duration=None, samples=None, max_duration=None, max_samples=None, human_force=0.0,
-/// initial_position=0.001, initial_velocity=0.0, contact="bilateral", wall_position=0.0,
-/// coulomb_friction=None, static_friction=None, quantization=None, saturation=None,
-/// trace_rows=200000)
-///
 /// Runs the loop of Fig. 3 in the time domain: the plant m ẍ + b ẋ + k x = F stepped exactly
 /// from sample to sample (the zero-order-hold matrices of eq. 2–6), the wall
 /// F_wall[k] = K (y[k−d] − x_w) + B (y[k−d] − y[k−d−1])/T, and the nonlinear effects: a
