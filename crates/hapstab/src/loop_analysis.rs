@@ -124,3 +124,44 @@ pub fn characteristic(lp: &Loop, fam: &AffineFamily, (a, b): (f64, f64)) -> Resu
         None => fam.coefficients(a, b),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::Effective;
+
+    fn paper_loop() -> Loop {
+        Loop::paper(Effective::new(1.1, 7.5, 350.0).unwrap(), 1e-3, 1).unwrap()
+    }
+
+    #[test]
+    fn k_max_within_a_band() {
+        let lp = paper_loop();
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        let r = region(&lp, &fam).unwrap();
+        let b_star = r.beta_at_alpha_max;
+        // a band holding the overall maximum gives it exactly
+        let p = k_max_within(&lp, &fam, 0.0, 2.0 * b_star).unwrap().unwrap();
+        assert_eq!((p.alpha, p.beta), (r.alpha_max, b_star));
+        // a band below it is limited by its upper edge, where K_max at that damping holds
+        let p = k_max_within(&lp, &fam, 0.0, 0.5 * b_star).unwrap().unwrap();
+        let at_edge = k_max_at_damping(&lp, &fam, 0.5 * b_star).unwrap().unwrap();
+        assert!(p.alpha < r.alpha_max);
+        assert_eq!((p.alpha, p.beta), (at_edge.hi, 0.5 * b_star));
+        // no stable wall with a damping beyond the region
+        assert!(k_max_within(&lp, &fam, 10.0, 20.0).unwrap().is_none());
+    }
+
+    #[test]
+    fn wall_units_of_the_paper_loop_are_table_one() {
+        let lp = paper_loop();
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        let w = Wall {
+            stiffness: 2000.0,
+            damping: 3.0,
+        };
+        let (a, b) = wall_units(&lp, &fam, w).unwrap();
+        assert_eq!((a, b), (2000.0 * 1e-3 * 1e-3 / 1.1, 3.0 * 1e-3 / 1.1));
+        assert_eq!(damping_units(&lp, &fam, 3.0).unwrap(), b);
+    }
+}

@@ -422,3 +422,74 @@ fn grid(
         .collect();
     concat(rows, kind)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+    use crate::params::Arm;
+
+    fn family() -> AffineFamily {
+        let plant = Plant::new(
+            PlantModel::TwoMass(TwoMass {
+                motor_mass: 0.05,
+                motor_damping: 0.5,
+                handle_mass: 0.05,
+                transmission_stiffness: 2e4,
+                transmission_damping: 2.0,
+                arm: Arm::TYPICAL,
+            }),
+            2e-4,
+        )
+        .unwrap();
+        let lp = Loop::new(
+            plant,
+            1e-3,
+            Delay::from_time(1.5e-3, 1e-3).unwrap(),
+            VelocityEstimator::LowPass { cutoff_hz: 200.0 },
+        )
+        .unwrap();
+        AffineFamily::of_loop(&lp).unwrap()
+    }
+
+    #[test]
+    fn maps_by_value_equal_the_uniform_map() {
+        let fam = family();
+        let (a0, b0) = fam.to_units(-2e3, -5.0);
+        let (a1, b1) = fam.to_units(4e4, 40.0);
+        let x = AxisRange::new(Axis::Alpha, a0, a1, 37).unwrap();
+        let y = AxisRange::new(Axis::Beta, b0, b1, 23).unwrap();
+        let m = wall_map(&fam, x, y, MapKind::SpectralRadius, &|_| {}).unwrap();
+        let a: Vec<f64> = (0..x.n).map(|i| x.value(i)).collect();
+        let b: Vec<f64> = (0..y.n).map(|i| y.value(i)).collect();
+        let v = wall_map_values(&fam, &a, &b, MapKind::SpectralRadius).unwrap();
+        assert_eq!((&v.stable, &v.radius), (&m.stable, &m.radius));
+        assert!(m.stable.iter().any(|&s| s) && m.stable.iter().any(|&s| !s));
+        // the same walls one by one (rows of b, columns of a), in more than one parallel task
+        let (pa, pb): (Vec<f64>, Vec<f64>) =
+            (0..3000).map(|k| (a[k % x.n], b[(k / x.n) % y.n])).unzip();
+        let p = wall_map_points(&fam, &pa, &pb, MapKind::SpectralRadius).unwrap();
+        let r = m.radius.as_ref().unwrap();
+        for k in 0..3000 {
+            let i = (k / x.n) % y.n * x.n + k % x.n;
+            assert_eq!(
+                (p.stable[k], p.radius.as_ref().unwrap()[k]),
+                (m.stable[i], r[i])
+            );
+        }
+        let s = wall_map_points(&fam, &pa, &pb, MapKind::Stability).unwrap();
+        assert_eq!(s.stable, p.stable);
+        assert!(s.radius.is_none());
+    }
+
+    #[test]
+    fn maps_by_value_refuse_bad_values() {
+        let fam = family();
+        let e = wall_map_values(&fam, &[0.0, f64::NAN], &[0.0], MapKind::Stability);
+        assert!(e.unwrap_err().to_string().contains("wall stiffness"));
+        let e = wall_map_points(&fam, &[0.0], &[0.0, 1.0], MapKind::Stability);
+        assert!(e.unwrap_err().to_string().contains("wall damping"));
+        let e = wall_map_points(&fam, &[0.0], &[f64::INFINITY], MapKind::Stability);
+        assert!(e.unwrap_err().to_string().contains("wall damping"));
+    }
+}
