@@ -7,9 +7,9 @@ use hapstab::AffineFamily;
 use hapstab::region::{EdgeKind, StableRegion};
 use serde::Serialize;
 
-use crate::family::region;
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{print_json, sig};
+use hapstab::loop_analysis::region;
 
 /// Arguments of `hapstab boundary`.
 #[derive(Args, Debug)]

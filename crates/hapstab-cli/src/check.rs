@@ -12,12 +12,12 @@ use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::family::{linear_k, pick_interval, stable_intervals, wall_units};
 use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
 };
 use crate::output::{eng, print_json, sig};
+use hapstab::loop_analysis::{analysis, linear_k, pick_interval, stable_intervals, wall_units};
 
 /// Arguments of `hapstab check`.
 #[derive(Args, Debug)]
@@ -163,7 +163,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
     let units = wall_units(&rl.lp, &fam, w)?;
-    let analysis = crate::family::analysis(&rl.lp, &fam, units)?;
+    let analysis = analysis(&rl.lp, &fam, units)?;
     let k_interval = if rl.normalized {
         None
     } else {

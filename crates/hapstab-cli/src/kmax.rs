@@ -6,9 +6,9 @@ use clap::Args;
 use hapstab::AffineFamily;
 use serde::Serialize;
 
-use crate::family::{linear_k, region, stable_intervals};
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{print_json, sig};
+use hapstab::loop_analysis::{damping_units, k_max_at_damping, linear_k, region};
 
 /// Arguments of `hapstab kmax`.
 #[derive(Args, Debug)]
@@ -65,10 +65,8 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
     if !b.is_finite() {
         bail!("wall damping B must be a finite number (got {b})");
     }
-    let (_, bu) = fam.to_units(0.0, b);
-    let best = stable_intervals(&rl.lp, fam, bu)?
-        .into_iter()
-        .max_by(|x, y| x.hi.total_cmp(&y.hi));
+    let bu = damping_units(&rl.lp, fam, b)?;
+    let best = k_max_at_damping(&rl.lp, fam, bu)?;
     let k = |a: f64| fam.to_physical(a, 0.0).0;
     Ok(KmaxOut {
         input: LoopInput::new(rl, None),

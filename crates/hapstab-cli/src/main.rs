@@ -5,7 +5,6 @@ mod boundary;
 mod budget;
 mod check;
 mod discretize;
-mod family;
 mod kmax;
 mod linear;
 mod map;

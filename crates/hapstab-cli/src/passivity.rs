@@ -12,12 +12,12 @@ use hapstab::passivity::{
 };
 use serde::Serialize;
 
-use crate::family::{analysis, wall_units};
 use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
 };
 use crate::output::{eng, print_json, sig};
+use hapstab::loop_analysis::{analysis, wall_units};
 
 /// Arguments of `hapstab passivity`.
 #[derive(Args, Debug)]

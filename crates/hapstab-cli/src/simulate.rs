@@ -444,11 +444,7 @@ impl SimLoop {
         } else {
             SimModel::Loop(LoopModel::new(rl.lp.clone(), w)?)
         };
-        Ok(Self {
-            rl,
-            wall: w,
-            model,
-        })
+        Ok(Self { rl, wall: w, model })
     }
 
     fn units(&self) -> Units {
@@ -627,7 +623,12 @@ fn trace_plot(tr: &Trace, r: &RunResult, cfg: &Config, s: &RunSettings, units: U
             .collect();
         crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
     };
-    let t_end = tr.time.last().copied().unwrap_or(1.0).max(cfg.model.period());
+    let t_end = tr
+        .time
+        .last()
+        .copied()
+        .unwrap_or(1.0)
+        .max(cfg.model.period());
     let tlabel = format!("time t ({})", units.time());
     let mut pos = Figure::new(params)
         .x_label(&tlabel)
@@ -1099,7 +1100,10 @@ fn friction_defined(rl: &ResolvedLoop, run: &RunArgs) -> Result<()> {
 
 /// The template model of a boundary search: the paper's loop in its normalized view, or any
 /// loop (its wall is replaced by every run).
-fn boundary_template(a: &SimboundaryArgs, rl: &ResolvedLoop) -> Result<(SimModel, Option<PlantModel>)> {
+fn boundary_template(
+    a: &SimboundaryArgs,
+    rl: &ResolvedLoop,
+) -> Result<(SimModel, Option<PlantModel>)> {
     if rl.lp.paper_view().is_some() {
         let pm = a.lp.plant.resolve()?;
         return Ok((SimModel::Paper(model_of(&pm)?), Some(pm)));
@@ -1209,7 +1213,7 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let (model, pm) = boundary_template(a, &rl)?;
     let (template, settings) = a.run.config(model.clone(), units.physical)?;
-    let region = crate::family::region(&rl.lp, &fam)?;
+    let region = hapstab::loop_analysis::region(&rl.lp, &fam)?;
     let betas = beta_values(a, &region)?;
     let points = boundary_points(a, &template, &betas, stable_when)?;
     let scale = match (&pm, units.physical) {

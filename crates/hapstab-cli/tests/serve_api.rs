@@ -560,7 +560,11 @@ fn hapstab_json(args: &[&str]) -> serde_json::Value {
         .arg("--json")
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
@@ -591,32 +595,52 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
     assert!(arcs.len() > 8, "{j}");
     for v in arcs.iter().step_by(arcs.len() / 8) {
         let (a, b) = (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
-        let p = s.get(&format!("/api/point?{TWO_MASS_LOOP}&alpha={a}&beta={b}")).json();
+        let p = s
+            .get(&format!("/api/point?{TWO_MASS_LOOP}&alpha={a}&beta={b}"))
+            .json();
         let rho = p["spectral_radius"].as_f64().unwrap();
         assert!((rho - 1.0).abs() < 1e-6, "vertex ({a}, {b}): rho {rho}");
     }
     // A wall inside: the explorer's point is check's.
-    let (k, b) = (0.5 * j["region"]["alpha_max"].as_f64().unwrap() * kpa, 0.5 * j["region"]["beta_at_alpha_max"].as_f64().unwrap() * bpb);
+    let (k, b) = (
+        0.5 * j["region"]["alpha_max"].as_f64().unwrap() * kpa,
+        0.5 * j["region"]["beta_at_alpha_max"].as_f64().unwrap() * bpb,
+    );
     let (ks, bs) = (k.to_string(), b.to_string());
     let p = s
-        .get(&format!("/api/point?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"))
+        .get(&format!(
+            "/api/point?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"
+        ))
         .json();
     let mut args = vec!["check"];
     args.extend(TWO_MASS_FLAGS);
     args.extend(["--wall-stiffness", &ks, "--wall-damping", &bs]);
     let check = hapstab_json(&args);
     assert_eq!(p["verdict"], check["verdict"]);
-    let (r1, r2) = (p["spectral_radius"].as_f64().unwrap(), check["spectral_radius"].as_f64().unwrap());
+    let (r1, r2) = (
+        p["spectral_radius"].as_f64().unwrap(),
+        check["spectral_radius"].as_f64().unwrap(),
+    );
     assert!((r1 - r2).abs() <= 1e-12, "{r1} vs {r2}");
     assert!(p["linear"].is_null());
     // The simulated contact: the explorer's run is hapstab simulate's.
     let sim = s
-        .get(&format!("/api/simulate?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"))
+        .get(&format!(
+            "/api/simulate?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"
+        ))
         .json();
     let samples = sim["requested_samples"].as_u64().unwrap().to_string();
     let mut args = vec!["simulate"];
     args.extend(TWO_MASS_FLAGS);
-    args.extend(["--wall-stiffness", &ks, "--wall-damping", &bs, "--unilateral", "--push", "1"]);
+    args.extend([
+        "--wall-stiffness",
+        &ks,
+        "--wall-damping",
+        &bs,
+        "--unilateral",
+        "--push",
+        "1",
+    ]);
     args.extend(["--initial-position", "0", "--initial-velocity", "0.01"]);
     args.extend(["--duration-samples", &samples]);
     let cli = hapstab_json(&args);
@@ -647,14 +671,55 @@ fn bad_loop_input_is_400_naming_the_parameter() {
     assert_eq!(r.json()["loop"]["delay"]["fraction"], 0.5);
     let tf = "mode=physical&period=0.001&d=0&alpha=1&beta=1";
     let cases: &[(String, &str, &str)] = &[
-        (format!("/api/point?{tf}&plant_num=1&plant_den=0.001%2Cx"), "plant_den", "0.001,x"),
-        (format!("/api/point?{tf}&plant_num=1,2,3&plant_den=1,2"), "plant_den", "1,2"),
-        (format!("/api/point?{tf}&plant_num=1&plant_den=1,0,0&device_mass=1"), "device_mass", "1"),
-        (format!("/api/region?{TWO_MASS_LOOP}&robust=1"), "robust", "1"),
-        (format!("/api/region?{}", TWO_MASS_LOOP.replace("lowpass%3A150", "bogus")), "estimator", "bogus"),
-        (format!("/api/region?{}", TWO_MASS_LOOP.replace("force_lag=0.0002", "force_lag=-1")), "force_lag", "-1"),
-        (format!("/api/region?{}", TWO_MASS_LOOP.replace("delay_time=0.0014", "delay_time=0.5")), "delay_time", "0.5"),
-        (format!("/api/region?gamma=0&delta=0&d=0&estimator=backward"), "estimator", "backward"),
+        (
+            format!("/api/point?{tf}&plant_num=1&plant_den=0.001%2Cx"),
+            "plant_den",
+            "0.001,x",
+        ),
+        (
+            format!("/api/point?{tf}&plant_num=1,2,3&plant_den=1,2"),
+            "plant_den",
+            "1,2",
+        ),
+        (
+            format!("/api/point?{tf}&plant_num=1&plant_den=1,0,0&device_mass=1"),
+            "device_mass",
+            "1",
+        ),
+        (
+            format!("/api/region?{TWO_MASS_LOOP}&robust=1"),
+            "robust",
+            "1",
+        ),
+        (
+            format!(
+                "/api/region?{}",
+                TWO_MASS_LOOP.replace("lowpass%3A150", "bogus")
+            ),
+            "estimator",
+            "bogus",
+        ),
+        (
+            format!(
+                "/api/region?{}",
+                TWO_MASS_LOOP.replace("force_lag=0.0002", "force_lag=-1")
+            ),
+            "force_lag",
+            "-1",
+        ),
+        (
+            format!(
+                "/api/region?{}",
+                TWO_MASS_LOOP.replace("delay_time=0.0014", "delay_time=0.5")
+            ),
+            "delay_time",
+            "0.5",
+        ),
+        (
+            format!("/api/region?gamma=0&delta=0&d=0&estimator=backward"),
+            "estimator",
+            "backward",
+        ),
     ];
     for (path, name, value) in cases {
         let r = s.get(path);

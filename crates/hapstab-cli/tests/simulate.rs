@@ -700,7 +700,11 @@ fn general_loops_simulate_like_check() {
             let stable = check["stable"].as_bool().unwrap();
             seen.push(stable);
             let outcome = sim["outcome"].as_str().unwrap();
-            assert_eq!(outcome, if stable { "decaying" } else { "growing" }, "{tag}");
+            assert_eq!(
+                outcome,
+                if stable { "decaying" } else { "growing" },
+                "{tag}"
+            );
             let g = f(&sim["measured_growth_per_sample"]);
             assert_eq!(g < 1.0, stable, "{tag}");
             assert_eq!(sim["input"]["wall"]["stiffness"], k.parse::<f64>().unwrap());
@@ -722,10 +726,20 @@ fn friction_needs_a_mass() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains("--coulomb/--stiction") && err.contains("--plant-num"), "{err}");
+    assert!(
+        err.contains("--coulomb/--stiction") && err.contains("--plant-num"),
+        "{err}"
+    );
     let mut args = vec!["simulate"];
     args.extend(TWO_MASS);
-    args.extend(["--wall-stiffness", "1000", "--coulomb", "0.2", "--push", "1"]);
+    args.extend([
+        "--wall-stiffness",
+        "1000",
+        "--coulomb",
+        "0.2",
+        "--push",
+        "1",
+    ]);
     let v = json(&args);
     assert_eq!(v["effects"]["friction"]["coulomb"], 0.2);
 }
@@ -759,6 +773,9 @@ fn simboundary_of_a_general_loop_brackets_the_exact_boundary() {
         c.extend(["--wall-stiffness", "1", "--wall-damping", &b]);
         let iv = json(&c)["k_interval"].clone();
         let k_hi = f(&iv[1]);
-        assert!((k_hi - f(&p["k_linear"])).abs() <= 1e-9 * k_hi, "{iv} vs {p}");
+        assert!(
+            (k_hi - f(&p["k_linear"])).abs() <= 1e-9 * k_hi,
+            "{iv} vs {p}"
+        );
     }
 }

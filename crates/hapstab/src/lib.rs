@@ -34,6 +34,7 @@ pub mod closed_loop;
 pub mod error;
 pub mod limits;
 pub mod linear;
+pub mod loop_analysis;
 pub mod map;
 pub mod margins;
 pub mod model;

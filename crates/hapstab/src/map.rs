@@ -259,7 +259,7 @@ impl WallMap {
 }
 
 /// The grid method of Section V for any loop: the wall's stiffness a along x and damping b
-/// along y, one Schur–Cohn test per point, in parallel over rows.
+/// along y, one point test ([`crate::argument::stable_at`]) per point, in parallel over rows.
 pub fn wall_map(
     fam: &AffineFamily,
     x: AxisRange,
@@ -274,26 +274,46 @@ pub fn wall_map(
             range: "[4, 1e8]",
         });
     }
-    let (stable, radius) = match kind {
-        MapKind::Stability => {
-            let stable = grid_stable(x.n, y.n, fam.degree(), progress, |ix, iy, c| {
-                crate::argument::stable_at(fam, x.value(ix), y.value(iy), c)
-            });
-            (stable, None)
-        }
-        MapKind::SpectralRadius => {
-            let coefficients = |ix: usize, iy: usize, c: &mut [f64]| {
-                fam.coefficients_into(x.value(ix), y.value(iy), c)
-            };
-            grid(x.n, y.n, fam.degree(), kind, progress, coefficients)
-        }
-    };
+    let (stable, radius) = wall_grid(
+        fam,
+        (x.n, y.n),
+        |ix| x.value(ix),
+        |iy| y.value(iy),
+        kind,
+        progress,
+    );
     Ok(WallMap {
         x,
         y,
         stable,
         radius,
     })
+}
+
+/// Stable flags (and spectral radii) of the walls (a(ix), b(iy)) of a family over an nx × ny
+/// grid: the point test [`crate::argument::stable_at`] for stability, the Schur–Cohn radius
+/// for the spectral radius; in parallel over rows.
+fn wall_grid(
+    fam: &AffineFamily,
+    (nx, ny): (usize, usize),
+    a: impl Fn(usize) -> f64 + Sync,
+    b: impl Fn(usize) -> f64 + Sync,
+    kind: MapKind,
+    progress: &(dyn Fn(usize) + Sync),
+) -> (Vec<bool>, Option<Vec<f64>>) {
+    match kind {
+        MapKind::Stability => {
+            let stable = grid_stable(nx, ny, fam.degree(), progress, |ix, iy, c| {
+                crate::argument::stable_at(fam, a(ix), b(iy), c)
+            });
+            (stable, None)
+        }
+        MapKind::SpectralRadius => {
+            let coefficients =
+                |ix: usize, iy: usize, c: &mut [f64]| fam.coefficients_into(a(ix), b(iy), c);
+            grid(nx, ny, fam.degree(), kind, progress, coefficients)
+        }
+    }
 }
 
 /// Stable flags over an nx × ny grid by a decision function of the grid indices (given a
@@ -318,6 +338,128 @@ fn grid_stable(
     rows.concat()
 }
 
+/// Stable flags (and spectral radii) of a map whose points are given by value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapValues {
+    /// Stable flag per point.
+    pub stable: Vec<bool>,
+    /// Spectral radius per point (only for `MapKind::SpectralRadius`).
+    pub radius: Option<Vec<f64>>,
+}
+
+fn check_values(name: &'static str, v: &[f64]) -> Result<()> {
+    v.iter()
+        .try_for_each(|&x| crate::error::finite(name, x).map(|_| ()))
+}
+
+/// The grid method of Section V over axes given by value, not necessarily uniform: the
+/// wall's stiffness a[ix] along x and damping b[iy] along y, in wall units, one point test
+/// ([`crate::argument::stable_at`]) per point, in parallel over rows; row-major, value (ix, iy) at index iy·nx + ix.
+/// The same computation as [`wall_map`] at the same values.
+pub fn wall_map_values(
+    fam: &AffineFamily,
+    a: &[f64],
+    b: &[f64],
+    kind: MapKind,
+) -> Result<MapValues> {
+    check_values("wall stiffness", a)?;
+    check_values("wall damping", b)?;
+    if a.len().saturating_mul(b.len()) > MAX_POINTS {
+        return Err(Error::OutOfRange {
+            name: "map points",
+            value: (a.len() as f64) * (b.len() as f64),
+            range: "[0, 1e8]",
+        });
+    }
+    let (stable, radius) = wall_grid(
+        fam,
+        (a.len(), b.len()),
+        |ix| a[ix],
+        |iy| b[iy],
+        kind,
+        &|_| {},
+    );
+    Ok(MapValues { stable, radius })
+}
+
+/// Points per parallel task of [`wall_map_points`]: enough Schur–Cohn tests (tens of ns each)
+/// to outweigh rayon's task overhead (about a microsecond).
+const POINTS_PER_TASK: usize = 1024;
+
+/// Stability (and spectral radius) at the walls (a[i], b[i]), i = 0..n, in wall units, in
+/// parallel (Section V's test at scattered points; a and b have the same length).
+pub fn wall_map_points(
+    fam: &AffineFamily,
+    a: &[f64],
+    b: &[f64],
+    kind: MapKind,
+) -> Result<MapValues> {
+    if a.len() != b.len() {
+        return Err(Error::Invalid {
+            name: "wall damping",
+            reason: format!(
+                "has {} values where the wall stiffness has {}",
+                b.len(),
+                a.len()
+            ),
+        });
+    }
+    check_values("wall stiffness", a)?;
+    check_values("wall damping", b)?;
+    let deg = fam.degree();
+    let chunks: Vec<(Vec<bool>, Vec<f64>)> = a
+        .par_chunks(POINTS_PER_TASK)
+        .zip(b.par_chunks(POINTS_PER_TASK))
+        .map(|(ac, bc)| {
+            let mut c = vec![0.0; deg + 1];
+            let mut st = Vec::with_capacity(ac.len());
+            let mut rad = Vec::new();
+            for (&x, &y) in ac.iter().zip(bc) {
+                match kind {
+                    MapKind::Stability => {
+                        st.push(crate::argument::stable_at(fam, x, y, &mut c));
+                    }
+                    MapKind::SpectralRadius => {
+                        fam.coefficients_into(x, y, &mut c);
+                        push_point(&c, kind, &mut st, &mut rad);
+                    }
+                }
+            }
+            (st, rad)
+        })
+        .collect();
+    let (stable, radius) = concat(chunks, kind);
+    Ok(MapValues { stable, radius })
+}
+
+/// One point of a map: the Schur–Cohn verdict, or the spectral radius and whether it is < 1.
+fn push_point(c: &[f64], kind: MapKind, st: &mut Vec<bool>, rad: &mut Vec<f64>) {
+    match kind {
+        MapKind::Stability => st.push(schur_stable(c)),
+        MapKind::SpectralRadius => {
+            let r = spectral_radius_schur(c);
+            st.push(r < 1.0);
+            rad.push(r);
+        }
+    }
+}
+
+/// Joins per-task results in order.
+fn concat(parts: Vec<(Vec<bool>, Vec<f64>)>, kind: MapKind) -> (Vec<bool>, Option<Vec<f64>>) {
+    let n = parts.iter().map(|p| p.0.len()).sum();
+    let mut stable = Vec::with_capacity(n);
+    let mut radius = Vec::with_capacity(if kind == MapKind::SpectralRadius {
+        n
+    } else {
+        0
+    });
+    for (s, r) in parts {
+        stable.extend(s);
+        radius.extend(r);
+    }
+    (stable, (kind == MapKind::SpectralRadius).then_some(radius))
+}
+
 /// Stable flags (and spectral radii) over an nx × ny grid whose coefficients `coefficients`
 /// writes, in parallel over rows.
 fn grid(
@@ -337,25 +479,83 @@ fn grid(
             let mut rad = Vec::new();
             for ix in 0..nx {
                 coefficients(ix, iy, &mut c);
-                match kind {
-                    MapKind::Stability => st.push(schur_stable(&c)),
-                    MapKind::SpectralRadius => {
-                        let r = spectral_radius_schur(&c);
-                        st.push(r < 1.0);
-                        rad.push(r);
-                    }
-                }
+                push_point(&c, kind, &mut st, &mut rad);
             }
             let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress(k);
             (st, rad)
         })
         .collect();
-    let mut stable = Vec::with_capacity(nx * ny);
-    let mut radius = Vec::new();
-    for (s, r) in rows {
-        stable.extend(s);
-        radius.extend(r);
+    concat(rows, kind)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+    use crate::params::Arm;
+
+    fn family() -> AffineFamily {
+        let plant = Plant::new(
+            PlantModel::TwoMass(TwoMass {
+                motor_mass: 0.05,
+                motor_damping: 0.5,
+                handle_mass: 0.05,
+                transmission_stiffness: 2e4,
+                transmission_damping: 2.0,
+                arm: Arm::TYPICAL,
+            }),
+            2e-4,
+        )
+        .unwrap();
+        let lp = Loop::new(
+            plant,
+            1e-3,
+            Delay::from_time(1.5e-3, 1e-3).unwrap(),
+            VelocityEstimator::LowPass { cutoff_hz: 200.0 },
+        )
+        .unwrap();
+        AffineFamily::of_loop(&lp).unwrap()
     }
-    (stable, (kind == MapKind::SpectralRadius).then_some(radius))
+
+    #[test]
+    fn maps_by_value_equal_the_uniform_map() {
+        let fam = family();
+        let (a0, b0) = fam.to_units(-2e3, -5.0);
+        let (a1, b1) = fam.to_units(4e4, 40.0);
+        let x = AxisRange::new(Axis::Alpha, a0, a1, 37).unwrap();
+        let y = AxisRange::new(Axis::Beta, b0, b1, 23).unwrap();
+        let m = wall_map(&fam, x, y, MapKind::SpectralRadius, &|_| {}).unwrap();
+        let a: Vec<f64> = (0..x.n).map(|i| x.value(i)).collect();
+        let b: Vec<f64> = (0..y.n).map(|i| y.value(i)).collect();
+        let v = wall_map_values(&fam, &a, &b, MapKind::SpectralRadius).unwrap();
+        assert_eq!((&v.stable, &v.radius), (&m.stable, &m.radius));
+        assert!(m.stable.iter().any(|&s| s) && m.stable.iter().any(|&s| !s));
+        // the same walls one by one (rows of b, columns of a), in more than one parallel task
+        let (pa, pb): (Vec<f64>, Vec<f64>) =
+            (0..3000).map(|k| (a[k % x.n], b[(k / x.n) % y.n])).unzip();
+        let p = wall_map_points(&fam, &pa, &pb, MapKind::SpectralRadius).unwrap();
+        let r = m.radius.as_ref().unwrap();
+        for k in 0..3000 {
+            let i = (k / x.n) % y.n * x.n + k % x.n;
+            assert_eq!(
+                (p.stable[k], p.radius.as_ref().unwrap()[k]),
+                (m.stable[i], r[i])
+            );
+        }
+        let s = wall_map_points(&fam, &pa, &pb, MapKind::Stability).unwrap();
+        assert_eq!(s.stable, p.stable);
+        assert!(s.radius.is_none());
+    }
+
+    #[test]
+    fn maps_by_value_refuse_bad_values() {
+        let fam = family();
+        let e = wall_map_values(&fam, &[0.0, f64::NAN], &[0.0], MapKind::Stability);
+        assert!(e.unwrap_err().to_string().contains("wall stiffness"));
+        let e = wall_map_points(&fam, &[0.0], &[0.0, 1.0], MapKind::Stability);
+        assert!(e.unwrap_err().to_string().contains("wall damping"));
+        let e = wall_map_points(&fam, &[0.0], &[f64::INFINITY], MapKind::Stability);
+        assert!(e.unwrap_err().to_string().contains("wall damping"));
+    }
 }

@@ -3,18 +3,18 @@
 
 use std::time::Instant;
 
-use hapstab::params::Wall;
-use hapstab::simulation::{LoopModel, SimModel};
-use hapstab::{Loop, PolyFamily};
 use hapstab::boundary::AlphaBeta;
 use hapstab::linear::{linear_alpha_limit, linear_check};
 use hapstab::nyquist::{
     RobustOptions, passive_region, region_summary, robust_region, unit_circle_pole,
 };
 use hapstab::params::Normalized;
+use hapstab::params::Wall;
 use hapstab::region::{EdgeKind, stable_region};
 use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, Model, RunResult};
+use hapstab::simulation::{LoopModel, SimModel};
 use hapstab::stability::Analysis;
+use hapstab::{Loop, PolyFamily};
 use serde::Serialize;
 
 use super::limits::*;
@@ -631,7 +631,8 @@ pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiErr
             satisfied: lc.satisfied,
         }
     });
-    let passive = (paper && spec.d == 0).then(|| alpha >= 0.0 && n.delta > alpha / 2.0 + beta.abs());
+    let passive =
+        (paper && spec.d == 0).then(|| alpha >= 0.0 && n.delta > alpha / 2.0 + beta.abs());
     Ok(PointOut {
         params: n,
         lp: spec.general.as_ref().map(|g| g.lp.clone()),

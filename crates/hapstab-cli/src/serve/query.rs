@@ -599,7 +599,11 @@ fn plant_model(p: &Params) -> Result<PlantModel, ApiError> {
         return Ok(PlantModel::TransferFunction { num, den });
     }
     if TWO_MASS.iter().any(|n| p.has(n)) {
-        refuse(p, DEVICE, "does not combine with a two-mass device (motor_mass, …)")?;
+        refuse(
+            p,
+            DEVICE,
+            "does not combine with a two-mass device (motor_mass, …)",
+        )?;
         return Ok(PlantModel::TwoMass(TwoMass {
             motor_mass: p.num_in("motor_mass", 0.0, MAX_MASS, " kg")?,
             motor_damping: p.num_or("motor_damping", 0.0, 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
@@ -668,7 +672,13 @@ fn general_delay(p: &Params, period: f64) -> Result<Delay, ApiError> {
 fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     let model = plant_model(p)?;
     let period = p.num_in("period", MIN_PERIOD, MAX_PERIOD, " s (sampling period T)")?;
-    let lag = p.num_or("force_lag", 0.0, 0.0, MAX_FORCE_LAG, " s (actuator time constant τ)")?;
+    let lag = p.num_or(
+        "force_lag",
+        0.0,
+        0.0,
+        MAX_FORCE_LAG,
+        " s (actuator time constant τ)",
+    )?;
     let velocity = match p.raw("estimator") {
         Some(v) => v
             .parse::<VelocityEstimator>()

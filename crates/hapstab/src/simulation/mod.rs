@@ -254,7 +254,7 @@ impl SimModel {
             SimModel::Paper(m) => Analysis::new(m.params),
             SimModel::Loop(_) => {
                 let (a, b) = self.wall_units();
-                Analysis::of_poly(&self.family()?.coefficients(a, b))
+                Analysis::of_family(&self.family()?, a, b)
             }
         }
     }

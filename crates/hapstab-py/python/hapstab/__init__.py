@@ -1,0 +1,72 @@
+"""hapstab: exact stability of haptic virtual walls held by a human operator.
+
+After Hulin, Preusche and Hirzinger, "Stability Boundary for Haptic Rendering: Influence of
+Human Operator" (IROS 2008). An impedance-type haptic device renders a virtual wall
+F = K·y + B·v, sampled with period T behind a zero-order hold, with the force delayed by t_d;
+the device held by the arm is the plant 1/(m s² + b s + k) of eq. (1), m = m_L + m_H,
+b = b_L + b_H, k = k_H. The paper's normalized parameters (Table I) are
+
+    α = K T²/m,  β = B T/m,  γ = k T²/m,  δ = b T/m,  d = t_d/T,
+
+and the closed loop is stable iff every root of its characteristic polynomial
+
+    p(z) = z^(d+1) D(z) + N(z) ((α + β) z − β)                      (eq. 9)
+
+lies inside the unit circle (Section V). This package generalizes the loop (two-mass
+devices, any transfer function, actuator lag, fractional delays, other velocity estimators)
+and answers from the same Rust engine as the `hapstab` command line:
+
+- Loop description: MassSpringDamper, TwoMass, TransferFunction, Loop (Loop.paper,
+  Loop.normalized).
+- check: verdict, spectral radius, roots and the stable K interval at a wall.
+- region: the exact stable region in the (K, B) plane as polygons, K_max and where.
+- kmax: K_max overall, at a damping B, or over a damping range.
+- stability_map: the grid method over numpy arrays of K and B, in parallel, GIL released.
+- discretize: the exact discrete plant, velocity estimator and p(z) as coefficient arrays.
+- simulate: the loop in the time domain with nonlinear effects, trace arrays and verdict.
+
+Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad arguments raise
+ValueError naming the keyword argument.
+"""
+
+from ._hapstab import (
+    Check,
+    Discretization,
+    Edge,
+    Kmax,
+    Loop,
+    MassSpringDamper,
+    NumericalError,
+    Region,
+    Simulation,
+    StabilityMap,
+    TransferFunction,
+    TwoMass,
+    check,
+    discretize,
+    kmax,
+    region,
+    simulate,
+    stability_map,
+)
+
+__all__ = [
+    "Check",
+    "Discretization",
+    "Edge",
+    "Kmax",
+    "Loop",
+    "MassSpringDamper",
+    "NumericalError",
+    "Region",
+    "Simulation",
+    "StabilityMap",
+    "TransferFunction",
+    "TwoMass",
+    "check",
+    "discretize",
+    "kmax",
+    "region",
+    "simulate",
+    "stability_map",
+]

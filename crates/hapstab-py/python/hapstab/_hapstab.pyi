@@ -1,0 +1,291 @@
+"""Type stubs of the hapstab extension module (see the package docstring and each function's
+docstring for the equations). Units are SI: K in N/m, B in Ns/m, masses in kg, times in s."""
+
+from typing import Literal, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Float64Array = npt.NDArray[np.float64]
+BoolArray = npt.NDArray[np.bool_]
+Complex128Array = npt.NDArray[np.complex128]
+
+class NumericalError(RuntimeError):
+    """A numerical routine did not converge on valid input."""
+
+class MassSpringDamper:
+    """The paper's plant 1/(m s² + b s + k) from force (N) to position (m) (eq. 1)."""
+
+    def __init__(self, mass: float, damping: float = 0.0, stiffness: float = 0.0) -> None: ...
+    @staticmethod
+    def from_device_and_arm(
+        *,
+        device_mass: float = 0.1,
+        device_damping: float = 1.5,
+        arm_mass: float = 1.0,
+        arm_damping: float = 6.0,
+        arm_stiffness: float = 350.0,
+    ) -> MassSpringDamper:
+        """m = m_L + m_H, b = b_L + b_H, k = k_H (eq. 1)."""
+    @property
+    def mass(self) -> float:
+        """m in kg."""
+    @property
+    def damping(self) -> float:
+        """b in Ns/m."""
+    @property
+    def stiffness(self) -> float:
+        """k in N/m."""
+
+class TwoMass:
+    """Motor-side mass J (actuator and encoder) coupled to the handle by a compliant
+    transmission k_t, b_t; the arm (m_H, b_H, k_H) holds the handle."""
+
+    def __init__(
+        self,
+        motor_mass: float,
+        transmission_stiffness: float,
+        *,
+        motor_damping: float = 0.0,
+        handle_mass: float = 0.0,
+        transmission_damping: float = 0.0,
+        arm_mass: float = 1.0,
+        arm_damping: float = 6.0,
+        arm_stiffness: float = 350.0,
+    ) -> None: ...
+    @property
+    def motor_mass(self) -> float: ...
+    @property
+    def motor_damping(self) -> float: ...
+    @property
+    def handle_mass(self) -> float: ...
+    @property
+    def transmission_stiffness(self) -> float: ...
+    @property
+    def transmission_damping(self) -> float: ...
+    @property
+    def arm_mass(self) -> float: ...
+    @property
+    def arm_damping(self) -> float: ...
+    @property
+    def arm_stiffness(self) -> float: ...
+
+class TransferFunction:
+    """A strictly proper P(s) = num(s)/den(s), force (N) to position (m), highest power of s
+    first (python-control's tf convention), order <= 12."""
+
+    def __init__(self, num: ArrayLike, den: ArrayLike) -> None: ...
+    @property
+    def num(self) -> Float64Array: ...
+    @property
+    def den(self) -> Float64Array: ...
+
+Plant = Union[MassSpringDamper, TwoMass, TransferFunction]
+
+class Loop:
+    """The loop of Fig. 3: plant, sampling period T, delay t_d = (d + λ)T, velocity estimator
+    ("backward", "lowpass:FC", "average:N", "iir:b0,b1,…/a0,a1,…") and actuator lag τ."""
+
+    def __init__(
+        self,
+        plant: Plant,
+        *,
+        period: float = 1e-3,
+        delay: Optional[float] = None,
+        delay_samples: Optional[int] = None,
+        velocity: str = "backward",
+        force_lag: float = 0.0,
+    ) -> None: ...
+    @staticmethod
+    def paper(
+        *,
+        device_mass: float = 0.1,
+        device_damping: float = 1.5,
+        arm_mass: float = 1.0,
+        arm_damping: float = 6.0,
+        arm_stiffness: float = 350.0,
+        period: float = 1e-3,
+        delay: float = 0.0,
+    ) -> Loop:
+        """The paper's loop in physical units (eq. 1, backward-difference velocity)."""
+    @staticmethod
+    def normalized(gamma: float = 0.0, delta: float = 0.0, d: int = 0) -> Loop:
+        """The paper's loop in normalized units (Table I): m = 1 kg, T = 1 s, so K = α, B = β."""
+    @property
+    def plant(self) -> Plant: ...
+    @property
+    def period(self) -> float:
+        """T in s."""
+    @property
+    def delay(self) -> float:
+        """t_d in s."""
+    @property
+    def delay_samples(self) -> float:
+        """t_d/T = d + λ."""
+    @property
+    def velocity(self) -> str: ...
+    @property
+    def force_lag(self) -> float:
+        """τ in s."""
+    @property
+    def is_normalized(self) -> bool: ...
+    @property
+    def paper_view(self) -> Optional[Tuple[float, float, int]]:
+        """(γ, δ, d) of Table I for the paper's loop, else None."""
+    @property
+    def reference_mass(self) -> float:
+        """The m in kg of α = KT²/m, β = BT/m."""
+    @property
+    def wall_scale(self) -> Tuple[float, float]:
+        """(m/T² N/m per unit α, m/T Ns/m per unit β)."""
+
+class Check:
+    stable: bool
+    verdict: Literal["stable", "marginal", "unstable"]
+    spectral_radius: float
+    roots: Complex128Array
+    wall_stiffness: float
+    wall_damping: float
+    k_interval: Optional[Tuple[float, float]]
+    alpha: Optional[float]
+    beta: Optional[float]
+    alpha_interval: Optional[Tuple[float, float]]
+    alpha_linear: Optional[float]
+    k_linear: Optional[float]
+
+class Edge:
+    start: int
+    stop: int
+    kind: Literal["z=1", "z=-1", "complex", "window"]
+    theta_start: Optional[float]
+    theta_end: Optional[float]
+
+class Region:
+    polygons: list[Float64Array]
+    """(N, 2) arrays of [K in N/m, B in Ns/m], counter-clockwise, first vertex not repeated."""
+    polygons_normalized: list[Float64Array]
+    thetas: list[Float64Array]
+    edges: list[list[Edge]]
+    k_max: Optional[float]
+    b_at_k_max: Optional[float]
+    alpha_max: Optional[float]
+    beta_at_alpha_max: Optional[float]
+    area: float
+    area_normalized: float
+    k_per_alpha: float
+    b_per_beta: float
+
+class Kmax:
+    k_max: Optional[float]
+    b_at_k_max: Optional[float]
+    k_interval: Optional[Tuple[float, float]]
+    alpha_max: Optional[float]
+    beta_at_alpha_max: Optional[float]
+    k_linear: Optional[float]
+
+class StabilityMap:
+    stable: BoolArray
+    spectral_radius: Optional[Float64Array]
+
+class Discretization:
+    """Coefficient arrays in descending powers of z."""
+
+    period: float
+    plant_num: Float64Array
+    plant_den: Float64Array
+    plant_delay: int
+    velocity_num: Float64Array
+    velocity_den: Float64Array
+    p0: Float64Array
+    pk: Float64Array
+    pb: Float64Array
+    characteristic: Optional[Float64Array]
+    wall_stiffness: Optional[float]
+    wall_damping: Optional[float]
+
+class Simulation:
+    time: Float64Array
+    position: Float64Array
+    velocity: Float64Array
+    wall_force: Float64Array
+    human_force: Float64Array
+    outcome: Literal["decaying", "limit_cycle", "growing", "separated", "undecided"]
+    reason: str
+    linear_window: bool
+    measured_growth_per_sample: Optional[float]
+    spectral_radius: Optional[float]
+    linear_verdict: Optional[Literal["stable", "marginal", "unstable"]]
+    limit_cycle: Optional[dict]
+    contact: dict
+    judged_samples: Tuple[int, int]
+    samples: int
+    trace_stride: int
+    blown_up: bool
+    final_position: float
+    final_velocity: float
+
+def check(
+    loop: Loop,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: Optional[float] = None,
+    *,
+    alpha: Optional[float] = None,
+    beta: Optional[float] = None,
+) -> Check:
+    """Verdict, spectral radius and roots of p(z) (eq. 9) at the wall (K N/m, B Ns/m)."""
+
+def region(loop: Loop) -> Region:
+    """The exact stable region in the (K, B) plane by D-decomposition (Section V)."""
+
+def kmax(
+    loop: Loop,
+    *,
+    wall_damping: Optional[float] = None,
+    damping_range: Optional[Tuple[float, float]] = None,
+) -> Kmax:
+    """K_max in N/m: at a damping B, over a band of B, or overall."""
+
+def stability_map(
+    loop: Loop,
+    wall_stiffness: ArrayLike,
+    wall_damping: ArrayLike,
+    *,
+    spectral_radius: bool = False,
+) -> StabilityMap:
+    """The grid method (Section V) over 1-D axes (result shape (len(B), len(K))) or
+    same-shape arrays of walls, in parallel with the GIL released."""
+
+def discretize(
+    loop: Loop,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: Optional[float] = None,
+    *,
+    alpha: Optional[float] = None,
+    beta: Optional[float] = None,
+) -> Discretization:
+    """The exact discrete loop (eq. 2–9) as coefficient arrays, descending powers of z."""
+
+def simulate(
+    loop: Loop,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: Optional[float] = None,
+    *,
+    alpha: Optional[float] = None,
+    beta: Optional[float] = None,
+    duration: Optional[float] = None,
+    samples: Optional[int] = None,
+    max_duration: Optional[float] = None,
+    max_samples: Optional[int] = None,
+    human_force: Union[float, Sequence[float], Float64Array, None] = None,
+    initial_position: float = 1e-3,
+    initial_velocity: float = 0.0,
+    contact: Literal["bilateral", "unilateral", "unilateral_no_pull"] = "bilateral",
+    wall_position: float = 0.0,
+    coulomb_friction: Optional[float] = None,
+    static_friction: Optional[float] = None,
+    quantization: Optional[float] = None,
+    saturation: Optional[float] = None,
+    trace_rows: int = 200000,
+) -> Simulation:
+    """The loop in the time domain with nonlinear effects: trace arrays and the verdict."""

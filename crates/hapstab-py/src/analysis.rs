@@ -1,0 +1,414 @@
+//! `check`, `region` and `kmax`: the exact analyses of Section V for one loop, through the
+//! library's `loop_analysis` (the same functions the command line calls).
+
+use hapstab::AffineFamily;
+use hapstab::boundary::Interval;
+use hapstab::loop_analysis::{
+    analysis, damping_units, k_max_at_damping, k_max_within, linear_k, pick_interval,
+    region as loop_region, stable_intervals, wall_units,
+};
+use hapstab::region::{EdgeKind, Polygon, StableRegion};
+use num_complex::Complex64;
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::prelude::*;
+
+use crate::errors::{Context, bad};
+use crate::loops::PyLoop;
+use crate::text::num;
+use crate::wall::WallArgs;
+
+/// The result of `check`.
+#[pyclass(frozen, get_all, module = "hapstab", name = "Check")]
+pub struct PyCheck {
+    /// True iff every root of p(z) lies inside the unit circle (Section V).
+    pub stable: bool,
+    /// "stable", "marginal" (a root within 5e-11 of the circle) or "unstable".
+    pub verdict: String,
+    /// Largest root modulus of p(z).
+    pub spectral_radius: f64,
+    /// Roots of p(z), largest modulus first (complex128 array).
+    pub roots: Py<PyArray1<Complex64>>,
+    /// The wall's stiffness K in N/m.
+    pub wall_stiffness: f64,
+    /// The wall's damping B in Ns/m.
+    pub wall_damping: f64,
+    /// Stable K interval (lo, hi) in N/m at this B: the one containing K, else the one
+    /// reaching furthest; None when no K is stable at this B.
+    pub k_interval: Option<(f64, f64)>,
+    /// The paper's loop: α = KT²/m (Table I), else None.
+    pub alpha: Option<f64>,
+    /// The paper's loop: β = BT/m, else None.
+    pub beta: Option<f64>,
+    /// The paper's loop: the stable α interval at this β (as k_interval), else None.
+    pub alpha_interval: Option<(f64, f64)>,
+    /// The paper's loop: linear condition (23), α < (β + δ)/(d + 1/2), else None.
+    pub alpha_linear: Option<f64>,
+    /// The paper's loop: linear condition (22), K < (b + B)/(t_d + T/2) in N/m, else None.
+    pub k_linear: Option<f64>,
+}
+
+#[pymethods]
+impl PyCheck {
+    fn __repr__(&self) -> String {
+        format!(
+            "Check(verdict='{}', spectral_radius={}, wall_stiffness={}, wall_damping={}, k_interval={})",
+            self.verdict,
+            num(self.spectral_radius),
+            num(self.wall_stiffness),
+            num(self.wall_damping),
+            interval_text(self.k_interval)
+        )
+    }
+}
+
+fn interval_text(iv: Option<(f64, f64)>) -> String {
+    iv.map_or("None".into(), |(lo, hi)| {
+        format!("({}, {})", num(lo), num(hi))
+    })
+}
+
+fn pair(iv: Interval) -> (f64, f64) {
+    (iv.lo, iv.hi)
+}
+
+fn k_pair(fam: &AffineFamily, iv: Interval) -> (f64, f64) {
+    (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0)
+}
+
+/// Is the virtual wall F = K·y + B·v on this loop stable? The closed loop's characteristic
+/// polynomial p(z) = z^k·D(z)·Vd(z) + N(z)·(K·Vd(z) + B·Vn(z)) (eq. 9, generalized; for the
+/// paper's loop p(z) = z^{d+1}D(z) + N(z)((α + β)z − β)) is tested by the Schur–Cohn
+/// recursion for the verdict and its roots give the spectral radius (Section V).
+///
+/// The wall is K in N/m and B in Ns/m, or the paper's normalized α = KT²/m, β = BT/m
+/// (a mass-spring-damper plant; on a Loop.normalized they are K and B).
+#[pyfunction]
+#[pyo3(signature = (r#loop, wall_stiffness = None, wall_damping = None, *, alpha = None,
+                    beta = None))]
+pub fn check(
+    r#loop: &PyLoop,
+    wall_stiffness: Option<f64>,
+    wall_damping: Option<f64>,
+    alpha: Option<f64>,
+    beta: Option<f64>,
+    py: Python<'_>,
+) -> PyResult<PyCheck> {
+    let lp = &r#loop.lp;
+    let fam = r#loop.family()?;
+    let args = WallArgs {
+        stiffness: wall_stiffness,
+        damping: wall_damping,
+        alpha,
+        beta,
+    };
+    let w = args.resolve(r#loop, &fam)?;
+    let (a, b) = wall_units(lp, &fam, w).py()?;
+    let analysis = analysis(lp, &fam, (a, b)).py()?;
+    let interval = pick_interval(&stable_intervals(lp, &fam, b).py()?, a);
+    let paper = lp.paper_view();
+    let alpha_linear =
+        paper.map(|pp| hapstab::linear::linear_alpha_limit(b, pp.delta, lp.delay.samples));
+    Ok(PyCheck {
+        stable: analysis.stable(),
+        verdict: analysis.verdict.as_str().into(),
+        spectral_radius: analysis.spectral_radius,
+        roots: PyArray1::from_vec(py, analysis.roots).unbind(),
+        wall_stiffness: w.stiffness,
+        wall_damping: w.damping,
+        k_interval: interval.map(|iv| k_pair(&fam, iv)),
+        alpha: paper.map(|_| a),
+        beta: paper.map(|_| b),
+        alpha_interval: paper.and(interval.map(pair)),
+        alpha_linear,
+        k_linear: linear_k(lp, w.damping),
+    })
+}
+
+/// One edge of a region polygon.
+#[pyclass(frozen, get_all, module = "hapstab", name = "Edge")]
+#[derive(Clone)]
+pub struct PyEdge {
+    /// Index of the edge's first vertex.
+    pub start: usize,
+    /// Index of its last vertex (the next edge's first; 0 for the last edge).
+    pub stop: usize,
+    /// "z=1" (a real root at z = 1: α = −γ for the paper's loop), "z=-1" (a real root at
+    /// z = −1), "complex" (a root pair e^{±iθ} on the unit circle) or "window" (a cut of the
+    /// search window, never part of a correct region).
+    pub kind: String,
+    /// For "complex": θ in rad at the first vertex, else None.
+    pub theta_start: Option<f64>,
+    /// For "complex": θ in rad at the last vertex, else None.
+    pub theta_end: Option<f64>,
+}
+
+#[pymethods]
+impl PyEdge {
+    fn __repr__(&self) -> String {
+        let theta = match (self.theta_start, self.theta_end) {
+            (Some(a), Some(b)) => format!(", theta_start={}, theta_end={}", num(a), num(b)),
+            _ => String::new(),
+        };
+        format!(
+            "Edge(start={}, stop={}, kind='{}'{theta})",
+            self.start, self.stop, self.kind
+        )
+    }
+}
+
+fn edge_kind(k: &EdgeKind) -> (&'static str, Option<f64>, Option<f64>) {
+    match k {
+        EdgeKind::ZPlusOne => ("z=1", None, None),
+        EdgeKind::ZMinusOne => ("z=-1", None, None),
+        EdgeKind::Complex {
+            theta_start,
+            theta_end,
+        } => ("complex", Some(*theta_start), Some(*theta_end)),
+        EdgeKind::Window => ("window", None, None),
+    }
+}
+
+fn edges(p: &Polygon) -> Vec<PyEdge> {
+    let n = p.edges.len();
+    p.edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let (kind, theta_start, theta_end) = edge_kind(&e.kind);
+            PyEdge {
+                start: e.start,
+                stop: p.edges[(i + 1) % n].start,
+                kind: kind.into(),
+                theta_start,
+                theta_end,
+            }
+        })
+        .collect()
+}
+
+/// The result of `region`.
+#[pyclass(frozen, get_all, module = "hapstab", name = "Region")]
+pub struct PyRegion {
+    /// Stable components as closed counter-clockwise polygons, each an (N, 2) float64 array
+    /// of [K in N/m, B in Ns/m] (first vertex not repeated).
+    pub polygons: Vec<Py<PyArray2<f64>>>,
+    /// The same polygons in normalized wall units [α, β] (α = KT²/m, β = BT/m with the
+    /// loop's reference mass m; Table I's α, β for the paper's loop).
+    pub polygons_normalized: Vec<Py<PyArray2<f64>>>,
+    /// Per polygon, θ in rad of the root pair e^{±iθ} at each vertex on a complex-pair arc
+    /// (NaN on the z = ±1 lines), float64 arrays of length N.
+    pub thetas: Vec<Py<PyArray1<f64>>>,
+    /// Per polygon, its edges in order.
+    pub edges: Vec<Vec<PyEdge>>,
+    /// Largest stable stiffness K_max in N/m, None when nothing is stable.
+    pub k_max: Option<f64>,
+    /// The damping B in Ns/m at which K_max is reached.
+    pub b_at_k_max: Option<f64>,
+    /// K_max in normalized units (α_max for the paper's loop).
+    pub alpha_max: Option<f64>,
+    /// β at α_max.
+    pub beta_at_alpha_max: Option<f64>,
+    /// Total area in (N/m)·(Ns/m).
+    pub area: f64,
+    /// Total area in normalized units.
+    pub area_normalized: f64,
+    /// N/m per unit α (m/T²).
+    pub k_per_alpha: f64,
+    /// Ns/m per unit β (m/T).
+    pub b_per_beta: f64,
+}
+
+#[pymethods]
+impl PyRegion {
+    fn __repr__(&self) -> String {
+        let opt = |x: Option<f64>| x.map_or("None".into(), num);
+        format!(
+            "Region(polygons={}, k_max={}, b_at_k_max={}, alpha_max={})",
+            self.polygons.len(),
+            opt(self.k_max),
+            opt(self.b_at_k_max),
+            opt(self.alpha_max)
+        )
+    }
+}
+
+fn vertices<'py>(
+    py: Python<'py>,
+    p: &Polygon,
+    scale: (f64, f64),
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = p
+        .vertices
+        .iter()
+        .flat_map(|v| [v.alpha * scale.0, v.beta * scale.1])
+        .collect();
+    PyArray1::from_vec(py, flat).reshape([p.vertices.len(), 2])
+}
+
+fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResult<PyRegion> {
+    let (kpa, bpb) = fam.to_physical(1.0, 1.0);
+    let found = !r.polygons.is_empty();
+    let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    let mut polygons = Vec::new();
+    let mut normalized = Vec::new();
+    for p in &r.polygons {
+        polygons.push(vertices(py, p, (kpa, bpb))?.unbind());
+        normalized.push(vertices(py, p, (1.0, 1.0))?.unbind());
+    }
+    Ok(PyRegion {
+        polygons,
+        polygons_normalized: normalized,
+        thetas: r
+            .polygons
+            .iter()
+            .map(|p| PyArray1::from_slice(py, &p.thetas).unbind())
+            .collect(),
+        edges: r.polygons.iter().map(edges).collect(),
+        k_max: found.then_some(k),
+        b_at_k_max: found.then_some(b),
+        alpha_max: found.then_some(r.alpha_max),
+        beta_at_alpha_max: found.then_some(r.beta_at_alpha_max),
+        area: r.area * kpa * bpb,
+        area_normalized: r.area,
+        k_per_alpha: kpa,
+        b_per_beta: bpb,
+    })
+}
+
+/// The exact stable region of the wall (K, B) by D-decomposition (Section V, Figs. 4–6):
+/// closed polygons bounded by the z = 1 line (α = −γ for the paper's loop), the z = −1 line
+/// and the complex-pair curve, where p(e^{iθ}) = 0 gives
+/// α(θ) = Im(P0·conj PB)/Im(conj PK·PB), β(θ) = Im(PK·conj P0)/Im(conj PK·PB); each face is
+/// classified by one Schur–Cohn test, arcs follow the curve to 1e-9 of the region's size, and
+/// K_max (α_max) is solved on dα/dθ = 0. The GIL is released while it runs.
+#[pyfunction]
+#[pyo3(signature = (r#loop))]
+pub fn region(r#loop: &PyLoop, py: Python<'_>) -> PyResult<PyRegion> {
+    let fam = r#loop.family()?;
+    let lp = &r#loop.lp;
+    let r = py.detach(|| loop_region(lp, &fam)).py()?;
+    region_object(py, &fam, &r)
+}
+
+/// The result of `kmax`.
+#[pyclass(frozen, get_all, module = "hapstab", name = "Kmax")]
+pub struct PyKmax {
+    /// Largest stable K in N/m; None when no K is stable.
+    pub k_max: Option<f64>,
+    /// The damping B in Ns/m where it holds: the given wall_damping, or where the region's
+    /// K_max is reached (within damping_range when given).
+    pub b_at_k_max: Option<f64>,
+    /// With wall_damping: the stable K interval (lo, hi) in N/m that reaches K_max.
+    pub k_interval: Option<(f64, f64)>,
+    /// K_max in normalized units (α_max for the paper's loop).
+    pub alpha_max: Option<f64>,
+    /// β where α_max holds.
+    pub beta_at_alpha_max: Option<f64>,
+    /// The paper's loop: linear condition (22), (b + B)/(t_d + T/2) in N/m at the same B.
+    pub k_linear: Option<f64>,
+}
+
+#[pymethods]
+impl PyKmax {
+    fn __repr__(&self) -> String {
+        let opt = |x: Option<f64>| x.map_or("None".into(), num);
+        format!(
+            "Kmax(k_max={}, b_at_k_max={}, k_interval={})",
+            opt(self.k_max),
+            opt(self.b_at_k_max),
+            interval_text(self.k_interval)
+        )
+    }
+}
+
+/// A (b_lo, b_hi) damping band in Ns/m, ends possibly infinite.
+fn damping_band(range: (f64, f64)) -> PyResult<(f64, f64)> {
+    let (lo, hi) = range;
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return Err(bad(
+            "damping_range",
+            format!("must be (B_lo, B_hi) in Ns/m with B_lo <= B_hi (got ({lo}, {hi}))"),
+        ));
+    }
+    Ok((lo, hi))
+}
+
+fn kmax_at(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<PyKmax> {
+    let b = crate::errors::finite("wall_damping", b)?;
+    let bu = damping_units(&lp.lp, fam, b).py()?;
+    let best = k_max_at_damping(&lp.lp, fam, bu).py()?;
+    let k = |a: f64| fam.to_physical(a, 0.0).0;
+    Ok(PyKmax {
+        k_max: best.map(|iv| k(iv.hi)),
+        b_at_k_max: best.map(|_| b),
+        k_interval: best.map(|iv| k_pair(fam, iv)),
+        alpha_max: best.map(|iv| iv.hi),
+        beta_at_alpha_max: best.map(|_| bu),
+        k_linear: linear_k(&lp.lp, b),
+    })
+}
+
+/// An end of a damping band in wall units (infinite ends stay infinite).
+fn band_units(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<f64> {
+    if b.is_infinite() {
+        return Ok(b);
+    }
+    damping_units(&lp.lp, fam, b).py()
+}
+
+fn kmax_within(
+    lp: &PyLoop,
+    fam: &AffineFamily,
+    band: (f64, f64),
+    py: Python<'_>,
+) -> PyResult<PyKmax> {
+    let (lo, hi) = damping_band(band)?;
+    let blo = band_units(lp, fam, lo)?;
+    let bhi = band_units(lp, fam, hi)?;
+    let best = py.detach(|| k_max_within(&lp.lp, fam, blo, bhi)).py()?;
+    Ok(overall_from(lp, fam, best.map(|p| (p.alpha, p.beta))))
+}
+
+fn overall_from(lp: &PyLoop, fam: &AffineFamily, best: Option<(f64, f64)>) -> PyKmax {
+    let phys = best.map(|(a, b)| fam.to_physical(a, b));
+    PyKmax {
+        k_max: phys.map(|p| p.0),
+        b_at_k_max: phys.map(|p| p.1),
+        k_interval: None,
+        alpha_max: best.map(|p| p.0),
+        beta_at_alpha_max: best.map(|p| p.1),
+        k_linear: linear_k(&lp.lp, phys.map_or(0.0, |p| p.1)),
+    }
+}
+
+/// The largest stable virtual stiffness K_max in N/m (Section V). With wall_damping B in
+/// Ns/m: the upper end of the stable K interval reaching furthest at that B. With
+/// damping_range (B_lo, B_hi) in Ns/m (ends may be ±inf): the largest stable K over that
+/// band of damping and the B that reaches it. Without either: the overall K_max of the
+/// stable region and its B. Beside it, the paper's linear condition (22)
+/// K < (b + B)/(t_d + T/2).
+#[pyfunction]
+#[pyo3(signature = (r#loop, *, wall_damping = None, damping_range = None))]
+pub fn kmax(
+    r#loop: &PyLoop,
+    wall_damping: Option<f64>,
+    damping_range: Option<(f64, f64)>,
+    py: Python<'_>,
+) -> PyResult<PyKmax> {
+    let fam = r#loop.family()?;
+    match (wall_damping, damping_range) {
+        (Some(_), Some(_)) => Err(bad(
+            "wall_damping, damping_range",
+            "give one damping B or a damping range, not both",
+        )),
+        (Some(b), None) => kmax_at(r#loop, &fam, b),
+        (None, Some(band)) => kmax_within(r#loop, &fam, band, py),
+        (None, None) => {
+            let lp = &r#loop.lp;
+            let r = py.detach(|| loop_region(lp, &fam)).py()?;
+            let found = !r.polygons.is_empty();
+            let best = found.then_some((r.alpha_max, r.beta_at_alpha_max));
+            Ok(overall_from(r#loop, &fam, best))
+        }
+    }
+}

@@ -1,0 +1,42 @@
+//! Python bindings of hapstab: the `hapstab._hapstab` extension module that the `hapstab`
+//! Python package re-exports. A thin front end over the library: it builds loops from
+//! keyword arguments, calls the library (releasing the GIL for the long computations) and
+//! returns numpy arrays; errors become `ValueError`s naming the keyword argument.
+
+use pyo3::prelude::*;
+
+mod analysis;
+mod discretize;
+mod errors;
+mod loops;
+mod map;
+mod simulate;
+mod text;
+mod wall;
+
+/// Exact stability of haptic virtual walls (Hulin, Preusche and Hirzinger, IROS 2008).
+#[pymodule]
+fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add(
+        "NumericalError",
+        m.py().get_type::<errors::NumericalError>(),
+    )?;
+    m.add_class::<loops::PyMassSpringDamper>()?;
+    m.add_class::<loops::PyTwoMass>()?;
+    m.add_class::<loops::PyTransferFunction>()?;
+    m.add_class::<loops::PyLoop>()?;
+    m.add_class::<analysis::PyCheck>()?;
+    m.add_class::<analysis::PyEdge>()?;
+    m.add_class::<analysis::PyRegion>()?;
+    m.add_class::<analysis::PyKmax>()?;
+    m.add_class::<map::PyStabilityMap>()?;
+    m.add_class::<discretize::PyDiscretization>()?;
+    m.add_class::<simulate::PySimulation>()?;
+    m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
+    m.add_function(wrap_pyfunction!(map::stability_map, m)?)?;
+    m.add_function(wrap_pyfunction!(discretize::discretize, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    Ok(())
+}

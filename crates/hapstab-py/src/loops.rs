@@ -1,0 +1,478 @@
+//! Loop description objects: the plants (the paper's mass-spring-damper, the two-mass device,
+//! a transfer function) and the loop (plant, sampling period, delay in seconds, velocity
+//! estimator, actuator lag), each validated by the library when constructed.
+
+use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass};
+use hapstab::params::{Arm, Device, Effective};
+use hapstab::{AffineFamily, PlantParams, VelocityEstimator};
+use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+
+use crate::errors::{Context, bad};
+use crate::text::{fmt_list, num};
+
+/// The paper's plant 1/(m s² + b s + k) from force (N) to position (m) (eq. 1): the
+/// effective mass m in kg (> 0), damping b in Ns/m (>= 0) and stiffness k in N/m (>= 0).
+#[pyclass(frozen, module = "hapstab", name = "MassSpringDamper", eq)]
+#[derive(Clone, PartialEq)]
+pub struct PyMassSpringDamper {
+    pub inner: Effective,
+}
+
+#[pymethods]
+impl PyMassSpringDamper {
+    #[new]
+    #[pyo3(signature = (mass, damping = 0.0, stiffness = 0.0))]
+    fn new(mass: f64, damping: f64, stiffness: f64) -> PyResult<Self> {
+        Ok(Self {
+            inner: Effective::new(mass, damping, stiffness).py()?,
+        })
+    }
+
+    /// The device held by the arm, combined by eq. (1): m = m_L + m_H, b = b_L + b_H,
+    /// k = k_H. Defaults: a PHANToM-like device (m_L = 0.1 kg, b_L = 1.5 Ns/m) held by a
+    /// typical arm (m_H = 1 kg, b_H = 6 Ns/m, k_H = 350 N/m); arm_mass = arm_damping =
+    /// arm_stiffness = 0 is the ungrabbed device.
+    #[staticmethod]
+    #[pyo3(signature = (*, device_mass = 0.1, device_damping = 1.5, arm_mass = 1.0,
+                        arm_damping = 6.0, arm_stiffness = 350.0))]
+    fn from_device_and_arm(
+        device_mass: f64,
+        device_damping: f64,
+        arm_mass: f64,
+        arm_damping: f64,
+        arm_stiffness: f64,
+    ) -> PyResult<Self> {
+        let device = Device {
+            mass: device_mass,
+            damping: device_damping,
+        };
+        let arm = Arm {
+            mass: arm_mass,
+            damping: arm_damping,
+            stiffness: arm_stiffness,
+        };
+        let inner = Effective::combine(device, arm).py_with(&[
+            ("mass m", "device_mass + arm_mass"),
+            ("damping b", "device_damping + arm_damping"),
+            ("stiffness k", "arm_stiffness"),
+        ])?;
+        Ok(Self { inner })
+    }
+
+    /// Mass m in kg.
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.inner.mass
+    }
+
+    /// Damping b in Ns/m.
+    #[getter]
+    fn damping(&self) -> f64 {
+        self.inner.damping
+    }
+
+    /// Stiffness k in N/m.
+    #[getter]
+    fn stiffness(&self) -> f64 {
+        self.inner.stiffness
+    }
+
+    fn __repr__(&self) -> String {
+        let e = &self.inner;
+        format!(
+            "MassSpringDamper(mass={}, damping={}, stiffness={})",
+            num(e.mass),
+            num(e.damping),
+            num(e.stiffness)
+        )
+    }
+}
+
+/// A two-mass device: the motor-side mass J in kg (> 0, where the actuator pushes and the
+/// encoder measures, with damping b_m in Ns/m) coupled to the handle (mass m_h in kg) by a
+/// compliant transmission (stiffness k_t in N/m > 0, damping b_t in Ns/m); the arm (m_H kg,
+/// b_H Ns/m, k_H N/m; all zero: the ungrabbed device) holds the handle.
+#[pyclass(frozen, module = "hapstab", name = "TwoMass", eq)]
+#[derive(Clone, PartialEq)]
+pub struct PyTwoMass {
+    pub inner: TwoMass,
+}
+
+#[pymethods]
+impl PyTwoMass {
+    #[new]
+    #[pyo3(signature = (motor_mass, transmission_stiffness, *, motor_damping = 0.0,
+                        handle_mass = 0.0, transmission_damping = 0.0, arm_mass = 1.0,
+                        arm_damping = 6.0, arm_stiffness = 350.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        motor_mass: f64,
+        transmission_stiffness: f64,
+        motor_damping: f64,
+        handle_mass: f64,
+        transmission_damping: f64,
+        arm_mass: f64,
+        arm_damping: f64,
+        arm_stiffness: f64,
+    ) -> PyResult<Self> {
+        let inner = TwoMass {
+            motor_mass,
+            motor_damping,
+            handle_mass,
+            transmission_stiffness,
+            transmission_damping,
+            arm: Arm {
+                mass: arm_mass,
+                damping: arm_damping,
+                stiffness: arm_stiffness,
+            },
+        };
+        Plant::new(PlantModel::TwoMass(inner), 0.0).py()?;
+        Ok(Self { inner })
+    }
+
+    /// Motor-side mass J in kg.
+    #[getter]
+    fn motor_mass(&self) -> f64 {
+        self.inner.motor_mass
+    }
+    /// Motor-side damping b_m in Ns/m.
+    #[getter]
+    fn motor_damping(&self) -> f64 {
+        self.inner.motor_damping
+    }
+    /// Handle mass m_h in kg.
+    #[getter]
+    fn handle_mass(&self) -> f64 {
+        self.inner.handle_mass
+    }
+    /// Transmission stiffness k_t in N/m.
+    #[getter]
+    fn transmission_stiffness(&self) -> f64 {
+        self.inner.transmission_stiffness
+    }
+    /// Transmission damping b_t in Ns/m.
+    #[getter]
+    fn transmission_damping(&self) -> f64 {
+        self.inner.transmission_damping
+    }
+    /// Arm mass m_H in kg.
+    #[getter]
+    fn arm_mass(&self) -> f64 {
+        self.inner.arm.mass
+    }
+    /// Arm damping b_H in Ns/m.
+    #[getter]
+    fn arm_damping(&self) -> f64 {
+        self.inner.arm.damping
+    }
+    /// Arm stiffness k_H in N/m.
+    #[getter]
+    fn arm_stiffness(&self) -> f64 {
+        self.inner.arm.stiffness
+    }
+
+    fn __repr__(&self) -> String {
+        let t = &self.inner;
+        format!(
+            "TwoMass(motor_mass={}, transmission_stiffness={}, motor_damping={}, handle_mass={}, transmission_damping={}, arm_mass={}, arm_damping={}, arm_stiffness={})",
+            num(t.motor_mass),
+            num(t.transmission_stiffness),
+            num(t.motor_damping),
+            num(t.handle_mass),
+            num(t.transmission_damping),
+            num(t.arm.mass),
+            num(t.arm.damping),
+            num(t.arm.stiffness)
+        )
+    }
+}
+
+/// A strictly proper plant P(s) = num(s)/den(s) from force (N) to position (m),
+/// coefficients in SI units, highest power of s first (as python-control's and MATLAB's
+/// `tf`); order <= 12.
+#[pyclass(frozen, module = "hapstab", name = "TransferFunction", eq)]
+#[derive(Clone, PartialEq)]
+pub struct PyTransferFunction {
+    pub num: Vec<f64>,
+    pub den: Vec<f64>,
+}
+
+#[pymethods]
+impl PyTransferFunction {
+    #[new]
+    fn new(
+        num: PyArrayLike1<'_, f64, AllowTypeChange>,
+        den: PyArrayLike1<'_, f64, AllowTypeChange>,
+    ) -> PyResult<Self> {
+        let num = num.as_array().to_vec();
+        let den = den.as_array().to_vec();
+        let model = PlantModel::TransferFunction {
+            num: num.clone(),
+            den: den.clone(),
+        };
+        Plant::new(model, 0.0).py()?;
+        Ok(Self { num, den })
+    }
+
+    /// Numerator coefficients, highest power of s first (float64 array).
+    #[getter]
+    fn num<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.num)
+    }
+
+    /// Denominator coefficients, highest power of s first (float64 array).
+    #[getter]
+    fn den<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.den)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "TransferFunction(num={}, den={})",
+            fmt_list(&self.num),
+            fmt_list(&self.den)
+        )
+    }
+}
+
+/// The plant model of a Python plant object.
+fn plant_model(plant: &Bound<'_, PyAny>) -> PyResult<PlantModel> {
+    if let Ok(p) = plant.cast::<PyMassSpringDamper>() {
+        return Ok(PlantModel::MassSpringDamper(p.get().inner));
+    }
+    if let Ok(p) = plant.cast::<PyTwoMass>() {
+        return Ok(PlantModel::TwoMass(p.get().inner));
+    }
+    if let Ok(p) = plant.cast::<PyTransferFunction>() {
+        let p = p.get();
+        return Ok(PlantModel::TransferFunction {
+            num: p.num.clone(),
+            den: p.den.clone(),
+        });
+    }
+    Err(PyTypeError::new_err(format!(
+        "plant: expected MassSpringDamper, TwoMass or TransferFunction (got {})",
+        plant.get_type().name()?
+    )))
+}
+
+/// The Python object of a plant model.
+fn plant_object(py: Python<'_>, model: &PlantModel) -> PyResult<Py<PyAny>> {
+    Ok(match model {
+        PlantModel::MassSpringDamper(e) => {
+            Py::new(py, PyMassSpringDamper { inner: *e })?.into_any()
+        }
+        PlantModel::TwoMass(t) => Py::new(py, PyTwoMass { inner: *t })?.into_any(),
+        PlantModel::TransferFunction { num, den } => Py::new(
+            py,
+            PyTransferFunction {
+                num: num.clone(),
+                den: den.clone(),
+            },
+        )?
+        .into_any(),
+    })
+}
+
+/// The loop of Fig. 3, generalized: plant, sampling period, delay, velocity estimator.
+///
+/// plant: MassSpringDamper, TwoMass or TransferFunction (force in N to position in m).
+/// period: sampling period T in s. delay: t_d = (d + λ)T in s, a fraction λ of a sample
+/// discretized exactly (modified z-transform); or delay_samples: whole samples d.
+/// velocity: the wall damper's velocity estimator, as the command line's --velocity text:
+///   "backward"             v_k = (y_k − y_{k−1})/T (the paper's)
+///   "lowpass:FC"           v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T, a = exp(−2π·f_c·T),
+///                          f_c = FC in Hz
+///   "average:N"            v_k = (y_k − y_{k−N})/(N·T)
+///   "iir:b0,b1,…/a0,a1,…"  v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …)·y in m/s
+/// force_lag: actuator time constant τ in s of 1/(τs + 1) between commanded and applied
+/// force (0: none).
+#[pyclass(frozen, module = "hapstab", name = "Loop")]
+#[derive(Clone)]
+pub struct PyLoop {
+    pub lp: Loop,
+    /// Built by `Loop.normalized`: m = 1 kg and T = 1 s, so K is α and B is β (Table I).
+    pub normalized: bool,
+}
+
+/// The delay from the keyword arguments (seconds or whole samples, not both).
+fn delay_of(delay: Option<f64>, delay_samples: Option<usize>, period: f64) -> PyResult<Delay> {
+    match (delay, delay_samples) {
+        (Some(_), Some(_)) => Err(bad(
+            "delay, delay_samples",
+            "give the delay either in seconds (delay) or in whole samples (delay_samples)",
+        )),
+        (None, Some(d)) => Delay::samples(d).py_with(&[("delay d", "delay_samples")]),
+        (t, None) => Delay::from_time(t.unwrap_or(0.0), period).py(),
+    }
+}
+
+#[pymethods]
+impl PyLoop {
+    #[new]
+    #[pyo3(signature = (plant, *, period = 1e-3, delay = None, delay_samples = None,
+                        velocity = "backward", force_lag = 0.0))]
+    fn new(
+        plant: &Bound<'_, PyAny>,
+        period: f64,
+        delay: Option<f64>,
+        delay_samples: Option<usize>,
+        velocity: &str,
+        force_lag: f64,
+    ) -> PyResult<Self> {
+        let model = plant_model(plant)?;
+        hapstab::params::Sampling::new(period, 0).py()?;
+        if let PlantModel::MassSpringDamper(e) = &model {
+            // γ = kT²/m and δ = bT/m must be finite (Table I): a mass far too small for the
+            // period is named here rather than as an overflow of the discretization.
+            PlantParams::from_physical(e, period).py_with(&[
+                ("mass m", "plant.mass"),
+                ("damping b", "plant.damping"),
+                ("stiffness k", "plant.stiffness"),
+            ])?;
+        }
+        let plant = Plant::new(model, force_lag).py()?;
+        let velocity: VelocityEstimator = velocity.parse().py()?;
+        let delay = delay_of(delay, delay_samples, period)?;
+        Ok(Self {
+            lp: Loop::new(plant, period, delay, velocity).py()?,
+            normalized: false,
+        })
+    }
+
+    /// The paper's loop in physical units: the device held by the arm (eq. 1, see
+    /// MassSpringDamper.from_device_and_arm for the defaults), backward-difference velocity,
+    /// sampling period T in s and delay t_d in s.
+    #[staticmethod]
+    #[pyo3(signature = (*, device_mass = 0.1, device_damping = 1.5, arm_mass = 1.0,
+                        arm_damping = 6.0, arm_stiffness = 350.0, period = 1e-3, delay = 0.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn paper(
+        py: Python<'_>,
+        device_mass: f64,
+        device_damping: f64,
+        arm_mass: f64,
+        arm_damping: f64,
+        arm_stiffness: f64,
+        period: f64,
+        delay: f64,
+    ) -> PyResult<Self> {
+        let plant = PyMassSpringDamper::from_device_and_arm(
+            device_mass,
+            device_damping,
+            arm_mass,
+            arm_damping,
+            arm_stiffness,
+        )?;
+        let plant = Bound::new(py, plant)?;
+        Self::new(plant.as_any(), period, Some(delay), None, "backward", 0.0)
+    }
+
+    /// The paper's loop in normalized units (Table I): m = 1 kg, T = 1 s, plant
+    /// 1/(s² + δs + γ) with γ = kT²/m >= 0 and δ = bT/m >= 0, d whole samples of delay. Its
+    /// wall is K = α = K_phys T²/m and B = β = B_phys T/m.
+    #[staticmethod]
+    #[pyo3(signature = (gamma = 0.0, delta = 0.0, d = 0))]
+    fn normalized(gamma: f64, delta: f64, d: usize) -> PyResult<Self> {
+        let pp = PlantParams::new(gamma, delta).py()?;
+        Ok(Self {
+            lp: Loop::normalized(pp, d).py_with(&[("delay d", "d")])?,
+            normalized: true,
+        })
+    }
+
+    /// The plant object.
+    #[getter]
+    fn plant(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        plant_object(py, &self.lp.plant.model)
+    }
+
+    /// Sampling period T in s.
+    #[getter]
+    fn period(&self) -> f64 {
+        self.lp.period
+    }
+
+    /// Delay t_d in s.
+    #[getter]
+    fn delay(&self) -> f64 {
+        self.lp.delay_time()
+    }
+
+    /// Delay t_d/T in samples, d + λ (not necessarily whole).
+    #[getter]
+    fn delay_samples(&self) -> f64 {
+        self.lp.delay.in_samples()
+    }
+
+    /// The velocity estimator as its spec text ("backward", "lowpass:FC", …).
+    #[getter]
+    fn velocity(&self) -> String {
+        self.lp.velocity.to_string()
+    }
+
+    /// Actuator time constant τ in s (0: no lag).
+    #[getter]
+    fn force_lag(&self) -> f64 {
+        self.lp.plant.force_lag
+    }
+
+    /// True for a loop built by Loop.normalized (m = 1 kg, T = 1 s: K is α, B is β).
+    #[getter]
+    fn is_normalized(&self) -> bool {
+        self.normalized
+    }
+
+    /// (γ, δ, d) of Table I for the paper's loop (mass-spring-damper plant, backward
+    /// difference, whole-sample delay, no lag), else None.
+    #[getter]
+    fn paper_view(&self) -> Option<(f64, f64, usize)> {
+        self.lp
+            .paper_view()
+            .map(|pp| (pp.gamma, pp.delta, self.lp.delay.samples))
+    }
+
+    /// The mass m in kg that normalizes the wall (α = KT²/m, β = BT/m, Table I): m of eq. (1),
+    /// a two-mass device's total mass, 1/(ω²|P(jω)|) at ω = 1/T for a transfer function.
+    #[getter]
+    fn reference_mass(&self) -> f64 {
+        self.lp.plant.reference_mass(self.lp.period)
+    }
+
+    /// (N/m per unit α, Ns/m per unit β) = (m/T², m/T): the wall's normalized units.
+    #[getter]
+    fn wall_scale(&self) -> PyResult<(f64, f64)> {
+        let s = self.family()?.scale;
+        Ok((s.stiffness, s.damping))
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        if self.normalized
+            && let Some((g, d, n)) = self.paper_view()
+        {
+            return Ok(format!(
+                "Loop.normalized(gamma={}, delta={}, d={n})",
+                num(g),
+                num(d)
+            ));
+        }
+        let plant = self.plant(py)?.bind(py).repr()?.to_string();
+        Ok(format!(
+            "Loop({plant}, period={}, delay={}, velocity='{}', force_lag={})",
+            num(self.lp.period),
+            num(self.lp.delay_time()),
+            self.lp.velocity,
+            num(self.lp.plant.force_lag)
+        ))
+    }
+}
+
+impl PyLoop {
+    /// The loop's affine family p(z) = P0 + a·PK + b·PB (eq. 9, generalized).
+    pub fn family(&self) -> PyResult<AffineFamily> {
+        AffineFamily::of_loop(&self.lp).py()
+    }
+}

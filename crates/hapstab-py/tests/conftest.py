@@ -1,0 +1,78 @@
+"""Shared fixtures: the repository root, the Rust side's reference values, loops built from
+their descriptions through the Python API."""
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import hapstab as hs
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def target_dir() -> Path:
+    return Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+
+
+@pytest.fixture(scope="session")
+def reference():
+    """The seeded reference values written by the library's own test
+    (crates/hapstab/tests/python_reference.rs), regenerated here so that they match the
+    library being bound."""
+    subprocess.run(
+        ["cargo", "test", "-q", "-p", "hapstab", "--test", "python_reference"],
+        cwd=ROOT,
+        check=True,
+        stdout=subprocess.DEVNULL,
+    )
+    with open(target_dir() / "tmp" / "python_reference.json") as f:
+        return json.load(f)
+
+
+def plant_of(p: dict):
+    """A plant object from hapstab's serde form of a plant model."""
+    kind = p["kind"]
+    if kind == "mass_spring_damper":
+        return hs.MassSpringDamper(p["mass"], p["damping"], p["stiffness"])
+    if kind == "two_mass":
+        arm = p["arm"]
+        return hs.TwoMass(
+            p["motor_mass"],
+            p["transmission_stiffness"],
+            motor_damping=p["motor_damping"],
+            handle_mass=p["handle_mass"],
+            transmission_damping=p["transmission_damping"],
+            arm_mass=arm["mass"],
+            arm_damping=arm["damping"],
+            arm_stiffness=arm["stiffness"],
+        )
+    if kind == "transfer_function":
+        return hs.TransferFunction(p["num"], p["den"])
+    raise AssertionError(kind)
+
+
+def loop_of(d: dict) -> hs.Loop:
+    """The loop a reference case describes, through the constructor it names."""
+    if d["kind"] == "normalized":
+        return hs.Loop.normalized(gamma=d["gamma"], delta=d["delta"], d=d["d"])
+    if d["kind"] == "paper":
+        dev, arm = d["device"], d["arm"]
+        return hs.Loop.paper(
+            device_mass=dev["mass"],
+            device_damping=dev["damping"],
+            arm_mass=arm["mass"],
+            arm_damping=arm["damping"],
+            arm_stiffness=arm["stiffness"],
+            period=d["period"],
+            delay=d["delay"],
+        )
+    return hs.Loop(
+        plant_of(d["plant"]),
+        period=d["period"],
+        delay=d["delay_time"],
+        velocity=d["velocity"],
+        force_lag=d["force_lag"],
+    )
