@@ -79,7 +79,8 @@ impl PySimulation {
     }
 }
 
-/// The paper's model (eq. 1, Table I) of a loop with the paper's view and a wall.
+/// The simulated model of a loop and its wall: the paper's model (eq. 1, Table I) for a loop
+/// with the paper's view, else the loop's exact discrete loop.
 fn sim_model(lp: &Loop, w: Wall) -> PyResult<SimModel> {
     if let (PlantModel::MassSpringDamper(e), Some(_)) = (&lp.plant.model, lp.paper_view()) {
         let sampling = Sampling::new(lp.period, lp.delay.samples).py()?;
