@@ -2,7 +2,11 @@
 //! (chromedriver + fantoccini): load the page, move the δ slider with the mouse and the
 //! keyboard, check that the drawn region changed and that the α_max shown equals the
 //! library's value, click a wall in the plot and check its verdict, roots and simulated
-//! contact, and save a screenshot to `target/tmp/serve_e2e.png`.
+//! contact, and save a screenshot to `target/tmp/serve_e2e.png`; then a loop beyond the
+//! paper's (a two-mass device with an actuator lag and a fractional delay): its region and
+//! α_max are the library's for that loop, typing another velocity estimator redraws it, and
+//! a clicked wall gets the loop's verdict, all p(z) roots and a simulated contact
+//! (`target/tmp/serve_e2e_loop.png`).
 //!
 //! Chromium and chromedriver come from Debian (`apt-get install chromium chromium-driver`,
 //! done by `.ci/run`). Without them the test prints SKIPPED and passes, so `cargo test`
@@ -20,7 +24,10 @@ use fantoccini::key::Key;
 use fantoccini::{Client, ClientBuilder, Locator};
 use hapstab::region::stable_region;
 use hapstab::stability::Analysis;
-use hapstab::{Normalized, PlantParams, PolyFamily};
+use hapstab::{
+    AffineFamily, Arm, Delay, Loop, Normalized, Plant, PlantModel, PlantParams, PolyFamily,
+    TwoMass, VelocityEstimator,
+};
 use serde_json::json;
 use serve_support::{Server, request};
 
@@ -203,6 +210,88 @@ async fn drive(c: &Client, base: &str, shot: &Path) -> R<()> {
     Ok(())
 }
 
+/// The two-mass loop of the page's second phase with a velocity estimator.
+fn two_mass_family(estimator: &str) -> AffineFamily {
+    let plant = Plant::new(
+        PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.05,
+            motor_damping: 0.0,
+            handle_mass: 0.05,
+            transmission_stiffness: 5000.0,
+            transmission_damping: 1.0,
+            arm: Arm::TYPICAL,
+        }),
+        0.0002,
+    )
+    .unwrap();
+    let velocity: VelocityEstimator = estimator.parse().unwrap();
+    let delay = Delay::from_time(0.0014, 0.001).unwrap();
+    AffineFamily::of_loop(&Loop::new(plant, 0.001, delay, velocity).unwrap()).unwrap()
+}
+
+/// The URL of the two-mass loop (arm defaults: the typical arm).
+const LOOP_URL: &str = "/?mode=physical&motor_mass=0.05&motor_damping=0&handle_mass=0.05&transmission_stiffness=5000&transmission_damping=1&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&force_lag=0.0002&estimator=lowpass%3A150&delay_time=0.0014";
+
+/// The page on a loop beyond the paper's (module doc).
+async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
+    c.goto(&format!("{base}{LOOP_URL}")).await?;
+    let am0 = wait_for(20, "the loop's region", || async {
+        Ok(settled(c).await.ok().map(|s| s.1))
+    })
+    .await?;
+    let fam = two_mass_family("lowpass:150");
+    assert_eq!(am0, stable_region(&fam)?.alpha_max, "α_max of the loop");
+    let kind = c.find(Locator::Id("plant_kind")).await?.prop("value").await?;
+    assert_eq!(kind.as_deref(), Some("two_mass"));
+    assert!(c.find(Locator::Id("motor_mass")).await?.is_displayed().await?);
+    // Type another estimator: the region is redrawn for it.
+    let est = c.find(Locator::Id("estimator")).await?;
+    est.clear().await?;
+    est.send_keys("lowpass:60").await?;
+    let fam = two_mass_family("lowpass:60");
+    let lib = stable_region(&fam)?.alpha_max;
+    let am1 = wait_for(20, "the redrawn loop region", || async {
+        let e = c.find(Locator::Id("error")).await?.text().await?;
+        let v = c.find(Locator::Id("estimator")).await?.prop("value").await?;
+        eprintln!("DEBUG error={e:?} value={v:?} settled={:?}", settled(c).await.ok().map(|s| s.1));
+        Ok(settled(c).await.ok().map(|s| s.1).filter(|&a| a != am0))
+    })
+    .await?;
+    assert_eq!(am1, lib, "α_max after typing lowpass:60");
+    assert!(c.current_url().await?.query().unwrap_or("").contains("estimator=lowpass%3A60"));
+    // Click a wall: the loop's verdict, every root of its p(z), a simulated contact.
+    c.find(Locator::Id("plot")).await?.click().await?;
+    let verdict = wait_for(20, "the loop's point verdict", || async {
+        let v = c.find(Locator::Id("verdict")).await?.text().await?;
+        let sim = c.find_all(Locator::Id("sim-path")).await?;
+        Ok(
+            (["stable", "unstable", "marginal"].contains(&v.as_str()) && !sim.is_empty())
+                .then_some(v),
+        )
+    })
+    .await?;
+    let pt = c
+        .execute("return window.hapstabExplorer.state.point;", vec![])
+        .await?;
+    let (a, b) = (pt[0].as_f64().ok_or("a")?, pt[1].as_f64().ok_or("b")?);
+    let an = Analysis::of_poly(&fam.coefficients(a, b))?;
+    assert_eq!(verdict, an.verdict.as_str(), "verdict at ({a}, {b})");
+    let roots = c.find_all(Locator::Css("#roots circle.root")).await?;
+    assert_eq!(roots.len(), fam.degree(), "every root of the loop's p(z)");
+    let outcome = c.find(Locator::Id("sim-outcome")).await?.text().await?;
+    assert!(!outcome.is_empty(), "an outcome is shown");
+    if verdict == "unstable" {
+        assert!(!outcome.starts_with("decaying"), "{outcome} beside {verdict}");
+    }
+    let png = c.screenshot().await?;
+    std::fs::write(shot, &png)?;
+    println!(
+        "serve_e2e: two-mass loop α_max {am0} → {am1} (lowpass:60), point ({a:.5}, {b:.5}) {verdict}; screenshot {}",
+        shot.display()
+    );
+    Ok(())
+}
+
 #[test]
 fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
     let chromium = tool("HAPSTAB_CHROMIUM", "/usr/bin/chromium");
@@ -269,7 +358,10 @@ fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
             .capabilities(caps)
             .connect(&format!("http://127.0.0.1:{port}"))
             .await?;
-        let r = drive(&c, &base, &shot).await;
+        let mut r = drive(&c, &base, &shot).await;
+        if r.is_ok() {
+            r = drive_loop(&c, &base, &log_dir.join("serve_e2e_loop.png")).await;
+        }
         let _ = c.close().await;
         r
     });
