@@ -8,16 +8,53 @@ use serde::Serialize;
 
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{print_json, sig};
-use hapstab::loop_analysis::{damping_units, k_max_at_damping, linear_k, region};
+use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
+
+/// A band of virtual damping lo ≤ B ≤ hi in Ns/m (`LO:HI`; `inf` for no upper bound).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DampingRange {
+    /// Lower end in Ns/m.
+    pub lo: f64,
+    /// Upper end in Ns/m (may be +∞).
+    pub hi: f64,
+}
+
+/// Parses `LO:HI` in Ns/m: LO finite, HI finite or `inf`, LO ≤ HI.
+fn parse_damping_range(s: &str) -> Result<DampingRange, String> {
+    let (lo, hi) = s
+        .split_once(':')
+        .ok_or_else(|| format!("expected LO:HI in Ns/m, e.g. 0:50 or 0:inf (got '{s}')"))?;
+    let num = |t: &str| -> Result<f64, String> {
+        t.trim()
+            .parse::<f64>()
+            .map_err(|_| format!("'{t}' is not a number (in '{s}')"))
+    };
+    let (lo, hi) = (num(lo)?, num(hi)?);
+    if !lo.is_finite() || hi.is_nan() || hi == f64::NEG_INFINITY {
+        return Err(format!(
+            "LO must be finite and HI finite or inf (got '{s}')"
+        ));
+    }
+    if lo > hi {
+        return Err(format!("LO must not exceed HI (got '{s}')"));
+    }
+    Ok(DampingRange { lo, hi })
+}
 
 /// Arguments of `hapstab kmax`.
 #[derive(Args, Debug)]
 pub struct KmaxArgs {
     #[command(flatten)]
     lp: LoopArgs,
-    /// Virtual damping B in Ns/m; without it, the overall K_max and the B that reaches it.
+    /// Virtual damping B in Ns/m; without it, the largest K_max over --damping-range and the
+    /// B that reaches it.
     #[arg(long, allow_hyphen_values = true)]
     wall_damping: Option<f64>,
+    /// Virtual damping the device can render, LO:HI in Ns/m (HI may be `inf`): K_max is
+    /// searched with LO ≤ B ≤ HI [default 0:inf]
+    #[arg(long, value_name = "LO:HI", value_parser = parse_damping_range,
+          allow_hyphen_values = true, conflicts_with_all = ["wall_damping", "robust"])]
+    damping_range: Option<DampingRange>,
     /// Robust design (beyond the paper): K_max stable for every plant in a box, by default
     /// from the ungrabbed device to the device held by the arm (see --box-* flags).
     #[arg(long, conflicts_with_all = LOOP_FLAGS)]
@@ -44,9 +81,15 @@ struct KmaxOut {
     input: LoopInput,
     /// Largest stable K in N/m.
     k_max: Option<f64>,
-    /// B at which the overall K_max is reached (when no B was given), Ns/m.
+    /// B at which K_max over the damping range is reached (when no B was given), Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     b_at_k_max: Option<f64>,
+    /// The damping range searched, [lo, hi] in Ns/m (hi null: unbounded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    damping_range: Option<[Option<f64>; 2]>,
+    /// K_max with no virtual damping (B = 0: the plant's own damping only), N/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_max_at_zero_damping: Option<f64>,
     /// The given B, Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     wall_damping: Option<f64>,
@@ -72,6 +115,8 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
         input: LoopInput::new(rl, None),
         k_max: best.map(|i| k(i.hi)),
         b_at_k_max: None,
+        damping_range: None,
+        k_max_at_zero_damping: None,
         wall_damping: Some(b),
         k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
         k_linear: linear_k(&rl.lp, b),
@@ -79,24 +124,39 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
     })
 }
 
-/// The overall K_max of the stable region and the B that reaches it.
-fn overall(rl: &ResolvedLoop, fam: &AffineFamily) -> Result<KmaxOut> {
-    let r = region(&rl.lp, fam)?;
-    let found = !r.polygons.is_empty();
-    let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+/// K_max over the damping band (Ns/m) and the B that reaches it
+/// ([`k_max_within`]), beside K_max at B = 0.
+fn within(rl: &ResolvedLoop, fam: &AffineFamily, band: DampingRange) -> Result<KmaxOut> {
+    let units = |b: f64| -> Result<f64> {
+        if b.is_finite() {
+            Ok(damping_units(&rl.lp, fam, b)?)
+        } else {
+            Ok(b)
+        }
+    };
+    let best = k_max_within(&rl.lp, fam, units(band.lo)?, units(band.hi)?)?;
+    let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
+    let at_zero = k_max_at_damping(&rl.lp, fam, 0.0)?;
     Ok(KmaxOut {
         input: LoopInput::new(rl, None),
-        k_max: found.then_some(k),
-        b_at_k_max: found.then_some(b),
+        k_max: phys.map(|p| p.0),
+        b_at_k_max: phys.map(|p| p.1),
+        damping_range: Some([Some(band.lo), band.hi.is_finite().then_some(band.hi)]),
+        k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
         wall_damping: None,
         k_interval: None,
-        k_linear: linear_k(&rl.lp, if found { b } else { 0.0 }),
-        paper: paper_view(
-            rl,
-            found.then_some(r.alpha_max),
-            found.then_some(r.beta_at_alpha_max),
-        ),
+        k_linear: phys.and_then(|p| linear_k(&rl.lp, p.1)),
+        paper: paper_view(rl, best.map(|p| p.alpha), best.map(|p| p.beta)),
     })
+}
+
+fn band_text(band: DampingRange) -> String {
+    let hi = if band.hi.is_finite() {
+        format!("{} Ns/m", sig(band.hi, 8))
+    } else {
+        "∞".to_string()
+    };
+    format!("{} ≤ B ≤ {hi}", sig(band.lo, 8))
 }
 
 fn paper_view(rl: &ResolvedLoop, alpha_max: Option<f64>, beta: Option<f64>) -> Option<PaperView> {
@@ -119,9 +179,13 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         bail!("kmax works in physical units; for normalized parameters use `hapstab boundary`");
     }
     let fam = AffineFamily::of_loop(&rl.lp)?;
+    let band = a.damping_range.unwrap_or(DampingRange {
+        lo: 0.0,
+        hi: f64::INFINITY,
+    });
     let out = match a.wall_damping {
         Some(b) => at_damping(&rl, &fam, b)?,
-        None => overall(&rl, &fam)?,
+        None => within(&rl, &fam, band)?,
     };
     if a.json {
         return print_json(&out);
@@ -135,7 +199,8 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
             .unwrap_or_default()
     };
     match (out.k_max, out.wall_damping, out.b_at_k_max) {
-        (None, _, _) => println!("no stable virtual stiffness exists"),
+        (None, None, _) => println!("no stiffness is stable for {}", band_text(band)),
+        (None, Some(b), _) => println!("no stiffness is stable at B = {} Ns/m", sig(b, 8)),
         (Some(k), Some(b), _) => println!(
             "K_max = {} N/m at B = {} Ns/m (stable for {} < K < {}){}",
             sig(k, 12),
@@ -145,12 +210,22 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
             linear("")
         ),
         (Some(k), None, Some(b)) => println!(
-            "K_max = {} N/m, reached at B = {} Ns/m{}",
+            "K_max = {} N/m, reached at B = {} Ns/m (largest over {}){}",
             sig(k, 12),
             sig(b, 12),
+            band_text(band),
             linear(" at that B")
         ),
         _ => {}
+    }
+    if a.wall_damping.is_none() {
+        match out.k_max_at_zero_damping {
+            Some(k) => println!(
+                "K_max = {} N/m at B = 0 (no virtual damping, the plant's own damping only)",
+                sig(k, 12)
+            ),
+            None => println!("no stiffness is stable at B = 0"),
+        }
     }
     Ok(())
 }
