@@ -8,6 +8,8 @@ use serde::Serialize;
 
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{print_json, sig};
+use crate::plot::{Marker, palette};
+use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
 
 /// A band of virtual damping lo ≤ B ≤ hi in Ns/m (`LO:HI`; `inf` for no upper bound).
@@ -61,6 +63,10 @@ pub struct KmaxArgs {
     robust: bool,
     #[command(flatten)]
     robust_box: crate::robust::RobustArgs,
+    /// Draw the stable region to FILE with K_max and its B marked: SVG or PNG by its
+    /// extension (both FILE.svg and FILE.png for any other name), K in N/m, B in Ns/m.
+    #[arg(long, value_name = "FILE", conflicts_with = "robust")]
+    plot: Option<std::path::PathBuf>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -101,6 +107,9 @@ struct KmaxOut {
     k_linear: Option<f64>,
     #[serde(flatten)]
     paper: Option<PaperView>,
+    /// Files written by --plot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    plot: Vec<std::path::PathBuf>,
 }
 
 /// The stable interval with the largest upper end at damping B (Ns/m), in wall units.
@@ -121,6 +130,7 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
         k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
         k_linear: linear_k(&rl.lp, b),
         paper: paper_view(rl, best.map(|i| i.hi), Some(bu)),
+        plot: Vec::new(),
     })
 }
 
@@ -147,7 +157,57 @@ fn within(rl: &ResolvedLoop, fam: &AffineFamily, band: DampingRange) -> Result<K
         k_interval: None,
         k_linear: phys.and_then(|p| linear_k(&rl.lp, p.1)),
         paper: paper_view(rl, best.map(|p| p.alpha), best.map(|p| p.beta)),
+        plot: Vec::new(),
     })
+}
+
+/// The stable region with K_max marked at its B, the damping band or the given B dashed,
+/// and K_max at B = 0.
+fn figure(
+    rl: &ResolvedLoop,
+    fam: &AffineFamily,
+    out: &KmaxOut,
+    band: DampingRange,
+) -> Result<crate::plot::Figure> {
+    let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
+    let plane = Plane::of(rl, fam);
+    let mut fig = wall_plot::region_figure(&plane, &r, &wall_plot::title(rl, "K_max"));
+    let lines: Vec<f64> = match out.wall_damping {
+        Some(b) => vec![b],
+        None => [band.lo, band.hi]
+            .into_iter()
+            .filter(|b| b.is_finite())
+            .collect(),
+    };
+    for (i, b) in lines.iter().enumerate() {
+        let label = match out.wall_damping {
+            Some(_) => "the given B".to_string(),
+            None => format!("damping range {}", band_text(band)),
+        };
+        wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
+    }
+    if let Some(k) = out.k_max_at_zero_damping {
+        wall_plot::mark(
+            &mut fig,
+            (k, 0.0),
+            Marker::Triangle,
+            palette::GREEN,
+            &format!("K_max at B = 0: {} N/m", sig(k, 6)),
+            "B = 0",
+        );
+    }
+    let b_best = out.b_at_k_max.or(out.wall_damping);
+    if let (Some(k), Some(b)) = (out.k_max, b_best) {
+        wall_plot::mark(
+            &mut fig,
+            (k, b),
+            Marker::Circle,
+            palette::VERMILLION,
+            &format!("K_max: {}", plane.describe((k, b))),
+            "K_max",
+        );
+    }
+    Ok(fig)
 }
 
 fn band_text(band: DampingRange) -> String {
@@ -183,10 +243,14 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         lo: 0.0,
         hi: f64::INFINITY,
     });
-    let out = match a.wall_damping {
+    let mut out = match a.wall_damping {
         Some(b) => at_damping(&rl, &fam, b)?,
         None => within(&rl, &fam, band)?,
     };
+    if let Some(path) = &a.plot {
+        let fig = figure(&rl, &fam, &out, band)?;
+        out.plot = wall_plot::save(fig, None, path)?;
+    }
     if a.json {
         return print_json(&out);
     }
@@ -217,6 +281,9 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
             linear(" at that B")
         ),
         _ => {}
+    }
+    if !out.plot.is_empty() {
+        println!("plot written to {}", wall_plot::files_text(&out.plot));
     }
     if a.wall_damping.is_none() {
         match out.k_max_at_zero_damping {
