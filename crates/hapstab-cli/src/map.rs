@@ -13,7 +13,7 @@
 //! `--plot` draws the map as a heatmap with the shared plotting module.
 
 use std::fs::File;
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
@@ -21,7 +21,6 @@ use clap::{Args, ValueEnum};
 use hapstab::limits::map_cost;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
-use indicatif::{ProgressBar, ProgressStyle};
 use plotters::style::RGBColor;
 use serde::Serialize;
 
@@ -157,13 +156,7 @@ struct MapSummary {
     plot: Option<Saved>,
 }
 
-fn normalized_map(
-    a: &MapArgs,
-    x: Grid,
-    y: Grid,
-    kind: MapKind,
-    bar: &ProgressBar,
-) -> Result<Values> {
+fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     if a.lp.any_physical() {
         bail!(
             "maps over alpha, beta, gamma, delta are of the paper's normalized loop; for a physical loop grid --x K:LO:HI:N --y B:LO:HI:N"
@@ -180,7 +173,8 @@ fn normalized_map(
     )?;
     let spec = MapSpec::new(x.range, y.range, base)?;
     check_budget(a, x, y, d + 3, "--delay", &d.to_string())?;
-    let m = compute_map(&spec, kind, &|k| bar.set_position(k as u64));
+    let bar = map_bar(a, x, y, d + 3);
+    let m = compute_map(&spec, kind, &bar.stage(0));
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
@@ -189,7 +183,7 @@ fn normalized_map(
 }
 
 /// The map of a loop's wall: K along x and B along y, converted to the family's wall units.
-fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> Result<Values> {
+fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     if a.lp.plant.normalized_mode() {
         bail!("K and B axes map a physical loop; with --gamma/--delta grid alpha and beta");
     }
@@ -201,7 +195,8 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
     let n = fam.degree();
     check_budget(a, x, y, n, "the loop's degree", &n.to_string())?;
-    let m = wall_map(&fam, xa, yb, kind, &|k| bar.set_position(k as u64))?;
+    let bar = map_bar(a, x, y, n);
+    let m = wall_map(&fam, xa, yb, kind, &bar.stage(0))?;
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
@@ -422,18 +417,16 @@ fn add_cells(fig: &mut Figure, rects: Vec<((f64, f64), (f64, f64))>, color: RGBC
     }
 }
 
-fn progress_bar(a: &MapArgs, x: Grid, y: Grid) -> ProgressBar {
-    let show = !a.json && std::io::stderr().is_terminal() && x.range.n * y.range.n >= 1_000_000;
-    let bar = if show {
-        ProgressBar::new(y.range.n as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} rows {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar
+/// The bar over the map's rows, shown when the map's estimated cost (p(z) of `degree`) is
+/// long ([`crate::progress::LONG_SECONDS`]).
+fn map_bar(a: &MapArgs, x: Grid, y: Grid, degree: usize) -> crate::progress::Bar {
+    let points = x.range.n as f64 * y.range.n as f64;
+    let cost = map_cost(points, degree.saturating_sub(3), a.radius).seconds;
+    crate::progress::Bar::new(
+        y.range.n,
+        "rows",
+        !a.json && cost >= crate::progress::LONG_SECONDS,
+    )
 }
 
 /// Runs `hapstab map`.
@@ -445,11 +438,10 @@ pub fn run(a: &MapArgs) -> Result<()> {
     } else {
         MapKind::Stability
     };
-    let bar = progress_bar(a, x, y);
     let t = std::time::Instant::now();
     let v = match (x.name, y.name) {
-        (Name::Normalized(_), Name::Normalized(_)) => normalized_map(a, x, y, kind, &bar)?,
-        (Name::K, Name::B) => loop_map(a, x, y, kind, &bar)?,
+        (Name::Normalized(_), Name::Normalized(_)) => normalized_map(a, x, y, kind)?,
+        (Name::K, Name::B) => loop_map(a, x, y, kind)?,
         _ => bail!(
             "--x and --y must both be normalized (alpha, beta, gamma, delta), or --x K and --y B (got {} and {})",
             axis_label(x.name),
@@ -457,7 +449,6 @@ pub fn run(a: &MapArgs) -> Result<()> {
         ),
     };
     let secs = t.elapsed().as_secs_f64();
-    bar.finish_and_clear();
     if let Some(path) = &a.out {
         match a.format {
             Format::Csv => write_csv(path, x, y, &v)?,

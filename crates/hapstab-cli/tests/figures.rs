@@ -329,3 +329,48 @@ fn map_plot_of_a_physical_loop_has_k_and_b_axes() {
     assert!(svg.contains("K (N/m)") && svg.contains("B (Ns/m)"));
     assert!(is_png(&dir.path().join("map.png")));
 }
+
+// ---- progress bars ---------------------------------------------------------------------
+
+/// Every command with a progress bar, run in text mode (where a bar would be drawn on a
+/// terminal) on a small problem: standard error is not a terminal under the test harness,
+/// so it stays empty.
+#[test]
+fn long_commands_write_nothing_to_a_non_terminal_stderr() {
+    let dir = tempfile::tempdir().unwrap();
+    let plot = dir.path().join("b");
+    let runs: Vec<Vec<&str>> = vec![
+        vec!["kmax", "--robust", "--box-samples", "3"],
+        vec![
+            "map",
+            "--x",
+            "alpha:0:1:300",
+            "--y",
+            "beta:0:1:300",
+            "--delay",
+            "50",
+        ],
+        vec!["sweep", "--param", "delay-time:0:0.002:3"],
+        vec!["zwidth", "--compare", "lowpass:100"],
+        vec![
+            "simboundary",
+            "--no-arm",
+            "--beta-min",
+            "0.1",
+            "--beta-max",
+            "0.3",
+            "--beta-count",
+            "2",
+            "--duration-samples",
+            "2000",
+            "--rel-tol",
+            "1e-2",
+            "--plot",
+            plot.to_str().unwrap(),
+        ],
+    ];
+    for args in runs {
+        let out = run_quiet(&args);
+        assert!(!out.is_empty(), "{args:?} printed nothing");
+    }
+}

@@ -282,6 +282,12 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // no progress bar off a terminal: standard error stays empty
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(summary["seconds"].as_f64().unwrap() > 0.0);
     assert_eq!(summary["claims"].as_array().unwrap().len(), 11);
