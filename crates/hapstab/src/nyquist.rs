@@ -32,7 +32,10 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, Interval, stable_alpha_intervals};
+use crate::boundary::{
+    AlphaBeta, CircleTable, Interval, stable_alpha_intervals, stable_alpha_intervals_tabulated,
+};
+use std::sync::OnceLock;
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::params::{PlantParams, check_delay};
@@ -433,6 +436,9 @@ fn intersect(a: &[Interval], b: &[Interval]) -> Vec<Interval> {
 struct Config {
     scale: f64,
     fam: PolyFamily,
+    /// The family's crossing scan, computed on first use: a configuration of a robust
+    /// region is cut by many β-slices.
+    table: OnceLock<CircleTable>,
 }
 
 /// One unscaled configuration per γ sample, at damping δ and delay d.
@@ -442,6 +448,7 @@ fn unit_configs(gammas: &[f64], delta: f64, d: usize) -> Result<Vec<Config>> {
         .map(|&g| {
             Ok(Config {
                 scale: 1.0,
+                table: OnceLock::new(),
                 fam: PolyFamily::new(PlantParams::new(g, delta)?, d)?,
             })
         })
@@ -453,7 +460,8 @@ impl Config {
     /// set is s·I(β_ref/s).
     fn intervals(&self, beta_ref: f64) -> Vec<Interval> {
         let s = self.scale;
-        stable_alpha_intervals(&self.fam, beta_ref / s)
+        let table = self.table.get_or_init(|| CircleTable::new(&self.fam));
+        stable_alpha_intervals_tabulated(&self.fam, table, beta_ref / s)
             .into_iter()
             .map(|iv| Interval {
                 lo: iv.lo * s,
@@ -735,6 +743,7 @@ pub fn robust_region_with_progress(
         };
         Config {
             scale: 1.0,
+            table: OnceLock::new(),
             fam: PolyFamily::new(pp, d).unwrap_or_else(|_| configs[0].fam.clone()),
         }
     };
@@ -928,6 +937,7 @@ pub fn passive_inside_robust_with_progress(
     };
     let make = |_: usize, g: f64| Config {
         scale: 1.0,
+        table: OnceLock::new(),
         fam: PolyFamily::new(
             PlantParams {
                 gamma: g.max(0.0),
@@ -1129,6 +1139,7 @@ fn box_configs(pb: &PlantBox, opts: BoxOptions) -> Result<(Vec<Config>, BoxCoord
                 let pp = PlantParams::new(k * t * t / m, b * t / m)?;
                 configs.push(Config {
                     scale: m / m_ref,
+                    table: OnceLock::new(),
                     fam: PolyFamily::new(pp, pb.d)?,
                 });
                 coords.push([m, b, k]);
@@ -1167,6 +1178,7 @@ fn box_slice(
         };
         Config {
             scale: m / m_ref,
+            table: OnceLock::new(),
             fam: PolyFamily::new(pp, pb.d).unwrap_or_else(|_| configs[j].fam.clone()),
         }
     };
