@@ -27,7 +27,7 @@ use serde::Serialize;
 use crate::budget::{self, Driver};
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, PHYSICAL_PLANT_FLAGS};
 use crate::output::print_json;
-use crate::plot::{Figure, Legend, Saved, Series, palette};
+use crate::plot::{Figure, Legend, Series, palette};
 
 /// Arguments of `hapstab map`.
 #[derive(Args, Debug)]
@@ -61,8 +61,9 @@ pub struct MapArgs {
     /// spectral_radius as <f8; np.load(f)["stable"].reshape(ny, nx) is the map).
     #[arg(long, value_enum, default_value_t = Format::Csv, requires = "out")]
     format: Format,
-    /// Draw the map as a heatmap into FILE.svg and FILE.png.
-    #[arg(long)]
+    /// Draw the map as a heatmap to FILE: SVG or PNG by its extension (both FILE.svg and
+    /// FILE.png for any other name); K (N/m) and B (Ns/m) axes for a physical loop.
+    #[arg(long, value_name = "FILE")]
     plot: Option<std::path::PathBuf>,
     /// Print a JSON summary instead of text.
     #[arg(long)]
@@ -152,8 +153,9 @@ struct MapSummary {
     stable_points: usize,
     seconds: f64,
     out: Option<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    plot: Option<Saved>,
+    /// Files written by --plot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    plot: Vec<std::path::PathBuf>,
 }
 
 fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
@@ -456,12 +458,10 @@ pub fn run(a: &MapArgs) -> Result<()> {
         }
     }
     let plot = match &a.plot {
-        Some(p) => Some(
-            heatmap(x, y, &v)
-                .save(p)
-                .with_context(|| format!("plot {}", p.display()))?,
-        ),
-        None => None,
+        Some(p) => heatmap(x, y, &v)
+            .save_as(p)
+            .with_context(|| format!("--plot {}", p.display()))?,
+        None => Vec::new(),
     };
     let points = x.range.n * y.range.n;
     let stable_points = v.stable.iter().filter(|&&s| s).count();
@@ -481,5 +481,8 @@ pub fn run(a: &MapArgs) -> Result<()> {
         100.0 * stable_points as f64 / points as f64,
         out.map(|p| format!("; written to {p}")).unwrap_or_default()
     );
+    if !plot.is_empty() {
+        println!("plot written to {}", crate::wall_plot::files_text(&plot));
+    }
     Ok(())
 }

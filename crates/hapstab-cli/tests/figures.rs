@@ -328,6 +328,19 @@ fn map_plot_of_a_physical_loop_has_k_and_b_axes() {
     let svg = std::fs::read_to_string(dir.path().join("map.svg")).unwrap();
     assert!(svg.contains("K (N/m)") && svg.contains("B (Ns/m)"));
     assert!(is_png(&dir.path().join("map.png")));
+    // by the extension: only the PNG
+    let png = dir.path().join("only.png");
+    let v = json(&[
+        "map",
+        "--x",
+        "K:0:1e5:20",
+        "--y",
+        "B:0:200:20",
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(v["plot"], serde_json::json!([png.to_str().unwrap()]));
+    assert!(is_png(&png) && !dir.path().join("only.svg").exists());
 }
 
 // ---- progress bars ---------------------------------------------------------------------

@@ -35,10 +35,10 @@ use serde::Serialize;
 use crate::boundary::{
     AlphaBeta, CircleTable, Interval, stable_alpha_intervals, stable_alpha_intervals_tabulated,
 };
-use std::sync::OnceLock;
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::params::{PlantParams, check_delay};
+use std::sync::OnceLock;
 
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
