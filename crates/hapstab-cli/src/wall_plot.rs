@@ -110,7 +110,8 @@ pub fn damping_line(fig: &mut Figure, y: f64, label: Option<&str>) {
     });
 }
 
-/// The roots of p(z) and the unit circle, on equal axes that hold every root.
+/// The roots of p(z) and the unit circle, on the same range for Re z and Im z (square panels
+/// keep the circle round to a few per cent) that holds every root.
 pub fn roots_figure(roots: &[Complex64], title: &str) -> Figure {
     let reach = roots
         .iter()
