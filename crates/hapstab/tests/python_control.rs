@@ -87,7 +87,7 @@ fn analyse(c: &Case) -> Answer {
     let fam = AffineFamily::of_loop(&hapstab_loop(c)).expect("family");
     let (a, b) = fam.to_units(c.wall.stiffness, c.wall.damping);
     let poly = fam.coefficients(a, b);
-    let an = Analysis::of_poly(&poly).expect("roots");
+    let an = Analysis::of_family(&fam, a, b).expect("roots");
     let z = an.roots[0];
     let mut dp = num_complex::Complex64::new(0.0, 0.0);
     let mut size = 0.0;
