@@ -6,13 +6,14 @@
 //! folded away, and save a screenshot to `target/tmp/serve_e2e.png`; then the page without
 //! parameters opens in physical units with the command line's default device and arm (the
 //! library's region), normalized mode is one click away, and the robust region is offered
-//! over the arm's stiffness (`target/tmp/serve_e2e_physical.png`); a URL with invalid parameters still draws the default region,
-//! marks the fields and names each parameter and value; at 420×800 the plot lies within the
-//! viewport with its region drawn (`target/tmp/serve_e2e_narrow.png`); last, a loop beyond
-//! the paper's (a two-mass device with an actuator lag and a fractional delay): its region
-//! and α_max are the library's for that loop, typing another velocity estimator redraws it,
-//! and a clicked wall gets `hapstab check`'s verdict, all p(z) roots and a simulated contact
-//! (`target/tmp/serve_e2e_loop.png`).
+//! over the arm's stiffness (`target/tmp/serve_e2e_physical.png`); a URL with invalid
+//! parameters still draws the default region, marks the fields and names each parameter and
+//! value (`target/tmp/serve_e2e_bad_url.png`), and a refused or emptied field greys out the
+//! old region; at 420×800 the plot lies within the viewport with its region drawn
+//! (`target/tmp/serve_e2e_narrow.png`); last, a loop beyond the paper's (a two-mass device
+//! with an actuator lag and a fractional delay): its region and α_max are the library's for
+//! that loop, typing another velocity estimator redraws it, and a clicked wall gets `hapstab
+//! check`'s verdict, all p(z) roots and a simulated contact (`target/tmp/serve_e2e_loop.png`).
 //!
 //! Chromium and chromedriver come from Debian (`apt-get install chromium chromium-driver`,
 //! done by `.ci/run`). Without them the test prints SKIPPED and passes, so `cargo test`
@@ -373,7 +374,7 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
 
 /// A URL with invalid parameters: each falls back to its default, its field is marked, the
 /// notice names the parameter and its value, and the default region is drawn.
-async fn drive_bad_url(c: &Client, base: &str) -> R<()> {
+async fn drive_bad_url(c: &Client, base: &str, shot: &Path) -> R<()> {
     c.goto(&format!(
         "{base}/?mode=physical&arm_mass=abc&period=&device_damping=1e8&d=0"
     ))
@@ -410,6 +411,7 @@ async fn drive_bad_url(c: &Client, base: &str) -> R<()> {
         assert!(notice.contains(part), "{part} in {notice}");
     }
     assert!(!c.find(Locator::Id("error")).await?.is_displayed().await?);
+    std::fs::write(shot, c.screenshot().await?)?;
     // Editing a marked field clears its mark and its line.
     let f = c.find(Locator::Id("arm_mass")).await?;
     f.send_keys("0").await?;
@@ -443,6 +445,16 @@ async fn drive_bad_url(c: &Client, base: &str) -> R<()> {
     let center = c.find(Locator::Id("center")).await?;
     assert!(attr(&center, "class").await?.contains("stale"));
     assert!(c.find(Locator::Id("error")).await?.is_displayed().await?);
+    // An emptied field is named as empty (not "must be a number (got '')").
+    f.clear().await?;
+    f.send_keys("5").await?;
+    f.send_keys(&Key::Backspace).await?;
+    let error = wait_for(20, "the empty field's message", || async {
+        let e = c.find(Locator::Id("error")).await?.text().await?;
+        Ok(e.contains("empty").then_some(e))
+    })
+    .await?;
+    assert!(error.contains("'device_mass'"), "{error}");
     Ok(())
 }
 
@@ -681,7 +693,7 @@ fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
             r = drive_defaults(&c, &base, &log_dir.join("serve_e2e_physical.png")).await;
         }
         if r.is_ok() {
-            r = drive_bad_url(&c, &base).await;
+            r = drive_bad_url(&c, &base, &log_dir.join("serve_e2e_bad_url.png")).await;
         }
         if r.is_ok() {
             r = drive_narrow(&c, &base, &log_dir.join("serve_e2e_narrow.png")).await;
