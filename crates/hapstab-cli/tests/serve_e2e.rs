@@ -307,16 +307,25 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
     );
     let label = c.find(Locator::Id("xlabel")).await?.text().await?;
     assert!(label.contains("K [N/m]"), "{label}");
-    // One click to normalized mode, and its URL keeps it.
+    // One click to normalized mode: the same loop in (α, β) (γ = kT²/m, δ = bT/m), so the
+    // same α_max; its URL keeps the mode.
     c.find(Locator::Id("mode-normalized"))
         .await?
         .click()
         .await?;
     let n = wait_for(20, "the normalized region", || async {
-        Ok(settled(c).await.ok().filter(|n| n.2 != pp.gamma))
+        let x = c.find(Locator::Id("xlabel")).await?.text().await?;
+        Ok(settled(c).await.ok().filter(|_| x.starts_with("α")))
     })
     .await?;
-    assert_eq!((n.2, n.3, n.4), (0.001, 0.015, 0), "normalized defaults");
+    assert_eq!(
+        (n.2, n.3, n.4),
+        (pp.gamma, pp.delta, 0),
+        "the plant carried over"
+    );
+    assert_eq!(n.1, s.1, "the same region in normalized units");
+    let gamma = c.find(Locator::Id("gamma")).await?.prop("value").await?;
+    assert_eq!(gamma.as_deref().map(str::parse::<f64>), Some(Ok(pp.gamma)));
     let url = c.current_url().await?;
     assert!(
         url.query().unwrap_or("").contains("mode=normalized"),
