@@ -573,6 +573,15 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
             .is_displayed()
             .await?
     );
+    // The robust region (over the paper's γ) is not offered for this loop, and says why.
+    assert!(
+        !c.find(Locator::Id("show-robust"))
+            .await?
+            .is_enabled()
+            .await?
+    );
+    let note = c.find(Locator::Id("robust-note")).await?.text().await?;
+    assert!(note.contains("the paper's loop"), "{note}");
     // Type another estimator: the region is redrawn for it.
     let est = c.find(Locator::Id("estimator")).await?;
     est.clear().await?;
