@@ -307,6 +307,15 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
     );
     let label = c.find(Locator::Id("xlabel")).await?.text().await?;
     assert!(label.contains("K [N/m]"), "{label}");
+    // The area in the K–B plane: the α–β area times m/T² · m/T.
+    let area = c.find(Locator::Id("area")).await?.text().await?;
+    let fam = PolyFamily::new(pp, 0)?;
+    let lib = stable_region(&fam)?;
+    let m = 1.1;
+    let kb: f64 = area.split(' ').next().unwrap_or("").parse()?;
+    let want = lib.area * (m / 1e-6) * (m / 1e-3);
+    assert!((kb - want).abs() <= 1e-5 * want, "{area} vs {want}");
+    assert!(area.contains("N²·s/m²"), "{area}");
     // One click to normalized mode: the same loop in (α, β) (γ = kT²/m, δ = bT/m), so the
     // same α_max; its URL keeps the mode.
     c.find(Locator::Id("mode-normalized"))
