@@ -76,3 +76,21 @@ def loop_of(d: dict) -> hs.Loop:
         velocity=d["velocity"],
         force_lag=d["force_lag"],
     )
+
+
+@pytest.fixture(scope="session")
+def hapstab_cli() -> Path:
+    """The command-line binary of this checkout: $HAPSTAB_BIN when set, else built here by
+    `cargo build --release -p hapstab-cli` (a no-op when target/release/hapstab is fresh), so
+    that a comparison with it never runs against a stale binary and never skips."""
+    given = os.environ.get("HAPSTAB_BIN")
+    if given:
+        return Path(given)
+    subprocess.run(
+        ["cargo", "build", "--release", "-q", "-p", "hapstab-cli", "--bin", "hapstab"],
+        cwd=ROOT,
+        check=True,
+    )
+    exe = target_dir() / "release" / "hapstab"
+    assert exe.is_file(), exe
+    return exe
