@@ -330,3 +330,17 @@ fn check_stiff_plant_has_its_roots_at_zero() {
     assert_eq!(v["verdict"], "stable");
     assert_eq!(v["spectral_radius"].as_f64().unwrap(), 0.0);
 }
+
+/// γ = δ = 0 (a free unit mass) without a wall: p(z) = z^{d+1}(z − 1)² has an exact double
+/// root at z = 1, so the verdict is marginal with ρ = 1 to rounding, never unstable.
+#[test]
+fn free_mass_without_a_wall_is_marginal() {
+    for d in ["0", "1", "3"] {
+        let v = json(&[
+            "check", "--gamma", "0", "--delta", "0", "--alpha", "0", "--beta", "0", "--delay", d,
+        ]);
+        assert_eq!(v["verdict"], "marginal", "d = {d}: {v}");
+        let rho = v["spectral_radius"].as_f64().unwrap();
+        assert!((rho - 1.0).abs() < 1e-10, "d = {d}: ρ = {rho}");
+    }
+}
