@@ -8,7 +8,7 @@ use hapstab::region::{EdgeKind, StableRegion};
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
-use crate::output::{print_json, sig};
+use crate::output::{csv_num, eng, print_json, sig};
 use hapstab::loop_analysis::region;
 
 /// Arguments of `hapstab boundary`.
@@ -59,8 +59,9 @@ struct PaperPlant {
 #[derive(Serialize)]
 struct BoundaryOut {
     input: LoopInput,
-    #[serde(flatten)]
-    paper: Option<PaperPlant>,
+    /// The paper's loop given in physical units: its normalized plant (γ, δ, d).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<PaperPlant>,
     /// Largest stable stiffness in wall units (α for the paper's loop).
     alpha_max: f64,
     /// Damping in wall units (β) at which it is reached.
@@ -127,14 +128,14 @@ fn write_vertices(
             let mut rec = vec![
                 pi.to_string(),
                 vi.to_string(),
-                format!("{:e}", v.alpha),
-                format!("{:e}", v.beta),
-                format!("{:e}", p.thetas[vi]),
+                csv_num(v.alpha),
+                csv_num(v.beta),
+                csv_num(p.thetas[vi]),
                 edge_tag(&p.edges[ei].kind).to_string(),
             ];
             if let Some(f) = fam {
                 let (k, b) = f.to_physical(v.alpha, v.beta);
-                rec.extend([format!("{k:e}"), format!("{b:e}")]);
+                rec.extend([csv_num(k), csv_num(b)]);
             }
             w.write_record(&rec)?;
         }
@@ -171,11 +172,15 @@ fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
 fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOut {
     BoundaryOut {
         input: LoopInput::new(rl, None),
-        paper: rl.lp.paper_view().map(|pp| PaperPlant {
-            gamma: pp.gamma,
-            delta: pp.delta,
-            d: rl.lp.delay.samples,
-        }),
+        normalized: rl
+            .lp
+            .paper_view()
+            .filter(|_| !rl.normalized)
+            .map(|pp| PaperPlant {
+                gamma: pp.gamma,
+                delta: pp.delta,
+                d: rl.lp.delay.samples,
+            }),
         alpha_max: r.alpha_max,
         beta_at_alpha_max: r.beta_at_alpha_max,
         area: r.area,
@@ -221,12 +226,12 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
 }
 
 fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &BoundaryOut) {
-    match &out.paper {
-        Some(p) => println!(
-            "stable region for γ = {}, δ = {}, d = {}",
-            sig(p.gamma, 10),
-            sig(p.delta, 10),
-            p.d
+    let paper = rl.lp.paper_view().map(|pp| (pp, rl.lp.delay.samples));
+    match paper {
+        Some((pp, d)) => println!(
+            "stable region for γ = {}, δ = {}, d = {d}",
+            sig(pp.gamma, 6),
+            sig(pp.delta, 6),
         ),
         None => println!("stable region of the loop"),
     }
@@ -239,32 +244,34 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         println!("empty: no wall (K, B) makes this loop stable");
         return;
     }
-    if out.paper.is_some() {
+    if paper.is_some() {
         println!(
-            "α_max = {:.15e} at β = {:.15e}",
-            r.alpha_max, r.beta_at_alpha_max
+            "α_max = {} at β = {}",
+            sig(r.alpha_max, 6),
+            sig(r.beta_at_alpha_max, 6)
         );
-        println!("area  = {:.12e}", r.area);
+        println!("area  = {} (in α·β)", sig(r.area, 6));
     }
     if let Some(p) = &out.physical {
         println!(
-            "K_max = {} N/m at B = {} Ns/m",
-            sig(p.k_max, 12),
-            sig(p.b_at_k_max, 12)
+            "K_max = {} at B = {}",
+            eng(p.k_max, "N/m", 6),
+            eng(p.b_at_k_max, "Ns/m", 6)
         );
-        println!("area  = {} (N/m)·(Ns/m)", sig(p.area, 12));
+        println!("area  = {} N²·s/m²", sig(p.area, 6));
     }
+    // polygons are numbered from 0, as in the CSV's polygon column and the JSON arrays
     for (i, p) in r.polygons.iter().enumerate() {
-        println!("polygon {} ({} vertices):", i + 1, p.vertices.len());
+        println!("polygon {i} ({} vertices):", p.vertices.len());
         for e in &p.edges {
             let v = p.vertices[e.start];
             let at = if rl.normalized {
-                format!("(α, β) = ({}, {})", sig(v.alpha, 10), sig(v.beta, 10))
+                format!("(α, β) = ({}, {})", sig(v.alpha, 6), sig(v.beta, 6))
             } else {
                 let (k, b) = fam.to_physical(v.alpha, v.beta);
-                format!("(K, B) = ({} N/m, {} Ns/m)", sig(k, 10), sig(b, 10))
+                format!("(K, B) = ({}, {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
             };
-            println!("  from {at}: {}", kind_name(&e.kind, out.paper.is_some()));
+            println!("  from {at}: {}", kind_name(&e.kind, paper.is_some()));
         }
     }
 }

@@ -56,7 +56,8 @@ struct KmaxOut {
     /// Linear condition (22): (b + B)/(t_d + T/2) at the same B, N/m (the paper's loop).
     #[serde(skip_serializing_if = "Option::is_none")]
     k_linear: Option<f64>,
-    #[serde(flatten)]
+    /// The paper's loop: the same result in normalized units (Table I).
+    #[serde(rename = "normalized", skip_serializing_if = "Option::is_none")]
     paper: Option<PaperView>,
 }
 

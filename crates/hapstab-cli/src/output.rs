@@ -1,11 +1,84 @@
 //! Shared output helpers: JSON printing and number formatting.
 
-use serde::Serialize;
+use std::io;
 
-/// Prints a value as pretty JSON on stdout.
+use serde::Serialize;
+use serde_json::ser::{Formatter, PrettyFormatter};
+
+/// Prints a value as pretty JSON on stdout: shortest round-trip floats, and a negative zero
+/// written as 0 (its sign carries no information in any result).
 pub fn print_json<T: Serialize>(v: &T) -> anyhow::Result<()> {
-    println!("{}", serde_json::to_string_pretty(v)?);
+    println!("{}", json_text(v)?);
     Ok(())
+}
+
+/// The pretty JSON text of a value as [`print_json`] writes it.
+pub fn json_text<T: Serialize>(v: &T) -> anyhow::Result<String> {
+    let mut bytes = Vec::new();
+    let mut ser = serde_json::Serializer::with_formatter(&mut bytes, Clean::default());
+    v.serialize(&mut ser)?;
+    Ok(String::from_utf8(bytes)?)
+}
+
+/// serde_json's pretty formatter with −0 written as 0.
+#[derive(Default)]
+struct Clean(PrettyFormatter<'static>);
+
+/// Delegates a formatter method to the pretty formatter.
+macro_rules! delegate {
+    ($($name:ident$(($arg:ident: $t:ty))?),* $(,)?) => {$(
+        fn $name<W: ?Sized + io::Write>(&mut self, w: &mut W $(, $arg: $t)?) -> io::Result<()> {
+            self.0.$name(w $(, $arg)?)
+        }
+    )*};
+}
+
+impl Formatter for Clean {
+    delegate!(
+        begin_array,
+        end_array,
+        begin_array_value(first: bool),
+        end_array_value,
+        begin_object,
+        end_object,
+        begin_object_key(first: bool),
+        begin_object_value,
+        end_object_value,
+    );
+
+    fn write_f64<W: ?Sized + io::Write>(&mut self, w: &mut W, v: f64) -> io::Result<()> {
+        self.0.write_f64(w, if v == 0.0 { 0.0 } else { v })
+    }
+
+    fn write_f32<W: ?Sized + io::Write>(&mut self, w: &mut W, v: f32) -> io::Result<()> {
+        self.0.write_f32(w, if v == 0.0 { 0.0 } else { v })
+    }
+}
+
+/// A number for a CSV field: the shortest decimal text that reads back to the same f64
+/// ("0.5", "1e-7"), −0 written as "0", and an empty field for NaN (no value).
+pub fn csv_num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if x.is_nan() {
+        String::new()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        let mut buf = ryu::Buffer::new();
+        buf.format_finite(x).trim_end_matches(".0").to_string()
+    }
+}
+
+/// [`csv_num`] of an optional value (empty when absent).
+pub fn csv_opt(x: Option<f64>) -> String {
+    x.map(csv_num).unwrap_or_default()
+}
+
+/// A value that may be undefined in a human-readable table: the formatted number, or "—"
+/// for NaN.
+pub fn or_dash(x: f64, f: impl Fn(f64) -> String) -> String {
+    if x.is_nan() { "—".into() } else { f(x) }
 }
 
 /// Formats a number with `sig` significant digits (trailing zeros dropped), switching to
@@ -102,6 +175,36 @@ pub fn descending(asc: &[f64]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn json_writes_negative_zero_as_zero_and_keeps_key_order() {
+        #[derive(Serialize)]
+        struct T {
+            z: f64,
+            a: [f64; 2],
+        }
+        let text = json_text(&T {
+            z: -0.0,
+            a: [-0.0, -1.5e-7],
+        })
+        .unwrap();
+        assert!(!text.contains("-0.0"), "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["a"][1].as_f64(), Some(-1.5e-7));
+        assert!(text.find("\"z\"") < text.find("\"a\""), "{text}");
+    }
+
+    #[test]
+    fn csv_numbers_are_shortest_round_trip() {
+        for x in [0.1, 1.0 / 3.0, -2.5e-300, 1e22, 350.0, 123456.789] {
+            assert_eq!(csv_num(x).parse::<f64>().unwrap(), x);
+        }
+        assert_eq!(csv_num(0.0), "0");
+        assert_eq!(csv_num(-0.0), "0");
+        assert_eq!(csv_num(350.0), "350");
+        assert_eq!(csv_num(1e-7), "1e-7");
+        assert_eq!(csv_num(f64::NAN), "");
+    }
 
     #[test]
     fn engineering_notation_picks_the_prefix() {

@@ -52,7 +52,7 @@ pub struct RunArgs {
     /// With --unilateral: the wall never pulls (F_wall >= 0; the damper cannot hold the device).
     #[arg(long, requires = "unilateral")]
     pub no_pull: bool,
-    /// Wall position x_w in m: the spring's rest position and the unilateral surface [default 0].
+    /// Wall position x_w in m: the spring's rest position and the unilateral surface [default: 0].
     #[arg(long, allow_hyphen_values = true, value_name = "M")]
     pub wall_position: Option<f64>,
     /// Coulomb (sliding) friction F_c of the device in N.
@@ -67,16 +67,16 @@ pub struct RunArgs {
     /// Actuator force limit F_max in N: |F_wall| <= F_max.
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub saturation: Option<f64>,
-    /// Constant human force F_H in N, positive into the wall [default 0].
+    /// Constant human force F_H in N, positive into the wall [default: 0].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub push: Option<f64>,
-    /// Initial position x(0) in m, positive into the wall [default 0.001].
+    /// Initial position x(0) in m, positive into the wall [default: 0.001].
     #[arg(long, allow_hyphen_values = true, value_name = "M")]
     pub initial_position: Option<f64>,
-    /// Initial velocity ẋ(0) in m/s [default 0].
+    /// Initial velocity ẋ(0) in m/s [default: 0].
     #[arg(long, allow_hyphen_values = true, value_name = "M/S")]
     pub initial_velocity: Option<f64>,
-    /// Run length in seconds (physical mode) [default 10 s].
+    /// Run length in seconds (physical mode) [default: 10 s].
     #[arg(
         long,
         allow_hyphen_values = true,
@@ -84,7 +84,7 @@ pub struct RunArgs {
         conflicts_with = "duration_samples"
     )]
     pub duration: Option<f64>,
-    /// Run length in samples [default 10000].
+    /// Run length in samples [default: 10000].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub duration_samples: Option<f64>,
     /// Horizon in seconds: a run whose second half has not settled is extended (doubling)
@@ -97,7 +97,7 @@ pub struct RunArgs {
         conflicts_with = "max_duration_samples"
     )]
     pub max_duration: Option<f64>,
-    /// Horizon in samples (see --max-duration) [default 1000000].
+    /// Horizon in samples (see --max-duration) [default: 1000000].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub max_duration_samples: Option<f64>,
 }
@@ -1337,7 +1337,7 @@ fn beta_values(a: &SimboundaryArgs, region: &hapstab::region::StableRegion) -> R
 
 /// Shortest round-trip text of a number, in exponent form when very large or small.
 fn num(v: f64) -> String {
-    format!("{v:?}")
+    crate::output::csv_num(v)
 }
 
 fn opt(v: Option<f64>) -> String {

@@ -12,7 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, describe_loop};
-use crate::output::{eng, print_json, sig};
+use crate::output::{csv_num, csv_opt, eng, print_json, sig};
 use crate::plot::{Figure, Legend, Marker, Series, palette};
 
 /// Arguments of `hapstab sweep`.
@@ -190,10 +190,10 @@ fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -
     let mut w =
         csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
     w.write_record([param.name(), "k_max", "b_at_k_max", "k_max_passive", "note"])?;
-    let cell = |x: Option<f64>| x.map(|v| v.to_string()).unwrap_or_default();
+    let cell = csv_opt;
     for p in points {
         w.write_record([
-            p.value.to_string(),
+            csv_num(p.value),
             cell(p.k_max),
             cell(p.b_at_k_max),
             cell(p.k_max_passive),

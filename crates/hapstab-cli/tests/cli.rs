@@ -185,7 +185,7 @@ fn kmax_physical_units() {
         v["k_max"].as_f64().unwrap(),
         v["b_at_k_max"].as_f64().unwrap(),
     );
-    let alpha = v["alpha_max"].as_f64().unwrap();
+    let alpha = v["normalized"]["alpha_max"].as_f64().unwrap();
     assert!((kmax - alpha * 0.1 / 1e-6).abs() < 1e-9 * kmax);
     // linear condition (22) at that B: (b + B)/(T/2)
     assert!((v["k_linear"].as_f64().unwrap() - (1.5 + b) / 0.0005).abs() < 1e-6 * kmax);

@@ -1,4 +1,4 @@
-//! `hapstab serve`: a local web explorer of the exact stable region (issue 7).
+//! `hapstab serve`: a local web explorer of the exact stable region.
 //!
 //! One self-contained page (inline JavaScript and CSS, no network access, embedded in the
 //! binary) and a JSON API backed by the library:
