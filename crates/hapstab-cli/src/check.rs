@@ -36,7 +36,13 @@ pub struct CheckArgs {
 /// The paper's normalized view of the point (Table I) with the linear condition.
 #[derive(Serialize)]
 struct PaperView {
-    normalized: Normalized,
+    /// The point in normalized units (used by the text output in both modes).
+    #[serde(skip)]
+    point: Normalized,
+    /// The same point in the output, for a loop given in physical units only (in normalized
+    /// mode it is the input).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<Normalized>,
     /// Stable α interval at the given β that contains α, or the one reaching furthest.
     alpha_interval: Option<[f64; 2]>,
     /// Linear condition (23): α < (β + δ)/(d + 1/2).
@@ -149,8 +155,10 @@ fn paper_view(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<P
     } else {
         linear_k(&rl.lp, w.damping)
     };
+    let point = Normalized::new(alpha, beta, pp.gamma, pp.delta, d)?;
     Ok(Some(PaperView {
-        normalized: Normalized::new(alpha, beta, pp.gamma, pp.delta, d)?,
+        point,
+        normalized: (!rl.normalized).then_some(point),
         alpha_interval: interval_units(rl, fam, w)?.map(|iv| [iv.lo, iv.hi]),
         alpha_linear: hapstab::linear::linear_alpha_limit(beta, pp.delta, d),
         k_linear,
@@ -198,7 +206,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {
         );
     }
     if let Some(p) = &o.paper {
-        let n = &p.normalized;
+        let n = &p.point;
         println!(
             "normalized  α = {}, β = {}, γ = {}, δ = {}, d = {}",
             sig(n.alpha, 8),
@@ -270,7 +278,7 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
 
 fn print_alpha_interval(o: &CheckOut) {
     let Some(p) = &o.paper else { return };
-    let beta = sig(p.normalized.beta, 8);
+    let beta = sig(p.point.beta, 6);
     match p.alpha_interval {
         Some([lo, hi]) => println!(
             "stiffness   stable for {} < α < {} at β = {beta} (linear condition (23): α < {})",

@@ -374,13 +374,21 @@ struct SimulateOut<'a> {
     period: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     normalized: Option<Normalized>,
-    /// The loop and its wall as given.
-    input: LoopInput,
+    /// The loop, its wall and the run's setting as given.
+    input: SimInput,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    files: Option<Files>,
+}
+
+/// The inputs of a simulation: the loop and its wall, the nonlinear effects, the human's
+/// force and the initial state.
+#[derive(Serialize)]
+struct SimInput {
+    #[serde(flatten)]
+    lp: LoopInput,
     effects: Effects,
     human_force: f64,
     initial: Initial,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    files: Option<Files>,
 }
 
 /// Bytes per kept trace row in memory (five f64 columns).
@@ -485,11 +493,13 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
         units: units.name(),
         mass: sl.paper().map(|m| m.mass),
         period,
-        normalized: sl.paper().map(|m| m.params),
-        input: LoopInput::new(&sl.rl, Some(sl.wall)),
-        effects: settings.effects,
-        human_force: settings.human_force,
-        initial: settings.initial,
+        normalized: sl.paper().filter(|_| !sl.rl.normalized).map(|m| m.params),
+        input: SimInput {
+            lp: LoopInput::new(&sl.rl, Some(sl.wall)),
+            effects: settings.effects,
+            human_force: settings.human_force,
+            initial: settings.initial,
+        },
         files,
     };
     if a.json {
@@ -847,8 +857,8 @@ fn run_text(o: &SimulateOut, units: Units) -> String {
         "{} samples ({}) from x(0) = {}, ẋ(0) = {} {}",
         r.samples,
         time_text(o.duration, units),
-        eng(o.initial.position, "m", 6),
-        sig(o.initial.velocity, 6),
+        eng(o.input.initial.position, "m", 6),
+        sig(o.input.initial.velocity, 6),
         units.velocity()
     );
     if r.blown_up {
@@ -1041,24 +1051,19 @@ struct BoundaryRow {
     k_simulated: Option<f64>,
 }
 
+/// γ, δ and d of the paper's loop (Table I).
 #[derive(Serialize)]
-struct SimboundaryOut {
-    /// The paper's loop: γ, δ, d and m (Table I); absent for other loops.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    gamma: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    delta: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    d: Option<usize>,
-    units: &'static str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    mass: Option<f64>,
-    period: f64,
-    /// The loop as given.
-    input: LoopInput,
-    /// Other loops: K = a·stiffness (N/m) and B = b·damping (Ns/m) for the a, b columns.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    wall_units: Option<WallScale>,
+struct PaperPlant {
+    gamma: f64,
+    delta: f64,
+    d: usize,
+}
+
+/// The inputs of `simboundary`: the loop, the runs' setting and the scan.
+#[derive(Serialize)]
+struct SimboundaryInput {
+    #[serde(flatten)]
+    lp: LoopInput,
     effects: Effects,
     human_force: f64,
     initial: Initial,
@@ -1067,6 +1072,22 @@ struct SimboundaryOut {
     stable_when: StableWhen,
     grid: usize,
     rel_tol: f64,
+}
+
+#[derive(Serialize)]
+struct SimboundaryOut {
+    /// The paper's loop given in physical units: γ, δ, d (Table I).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<PaperPlant>,
+    units: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mass: Option<f64>,
+    period: f64,
+    /// The loop and the runs' setting as given.
+    input: SimboundaryInput,
+    /// Other loops: K = a·stiffness (N/m) and B = b·damping (Ns/m) for the a, b columns.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_units: Option<WallScale>,
     /// α_max of the exact linear stable region (Section V) and the β where it is reached.
     exact_alpha_max: f64,
     exact_beta_at_alpha_max: f64,
@@ -1239,25 +1260,29 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         None => None,
     };
     let out = SimboundaryOut {
-        gamma: pm.map(|p| p.gamma),
-        delta: pm.map(|p| p.delta),
-        d: pm.map(|p| p.d),
+        normalized: pm.filter(|_| !rl.normalized).map(|p| PaperPlant {
+            gamma: p.gamma,
+            delta: p.delta,
+            d: p.d,
+        }),
         units: units.name(),
         mass: match &model {
             SimModel::Paper(m) => Some(m.mass),
             SimModel::Loop(_) => None,
         },
         period: model.period(),
-        input: LoopInput::new(&rl, None),
+        input: SimboundaryInput {
+            lp: LoopInput::new(&rl, None),
+            effects: settings.effects,
+            human_force: settings.human_force,
+            initial: settings.initial,
+            samples: settings.samples,
+            max_samples: settings.max_samples,
+            stable_when,
+            grid: a.grid,
+            rel_tol: a.rel_tol,
+        },
         wall_units: pm.is_none().then_some(fam.scale),
-        effects: settings.effects,
-        human_force: settings.human_force,
-        initial: settings.initial,
-        samples: settings.samples,
-        max_samples: settings.max_samples,
-        stable_when,
-        grid: a.grid,
-        rel_tol: a.rel_tol,
         exact_alpha_max: region.alpha_max,
         exact_beta_at_alpha_max: region.beta_at_alpha_max,
         warnings: boundary_warnings(&points, &settings),
@@ -1484,7 +1509,11 @@ fn boundary_plot(
 /// The loop of a boundary search: the paper's (γ, δ, d), or the loop in words with its wall
 /// units.
 fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
-    let (Some(gamma), Some(delta), Some(d)) = (o.gamma, o.delta, o.d) else {
+    let Some((gamma, delta, d)) = rl
+        .lp
+        .paper_view()
+        .map(|pp| (pp.gamma, pp.delta, rl.lp.delay.samples))
+    else {
         for line in describe_loop(&rl.lp) {
             println!("{line}");
         }
@@ -1516,10 +1545,10 @@ fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, uni
     println!("effects     {}", describe_effects(s, units.force()));
     println!(
         "runs        {} samples each (extended up to {} until settled) from x(0) = {}; stable = {}",
-        o.samples,
-        o.max_samples,
-        eng(o.initial.position, "m", 6),
-        match o.stable_when {
+        o.input.samples,
+        o.input.max_samples,
+        eng(o.input.initial.position, "m", 6),
+        match o.input.stable_when {
             StableWhen::Decaying => "decaying".to_string(),
             StableWhen::AmplitudeBelow(m) => format!(
                 "decaying or limit cycle below {} peak-to-peak",
@@ -1607,7 +1636,7 @@ fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, uni
     }
     println!();
     if s.effects.quantization.is_some()
-        && o.stable_when == StableWhen::Decaying
+        && o.input.stable_when == StableWhen::Decaying
         && o.points.iter().any(|r| {
             r.point.alpha_simulated.is_none()
                 && r.point.alpha_unstable.is_some()

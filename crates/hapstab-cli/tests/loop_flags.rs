@@ -75,7 +75,7 @@ fn discretize_reproduces_matlab_c2d_example_json() {
     for (got, want) in den.iter().zip(MATLAB_DEN) {
         assert_eq!(round_sig(*got, 4), round_sig(want.parse().unwrap(), 4));
     }
-    assert_eq!(v["period"], 0.1);
+    assert_eq!(v["input"]["loop"]["period"], 0.1);
     assert_eq!(v["input"]["delay_time"], 0.25);
     assert_eq!(v["input"]["loop"]["delay"]["samples"], 2);
     assert_eq!(v["input"]["loop"]["delay"]["fraction"], 0.5);
