@@ -87,6 +87,10 @@ struct MarginsOut {
     /// Frequency of the oscillation at the delay margin, Hz.
     #[serde(skip_serializing_if = "Option::is_none")]
     delay_margin_frequency_hz: Option<f64>,
+    /// When the delay scan stopped at its work bound: the extra delay, s, up to which the loop
+    /// was shown stable (the delay margin is at least this).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delay_margin_at_least: Option<f64>,
     /// Frequency of the critical root pair on the unit circle at K × gain margin, Hz.
     critical_frequency_hz: Option<f64>,
     /// Why a margin is null.
@@ -105,6 +109,7 @@ impl MarginsOut {
             phase_crossover_hz: None,
             delay_margin: None,
             delay_margin_frequency_hz: None,
+            delay_margin_at_least: None,
             critical_frequency_hz: None,
             margin_notes: vec![note.to_string()],
         };
@@ -126,6 +131,7 @@ impl MarginsOut {
             phase_crossover_hz: m.phase.map(|p| p.frequency_hz),
             delay_margin: m.delay.map(|d| d.seconds),
             delay_margin_frequency_hz: m.delay.map(|d| d.frequency_hz),
+            delay_margin_at_least: m.delay_at_least,
             critical_frequency_hz: m.critical_frequency_hz,
             margin_notes: m.notes,
         })
@@ -264,6 +270,9 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
             .map(|f| format!(" (oscillates at {})", hz(f)))
             .unwrap_or_default();
         parts.push(format!("delay +{}{at}", secs(d)));
+    }
+    if let Some(d) = m.delay_margin_at_least {
+        parts.push(format!("delay > +{}", secs(d)));
     }
     let mut label = "margins    ";
     if !parts.is_empty() {

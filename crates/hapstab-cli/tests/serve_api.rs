@@ -716,7 +716,7 @@ fn bad_loop_input_is_400_naming_the_parameter() {
             "0.5",
         ),
         (
-            format!("/api/region?gamma=0&delta=0&d=0&estimator=backward"),
+            "/api/region?gamma=0&delta=0&d=0&estimator=backward".to_string(),
             "estimator",
             "backward",
         ),

@@ -241,9 +241,18 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     .await?;
     let fam = two_mass_family("lowpass:150");
     assert_eq!(am0, stable_region(&fam)?.alpha_max, "α_max of the loop");
-    let kind = c.find(Locator::Id("plant_kind")).await?.prop("value").await?;
+    let kind = c
+        .find(Locator::Id("plant_kind"))
+        .await?
+        .prop("value")
+        .await?;
     assert_eq!(kind.as_deref(), Some("two_mass"));
-    assert!(c.find(Locator::Id("motor_mass")).await?.is_displayed().await?);
+    assert!(
+        c.find(Locator::Id("motor_mass"))
+            .await?
+            .is_displayed()
+            .await?
+    );
     // Type another estimator: the region is redrawn for it.
     let est = c.find(Locator::Id("estimator")).await?;
     est.clear().await?;
@@ -252,13 +261,26 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     let lib = stable_region(&fam)?.alpha_max;
     let am1 = wait_for(20, "the redrawn loop region", || async {
         let e = c.find(Locator::Id("error")).await?.text().await?;
-        let v = c.find(Locator::Id("estimator")).await?.prop("value").await?;
-        eprintln!("DEBUG error={e:?} value={v:?} settled={:?}", settled(c).await.ok().map(|s| s.1));
+        let v = c
+            .find(Locator::Id("estimator"))
+            .await?
+            .prop("value")
+            .await?;
+        eprintln!(
+            "DEBUG error={e:?} value={v:?} settled={:?}",
+            settled(c).await.ok().map(|s| s.1)
+        );
         Ok(settled(c).await.ok().map(|s| s.1).filter(|&a| a != am0))
     })
     .await?;
     assert_eq!(am1, lib, "α_max after typing lowpass:60");
-    assert!(c.current_url().await?.query().unwrap_or("").contains("estimator=lowpass%3A60"));
+    assert!(
+        c.current_url()
+            .await?
+            .query()
+            .unwrap_or("")
+            .contains("estimator=lowpass%3A60")
+    );
     // Click a wall: the loop's verdict, every root of its p(z), a simulated contact.
     c.find(Locator::Id("plot")).await?.click().await?;
     let verdict = wait_for(20, "the loop's point verdict", || async {
@@ -281,7 +303,10 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     let outcome = c.find(Locator::Id("sim-outcome")).await?.text().await?;
     assert!(!outcome.is_empty(), "an outcome is shown");
     if verdict == "unstable" {
-        assert!(!outcome.starts_with("decaying"), "{outcome} beside {verdict}");
+        assert!(
+            !outcome.starts_with("decaying"),
+            "{outcome} beside {verdict}"
+        );
     }
     let png = c.screenshot().await?;
     std::fs::write(shot, &png)?;

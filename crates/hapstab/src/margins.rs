@@ -76,6 +76,9 @@ pub struct Margins {
     pub phase: Option<PhaseMargin>,
     /// Delay margin.
     pub delay: Option<DelayMargin>,
+    /// When the delay scan stopped at its work bound before a crossing: the added delay in
+    /// seconds up to which the loop was shown stable (the margin is at least this).
+    pub delay_at_least: Option<f64>,
     /// Frequency of the critical root pair at the gain-margin boundary, Hz.
     pub critical_frequency_hz: Option<f64>,
     /// Why a margin is absent, in words.
@@ -93,6 +96,7 @@ pub fn margins(lp: &Loop, wall: Wall) -> Result<Margins> {
         gain_kb: None,
         phase: None,
         delay: None,
+        delay_at_least: None,
         critical_frequency_hz: None,
         notes: Vec::new(),
     };
@@ -121,11 +125,22 @@ pub fn margins(lp: &Loop, wall: Wall) -> Result<Margins> {
         out.notes
             .push("|L| never crosses 1: no gain crossover, phase margin unbounded".into());
     }
-    out.delay = delay_margin(lp, wall)?;
-    if out.delay.is_none() {
-        out.notes.push(format!(
+    match delay_margin(lp, wall)? {
+        DelayScan::Crossing(d) => out.delay = Some(d),
+        DelayScan::SmallGain(gain) => out.notes.push(format!(
+            "stable for every added delay: |L| ≤ {gain:.4} < 1 at every frequency and every \
+             fraction of a sample (small gain)"
+        )),
+        DelayScan::StableUpToMax => out.notes.push(format!(
             "stable for every added delay up to the largest modelled delay ({MAX_DELAY} samples)"
-        ));
+        )),
+        DelayScan::AtLeast(seconds) => {
+            out.delay_at_least = Some(seconds);
+            out.notes.push(format!(
+                "delay margin undecided beyond {seconds:.6e} s: the scan stopped at its work \
+                 bound without a crossing (the margin is at least that)"
+            ));
+        }
     }
     Ok(out)
 }
@@ -262,28 +277,37 @@ const DELAY_BISECTION_REL: f64 = 1e-13;
 /// phase), at least [`DELAY_MIN_STEP`]; the minimum over θ is taken on the boundary scan's
 /// grid. None when the loop stays stable up to the largest modelled delay ([`MAX_DELAY`]
 /// samples).
-pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<Option<DelayMargin>> {
+pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<DelayScan> {
     let s0 = lp.delay.in_samples();
     let family_at = |s: f64| -> Result<AffineFamily> {
         AffineFamily::of_loop(&lp.with_delay(delay_in_samples(s))?)
     };
     let base = family_at(s0)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
+    let gain = max_loop_gain(lp, a, b)?;
+    if gain < SMALL_GAIN_LIMIT {
+        return Ok(DelayScan::SmallGain(gain));
+    }
     let stable = |f: &AffineFamily| schur_stable(&f.coefficients(a, b));
     let mut s = s0;
     let mut fam = base;
+    let mut work = 0.0;
     loop {
+        work += scan_step_work(&fam);
+        if work > DELAY_SCAN_WORK {
+            return Ok(DelayScan::AtLeast((s - s0) * lp.period));
+        }
         let h = (robustness(&fam, a, b) / DELAY_STEP_SAFETY).max(DELAY_MIN_STEP);
         let next = s + h;
         if next > MAX_DELAY as f64 {
-            return Ok(None);
+            return Ok(DelayScan::StableUpToMax);
         }
         let fam_next = family_at(next)?;
         if !stable(&fam_next) {
             let (lo, hi) = bisect_delay(s, next, |x| Ok(stable(&family_at(x)?)))?;
             let theta = critical_angle(&family_at(hi)?, a, b)?;
             let seconds = (0.5 * (lo + hi) - s0) * lp.period;
-            return Ok(Some(DelayMargin {
+            return Ok(DelayScan::Crossing(DelayMargin {
                 seconds,
                 theta,
                 frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
@@ -292,6 +316,77 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<Option<DelayMargin>> {
         s = next;
         fam = fam_next;
     }
+}
+
+/// What the delay scan found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DelayScan {
+    /// The first crossing: the margin.
+    Crossing(DelayMargin),
+    /// max |L| over every frequency and fraction of a sample, below 1: stable for every
+    /// added delay.
+    SmallGain(f64),
+    /// No crossing up to the largest modelled delay.
+    StableUpToMax,
+    /// The scan's work bound was reached after this added delay in seconds, stable so far.
+    AtLeast(f64),
+}
+
+/// The loop gain may not exceed this for the small-gain shortcut. Each λ's maximum over θ
+/// is refined to 1e-9 rad (so the value is exact to rounding); between the 64 fractions of a
+/// sample |L| moves by far less than the 0.1 % left (a fraction of a sample turns L's phase,
+/// its magnitude only through the hold's aliased terms).
+const SMALL_GAIN_LIMIT: f64 = 0.999;
+
+/// Fractions of a sample on which the loop gain is evaluated for the small-gain shortcut.
+const GAIN_FRACTIONS: usize = 64;
+
+/// Local maxima of |L| on the θ grid above this are refined (lower ones cannot reach
+/// [`SMALL_GAIN_LIMIT`] between two grid points).
+const GAIN_REFINE_FLOOR: f64 = 0.5;
+
+/// The delay scan's work bound in evaluations of p's coefficients (≈ 0.3 s on one core):
+/// past it the scan reports a lower bound instead of running on with p's growing degree.
+const DELAY_SCAN_WORK: f64 = 3e8;
+
+/// Work of one scan step: the robustness bound's θ grid times p's degree.
+fn scan_step_work(fam: &AffineFamily) -> f64 {
+    let n = (fam.degree() + 1) as f64;
+    SAMPLES_PER_DEGREE as f64 * n * n
+}
+
+/// max over θ ∈ (0, π] and over fractions λ ∈ [0, 1] of a sample of |L(e^{jθ})| with
+/// L = (a·PK + b·PB)/P0 of the loop with delay λ: a whole sample more of delay multiplies L
+/// by e^{−jθ}, so this is the loop gain at every added delay.
+fn max_loop_gain(lp: &Loop, a: f64, b: f64) -> Result<f64> {
+    let mut gain: f64 = 0.0;
+    for j in 0..=GAIN_FRACTIONS {
+        let fraction = (j as f64 / GAIN_FRACTIONS as f64).min(1.0 - 1e-12);
+        let fam = AffineFamily::of_loop(&lp.with_delay(Delay {
+            samples: 0,
+            fraction,
+        })?)?;
+        let l = |t: f64| {
+            let (p0, pk, pb) = fam.parts_on_circle(t);
+            (pk * a + pb * b).norm() / p0.norm()
+        };
+        let m = SAMPLES_PER_DEGREE * (fam.degree() + 1);
+        let ts: Vec<f64> = (0..=m)
+            .map(|i| std::f64::consts::PI * (i as f64 / m as f64).clamp(1e-12, 1.0))
+            .collect();
+        let ls: Vec<f64> = ts.iter().map(|&t| l(t)).collect();
+        for i in 0..=m {
+            let left = if i > 0 { ls[i - 1] } else { f64::NEG_INFINITY };
+            let right = ls.get(i + 1).copied().unwrap_or(f64::NEG_INFINITY);
+            gain = gain.max(ls[i]);
+            if ls[i] >= left && ls[i] >= right && ls[i] > GAIN_REFINE_FLOOR {
+                let (lo, hi) = (ts[i.saturating_sub(1)], ts[(i + 1).min(m)]);
+                let (_, v) = crate::passivity::golden_max(l, lo, hi, crate::passivity::THETA_TOL);
+                gain = gain.max(v);
+            }
+        }
+    }
+    Ok(gain)
 }
 
 /// A total delay of s samples as whole samples and a fraction.

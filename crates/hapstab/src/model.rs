@@ -210,19 +210,29 @@ impl Plant {
         }
     }
 
-    /// The static stiffness 1/P(0) in N/m: k for the paper's plant (eq. 1), the arm's k_H for
-    /// a two-mass device, den(0)/num(0) for a transfer function; 0 for a free mass. None when
-    /// P(0) = 0 (a plant that does not move under a constant force). The actuator lag does
-    /// not change it.
+    /// The static stiffness 1/P(0) in N/m: k for the paper's plant (eq. 1); for a two-mass
+    /// device the transmission k_t in series with the arm's k_H, k_t·k_H/(k_t + k_H) (a
+    /// constant force on the motor stretches both springs; the encoder is on the motor side);
+    /// den(0)/num(0) for a transfer function; 0 for a free mass. None when P(0) = 0 (a plant
+    /// that does not move under a constant force). The actuator lag does not change it.
     pub fn dc_stiffness(&self) -> Option<f64> {
         let k = match &self.model {
             PlantModel::MassSpringDamper(e) => e.stiffness,
-            PlantModel::TwoMass(t) => t.arm.stiffness,
+            PlantModel::TwoMass(t) => series_stiffness(t.transmission_stiffness, t.arm.stiffness),
             PlantModel::TransferFunction { num, den } => {
                 den.last().copied().unwrap_or(0.0) / num.last().copied().unwrap_or(0.0)
             }
         };
         k.is_finite().then_some(k)
+    }
+}
+
+/// Two springs in series, k1·k2/(k1 + k2) (0 when either is 0).
+fn series_stiffness(k1: f64, k2: f64) -> f64 {
+    if k1 == 0.0 || k2 == 0.0 {
+        0.0
+    } else {
+        k1 * k2 / (k1 + k2)
     }
 }
 

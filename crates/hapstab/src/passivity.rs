@@ -96,7 +96,7 @@ const GOLDEN_ITERATIONS: usize = 64;
 /// Width of the final bracket of a frequency maximum, in radians. The function is flat at an
 /// interior maximum, so the value there is exact to rounding long before: an error of 1e-9 rad
 /// changes it by about f''·1e-18.
-const THETA_TOL: f64 = 1e-9;
+pub(crate) const THETA_TOL: f64 = 1e-9;
 
 /// A local maximum whose parabola rises less than this fraction of the function's scale above
 /// its grid sample is not refined: the grid value is then already exact to rounding (this
@@ -799,7 +799,7 @@ fn largest_stiffness(sw: &SampledWall, b: f64, pts: &[RayPoint]) -> (f64, f64) {
 
 /// Golden-section search for the maximum of f on [lo, hi] down to a bracket of width tol:
 /// (argmax, max).
-fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
+pub(crate) fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
     let r = 0.5 * (5f64.sqrt() - 1.0);
     let mut x1 = hi - r * (hi - lo);
     let mut x2 = lo + r * (hi - lo);

@@ -595,3 +595,108 @@ fn wall_map_agrees_with_the_region() {
         assert!(agree >= x.n * y.n - x.n - y.n, "{name}: {agree}");
     }
 }
+
+/// A two-mass device with an arm equals the transfer function written from its equations of
+/// motion: motor J s²x_m + b_m s x_m + (b_t s + k_t)(x_m − x_h) = F, handle and arm
+/// M s²x_h + b_H s x_h + k_H x_h = (b_t s + k_t)(x_m − x_h), so P = A_h/(A_m A_h − C²) with
+/// A_m = Js² + (b_m + b_t)s + k_t, A_h = Ms² + (b_H + b_t)s + k_t + k_H, C = b_t s + k_t.
+/// Its static stiffness is k_t in series with k_H, k_t k_H/(k_t + k_H), not k_H: the z = 1
+/// edge of the region (K = −that) and the stable stiffness intervals agree in N/m.
+#[test]
+fn two_mass_equals_its_transfer_function() {
+    let (j, bm, mh, kt, bt) = (0.05, 0.3, 0.05, 5000.0, 1.0);
+    let arm = Arm::TYPICAL;
+    let m = mh + arm.mass;
+    let am = [j, bm + bt, kt];
+    let ah = [m, arm.damping + bt, kt + arm.stiffness];
+    let c = [bt, kt];
+    let mul = |p: &[f64], q: &[f64]| {
+        let mut r = vec![0.0; p.len() + q.len() - 1];
+        for (i, x) in p.iter().enumerate() {
+            for (k, y) in q.iter().enumerate() {
+                r[i + k] += x * y;
+            }
+        }
+        r
+    };
+    let (amah, cc) = (mul(&am, &ah), mul(&c, &c));
+    let mut den = amah.clone();
+    let off = den.len() - cc.len();
+    for (i, x) in cc.iter().enumerate() {
+        den[off + i] -= x;
+    }
+    let series = kt * arm.stiffness / (kt + arm.stiffness);
+    assert!((den[den.len() - 1] / ah[2] - series).abs() < 1e-12 * series);
+    for (velocity, delay) in [
+        ("backward", 1.0e-3),
+        ("lowpass:60", 1.4e-3),
+        ("average:4", 0.5e-3),
+    ] {
+        let v: VelocityEstimator = velocity.parse().unwrap();
+        let two = Loop::new(
+            Plant::new(
+                PlantModel::TwoMass(TwoMass {
+                    motor_mass: j,
+                    motor_damping: bm,
+                    handle_mass: mh,
+                    transmission_stiffness: kt,
+                    transmission_damping: bt,
+                    arm,
+                }),
+                0.0,
+            )
+            .unwrap(),
+            1e-3,
+            Delay::from_time(delay, 1e-3).unwrap(),
+            v.clone(),
+        )
+        .unwrap();
+        let tf_plant = PlantModel::TransferFunction {
+            num: ah.to_vec(),
+            den: den.clone(),
+        };
+        let tf = Loop::new(
+            Plant::new(tf_plant, 0.0).unwrap(),
+            1e-3,
+            Delay::from_time(delay, 1e-3).unwrap(),
+            v,
+        )
+        .unwrap();
+        let (f2, ft) = (family(&two), family(&tf));
+        for b_ns in [0.0, 2.0, 8.0] {
+            let to_n = |fam: &AffineFamily, ivs: Vec<hapstab::boundary::Interval>| {
+                ivs.iter()
+                    .map(|iv| (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0))
+                    .collect::<Vec<_>>()
+            };
+            let i2 = to_n(
+                &f2,
+                hapstab::boundary::stable_alpha_intervals(&f2, f2.to_units(0.0, b_ns).1),
+            );
+            let it = to_n(
+                &ft,
+                hapstab::boundary::stable_alpha_intervals(&ft, ft.to_units(0.0, b_ns).1),
+            );
+            assert_eq!(
+                i2.len(),
+                it.len(),
+                "{velocity} B = {b_ns}: {i2:?} vs {it:?}"
+            );
+            for ((l2, h2), (lt, ht)) in i2.iter().zip(&it) {
+                assert!(
+                    (l2 - lt).abs() <= 1e-7 * lt.abs().max(1.0),
+                    "{velocity} B = {b_ns}: {i2:?} vs {it:?}"
+                );
+                assert!(
+                    (h2 - ht).abs() <= 1e-7 * ht.abs().max(1.0),
+                    "{velocity} B = {b_ns}: {i2:?} vs {it:?}"
+                );
+            }
+            assert!(
+                (i2[0].0 + series).abs() < 1e-9 * series,
+                "z = 1 edge {} vs −{series}",
+                i2[0].0
+            );
+        }
+    }
+}

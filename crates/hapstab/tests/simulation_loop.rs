@@ -555,7 +555,7 @@ fn paper_loop_matches_its_closed_form_stepping() {
             scale,
             quantum: (i % 4 == 2).then_some(1e-5),
             unilateral: i % 4 == 1,
-            friction: (i % 4 == 3).then(|| (0.2 * scale, 0.3 * scale)),
+            friction: (i % 4 == 3).then_some((0.2 * scale, 0.3 * scale)),
         };
         cfg.effects.quantization = reference.quantum;
         if reference.unilateral {

@@ -79,6 +79,9 @@ impl<const N: usize> Engine<N> {
 }
 
 /// The engine for the loop's state size: unrolled for small sizes, zero-padded above.
+/// One lives on the stack per simulation and is matched once per run, not per step, so its
+/// size (a few KiB for the largest state) costs nothing that boxing would save.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 enum Engines {
     E2(Engine<2>),

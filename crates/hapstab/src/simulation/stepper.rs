@@ -96,8 +96,8 @@ impl<const N: usize> Kernel<N> {
                 + c[HUMAN][i] * u[HUMAN]
                 + c[FRICTION][i] * u[FRICTION]
                 + c[WALL_NOW][i] * u[WALL_NOW];
-            for j in 0..N {
-                s += self.phi[i][j] * x[j];
+            for (p, xj) in self.phi[i].iter().zip(x) {
+                s += p * xj;
             }
             *o = s;
         }
