@@ -55,6 +55,19 @@ impl Formatter for Clean {
     }
 }
 
+/// Significant digits of the human-readable output.
+pub const TEXT_DIGITS: usize = 6;
+
+/// A spectral radius (or growth factor per sample) in 6 significant digits, or in as many
+/// more as it takes not to round to 1 (a radius beside a verdict must show on which side of
+/// the unit circle it lies).
+pub fn radius_text(rho: f64) -> String {
+    (TEXT_DIGITS..=17)
+        .map(|d| sig(rho, d))
+        .find(|t| t != "1" || rho == 1.0)
+        .unwrap_or_else(|| format!("{rho:e}"))
+}
+
 /// A number for a CSV field: the shortest decimal text that reads back to the same f64
 /// ("0.5", "1e-7"), −0 written as "0", and an empty field for NaN (no value).
 pub fn csv_num(x: f64) -> String {
@@ -192,6 +205,14 @@ mod tests {
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(v["a"][1].as_f64(), Some(-1.5e-7));
         assert!(text.find("\"z\"") < text.find("\"a\""), "{text}");
+    }
+
+    #[test]
+    fn radius_text_never_rounds_to_one() {
+        assert_eq!(radius_text(0.994314440240548), "0.994314");
+        assert_eq!(radius_text(1.0 - 1e-9), "0.999999999");
+        assert_eq!(radius_text(1.0 + 2e-12), "1.000000000002");
+        assert_eq!(radius_text(1.0), "1");
     }
 
     #[test]

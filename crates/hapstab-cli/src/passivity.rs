@@ -136,7 +136,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
     };
     let num = |x: f64, unit: &str| {
         if unit.is_empty() {
-            sig(x, 8)
+            sig(x, 6)
         } else {
             eng(x, unit, 6)
         }

@@ -586,7 +586,7 @@ fn time_text(seconds: f64, units: Units) -> String {
     if units.physical {
         eng(seconds, "s", 4)
     } else {
-        format!("{} samples", sig(seconds, 8))
+        format!("{} samples", sig(seconds, 6))
     }
 }
 
@@ -801,10 +801,10 @@ fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
     };
     println!(
         "model       α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
-        sig(n.alpha, 8),
-        sig(n.beta, 8),
-        sig(n.gamma, 8),
-        sig(n.delta, 8),
+        sig(n.alpha, 6),
+        sig(n.beta, 6),
+        sig(n.gamma, 6),
+        sig(n.delta, 6),
         n.d,
         match o.mass {
             Some(m) if units.physical => {
@@ -883,7 +883,7 @@ fn analysis_text(r: &RunResult, s: &RunSettings) -> Option<String> {
     let v = &r.verdict;
     let rho = v.spectral_radius?;
     let lin = v.linear_verdict.map_or("", |x| x.as_str());
-    let analysis = format!("spectral radius {} ({lin})", sig(rho, 9));
+    let analysis = format!("spectral radius {} ({lin})", crate::output::radius_text(rho));
     let in_contact = if v.linear_window {
         ""
     } else {
@@ -897,7 +897,7 @@ fn analysis_text(r: &RunResult, s: &RunSettings) -> Option<String> {
     Some(match (v.outcome, measured) {
         (Outcome::Growing | Outcome::Decaying | Outcome::Undecided, Some(g)) => format!(
             "growth      measured {} per sample{}; analysis: {analysis}{in_contact}",
-            sig(g, 9),
+            crate::output::radius_text(g),
             if v.outcome == Outcome::Undecided {
                 " (not settled)"
             } else {
@@ -1528,8 +1528,8 @@ fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
     };
     println!(
         "plant       γ = {}, δ = {}, d = {}{}",
-        sig(gamma, 8),
-        sig(delta, 8),
+        sig(gamma, 6),
+        sig(delta, 6),
         d,
         match o.mass {
             Some(m) if units.physical => {
@@ -1559,15 +1559,15 @@ fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, uni
     match o.wall_units {
         None => println!(
             "exact       α_max = {} at β = {} (linear stable region, Section V)",
-            sig(o.exact_alpha_max, 8),
-            sig(o.exact_beta_at_alpha_max, 8)
+            sig(o.exact_alpha_max, 6),
+            sig(o.exact_beta_at_alpha_max, 6)
         ),
         Some(w) => println!(
             "exact       K_max = {} N/m at B = {} Ns/m (a = {}, b = {}; linear stable region)",
-            sig(o.exact_alpha_max * w.stiffness, 8),
-            sig(o.exact_beta_at_alpha_max * w.damping, 8),
-            sig(o.exact_alpha_max, 8),
-            sig(o.exact_beta_at_alpha_max, 8)
+            sig(o.exact_alpha_max * w.stiffness, 6),
+            sig(o.exact_beta_at_alpha_max * w.damping, 6),
+            sig(o.exact_alpha_max, 6),
+            sig(o.exact_beta_at_alpha_max, 6)
         ),
     }
     println!();
