@@ -175,7 +175,9 @@ pub fn run(a: &LinearArgs) -> Result<()> {
     println!("error (24) first reaches, going up from β = 0⁺ (α on the exact boundary):");
     for (p, q) in out.points.iter().zip(&pts) {
         let phys = match (p.wall_stiffness, p.wall_damping) {
-            (Some(k), Some(b)) => format!("   (K = {}, B = {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6)),
+            (Some(k), Some(b)) => {
+                format!("   (K = {}, B = {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
+            }
             _ => String::new(),
         };
         let note = if q.at_start {

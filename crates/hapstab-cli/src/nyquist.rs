@@ -281,7 +281,9 @@ fn estimate(a: &NyquistArgs, delta: f64, delay: usize, opts: RobustOptions) -> C
 fn run_remark4(a: &NyquistArgs) -> Result<()> {
     let p = &a.plant;
     if p.stiffness.is_some() {
-        bail!("--stiffness: Remark 4 computes the stiffness that reaches the Nyquist frequency; leave it out");
+        bail!(
+            "--stiffness: Remark 4 computes the stiffness that reaches the Nyquist frequency; leave it out"
+        );
     }
     let eff = p.effective()?;
     let r = nyquist_stiffness(eff.mass, eff.damping, p.period.unwrap_or(DEFAULT_PERIOD))?;
@@ -316,7 +318,10 @@ fn print_remark4(r: &NyquistStiffness) {
         sig(r.nyquist_frequency, 6),
         eng(0.5 / r.period, "Hz", 6)
     );
-    println!("            (γ_N = π² + δ²/4 = {}, eq. 27)", sig(r.gamma, 6));
+    println!(
+        "            (γ_N = π² + δ²/4 = {}, eq. 27)",
+        sig(r.gamma, 6)
+    );
 }
 
 fn print_text(o: &NyquistOut) {

@@ -146,10 +146,7 @@ fn json_out(r: &RobustKmax, samples: usize, normalized: bool) -> Result<()> {
             alpha_max: r.stiffness_max,
             beta_at_alpha_max: r.damping_at_max,
             alpha_min: r.stiffness_min,
-            worst_plant: WorstPlant::Normalized {
-                gamma: k,
-                delta: b,
-            },
+            worst_plant: WorstPlant::Normalized { gamma: k, delta: b },
             alpha_linear_worst: k_linear_worst,
             plants_sampled: r.plants_sampled,
         });

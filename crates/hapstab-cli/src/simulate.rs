@@ -883,7 +883,10 @@ fn analysis_text(r: &RunResult, s: &RunSettings) -> Option<String> {
     let v = &r.verdict;
     let rho = v.spectral_radius?;
     let lin = v.linear_verdict.map_or("", |x| x.as_str());
-    let analysis = format!("spectral radius {} ({lin})", crate::output::radius_text(rho));
+    let analysis = format!(
+        "spectral radius {} ({lin})",
+        crate::output::radius_text(rho)
+    );
     let in_contact = if v.linear_window {
         ""
     } else {

@@ -25,7 +25,10 @@ fn check_json_against_pure_mass_closed_form() {
     assert!(v["spectral_radius"].as_f64().unwrap() < 1.0);
     assert_eq!(v["roots"].as_array().unwrap().len(), 3);
     assert_eq!(v["input"]["d"], 0);
-    assert!(v.get("normalized").is_none(), "the input is already normalized");
+    assert!(
+        v.get("normalized").is_none(),
+        "the input is already normalized"
+    );
     let hi = v["alpha_interval"][1].as_f64().unwrap();
     assert!((hi - 0.6).abs() < 1e-14, "{hi}");
     let v = json(&["check", "--alpha", "0.61", "--beta", "0.5"]);

@@ -141,7 +141,9 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         ),
         (
             "check",
-            vec!["check", "--alpha", "0.1", "--beta", "0.5", "--gamma", "0.001"],
+            vec![
+                "check", "--alpha", "0.1", "--beta", "0.5", "--gamma", "0.001",
+            ],
             [results_of_check, vec!["alpha_interval", "alpha_linear"]].concat(),
         ),
         (
@@ -152,12 +154,24 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         (
             "kmax",
             vec!["kmax", "--robust", "--box-samples", "3"],
-            vec!["k_max", "b_at_k_max", "k_min", "worst_plant", "k_linear_worst"],
+            vec![
+                "k_max",
+                "b_at_k_max",
+                "k_min",
+                "worst_plant",
+                "k_linear_worst",
+            ],
         ),
         (
             "boundary",
             vec!["boundary", "--gamma", "0.001", "--delta", "0.015"],
-            vec!["alpha_max", "beta_at_alpha_max", "area", "polygons", "edges"],
+            vec![
+                "alpha_max",
+                "beta_at_alpha_max",
+                "area",
+                "polygons",
+                "edges",
+            ],
         ),
         (
             "boundary",
@@ -177,7 +191,13 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         (
             "linear",
             vec!["linear", "--mass", "1", "--damping", "1"],
-            vec!["normalized", "linear_slope", "linear_intercept", "alpha_lower", "points"],
+            vec![
+                "normalized",
+                "linear_slope",
+                "linear_intercept",
+                "alpha_lower",
+                "points",
+            ],
         ),
         (
             "nyquist",
@@ -197,7 +217,12 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         (
             "nyquist",
             vec!["nyquist", "--device-mass", "0.1", "--no-arm"],
-            vec!["stiffness", "delta", "gamma_nyquist", "nyquist_frequency_hz"],
+            vec![
+                "stiffness",
+                "delta",
+                "gamma_nyquist",
+                "nyquist_frequency_hz",
+            ],
         ),
         (
             "passivity",
@@ -227,7 +252,13 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         (
             "simulate",
             vec!["simulate", "--duration", "0.1"],
-            vec!["outcome", "reason", "spectral_radius", "samples", "duration"],
+            vec![
+                "outcome",
+                "reason",
+                "spectral_radius",
+                "samples",
+                "duration",
+            ],
         ),
         (
             "simboundary",
@@ -368,7 +399,12 @@ fn robust_kmax_box_flags_and_worst_plant() {
     ]))
     .unwrap();
     let k = |v: &Value| v["k_max"].as_f64().unwrap();
-    assert!(k(&a) <= k(&light) * (1.0 + 1e-9), "{} > {}", k(&a), k(&light));
+    assert!(
+        k(&a) <= k(&light) * (1.0 + 1e-9),
+        "{} > {}",
+        k(&a),
+        k(&light)
+    );
     // one value per flag: a third number or a missing one is one clear line naming the flag
     for bad in ["0.2", "0.2,1.2,3", "a,b"] {
         let out = hapstab()
@@ -377,7 +413,10 @@ fn robust_kmax_box_flags_and_worst_plant() {
             .unwrap();
         assert_eq!(out.status.code(), Some(2));
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(err.contains("--box-mass") && err.lines().count() == 1, "{err}");
+        assert!(
+            err.contains("--box-mass") && err.lines().count() == 1,
+            "{err}"
+        );
     }
 }
 
@@ -398,7 +437,10 @@ fn boundary_text_and_csv() {
     let (a_txt, b_txt) = (words[2], words[6]);
     for (t, want) in [(a_txt, alpha), (b_txt, beta)] {
         let significant = t.trim_start_matches(['-', '0', '.']);
-        assert!(significant.chars().filter(char::is_ascii_digit).count() <= 6, "{line}");
+        assert!(
+            significant.chars().filter(char::is_ascii_digit).count() <= 6,
+            "{line}"
+        );
         let got: f64 = t.parse().unwrap();
         assert!((got - want).abs() <= 5e-6 * want, "{line}: {want}");
     }
@@ -423,7 +465,10 @@ fn boundary_text_and_csv() {
             // nearest double by one unit in the last place; Rust's own parse does not
             let want = json["polygons"][p][v][i].as_f64().unwrap();
             let got: f64 = r[col].parse().unwrap();
-            assert!((got - want).abs() <= f64::EPSILON * want.abs(), "{r:?}: {want}");
+            assert!(
+                (got - want).abs() <= f64::EPSILON * want.abs(),
+                "{r:?}: {want}"
+            );
         }
     }
     assert_eq!(numbered, in_csv, "text and CSV number the polygons alike");
@@ -486,18 +531,32 @@ fn nyquist_takes_the_plant_flags() {
 #[test]
 fn help_is_consistent() {
     let top = stdout(&["--help"]);
-    assert!(top.lines().next().unwrap().contains("stability of haptic virtual walls"));
+    assert!(
+        top.lines()
+            .next()
+            .unwrap()
+            .contains("stability of haptic virtual walls")
+    );
     assert!(!top.contains("front end"));
     let order = commands();
     assert_eq!(&order[..4], ["check", "kmax", "boundary", "map"]);
     assert!(order.iter().position(|c| c == "serve") == Some(order.len() - 1));
-    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md")).unwrap();
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+            .unwrap();
     let mut texts = vec![("README.md".to_string(), readme), ("--help".into(), top)];
     for c in &order {
         texts.push((c.clone(), stdout(&[c, "--help"])));
     }
     for (what, t) in &texts {
-        for bad in ["(issue", "issue 1", "issue 5", "issue 6", "issue 7", "[default "] {
+        for bad in [
+            "(issue",
+            "issue 1",
+            "issue 5",
+            "issue 6",
+            "issue 7",
+            "[default ",
+        ] {
             assert!(!t.contains(bad), "{what}: contains '{bad}'");
         }
     }
@@ -509,7 +568,9 @@ fn help_is_consistent() {
 
 /// The `hapstab …` and `cargo run --release -- …` lines of the README's sh blocks.
 fn readme_examples() -> Vec<Vec<String>> {
-    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md")).unwrap();
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+            .unwrap();
     let mut out = Vec::new();
     let mut in_sh = false;
     for line in readme.lines() {
@@ -560,5 +621,8 @@ fn readme_examples_run() {
     });
     let failed: Vec<_> = results.iter().filter(|(_, r)| r.is_err()).collect();
     assert!(failed.is_empty(), "{failed:#?}");
-    assert!(results.keys().any(|k| k == "check"), "the two-command example");
+    assert!(
+        results.keys().any(|k| k == "check"),
+        "the two-command example"
+    );
 }
