@@ -626,3 +626,39 @@ fn readme_examples_run() {
         "the two-command example"
     );
 }
+
+/// `simulate --json` carries the wall it ran: K and B in N/m and Ns/m (α and β normalized)
+/// under `input`, with the run's setting beside the loop.
+#[test]
+fn simulate_json_carries_the_wall() {
+    let v = strict(&stdout(&[
+        "simulate",
+        "--wall-stiffness",
+        "30000",
+        "--wall-damping",
+        "7.5",
+        "--duration",
+        "0.05",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(v["input"]["wall"]["stiffness"], 30000.0);
+    assert_eq!(v["input"]["wall"]["damping"], 7.5);
+    assert!(v["input"]["effects"].is_object() && v["input"]["initial"].is_object());
+    let v = strict(&stdout(&[
+        "simulate",
+        "--alpha",
+        "0.2",
+        "--beta",
+        "0.5",
+        "--gamma",
+        "0.001",
+        "--duration-samples",
+        "500",
+        "--json",
+    ]))
+    .unwrap();
+    assert_eq!(v["input"]["alpha"], 0.2);
+    assert_eq!(v["input"]["beta"], 0.5);
+    assert!(v.get("normalized").is_none(), "the input is the normalized point");
+}
