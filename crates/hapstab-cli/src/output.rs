@@ -104,7 +104,9 @@ pub fn sig(x: f64, sig: usize) -> String {
         return format!("{x}");
     }
     let e = x.abs().log10().floor() as i32;
-    if !(-4..=7).contains(&e) {
+    // scientific below 1e-4, and from 1e6 on where the integer part alone would show more
+    // digits than asked (axis ticks of 4 digits keep "20000")
+    if !(-4..=7).contains(&e) || e >= (sig as i32).max(6) {
         let s = format!("{:.*e}", sig.saturating_sub(1), x);
         let (m, ex) = s.split_once('e').unwrap_or((&s, "0"));
         format!("{}e{}", trim(m), ex)
@@ -125,6 +127,10 @@ fn trim(s: &str) -> &str {
 /// Engineering notation with an SI prefix: `eng(2.5e-5, "m", 4)` is "25 µm". The mantissa lies
 /// in [1, 1000) from pico to giga; outside that range (and for 0) the number stays unprefixed.
 pub fn eng(x: f64, unit: &str, digits: usize) -> String {
+    if unit == "kg" {
+        // the prefix goes on the gram: 100 g, 1.1 kg
+        return eng(x * 1e3, "g", digits);
+    }
     const PREFIXES: [(i32, &str); 7] = [
         (-12, "p"),
         (-9, "n"),
@@ -235,6 +241,10 @@ mod tests {
         assert_eq!(eng(20_000.0, "N/m", 3), "20 kN/m");
         assert_eq!(eng(0.0, "s", 3), "0 s");
         assert_eq!(eng(1e-20, "m", 3), "1e-20 m");
+        assert_eq!(eng(0.1, "kg", 6), "100 g");
+        assert_eq!(eng(1.1, "kg", 6), "1.1 kg");
+        assert_eq!(sig(9526042.3, 6), "9.52604e6");
+        assert_eq!(sig(986960.44, 6), "986960");
     }
 
     #[test]
