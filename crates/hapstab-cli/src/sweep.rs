@@ -45,12 +45,20 @@ pub struct SweepArgs {
     json: bool,
 }
 
+/// The loop, the swept parameter and the damping at which K_max is taken.
+#[derive(Serialize)]
+struct SweepInput {
+    #[serde(flatten)]
+    lp: LoopInput,
+    param: SweepParam,
+    k_max_at: KmaxAt,
+}
+
 #[derive(Serialize)]
 struct SweepOut {
-    input: LoopInput,
-    param: SweepParam,
+    input: SweepInput,
+    /// Unit of the swept values.
     unit: &'static str,
-    k_max_at: KmaxAt,
     points: Vec<SweepPoint>,
     /// Wall-clock time of the analysis, s.
     seconds: f64,
@@ -122,10 +130,12 @@ pub fn run(a: &SweepArgs) -> Result<()> {
         None => None,
     };
     let out = SweepOut {
-        input: LoopInput::new(&rl, None),
-        param: range.param,
+        input: SweepInput {
+            lp: LoopInput::new(&rl, None),
+            param: range.param,
+            k_max_at: at,
+        },
         unit: range.param.unit(),
-        k_max_at: at,
         points,
         seconds,
         plot,
@@ -148,19 +158,19 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
     for line in describe_loop(lp) {
         println!("{line}");
     }
-    let at = match o.k_max_at {
+    let at = match o.input.k_max_at {
         KmaxAt::Overall => "over every damping B".to_string(),
         KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 5)),
         KmaxAt::Band { lo, hi } => format!("for {} ≤ B ≤ {} Ns/m", sig(lo, 6), sig(hi, 6)),
     };
     println!(
         "sweep       {} ({} points), K_max {at}",
-        o.param.name(),
+        o.input.param.name(),
         o.points.len()
     );
     println!(
         "  {:>14}  {:>14}  {:>14}  {:>14}",
-        o.param.name(),
+        o.input.param.name(),
         "K_max stable",
         "B at K_max",
         "K_max passive"
@@ -172,7 +182,7 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
             .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 5));
         println!(
             "  {:>14}  {:>14}  {:>14}  {:>14}",
-            value_text(o.param, p.value),
+            value_text(o.input.param, p.value),
             k(p.k_max),
             b,
             k(p.k_max_passive)

@@ -237,7 +237,7 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         (
             "sweep",
             vec!["sweep", "--param", "delay-time:0:0.002:3", "--no-arm"],
-            vec!["param", "unit", "k_max_at", "points"],
+            vec!["unit", "points", "seconds"],
         ),
         (
             "ranges",
@@ -660,5 +660,8 @@ fn simulate_json_carries_the_wall() {
     .unwrap();
     assert_eq!(v["input"]["alpha"], 0.2);
     assert_eq!(v["input"]["beta"], 0.5);
-    assert!(v.get("normalized").is_none(), "the input is the normalized point");
+    assert!(
+        v.get("normalized").is_none(),
+        "the input is the normalized point"
+    );
 }
