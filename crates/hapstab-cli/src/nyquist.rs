@@ -29,7 +29,11 @@ const PASSIVE_SAMPLES: usize = 41;
 
 /// Arguments of `hapstab nyquist`: the normalized plant (--delta, --delay) for the regions,
 /// or the plant in physical units (the same flags as every command) for Remark 4.
+/// `--gamma` and `--stiffness` are refused (γ is swept, Remark 4 computes the stiffness), so
+/// their help is hidden.
 #[derive(Args, Debug)]
+#[command(mut_arg("gamma", |a| a.hide(true)))]
+#[command(mut_arg("stiffness", |a| a.hide(true)))]
 pub struct NyquistArgs {
     #[command(flatten)]
     plant: PlantArgs,
