@@ -32,49 +32,68 @@ struct EdgeOut {
     kind: EdgeKind,
 }
 
+/// The region of a physical loop in N/m and Ns/m.
 #[derive(Serialize)]
 struct PhysicalRegion {
     /// K_max in N/m.
     k_max: f64,
     /// B at K_max in Ns/m.
     b_at_k_max: f64,
-    /// N/m per wall unit a (m/T² for the paper's plant: per unit α).
-    k_per_alpha: f64,
-    /// Ns/m per wall unit b (m/T for the paper's plant: per unit β).
-    b_per_beta: f64,
-    /// Area of the stable region in (N/m)·(Ns/m).
+    /// Area of the stable region in N²·s/m².
     area: f64,
-    /// The polygons as arrays of [K, B] in N/m and Ns/m.
+    /// The polygons as arrays of [K, B] in N/m and Ns/m (counter-clockwise, first vertex
+    /// not repeated).
+    polygons: Vec<Vec<[f64; 2]>>,
+    /// K and B of one wall unit: N/m per unit a and Ns/m per unit b (m/T² and m/T for the
+    /// paper's plant: per unit α and β).
+    wall_units: WallUnits,
+}
+
+#[derive(Serialize)]
+struct WallUnits {
+    stiffness: f64,
+    damping: f64,
+}
+
+/// The region of the paper's loop in normalized units.
+#[derive(Serialize)]
+struct NormalizedRegion {
+    /// Largest stable α.
+    alpha_max: f64,
+    /// β at which it is reached.
+    beta_at_alpha_max: f64,
+    /// Area in α·β.
+    area: f64,
+    /// Closed polygons, each an array of [alpha, beta] (counter-clockwise, first vertex not
+    /// repeated).
     polygons: Vec<Vec<[f64; 2]>>,
 }
 
-/// The paper's plant in normalized units (Table I).
+/// The normalized view of the paper's loop given in physical units (Table I).
 #[derive(Serialize)]
-struct PaperPlant {
+struct NormalizedView {
     gamma: f64,
     delta: f64,
     d: usize,
+    alpha_max: f64,
+    beta_at_alpha_max: f64,
+    area: f64,
 }
 
+/// `boundary --json`: the region in N/m and Ns/m for a physical loop, in α and β for the
+/// normalized one, with the edges of each polygon.
 #[derive(Serialize)]
 struct BoundaryOut {
     input: LoopInput,
-    /// The paper's loop given in physical units: its normalized plant (γ, δ, d).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    normalized: Option<PaperPlant>,
-    /// Largest stable stiffness in wall units (α for the paper's loop).
-    alpha_max: f64,
-    /// Damping in wall units (β) at which it is reached.
-    beta_at_alpha_max: f64,
-    /// Area in wall units.
-    area: f64,
-    /// Closed polygons in wall units, each an array of [alpha, beta] (counter-clockwise,
-    /// first vertex not repeated).
-    polygons: Vec<Vec<[f64; 2]>>,
+    #[serde(flatten)]
+    physical: Option<PhysicalRegion>,
+    #[serde(flatten)]
+    units: Option<NormalizedRegion>,
     /// Edge labels per polygon.
     edges: Vec<Vec<EdgeOut>>,
+    /// The paper's loop given in physical units: its normalized view.
     #[serde(skip_serializing_if = "Option::is_none")]
-    physical: Option<PhysicalRegion>,
+    normalized: Option<NormalizedView>,
 }
 
 fn kind_name(k: &EdgeKind, paper: bool) -> String {
@@ -150,45 +169,37 @@ fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
     PhysicalRegion {
         k_max,
         b_at_k_max,
-        k_per_alpha: kpa,
-        b_per_beta: bpb,
         area: r.area * kpa * bpb,
-        polygons: r
-            .polygons
-            .iter()
-            .map(|p| {
-                p.vertices
-                    .iter()
-                    .map(|v| {
-                        let (k, b) = fam.to_physical(v.alpha, v.beta);
-                        [k, b]
-                    })
-                    .collect()
-            })
-            .collect(),
+        polygons: polygons(r, |a, b| {
+            let (k, b) = fam.to_physical(a, b);
+            [k, b]
+        }),
+        wall_units: WallUnits {
+            stiffness: kpa,
+            damping: bpb,
+        },
     }
 }
 
+/// The polygons' vertices mapped by `f` from (α, β) (or wall units).
+fn polygons(r: &StableRegion, f: impl Fn(f64, f64) -> [f64; 2]) -> Vec<Vec<[f64; 2]>> {
+    r.polygons
+        .iter()
+        .map(|p| p.vertices.iter().map(|v| f(v.alpha, v.beta)).collect())
+        .collect()
+}
+
 fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOut {
+    let physical = !rl.normalized;
     BoundaryOut {
         input: LoopInput::new(rl, None),
-        normalized: rl
-            .lp
-            .paper_view()
-            .filter(|_| !rl.normalized)
-            .map(|pp| PaperPlant {
-                gamma: pp.gamma,
-                delta: pp.delta,
-                d: rl.lp.delay.samples,
-            }),
-        alpha_max: r.alpha_max,
-        beta_at_alpha_max: r.beta_at_alpha_max,
-        area: r.area,
-        polygons: r
-            .polygons
-            .iter()
-            .map(|p| p.vertices.iter().map(|v| [v.alpha, v.beta]).collect())
-            .collect(),
+        physical: physical.then(|| physical_region(fam, r)),
+        units: (!physical).then(|| NormalizedRegion {
+            alpha_max: r.alpha_max,
+            beta_at_alpha_max: r.beta_at_alpha_max,
+            area: r.area,
+            polygons: polygons(r, |a, b| [a, b]),
+        }),
         edges: r
             .polygons
             .iter()
@@ -202,7 +213,18 @@ fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOu
                     .collect()
             })
             .collect(),
-        physical: (!rl.normalized).then(|| physical_region(fam, r)),
+        normalized: rl
+            .lp
+            .paper_view()
+            .filter(|_| physical)
+            .map(|pp| NormalizedView {
+                gamma: pp.gamma,
+                delta: pp.delta,
+                d: rl.lp.delay.samples,
+                alpha_max: r.alpha_max,
+                beta_at_alpha_max: r.beta_at_alpha_max,
+                area: r.area,
+            }),
     }
 }
 

@@ -176,7 +176,15 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         (
             "boundary",
             vec!["boundary", "--no-arm"],
-            vec!["alpha_max", "polygons", "physical", "normalized"],
+            vec![
+                "k_max",
+                "b_at_k_max",
+                "area",
+                "polygons",
+                "edges",
+                "wall_units",
+                "normalized",
+            ],
         ),
         (
             "map",
