@@ -240,7 +240,7 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
         if rl.normalized {
             format!("{} cycles/sample", sig(f, 6))
         } else {
-            eng(f, "Hz", 5)
+            eng(f, "Hz", 6)
         }
     };
     let secs = |s: f64| {

@@ -131,7 +131,7 @@ fn run_length(
             if s / period > MAX_SAMPLES {
                 bail!(
                     "{sname} {s} s is {} samples; at most {MAX_SAMPLES:e} are allowed",
-                    sig(s / period, 4)
+                    sig(s / period, 6)
                 );
             }
             Some(samples_for_duration(s, period)?)
@@ -234,18 +234,18 @@ fn model_caption(m: &SimModel) -> String {
             let p = m.params;
             format!(
                 "α = {}, β = {}, γ = {}, δ = {}, d = {}",
-                sig(p.alpha, 4),
-                sig(p.beta, 4),
-                sig(p.gamma, 3),
-                sig(p.delta, 3),
+                sig(p.alpha, 6),
+                sig(p.beta, 6),
+                sig(p.gamma, 6),
+                sig(p.delta, 6),
                 p.d
             )
         }
         SimModel::Loop(l) => format!(
             "K = {}, B = {}, t_d = {}",
-            eng(l.wall.stiffness, "N/m", 4),
-            eng(l.wall.damping, "Ns/m", 4),
-            eng(l.lp.delay_time(), "s", 4)
+            eng(l.wall.stiffness, "N/m", 6),
+            eng(l.wall.damping, "Ns/m", 6),
+            eng(l.lp.delay_time(), "s", 6)
         ),
     }
 }
@@ -575,16 +575,16 @@ fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
 /// A frequency in Hz (physical) or cycles per sample (normalized).
 fn frequency(hz: f64, units: Units) -> String {
     if units.physical {
-        eng(hz, "Hz", 4)
+        eng(hz, "Hz", 6)
     } else {
-        format!("{} cycles/sample", sig(hz, 4))
+        format!("{} cycles/sample", sig(hz, 6))
     }
 }
 
 /// A time in s (physical) or a sample count (normalized).
 fn time_text(seconds: f64, units: Units) -> String {
     if units.physical {
-        eng(seconds, "s", 4)
+        eng(seconds, "s", 6)
     } else {
         format!("{} samples", sig(seconds, 6))
     }
@@ -602,7 +602,7 @@ fn outcome_summary(r: &RunResult, units: Units) -> String {
             format!(
                 "limit cycle{}: {} peak-to-peak{counts}, {}",
                 if lc.bouncing { ", bouncing" } else { "" },
-                eng(lc.peak_to_peak, "m", 4),
+                eng(lc.peak_to_peak, "m", 6),
                 frequency(lc.frequency_hz, units)
             )
         }

@@ -150,7 +150,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
 fn value_text(p: SweepParam, v: f64) -> String {
     match p {
         SweepParam::Window => format!("{v}"),
-        _ => eng(v, p.unit(), 5),
+        _ => eng(v, p.unit(), 6),
     }
 }
 
@@ -160,7 +160,7 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
     }
     let at = match o.input.k_max_at {
         KmaxAt::Overall => "over every damping B".to_string(),
-        KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 5)),
+        KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 6)),
         KmaxAt::Band { lo, hi } => format!("for {} ≤ B ≤ {} Ns/m", sig(lo, 6), sig(hi, 6)),
     };
     println!(
@@ -175,11 +175,11 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
         "B at K_max",
         "K_max passive"
     );
-    let k = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| eng(v, "N/m", 5));
+    let k = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| eng(v, "N/m", 6));
     for p in &o.points {
         let b = p
             .b_at_k_max
-            .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 5));
+            .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 6));
         println!(
             "  {:>14}  {:>14}  {:>14}  {:>14}",
             value_text(o.input.param, p.value),

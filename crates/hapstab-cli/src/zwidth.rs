@@ -193,11 +193,11 @@ fn label_of(lp: &LoopArgs, spec: Option<&str>) -> String {
 }
 
 fn kn(x: f64) -> String {
-    eng(x, "N/m", 5)
+    eng(x, "N/m", 6)
 }
 
 fn ns(x: f64) -> String {
-    eng(x, "Ns/m", 5)
+    eng(x, "Ns/m", 6)
 }
 
 fn print_loop(o: &LoopOut, titled: bool) {
@@ -217,7 +217,7 @@ fn print_loop(o: &LoopOut, titled: bool) {
                 .map(|w| format!("; with B ≥ 0: {} at B = {}", kn(w.stiffness), ns(w.damping)))
                 .unwrap_or_else(|| "; nothing stable with B ≥ 0".into());
             println!(
-                "stable      K_max = {} at B = {}{nonneg}; area {} N/m·Ns/m",
+                "stable      K_max = {} at B = {}{nonneg}; area {} N²·s/m²",
                 kn(k.stiffness),
                 ns(k.damping),
                 sig(z.stable_area, 5)
@@ -230,7 +230,7 @@ fn print_loop(o: &LoopOut, titled: bool) {
         println!(
             "linear (22) K < (b + B)/(t_d + T/2) = ({} + B)/{}",
             ns(l.device_damping),
-            eng(l.effective_delay, "s", 5)
+            eng(l.effective_delay, "s", 6)
         );
     }
     print_table(z);
@@ -248,7 +248,7 @@ fn print_passive(z: &ZWidth) {
                 None => "",
             };
             println!(
-                "passive     b = {}: K_max = {} at B = {}; area {} N/m·Ns/m; {inside}",
+                "passive     b = {}: K_max = {} at B = {}; area {} N²·s/m²; {inside}",
                 ns(p.device_damping),
                 kn(p.k_max),
                 ns(p.b_at_k_max),
