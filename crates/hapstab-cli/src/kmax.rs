@@ -7,7 +7,7 @@ use hapstab::AffineFamily;
 use serde::Serialize;
 
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
-use crate::output::{print_json, sig};
+use crate::output::{eng, print_json};
 use hapstab::loop_analysis::{damping_units, k_max_at_damping, linear_k, region};
 
 /// Arguments of `hapstab kmax`.
@@ -130,25 +130,27 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     for line in describe_loop(&rl.lp) {
         println!("{line}");
     }
+    let kt = |k: f64| eng(k, "N/m", 6);
+    let bt = |b: f64| eng(b, "Ns/m", 6);
     let linear = |what: &str| {
         out.k_linear
-            .map(|k| format!("; linear condition (22){what}: {} N/m", sig(k, 12)))
+            .map(|k| format!("; linear condition (22){what}: {}", kt(k)))
             .unwrap_or_default()
     };
     match (out.k_max, out.wall_damping, out.b_at_k_max) {
         (None, _, _) => println!("no stable virtual stiffness exists"),
         (Some(k), Some(b), _) => println!(
-            "K_max = {} N/m at B = {} Ns/m (stable for {} < K < {}){}",
-            sig(k, 12),
-            sig(b, 8),
-            sig(out.k_interval.map_or(f64::NAN, |i| i[0]), 8),
-            sig(k, 12),
+            "K_max = {} at B = {} (stable for {} < K < {}){}",
+            kt(k),
+            bt(b),
+            out.k_interval.map_or("—".into(), |i| kt(i[0])),
+            kt(k),
             linear("")
         ),
         (Some(k), None, Some(b)) => println!(
-            "K_max = {} N/m, reached at B = {} Ns/m{}",
-            sig(k, 12),
-            sig(b, 12),
+            "K_max = {}, reached at B = {}{}",
+            kt(k),
+            bt(b),
             linear(" at that B")
         ),
         _ => {}

@@ -673,3 +673,73 @@ fn simulate_json_carries_the_wall() {
         "the input is the normalized point"
     );
 }
+
+/// The significant digits of a decimal number written with a point or an exponent (counts
+/// and sample numbers, written without either, are not measurements).
+fn significant_digits(token: &str) -> Option<usize> {
+    let t = token.trim_start_matches(['-', '+', '−', '(', '[', '×', '±']);
+    let t = t.trim_end_matches([',', ')', ']', ';', ':', '%']);
+    let mantissa = t.split(['e', 'E']).next()?;
+    let is_number = !mantissa.is_empty()
+        && mantissa.chars().all(|c| c.is_ascii_digit() || c == '.')
+        && mantissa.chars().any(|c| c.is_ascii_digit())
+        && t.parse::<f64>().is_ok();
+    if !is_number || !(t.contains('.') || t.contains(['e', 'E'])) {
+        return None;
+    }
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    Some(digits.trim_start_matches('0').len())
+}
+
+/// Human output of every analysis command shows at most 6 significant digits per number
+/// (engineering notation), "—" rather than NaN, and no number in raw exponent form longer
+/// than that.
+#[test]
+fn human_output_has_six_significant_digits() {
+    assert_eq!(significant_digits("1.477436755520836e-1"), Some(16));
+    assert_eq!(significant_digits("0.000318182,"), Some(6));
+    assert_eq!(significant_digits("2003"), None);
+    let runs: &[&[&str]] = &[
+        &["check"],
+        &[
+            "check", "--alpha", "0.1", "--beta", "0.5", "--gamma", "0.001", "--delay", "2",
+        ],
+        &["kmax"],
+        &["kmax", "--wall-damping", "10"],
+        &["kmax", "--robust", "--box-samples", "3"],
+        &["boundary"],
+        &[
+            "boundary", "--gamma", "0.001", "--delta", "0.015", "--delay", "1",
+        ],
+        &["linear", "--mass", "1", "--damping", "1"],
+        &[
+            "nyquist",
+            "--delta",
+            "0.5",
+            "--steps",
+            "2",
+            "--beta-samples",
+            "16",
+        ],
+        &["nyquist", "--device-mass", "0.1", "--no-arm"],
+        &["passivity"],
+        &["zwidth", "--no-arm", "--table-damping", "0,10"],
+        &["sweep", "--param", "delay-time:0:0.002:3", "--no-arm"],
+        &["ranges"],
+        &["discretize"],
+        &["simulate", "--duration", "0.1"],
+    ];
+    std::thread::scope(|s| {
+        for args in runs {
+            s.spawn(move || {
+                let text = stdout(args);
+                assert!(!text.contains("NaN"), "{args:?}:\n{text}");
+                for tok in text.split_whitespace() {
+                    if let Some(n) = significant_digits(tok) {
+                        assert!(n <= 6, "{args:?}: '{tok}' has {n} digits:\n{text}");
+                    }
+                }
+            });
+        }
+    });
+}
