@@ -553,6 +553,24 @@ const TWO_MASS_FLAGS: [&str; 14] = [
     "0.0014",
 ];
 
+/// The library's [`hapstab::Loop`] of [`TWO_MASS_LOOP`].
+fn two_mass_loop() -> hapstab::Loop {
+    let plant = hapstab::Plant::new(
+        hapstab::PlantModel::TwoMass(hapstab::TwoMass {
+            motor_mass: 0.05,
+            motor_damping: 0.0,
+            handle_mass: 0.05,
+            transmission_stiffness: 5000.0,
+            transmission_damping: 1.0,
+            arm: hapstab::Arm::TYPICAL,
+        }),
+        0.0002,
+    )
+    .unwrap();
+    let delay = hapstab::Delay::from_time(0.0014, 0.001).unwrap();
+    hapstab::Loop::new(plant, 0.001, delay, "lowpass:150".parse().unwrap()).unwrap()
+}
+
 fn hapstab_json(args: &[&str]) -> serde_json::Value {
     let out = assert_cmd::Command::cargo_bin("hapstab")
         .unwrap()
@@ -588,6 +606,8 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
     // Vertices on the z = 1 line a = −γ are double roots at z = 1 amid the plant's cluster
     // of roots near 1, where roots of the z-coefficients are ill-conditioned: sample the rest.
     let gamma = j["params"]["gamma"].as_f64().unwrap();
+    let lp = two_mass_loop();
+    let fam = hapstab::AffineFamily::of_loop(&lp).unwrap();
     let arcs: Vec<&serde_json::Value> = poly
         .iter()
         .filter(|v| (v[0].as_f64().unwrap() + gamma).abs() > 1e-6 * gamma)
@@ -600,6 +620,14 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
             .json();
         let rho = p["spectral_radius"].as_f64().unwrap();
         assert!((rho - 1.0).abs() < 1e-6, "vertex ({a}, {b}): rho {rho}");
+        // on the boundary too, the verdict is check's (`hapstab::loop_analysis::analysis`)
+        let an = hapstab::loop_analysis::analysis(&lp, &fam, (a, b)).unwrap();
+        assert_eq!(p["verdict"], an.verdict.as_str(), "vertex ({a}, {b})");
+        // (serde_json's float parser may be an ulp off the server's shortest form)
+        assert!(
+            (rho - an.spectral_radius).abs() <= 1e-15,
+            "vertex ({a}, {b})"
+        );
     }
     // A wall inside: the explorer's point is check's.
     let (k, b) = (
@@ -728,5 +756,126 @@ fn bad_loop_input_is_400_naming_the_parameter() {
         assert_eq!(j["parameter"], *name, "{path}: {j}");
         let msg = j["error"].as_str().unwrap();
         assert!(msg.contains(name) && msg.contains(value), "{path}: {msg}");
+    }
+}
+
+/// The paper's plant given as a loop (an explicit backward velocity estimator makes it a
+/// loop request): the explorer analyses it as `hapstab check` does
+/// (`hapstab::loop_analysis`, through the paper's family in (α, β)), so its region is the
+/// paper's region exactly and every point's verdict and radius are `Analysis::new`'s, on the
+/// boundary too.
+#[test]
+fn a_loop_with_the_papers_view_is_analysed_as_check_does() {
+    let s = Server::start(&[]);
+    let lp = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&d=1&estimator=backward";
+    let r = s.get(&format!("/api/region?{lp}"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    assert_eq!(j["loop"]["velocity"]["kind"], "backward", "{j}");
+    let eff =
+        hapstab::Effective::combine(hapstab::Device::PHANTOM_LIKE, hapstab::Arm::TYPICAL).unwrap();
+    let pp = PlantParams::from_physical(&eff, 1e-3).unwrap();
+    let lib = library_region(pp.gamma, pp.delta, 1);
+    assert_eq!(j["region"]["alpha_max"].as_f64().unwrap(), lib.alpha_max);
+    let vertices = &lib.polygons[0].vertices;
+    for v in vertices.iter().step_by(vertices.len() / 12 + 1) {
+        let p = s
+            .get(&format!(
+                "/api/point?{lp}&alpha={}&beta={}",
+                v.alpha, v.beta
+            ))
+            .json();
+        let an = Analysis::new(Normalized::new(v.alpha, v.beta, pp.gamma, pp.delta, 1).unwrap())
+            .unwrap();
+        assert_eq!(
+            p["verdict"],
+            an.verdict.as_str(),
+            "({}, {})",
+            v.alpha,
+            v.beta
+        );
+        let rho = p["spectral_radius"].as_f64().unwrap();
+        // (serde_json's float parser may be an ulp off the server's shortest form)
+        assert!(
+            (rho - an.spectral_radius).abs() <= 1e-15,
+            "{rho} vs {}",
+            an.spectral_radius
+        );
+    }
+}
+
+/// The robust region in physical mode over the arm's stiffness k_H ∈ [lo, hi] N/m: the same
+/// region as the γ range γ = k_H T²/m, and its K_max agrees with `hapstab kmax --robust` on
+/// the same box (mass and damping fixed, stiffness ranged).
+#[test]
+fn robust_range_in_arm_stiffness_is_the_gamma_range_and_kmax_robust() {
+    let s = Server::start(&[]);
+    let phys = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&d=0";
+    let r = s.get(&format!(
+        "/api/region?{phys}&robust=1&arm_stiffness_lo=0&arm_stiffness_hi=350"
+    ));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    let rob = &j["robust"];
+    // m = 1.1 kg, T = 1 ms: γ = k_H T²/m
+    let g_hi = 350.0 * 1e-6 / 1.1;
+    assert_eq!(rob["gamma_lo"].as_f64().unwrap(), 0.0);
+    assert!((rob["gamma_hi"].as_f64().unwrap() - g_hi).abs() <= 1e-15 * g_hi);
+    assert_eq!(rob["arm_stiffness_hi"].as_f64().unwrap(), 350.0);
+    let (gamma, delta) = (
+        j["params"]["gamma"].as_f64().unwrap(),
+        j["params"]["delta"].as_f64().unwrap(),
+    );
+    let norm = s
+        .get(&format!(
+            "/api/region?gamma={}&delta={}&d=0&robust=1&gamma_lo=0&gamma_hi={}",
+            gamma,
+            delta,
+            rob["gamma_hi"].as_f64().unwrap()
+        ))
+        .json();
+    assert_eq!(norm["robust"]["polygon"], rob["polygon"]);
+    let kpa = j["physical"]["k_per_alpha"].as_f64().unwrap();
+    let k_max = rob["alpha_max"].as_f64().unwrap() * kpa;
+    let cli = hapstab_json(&[
+        "kmax",
+        "--robust",
+        "--box-mass",
+        "1.1",
+        "1.1",
+        "--box-damping",
+        "7.5",
+        "7.5",
+        "--box-stiffness",
+        "0",
+        "350",
+    ]);
+    let k_cli = cli["k_max"].as_f64().unwrap();
+    // The explorer's 64 β slices find the peak of a smooth boundary from below; the CLI
+    // refines the slices near it: a relative gap of order (slice spacing)² ≈ 1e-4 at most.
+    assert!(
+        k_max <= k_cli * (1.0 + 1e-12) && k_max >= k_cli * (1.0 - 1e-4),
+        "explorer {k_max} vs kmax --robust {k_cli}"
+    );
+    // γ and k_H ranges together, or k_H in normalized mode: 400 naming the parameter.
+    for (path, name) in [
+        (
+            format!(
+                "/api/region?{phys}&robust=1&arm_stiffness_lo=0&arm_stiffness_hi=350&gamma_lo=0"
+            ),
+            "gamma_lo",
+        ),
+        (
+            format!("/api/region?{PLANT}&robust=1&arm_stiffness_lo=0&arm_stiffness_hi=350"),
+            "arm_stiffness_lo",
+        ),
+        (
+            format!("/api/region?{phys}&robust=1&arm_stiffness_lo=400&arm_stiffness_hi=350"),
+            "arm_stiffness_hi",
+        ),
+    ] {
+        let r = s.get(&path);
+        assert_eq!(r.status, 400, "{path}: {}", r.body);
+        assert_eq!(r.json()["parameter"], name, "{path}");
     }
 }

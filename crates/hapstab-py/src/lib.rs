@@ -10,6 +10,8 @@ mod discretize;
 mod errors;
 mod loops;
 mod map;
+mod margins;
+mod passivity;
 mod simulate;
 mod text;
 mod wall;
@@ -32,11 +34,16 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<map::PyStabilityMap>()?;
     m.add_class::<discretize::PyDiscretization>()?;
     m.add_class::<simulate::PySimulation>()?;
+    m.add_class::<passivity::PyPassivity>()?;
+    m.add_class::<passivity::PyPassiveRegion>()?;
+    m.add_class::<margins::PyMargins>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
     m.add_function(wrap_pyfunction!(map::stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(discretize::discretize, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(passivity::passivity, m)?)?;
+    m.add_function(wrap_pyfunction!(margins::margins, m)?)?;
     Ok(())
 }

@@ -76,3 +76,30 @@ def loop_of(d: dict) -> hs.Loop:
         velocity=d["velocity"],
         force_lag=d["force_lag"],
     )
+
+
+@pytest.fixture(scope="session")
+def hapstab_cli() -> Path:
+    """The command-line binary of this checkout: $HAPSTAB_BIN when set, else the one that
+    `cargo test --workspace` builds (as .ci/run does before pytest, so there this is a no-op;
+    run alone it builds), located from cargo's artifact messages. Never stale, never skipped."""
+    given = os.environ.get("HAPSTAB_BIN")
+    if given:
+        return Path(given)
+    done = subprocess.run(
+        ["cargo", "test", "--workspace", "--no-run", "--message-format=json-render-diagnostics"],
+        cwd=ROOT,
+        check=True,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    exes = [
+        m["executable"]
+        for m in map(json.loads, done.stdout.splitlines())
+        if m.get("reason") == "compiler-artifact"
+        and m["target"]["name"] == "hapstab"
+        and "bin" in m["target"]["kind"]
+        and not m["profile"]["test"]  # the binary itself, not its unit-test harness
+    ]
+    assert len(exes) == 1 and Path(exes[0]).is_file(), exes
+    return Path(exes[0])

@@ -21,7 +21,9 @@ def params(fn: ast.FunctionDef):
 
 def test_functions_match_their_stubs():
     funcs = {n.name: n for n in stub_tree().body if isinstance(n, ast.FunctionDef)}
-    assert set(funcs) == {"check", "region", "kmax", "stability_map", "discretize", "simulate"}
+    assert set(funcs) == {
+        "check", "region", "kmax", "stability_map", "discretize", "simulate", "passivity", "margins"
+    }
     for name, node in funcs.items():
         sig = inspect.signature(getattr(hs, name))
         assert params(node) == list(sig.parameters), name

@@ -516,9 +516,15 @@ pub fn passivity(lp: &Loop, wall: Wall) -> Result<Passivity> {
 
 /// As [`passivity`] with the wall structure already built.
 pub fn passivity_with(sw: &SampledWall, lp: &Loop, wall: Wall) -> Passivity {
+    passivity_of_device(sw, wall, device_damping(&lp.plant))
+}
+
+/// Passivity of a wall for a given device damper (Colgate–Schenkel; eq. 28 for the paper's
+/// loop): the requirement of the wall structure `sw` against `device`, e.g. a damping other
+/// than the plant's own [`device_damping`] ("would a device with b = … render it passively?").
+pub fn passivity_of_device(sw: &SampledWall, wall: Wall, device: DeviceDamping) -> Passivity {
     let requirement = sw.required_damping(wall);
     let dc_stiffness = sw.dc_stiffness(wall);
-    let device = device_damping(&lp.plant);
     let verdict = match &device {
         DeviceDamping::NotApplicable { .. } => PassivityVerdict::NotApplicable,
         DeviceDamping::Known { damping } => {

@@ -193,7 +193,7 @@ fn attempt(
         return Ok((StableRegion::empty(), none));
     };
     let wbox = bbox(window.polygon.iter().map(|(p, _)| *p));
-    let graph = arrangement(fam, &window, &coarse);
+    let graph = arrangement(fam, &window, &coarse)?;
     let cycles = faces(&graph);
     let consistent = euler_holds(&graph, cycles.len());
     let faces = stable_faces(fam, &graph, cycles);
@@ -1278,15 +1278,20 @@ struct Pieces {
     chain_ends: Vec<(usize, usize)>,
 }
 
-fn arrangement(fam: &AffineFamily, window: &Window, coarse: &[(f64, P)]) -> Graph {
+fn arrangement(fam: &AffineFamily, window: &Window, coarse: &[(f64, P)]) -> Result<Graph> {
     let mut pieces = pieces(chains(fam, coarse, window), window);
     cut_chain_ends(&mut pieces, window.size);
-    intersect(fam, window, &mut pieces);
+    intersect(fam, window, &mut pieces)?;
     let mut g = build_graph(&pieces);
     keep_inside(&mut g, window);
     prune_dangling(&mut g);
-    g
+    Ok(g)
 }
+
+/// Most crossings the arrangement may hold: a boundary curve that crosses itself more often
+/// than this (a curve that retraces itself, segment over segment) would need memory and time
+/// quadratic in its points; past it the region is refused with an honest error.
+const MAX_CROSSINGS: usize = 1_000_000;
 
 fn pieces(chains: Vec<Vec<(f64, P)>>, window: &Window) -> Pieces {
     let mut segs: Vec<Seg> = Vec::new();
@@ -1361,8 +1366,10 @@ fn cut_chain_ends(pc: &mut Pieces, size: f64) {
 }
 
 /// All pairwise crossings by a sweep over bounding boxes sorted along the stiffness axis;
-/// each crossing becomes a vertex refined on the curve and a cut of both segments.
-fn intersect(fam: &AffineFamily, window: &Window, pc: &mut Pieces) {
+/// each crossing becomes a vertex refined on the curve and a cut of both segments. At most
+/// [`MAX_CROSSINGS`]; beyond, an error.
+fn intersect(fam: &AffineFamily, window: &Window, pc: &mut Pieces) -> Result<()> {
+    let mut crossings = 0_usize;
     let lo = |s: &Seg| s.p.x.min(s.q.x);
     let hi = |s: &Seg| s.p.x.max(s.q.x);
     let mut order: Vec<usize> = (0..pc.segs.len()).collect();
@@ -1383,6 +1390,14 @@ fn intersect(fam: &AffineFamily, window: &Window, pc: &mut Pieces) {
             let Some((t, u)) = seg_intersect(&si, &sj) else {
                 continue;
             };
+            crossings += 1;
+            if crossings > MAX_CROSSINGS {
+                return Err(Error::Numerical(format!(
+                    "the stable region's boundary curve crosses itself more than \
+                     {MAX_CROSSINGS} times (it retraces itself); the stable intervals at fixed \
+                     damping (`check`, `kmax`) and the grid map remain available"
+                )));
+            }
             match (si.is_curve(), sj.is_curve()) {
                 (true, true) => {
                     let (p, ti, tj) = refine_cc(fam, &si, &sj);
@@ -1398,6 +1413,7 @@ fn intersect(fam: &AffineFamily, window: &Window, pc: &mut Pieces) {
         }
         active.push(i);
     }
+    Ok(())
 }
 
 /// A crossing of curve segment c (at parameter tc) with window edge b (at tb).

@@ -208,20 +208,23 @@ pub fn verdict_of_radius(rho: f64) -> Verdict {
 }
 
 /// Reconciles the Schur–Cohn verdict with the spectral radius ρ ± `error` of the roots:
-/// their common answer when they agree; `Marginal` when they differ only because ρ is within
-/// its error of the marginal band (double precision cannot decide the side); an
-/// [`Error::Numerical`] naming both when they differ by more than the rounding allows.
+/// their common answer when they agree; `Marginal` when they are consistent but the radius
+/// lies in the marginal band (a root inside the circle by less than [`MARGINAL_BAND`], which
+/// the algebraic test still calls stable) or within its error of the other side (double
+/// precision cannot decide); an [`Error::Numerical`] naming both when they differ by more
+/// than the rounding allows.
 pub fn reconcile(algebraic: Verdict, rho: f64, error: f64) -> Result<Verdict> {
     if algebraic == verdict_of_radius(rho) {
         return Ok(algebraic);
     }
-    let (lo, hi) = (
-        verdict_of_radius(rho - error),
-        verdict_of_radius(rho + error),
-    );
-    // Stable < Marginal < Unstable in declaration order.
-    let rank = |v: Verdict| v as u8;
-    if (rank(lo)..=rank(hi)).contains(&rank(algebraic)) {
+    let consistent = match algebraic {
+        Verdict::Stable => rho - error < 1.0,
+        Verdict::Unstable => rho + error > 1.0,
+        Verdict::Marginal => {
+            rho - error < 1.0 + MARGINAL_BAND && rho + error >= 1.0 - MARGINAL_BAND
+        }
+    };
+    if consistent {
         Ok(Verdict::Marginal)
     } else {
         Err(Error::Numerical(format!(

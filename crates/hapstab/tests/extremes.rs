@@ -90,8 +90,23 @@ fn cases() -> u32 {
         .unwrap_or(4000)
 }
 
+/// The same cases on every CI run (a failure is then reproduced by rerunning); a longer run
+/// (HAPSTAB_EXTREME_CASES) draws fresh ones, or those of PROPTEST_RNG_SEED.
+fn config(cases: u32) -> ProptestConfig {
+    let mut c = ProptestConfig::with_cases(cases);
+    if std::env::var_os("HAPSTAB_EXTREME_CASES").is_none()
+        && std::env::var_os("PROPTEST_RNG_SEED").is_none()
+    {
+        c.rng_seed = proptest::test_runner::RngSeed::Fixed(CI_SEED);
+    }
+    c
+}
+
+/// Seed of the CI cases.
+const CI_SEED: u64 = 0x4841_5053;
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), .. ProptestConfig::default() })]
+    #![proptest_config(config(cases()))]
 
     #[test]
     fn intervals_agree_with_the_point_test_near_the_origin(
@@ -111,7 +126,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases() / 10, .. ProptestConfig::default() })]
+    #![proptest_config(config(cases() / 10))]
 
     #[test]
     fn region_agrees_with_the_point_test(lp in a_loop(), a in -2.0f64..2.0, b in -1.0f64..3.0) {
@@ -139,4 +154,33 @@ proptest! {
             prop_assert!(near, "a = {a}, b = {b}: point test {stable}, region {inside}, intervals {ivs:?}");
         }
     }
+}
+
+/// Known defect, found by a long random run: an undamped plant far outside the paper's ranges
+/// (γ = 6.5e6, δ = 0, d = 3: m = 22 g, k = 681 kN/m at T = 0.46 s) has stable walls at
+/// (α, β) ≈ (−0.19, −0.29), a distance of 1e-8 of the region's size from the wall-free
+/// corner, that the drawn region leaves out (the stable intervals and the point test agree
+/// that they are stable).
+#[test]
+#[ignore = "known defect: a region feature at 1e-8 of the region's size near an undamped corner"]
+fn undamped_corner_at_extreme_gamma() {
+    let plant = Plant::mass_spring_damper(
+        Effective::new(0.02224805533028814, 0.0, 680605.0573079706).unwrap(),
+    )
+    .unwrap();
+    let lp = Loop::new(
+        plant,
+        0.4600570433599097,
+        Delay::samples(3).unwrap(),
+        VelocityEstimator::Backward,
+    )
+    .unwrap();
+    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let (a, b) = (-0.18875524752594028, -0.2914861175691367);
+    assert_eq!(
+        verdict_at(&fam, a, b, &mut fam.coefficients(a, b)),
+        Verdict::Stable
+    );
+    let r = stable_region(&fam).unwrap();
+    assert!(r.contains(AlphaBeta { alpha: a, beta: b }));
 }

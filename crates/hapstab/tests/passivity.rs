@@ -7,7 +7,7 @@ use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator}
 use hapstab::params::{Arm, Effective, Wall};
 use hapstab::passivity::{
     DeviceDamping, PassivityVerdict, SampledWall, k_max_passive_at, passive_region, passivity,
-    passivity_with,
+    passivity_of_device, passivity_with,
 };
 use hapstab::{AffineFamily, schur_stable};
 use num_complex::Complex64;
@@ -595,6 +595,20 @@ fn verdicts_and_device_damping() {
     assert_eq!(p.verdict, PassivityVerdict::Boundary);
     let p = passivity(&lp, wall(-100.0, 0.0)).unwrap(); // a negative spring
     assert_eq!(p.verdict, PassivityVerdict::NotPassive);
+    // another device damper against the same wall: 1.6 needed, 1.7 given
+    let sw = SampledWall::new(&lp).unwrap();
+    let other = passivity_of_device(
+        &sw,
+        wall(2000.0, 0.6),
+        DeviceDamping::Known { damping: 1.7 },
+    );
+    assert_eq!(other.verdict, PassivityVerdict::Passive);
+    assert!(rel(other.requirement.b_required, 1.6) < 1e-14);
+    let absent = DeviceDamping::NotApplicable {
+        reason: "none".into(),
+    };
+    let p = passivity_of_device(&sw, wall(2000.0, 0.6), absent);
+    assert_eq!(p.verdict, PassivityVerdict::NotApplicable);
     let lag = Loop::new(
         lp.plant.clone().with_force_lag(1e-4).unwrap(),
         1e-3,

@@ -12,13 +12,12 @@
 
 use hapstab::boundary::Interval;
 use hapstab::loop_analysis::{
-    characteristic, damping_units, k_max_at_damping, k_max_within, pick_interval, region,
+    analysis, damping_units, k_max_at_damping, k_max_within, pick_interval, region,
     stable_intervals, wall_units,
 };
 use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Device, Effective, Wall};
-use hapstab::stability::Analysis;
 use hapstab::{AffineFamily, PlantParams};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
@@ -158,7 +157,7 @@ fn pair(iv: Option<Interval>, fam: &AffineFamily) -> Value {
 /// One check at a wall, as `hapstab.check` reports it.
 fn check_at(lp: &Loop, fam: &AffineFamily, w: Wall) -> Value {
     let (a, b) = wall_units(lp, fam, w).unwrap();
-    let an = Analysis::of_poly(&characteristic(lp, fam, (a, b)).unwrap()).unwrap();
+    let an = analysis(lp, fam, (a, b)).unwrap();
     let iv = pick_interval(&stable_intervals(lp, fam, b).unwrap(), a);
     json!({
         "wall": [w.stiffness, w.damping],

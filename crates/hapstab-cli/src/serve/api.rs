@@ -5,11 +5,11 @@ use std::time::Instant;
 
 use hapstab::boundary::AlphaBeta;
 use hapstab::linear::{linear_alpha_limit, linear_check};
+use hapstab::loop_analysis;
 use hapstab::nyquist::{
     RobustOptions, passive_region, region_summary, robust_region, unit_circle_pole,
 };
-use hapstab::params::Normalized;
-use hapstab::params::Wall;
+use hapstab::params::{Effective, Normalized, PlantParams, Wall};
 use hapstab::region::{EdgeKind, stable_region};
 use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, Model, RunResult};
 use hapstab::simulation::{LoopModel, SimModel};
@@ -120,6 +120,10 @@ pub struct PassiveOut {
 pub struct RobustOut {
     pub gamma_lo: f64,
     pub gamma_hi: f64,
+    /// Physical mode: the arm's stiffness range k_H ∈ [lo, hi] in N/m that gives the γ range
+    /// (γ = k_H T²/m with m and b fixed); null when the range was given as γ.
+    pub arm_stiffness_lo: Option<f64>,
+    pub arm_stiffness_hi: Option<f64>,
     /// Uniform γ samples (ends included) and initial β slices.
     pub gamma_samples: usize,
     pub beta_samples: usize,
@@ -174,6 +178,8 @@ pub fn region_names() -> Vec<&'static str> {
         "robust",
         "gamma_lo",
         "gamma_hi",
+        "arm_stiffness_lo",
+        "arm_stiffness_hi",
         "gamma_samples",
         "beta_samples",
         "refine",
@@ -194,6 +200,8 @@ pub struct RegionReq {
 pub struct RobustReq {
     pub lo: f64,
     pub hi: f64,
+    /// The arm's stiffness range in N/m that gave [lo, hi] (physical mode).
+    pub arm_stiffness: Option<[f64; 2]>,
     pub gamma_samples: usize,
     pub beta_samples: usize,
     pub refine: bool,
@@ -220,19 +228,7 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
                 ),
             ));
         }
-        let lo = p.num_in("gamma_lo", 0.0, MAX_GAMMA, " (robust range, lower γ)")?;
-        let hi = p.num_in("gamma_hi", 0.0, MAX_GAMMA, " (robust range, upper γ)")?;
-        if hi < lo {
-            return Err(ApiError::param(
-                "gamma_hi",
-                &fmt(hi),
-                format!(
-                    "parameter 'gamma_hi' must be >= gamma_lo = {} (got {})",
-                    fmt(lo),
-                    fmt(hi)
-                ),
-            ));
-        }
+        let (lo, hi, arm_stiffness) = robust_range(p, &spec)?;
         if spec.d > MAX_ROBUST_D {
             return Err(ApiError::param(
                 "d",
@@ -280,6 +276,7 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         Some(RobustReq {
             lo,
             hi,
+            arm_stiffness,
             gamma_samples: gs,
             beta_samples: bs,
             refine,
@@ -288,6 +285,8 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         for name in [
             "gamma_lo",
             "gamma_hi",
+            "arm_stiffness_lo",
+            "arm_stiffness_hi",
             "gamma_samples",
             "beta_samples",
             "refine",
@@ -305,6 +304,112 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
     let nominal = nominal_region_cost(spec.cost_d());
     within_budget(nominal, "the exact region", "d", &spec.d.to_string())?;
     Ok(RegionReq { spec, tol, robust })
+}
+
+/// The γ range of a robust request: `gamma_lo`, `gamma_hi`, or in physical mode the arm's
+/// stiffness range `arm_stiffness_lo`, `arm_stiffness_hi` in N/m (m and b fixed), converted
+/// as the plant's γ = kT²/m is formed (Table I), so that the range means what `hapstab kmax
+/// --robust --box-stiffness lo,hi` means.
+fn robust_range(p: &Params, spec: &PlantSpec) -> Result<(f64, f64, Option<[f64; 2]>), ApiError> {
+    let by_k = p.has("arm_stiffness_lo") || p.has("arm_stiffness_hi");
+    let (lo, hi, k) = match spec.physical {
+        Some(ph) if by_k => {
+            refuse_gamma_range(p)?;
+            let k_lo = p.num_in(
+                "arm_stiffness_lo",
+                0.0,
+                MAX_PHYS_STIFFNESS,
+                " N/m (robust range, lower arm stiffness k_H)",
+            )?;
+            let k_hi = p.num_in(
+                "arm_stiffness_hi",
+                0.0,
+                MAX_PHYS_STIFFNESS,
+                " N/m (robust range, upper arm stiffness k_H)",
+            )?;
+            let gamma = |name: &str, k: f64| -> Result<f64, ApiError> {
+                let eff = Effective::new(ph.mass, ph.damping, k).map_err(lib_error)?;
+                let g = PlantParams::from_physical(&eff, ph.period)
+                    .map_err(lib_error)?
+                    .gamma;
+                if g > MAX_GAMMA {
+                    return Err(ApiError::param(
+                        name,
+                        &fmt(k),
+                        format!(
+                            "parameter '{name}' = {} N/m gives γ = kT²/m = {} above the explorer's {}",
+                            fmt(k),
+                            fmt(g),
+                            fmt(MAX_GAMMA)
+                        ),
+                    ));
+                }
+                Ok(g)
+            };
+            check_order("arm_stiffness", k_lo, k_hi)?;
+            (
+                gamma("arm_stiffness_lo", k_lo)?,
+                gamma("arm_stiffness_hi", k_hi)?,
+                Some([k_lo, k_hi]),
+            )
+        }
+        None if by_k => {
+            let name = if p.has("arm_stiffness_lo") {
+                "arm_stiffness_lo"
+            } else {
+                "arm_stiffness_hi"
+            };
+            let v = p.raw(name).unwrap_or("");
+            return Err(ApiError::param(
+                name,
+                v,
+                format!(
+                    "parameter '{name}' (got '{}') belongs to mode=physical; give gamma_lo, gamma_hi",
+                    clip(v)
+                ),
+            ));
+        }
+        _ => {
+            let lo = p.num_in("gamma_lo", 0.0, MAX_GAMMA, " (robust range, lower γ)")?;
+            let hi = p.num_in("gamma_hi", 0.0, MAX_GAMMA, " (robust range, upper γ)")?;
+            check_order("gamma", lo, hi)?;
+            (lo, hi, None)
+        }
+    };
+    Ok((lo, hi, k))
+}
+
+/// `{name}_hi` >= `{name}_lo`.
+fn check_order(name: &str, lo: f64, hi: f64) -> Result<(), ApiError> {
+    if hi < lo {
+        return Err(ApiError::param(
+            &format!("{name}_hi"),
+            &fmt(hi),
+            format!(
+                "parameter '{name}_hi' must be >= {name}_lo = {} (got {})",
+                fmt(lo),
+                fmt(hi)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The robust range is given either as γ or as the arm's stiffness, not both.
+fn refuse_gamma_range(p: &Params) -> Result<(), ApiError> {
+    for name in ["gamma_lo", "gamma_hi"] {
+        if let Some(v) = p.raw(name) {
+            return Err(ApiError::param(
+                name,
+                v,
+                format!(
+                    "parameter '{name}' (got '{}'): give the robust range either as gamma_lo, gamma_hi or as arm_stiffness_lo, arm_stiffness_hi (N/m), not both",
+                    clip(v)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Estimated cost of the nominal part of `/api/region`: the exact polygons and, when they
@@ -386,7 +491,7 @@ fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
 /// units; the paper's overlays (linear condition, passive region) do not apply.
 fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiError> {
     let t0 = Instant::now();
-    let r = stable_region(&g.family).map_err(lib_error)?;
+    let r = loop_analysis::region(&g.lp, &g.family).map_err(lib_error)?;
     let region = region_json(&r, req.tol);
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     Ok(RegionOut {
@@ -463,6 +568,8 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
             Some(RobustOut {
                 gamma_lo: r.gamma_lo,
                 gamma_hi: r.gamma_hi,
+                arm_stiffness_lo: rr.arm_stiffness.map(|k| k[0]),
+                arm_stiffness_hi: rr.arm_stiffness.map(|k| k[1]),
                 gamma_samples: rr.gamma_samples,
                 beta_samples: rr.beta_samples,
                 refined: rr.refine,
@@ -618,7 +725,7 @@ pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiErr
     let t0 = Instant::now();
     let n = point_params(spec, alpha, beta)?;
     let a = match &spec.general {
-        Some(g) => Analysis::of_poly(&g.family.coefficients(alpha, beta)),
+        Some(g) => loop_analysis::analysis(&g.lp, &g.family, (alpha, beta)),
         None => Analysis::new(n),
     }
     .map_err(lib_error)?;

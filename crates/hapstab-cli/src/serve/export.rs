@@ -454,14 +454,11 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
         items.push(("Colgate's passive region (28)".into(), "#2ca02c"));
     }
     if let Some(r) = &out.robust {
-        items.push((
-            format!(
-                "robust region, γ ∈ [{}, {}]",
-                sig(r.gamma_lo, 4),
-                sig(r.gamma_hi, 4)
-            ),
-            "#f0b400",
-        ));
+        let range = match (r.arm_stiffness_lo, r.arm_stiffness_hi) {
+            (Some(lo), Some(hi)) => format!("k_H ∈ [{}, {}] N/m", sig(lo, 4), sig(hi, 4)),
+            _ => format!("γ ∈ [{}, {}]", sig(r.gamma_lo, 4), sig(r.gamma_hi, 4)),
+        };
+        items.push((format!("robust region, {range}"), "#f0b400"));
     }
     if let Some(p) = pt {
         items.push((

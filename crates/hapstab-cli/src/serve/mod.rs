@@ -7,7 +7,7 @@
 //! |---|---|
 //! | `GET /` | the page |
 //! | `GET /api/limits` | the limits below |
-//! | `GET /api/region` | exact stable region (Section V), α_max, linear condition (23), passive region (28, d = 0), optional robust region over a γ range (Section VIII) |
+//! | `GET /api/region` | exact stable region (Section V), α_max, linear condition (23), passive region (28, d = 0), optional robust region over a γ range, or in physical mode over the arm's stiffness k_H (Section VIII) |
 //! | `GET /api/point` | verdict, spectral radius and roots of p(z) at one (α, β) |
 //! | `GET /api/simulate` | a short simulated wall contact at one (α, β) |
 //! | `GET /api/export` | the current view as SVG, CSV or JSON |

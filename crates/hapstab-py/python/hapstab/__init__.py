@@ -24,6 +24,10 @@ and answers from the same Rust engine as the `hapstab` command line:
 - stability_map: the grid method over numpy arrays of K and B, in parallel, GIL released.
 - discretize: the exact discrete plant, velocity estimator and p(z) as coefficient arrays.
 - simulate: the loop in the time domain with nonlinear effects, trace arrays and verdict.
+- passivity: the device damping a wall requires to be passive (Colgate's condition, eq. 28,
+  generalized to any delay and velocity estimator), the verdict, the passive region.
+- margins: gain (on K, on (K, B)), phase and delay margins of a stable wall and the
+  frequency at which it would oscillate.
 
 Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad arguments raise
 ValueError naming the keyword argument.
@@ -35,8 +39,11 @@ from ._hapstab import (
     Edge,
     Kmax,
     Loop,
+    Margins,
     MassSpringDamper,
     NumericalError,
+    PassiveRegion,
+    Passivity,
     Region,
     Simulation,
     StabilityMap,
@@ -45,6 +52,8 @@ from ._hapstab import (
     check,
     discretize,
     kmax,
+    margins,
+    passivity,
     region,
     simulate,
     stability_map,
@@ -56,8 +65,11 @@ __all__ = [
     "Edge",
     "Kmax",
     "Loop",
+    "Margins",
     "MassSpringDamper",
     "NumericalError",
+    "PassiveRegion",
+    "Passivity",
     "Region",
     "Simulation",
     "StabilityMap",
@@ -66,6 +78,8 @@ __all__ = [
     "check",
     "discretize",
     "kmax",
+    "margins",
+    "passivity",
     "region",
     "simulate",
     "stability_map",

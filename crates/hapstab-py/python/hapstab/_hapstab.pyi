@@ -225,6 +225,57 @@ class Simulation:
     final_position: float
     final_velocity: float
 
+class PassiveRegion:
+    """The walls (K, B) the device renders passively: a convex polygon."""
+
+    k_max: float
+    """Largest passive K in N/m (exact; inf when unbounded in K)."""
+    b_at_k_max: float
+    """B in Ns/m at k_max."""
+    area: float
+    """Area in (N/m)·(Ns/m)."""
+    bounded: bool
+    vertices: Float64Array
+    """(N, 2) array of [K in N/m, B in Ns/m], counter-clockwise, first vertex not repeated."""
+
+class Passivity:
+    """Colgate–Schenkel passivity of the sampled wall (eq. 28, generalized)."""
+
+    wall_stiffness: float
+    wall_damping: float
+    b_required: float
+    """Required device damping in Ns/m: b > b_required for passivity."""
+    binding_frequency_hz: float
+    binding_theta: float
+    """ωT in [0, π] where the requirement binds."""
+    dc_stiffness: float
+    """K + B·V(1) in N/m (must be >= 0)."""
+    device_damping: Optional[float]
+    meets: Optional[bool]
+    verdict: Literal["passive", "boundary", "not_passive", "not_applicable"]
+    note: Optional[str]
+    stable: bool
+    """The wall's stability verdict (as check)."""
+    passive_region: Optional[PassiveRegion]
+
+class Margins:
+    """Stability margins of a stable wall (None when not stable or unbounded; see notes)."""
+
+    stable: bool
+    gain_margin: Optional[float]
+    """Factor on K at the given B to the stability boundary."""
+    gain_margin_kb: Optional[float]
+    """Factor on K and B together."""
+    phase_margin_deg: Optional[float]
+    phase_crossover_hz: Optional[float]
+    delay_margin: Optional[float]
+    """Extra delay in s (fractional) to the boundary."""
+    delay_margin_frequency_hz: Optional[float]
+    delay_margin_at_least: Optional[float]
+    critical_frequency_hz: Optional[float]
+    """Frequency of the root pair on the unit circle at K × gain_margin, Hz."""
+    notes: list[str]
+
 def check(
     loop: Loop,
     wall_stiffness: Optional[float] = None,
@@ -289,3 +340,28 @@ def simulate(
     trace_rows: int = 200000,
 ) -> Simulation:
     """The loop in the time domain with nonlinear effects: trace arrays and the verdict."""
+
+def passivity(
+    loop: Loop,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: Optional[float] = None,
+    *,
+    alpha: Optional[float] = None,
+    beta: Optional[float] = None,
+    device_damping: Optional[float] = None,
+) -> Passivity:
+    """The device damping the wall requires to be passive (Colgate–Schenkel),
+    b > (T/2)·max Re{(1 − e^{−jωT})H(e^{jωT})}/(1 − cos ωT), eq. (28) b > KT/2 + |B| for the
+    paper's loop; the verdict for the device (its own damping, or device_damping in Ns/m), the
+    wall's stability and the passive region."""
+
+def margins(
+    loop: Loop,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: Optional[float] = None,
+    *,
+    alpha: Optional[float] = None,
+    beta: Optional[float] = None,
+) -> Margins:
+    """Gain (on K, on (K, B)), phase and delay margins of a stable wall on the exact discrete
+    loop (Section V), and the critical frequency at the gain-margin boundary."""
