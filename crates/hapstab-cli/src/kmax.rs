@@ -39,16 +39,35 @@ struct PaperView {
     d: usize,
 }
 
+/// The loop and the given damping.
+#[derive(Serialize)]
+struct KmaxInput {
+    #[serde(flatten)]
+    lp: LoopInput,
+    /// B in Ns/m, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_damping: Option<f64>,
+}
+
+impl KmaxInput {
+    fn new(rl: &ResolvedLoop, wall_damping: Option<f64>) -> Self {
+        KmaxInput {
+            lp: LoopInput::new(rl, None),
+            wall_damping,
+        }
+    }
+}
+
 #[derive(Serialize)]
 struct KmaxOut {
-    input: LoopInput,
+    input: KmaxInput,
     /// Largest stable K in N/m.
     k_max: Option<f64>,
     /// B at which the overall K_max is reached (when no B was given), Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     b_at_k_max: Option<f64>,
-    /// The given B, Ns/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// The given B, Ns/m (echoed under `input`).
+    #[serde(skip)]
     wall_damping: Option<f64>,
     /// Stable K interval at the given B, N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -70,7 +89,7 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
     let best = k_max_at_damping(&rl.lp, fam, bu)?;
     let k = |a: f64| fam.to_physical(a, 0.0).0;
     Ok(KmaxOut {
-        input: LoopInput::new(rl, None),
+        input: KmaxInput::new(rl, Some(b)),
         k_max: best.map(|i| k(i.hi)),
         b_at_k_max: None,
         wall_damping: Some(b),
@@ -86,7 +105,7 @@ fn overall(rl: &ResolvedLoop, fam: &AffineFamily) -> Result<KmaxOut> {
     let found = !r.polygons.is_empty();
     let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
     Ok(KmaxOut {
-        input: LoopInput::new(rl, None),
+        input: KmaxInput::new(rl, None),
         k_max: found.then_some(k),
         b_at_k_max: found.then_some(b),
         wall_damping: None,

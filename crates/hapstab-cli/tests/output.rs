@@ -153,6 +153,11 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
         ),
         (
             "kmax",
+            vec!["kmax", "--no-arm", "--wall-damping", "10"],
+            vec!["k_max", "k_interval", "k_linear", "normalized"],
+        ),
+        (
+            "kmax",
             vec!["kmax", "--robust", "--box-samples", "3"],
             vec![
                 "k_max",
@@ -358,6 +363,13 @@ fn every_command_prints_schema_conformant_json() {
                 assert!(!has_negative_zero(&text), "{argv:?}: negative zero");
                 for k in want {
                     assert!(v.get(k).is_some(), "{name}: no top-level '{k}' in {argv:?}");
+                }
+                // an input is not repeated among the results
+                for (k, x) in v["input"].as_object().unwrap() {
+                    assert!(
+                        x.is_object() || v.get(k).is_none(),
+                        "{argv:?}: input '{k}' repeated at the top level"
+                    );
                 }
                 let mut all = Vec::new();
                 keys(&v, "", &mut all);
