@@ -134,12 +134,14 @@ struct RobustOut {
     area: f64,
     degenerate_gammas: Vec<f64>,
     multiple_intervals: bool,
-    polygon: Vec<AlphaBeta>,
+    /// Counter-clockwise vertices [alpha, beta].
+    polygon: Vec<[f64; 2]>,
 }
 
 #[derive(Serialize)]
 struct PassiveOut {
-    vertices: Vec<AlphaBeta>,
+    /// Vertices [alpha, beta].
+    vertices: Vec<[f64; 2]>,
     area: f64,
     /// Eq. (28) is Colgate's condition for d = 0.
     applies: bool,
@@ -223,7 +225,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
         )?;
         Some(PassiveOut {
             area: p.area(),
-            vertices: p.vertices,
+            vertices: pairs(&p.vertices),
             applies: delay == 0,
             check,
         })
@@ -251,7 +253,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
             area: r.area,
             degenerate_gammas: r.degenerate_gammas,
             multiple_intervals: r.multiple_intervals,
-            polygon: r.polygon,
+            polygon: pairs(&r.polygon),
         },
         passive,
     };
@@ -260,6 +262,11 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     }
     print_text(&out);
     Ok(())
+}
+
+/// Vertices as [alpha, beta] pairs, as every command writes polygons.
+fn pairs(v: &[AlphaBeta]) -> Vec<[f64; 2]> {
+    v.iter().map(|p| [p.alpha, p.beta]).collect()
 }
 
 /// The estimated cost of the sweep, the robust region and the passivity check.
