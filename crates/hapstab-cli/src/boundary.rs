@@ -9,6 +9,8 @@ use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{csv_num, eng, print_json, sig};
+use crate::plot::{Marker, palette};
+use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::region;
 
 /// Arguments of `hapstab boundary`.
@@ -20,6 +22,11 @@ pub struct BoundaryArgs {
     /// and for a physical loop K in N/m and B in Ns/m).
     #[arg(long)]
     csv: Option<std::path::PathBuf>,
+    /// Draw the stable region to FILE: SVG or PNG by its extension (both FILE.svg and
+    /// FILE.png for any other name); in K (N/m) and B (Ns/m) for a physical loop, in α and β
+    /// for the normalized one, K_max marked.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<std::path::PathBuf>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -94,6 +101,9 @@ struct BoundaryOut {
     /// The paper's loop given in physical units: its normalized view.
     #[serde(skip_serializing_if = "Option::is_none")]
     normalized: Option<NormalizedView>,
+    /// Files written by --plot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    plot: Vec<std::path::PathBuf>,
 }
 
 fn kind_name(k: &EdgeKind, paper: bool) -> String {
@@ -225,6 +235,7 @@ fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOu
                 beta_at_alpha_max: r.beta_at_alpha_max,
                 area: r.area,
             }),
+        plot: Vec::new(),
     }
 }
 
@@ -236,7 +247,10 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         write_csv(path, &r, (!rl.normalized).then_some(&fam))?;
     }
-    let out = output(&rl, &fam, &r);
+    let mut out = output(&rl, &fam, &r);
+    if let Some(path) = &a.plot {
+        out.plot = wall_plot::save(figure(&rl, &fam, &r), None, path)?;
+    }
     if a.json {
         return print_json(&out);
     }
@@ -244,7 +258,29 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         println!("vertices written to {}", path.display());
     }
+    if !out.plot.is_empty() {
+        println!("plot written to {}", wall_plot::files_text(&out.plot));
+    }
     Ok(())
+}
+
+/// The stable region with K_max (α_max) marked.
+fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> crate::plot::Figure {
+    let plane = Plane::of(rl, fam);
+    let mut fig = wall_plot::region_figure(&plane, r, &wall_plot::title(rl, "Stable region"));
+    if !r.polygons.is_empty() {
+        let at = plane.point(r.alpha_max, r.beta_at_alpha_max);
+        let name = if rl.normalized { "α_max" } else { "K_max" };
+        wall_plot::mark(
+            &mut fig,
+            at,
+            Marker::Circle,
+            palette::VERMILLION,
+            &format!("{name}: {}", plane.describe(at)),
+            name,
+        );
+    }
+    fig
 }
 
 fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &BoundaryOut) {

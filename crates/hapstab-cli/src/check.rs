@@ -17,6 +17,8 @@ use crate::model::{
     resolve_loop_wall,
 };
 use crate::output::{eng, print_json, radius_text, sig};
+use crate::plot::{Marker, palette};
+use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::{analysis, linear_k, pick_interval, stable_intervals, wall_units};
 
 /// Arguments of `hapstab check`.
@@ -28,6 +30,11 @@ pub struct CheckArgs {
     lp: LoopArgs,
     #[command(flatten)]
     wall: WallArgs,
+    /// Draw the stable region with the wall marked and, beside it, the roots of p(z) with
+    /// the unit circle, to FILE: SVG or PNG by its extension (both FILE.svg and FILE.png for
+    /// any other name); K (N/m) and B (Ns/m) for a physical loop, α and β normalized.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<std::path::PathBuf>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -67,6 +74,9 @@ struct CheckOut {
     paper: Option<PaperView>,
     #[serde(flatten)]
     margins: MarginsOut,
+    /// Files written by --plot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    plot: Vec<std::path::PathBuf>,
 }
 
 /// The wall's stability margins (null when the wall is not stable or a margin is unbounded;
@@ -183,7 +193,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
     } else {
         Some(k_interval(&fam, interval_units(&rl, &fam, w)?))
     };
-    let out = CheckOut {
+    let mut out = CheckOut {
         input: LoopInput::new(&rl, Some(w)),
         stable: analysis.stable(),
         verdict: analysis.verdict.as_str(),
@@ -192,12 +202,49 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         k_interval,
         paper: paper_view(&rl, &fam, w)?,
         margins: MarginsOut::new(&rl, w, analysis.stable())?,
+        plot: Vec::new(),
     };
+    if let Some(path) = &a.plot {
+        let (region, roots) = figures(&rl, &fam, units, &out)?;
+        out.plot = wall_plot::save(region, Some(roots), path)?;
+    }
     if a.json {
         return print_json(&out);
     }
     print_text(&rl, w, &out);
+    if !out.plot.is_empty() {
+        println!("plot        {}", wall_plot::files_text(&out.plot));
+    }
     Ok(())
+}
+
+/// The stable region with the wall marked, and the roots of p(z) in the z-plane.
+fn figures(
+    rl: &ResolvedLoop,
+    fam: &AffineFamily,
+    (a, b): (f64, f64),
+    o: &CheckOut,
+) -> Result<(crate::plot::Figure, crate::plot::Figure)> {
+    let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
+    let plane = Plane::of(rl, fam);
+    let mut region = wall_plot::region_figure(&plane, &r, &wall_plot::title(rl, "Stable region"));
+    let at = plane.point(a, b);
+    wall_plot::mark(
+        &mut region,
+        at,
+        Marker::Square,
+        palette::BLACK,
+        &format!("wall ({}): {}", o.verdict, plane.describe(at)),
+        "wall",
+    );
+    let roots = wall_plot::roots_figure(
+        &o.roots,
+        &format!(
+            "Roots of p(z): spectral radius {}",
+            sig(o.spectral_radius, 6)
+        ),
+    );
+    Ok((region, roots))
 }
 
 fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {

@@ -20,6 +20,7 @@ mod robust;
 mod serve;
 mod simulate;
 mod sweep;
+mod wall_plot;
 mod zwidth;
 
 use clap::{Parser, Subcommand};

@@ -13,7 +13,7 @@
 //! `--plot` draws the map as a heatmap with the shared plotting module.
 
 use std::fs::File;
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
@@ -21,14 +21,13 @@ use clap::{Args, ValueEnum};
 use hapstab::limits::map_cost;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
-use indicatif::{ProgressBar, ProgressStyle};
 use plotters::style::RGBColor;
 use serde::Serialize;
 
 use crate::budget::{self, Driver};
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, PHYSICAL_PLANT_FLAGS};
 use crate::output::print_json;
-use crate::plot::{Figure, Legend, Saved, Series, palette};
+use crate::plot::{Figure, Legend, Series, palette};
 
 /// Arguments of `hapstab map`.
 #[derive(Args, Debug)]
@@ -62,8 +61,9 @@ pub struct MapArgs {
     /// spectral_radius as <f8; np.load(f)["stable"].reshape(ny, nx) is the map).
     #[arg(long, value_enum, default_value_t = Format::Csv, requires = "out")]
     format: Format,
-    /// Draw the map as a heatmap into FILE.svg and FILE.png.
-    #[arg(long)]
+    /// Draw the map as a heatmap to FILE: SVG or PNG by its extension (both FILE.svg and
+    /// FILE.png for any other name); K (N/m) and B (Ns/m) axes for a physical loop.
+    #[arg(long, value_name = "FILE")]
     plot: Option<std::path::PathBuf>,
     /// Print a JSON summary instead of text.
     #[arg(long)]
@@ -162,17 +162,12 @@ struct MapSummary {
     stable_points: usize,
     seconds: f64,
     out: Option<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    plot: Option<Saved>,
+    /// Files written by --plot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    plot: Vec<std::path::PathBuf>,
 }
 
-fn normalized_map(
-    a: &MapArgs,
-    x: Grid,
-    y: Grid,
-    kind: MapKind,
-    bar: &ProgressBar,
-) -> Result<Values> {
+fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     if a.lp.any_physical() {
         bail!(
             "maps over alpha, beta, gamma, delta are of the paper's normalized loop; for a physical loop grid --x K:LO:HI:N --y B:LO:HI:N"
@@ -189,7 +184,8 @@ fn normalized_map(
     )?;
     let spec = MapSpec::new(x.range, y.range, base)?;
     check_budget(a, x, y, d + 3, "--delay", &d.to_string())?;
-    let m = compute_map(&spec, kind, &|k| bar.set_position(k as u64));
+    let bar = map_bar(a, x, y, d + 3);
+    let m = compute_map(&spec, kind, &bar.stage(0));
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
@@ -204,7 +200,7 @@ fn normalized_map(
 }
 
 /// The map of a loop's wall: K along x and B along y, converted to the family's wall units.
-fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> Result<Values> {
+fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     if a.lp.plant.normalized_mode() {
         bail!("K and B axes map a physical loop; with --gamma/--delta grid alpha and beta");
     }
@@ -216,7 +212,8 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind, bar: &ProgressBar) -> 
     let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
     let n = fam.degree();
     check_budget(a, x, y, n, "the loop's degree", &n.to_string())?;
-    let m = wall_map(&fam, xa, yb, kind, &|k| bar.set_position(k as u64))?;
+    let bar = map_bar(a, x, y, n);
+    let m = wall_map(&fam, xa, yb, kind, &bar.stage(0))?;
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
@@ -437,18 +434,16 @@ fn add_cells(fig: &mut Figure, rects: Vec<((f64, f64), (f64, f64))>, color: RGBC
     }
 }
 
-fn progress_bar(a: &MapArgs, x: Grid, y: Grid) -> ProgressBar {
-    let show = !a.json && std::io::stderr().is_terminal() && x.range.n * y.range.n >= 1_000_000;
-    let bar = if show {
-        ProgressBar::new(y.range.n as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} rows {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar
+/// The bar over the map's rows, shown when the map's estimated cost (p(z) of `degree`) is
+/// long ([`crate::progress::LONG_SECONDS`]).
+fn map_bar(a: &MapArgs, x: Grid, y: Grid, degree: usize) -> crate::progress::Bar {
+    let points = x.range.n as f64 * y.range.n as f64;
+    let cost = map_cost(points, degree.saturating_sub(3), a.radius).seconds;
+    crate::progress::Bar::new(
+        y.range.n,
+        "rows",
+        !a.json && cost >= crate::progress::LONG_SECONDS,
+    )
 }
 
 /// Runs `hapstab map`.
@@ -460,11 +455,10 @@ pub fn run(a: &MapArgs) -> Result<()> {
     } else {
         MapKind::Stability
     };
-    let bar = progress_bar(a, x, y);
     let t = std::time::Instant::now();
     let v = match (x.name, y.name) {
-        (Name::Normalized(_), Name::Normalized(_)) => normalized_map(a, x, y, kind, &bar)?,
-        (Name::K, Name::B) => loop_map(a, x, y, kind, &bar)?,
+        (Name::Normalized(_), Name::Normalized(_)) => normalized_map(a, x, y, kind)?,
+        (Name::K, Name::B) => loop_map(a, x, y, kind)?,
         _ => bail!(
             "--x and --y must both be normalized (alpha, beta, gamma, delta), or --x K and --y B (got {} and {})",
             axis_label(x.name),
@@ -472,7 +466,6 @@ pub fn run(a: &MapArgs) -> Result<()> {
         ),
     };
     let secs = t.elapsed().as_secs_f64();
-    bar.finish_and_clear();
     if let Some(path) = &a.out {
         match a.format {
             Format::Csv => write_csv(path, x, y, &v)?,
@@ -480,12 +473,10 @@ pub fn run(a: &MapArgs) -> Result<()> {
         }
     }
     let plot = match &a.plot {
-        Some(p) => Some(
-            heatmap(x, y, &v)
-                .save(p)
-                .with_context(|| format!("plot {}", p.display()))?,
-        ),
-        None => None,
+        Some(p) => heatmap(x, y, &v)
+            .save_as(p)
+            .with_context(|| format!("--plot {}", p.display()))?,
+        None => Vec::new(),
     };
     let points = x.range.n * y.range.n;
     let stable_points = v.stable.iter().filter(|&&s| s).count();
@@ -510,5 +501,8 @@ pub fn run(a: &MapArgs) -> Result<()> {
         100.0 * stable_points as f64 / points as f64,
         out.map(|p| format!("; written to {p}")).unwrap_or_default()
     );
+    if !plot.is_empty() {
+        println!("plot written to {}", crate::wall_plot::files_text(&plot));
+    }
     Ok(())
 }

@@ -7,13 +7,11 @@ mod compute;
 mod figures;
 mod report;
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -87,32 +85,24 @@ pub fn run(a: &PaperArgs) -> Result<()> {
     let jobs = compute::jobs(&claims::extra_keys());
     let n_fig = 7;
     let total = jobs.len() + n_fig + 2;
-    let bar = if !a.json && std::io::stderr().is_terminal() {
-        ProgressBar::new(total as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} {elapsed}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar.set_message("regions, validity points, robust regions");
-    let results = compute::run(&jobs, &|| bar.inc(1))?;
-    bar.set_message("claims");
+    let bar = crate::progress::Bar::new(total, "steps", !a.json);
+    bar.message("regions, validity points, robust regions");
+    let results = compute::run(&jobs, &|| bar.inc())?;
+    bar.message("claims");
     let claim_list = claims::claims(&results)?;
-    bar.inc(1);
-    bar.set_message("figures");
+    bar.inc();
+    bar.message("figures");
     let figs = figures::build(&results)?;
     let saved: Vec<_> = figs
         .par_iter()
         .with_max_len(1)
         .map(|f| {
             let s = f.save(&a.out);
-            bar.inc(1);
+            bar.inc();
             s
         })
         .collect::<Result<_>>()?;
-    bar.set_message("report");
+    bar.message("report");
     let shown = figures::shown();
     let rows = report::alpha_rows(&results, &shown)?;
     let file_name = |p: &std::path::Path| {
@@ -144,8 +134,8 @@ pub fn run(a: &PaperArgs) -> Result<()> {
         .flat_map(|s| [s.svg.display().to_string(), s.png.display().to_string()])
         .collect();
     files.extend(report::write(&a.out, &rep)?);
-    bar.inc(1);
-    bar.finish_and_clear();
+    bar.inc();
+    bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
     let summary = Summary {
         input: PaperInput {

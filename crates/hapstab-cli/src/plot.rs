@@ -725,35 +725,83 @@ fn save_both<R: Render>(r: &R, stem: &Path) -> Result<Saved> {
     if stem.as_os_str().is_empty() {
         return Err(anyhow!("empty plot file name"));
     }
-    r.check()?;
-    ensure_font()?;
     let (svg, png) = output_paths(stem);
-    if let Some(dir) = svg.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| anyhow!("cannot create folder {}: {e}", dir.display()))?;
-    }
-    let size = r.pixels();
-    {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| anyhow!("writing {}: {e}", svg.display());
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
-        r.render(&root).map_err(|e| fail(&e))?;
-        root.present().map_err(|e| fail(&e))?;
-    }
-    {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| anyhow!("writing {}: {e}", png.display());
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
-        r.render(&root).map_err(|e| fail(&e))?;
-        root.present().map_err(|e| fail(&e))?;
-    }
-    // plotters reports some write failures only on drop: make sure both files are there.
-    for p in [&svg, &png] {
-        if !p.is_file() {
-            return Err(anyhow!("could not write {}", p.display()));
+    write_files(r, &[&svg, &png])?;
+    Ok(Saved { svg, png })
+}
+
+/// What `path` asks for: only an SVG for a `.svg` extension, only a PNG for `.png`, both
+/// `<path>.svg` and `<path>.png` for any other name.
+pub fn requested_paths(path: &Path) -> Vec<PathBuf> {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("svg") || e.eq_ignore_ascii_case("png") => {
+            vec![path.to_path_buf()]
+        }
+        _ => {
+            let (svg, png) = output_paths(path);
+            vec![svg, png]
         }
     }
-    Ok(Saved { svg, png })
+}
+
+/// Writes the files that `path` names ([`requested_paths`]) and returns them.
+fn save_requested<R: Render>(r: &R, path: &Path) -> Result<Vec<PathBuf>> {
+    if path.as_os_str().is_empty() {
+        return Err(anyhow!("empty plot file name"));
+    }
+    let paths = requested_paths(path);
+    let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
+    write_files(r, &refs)?;
+    Ok(paths)
+}
+
+impl Figure {
+    /// Writes the file that `path` names: an SVG for `.svg`, a PNG for `.png`, both
+    /// `<path>.svg` and `<path>.png` for any other name ([`requested_paths`]).
+    pub fn save_as(&self, path: impl AsRef<Path>) -> Result<Vec<PathBuf>> {
+        save_requested(self, path.as_ref())
+    }
+}
+
+impl Grid {
+    /// Writes the file that `path` names (see [`Figure::save_as`]).
+    pub fn save_as(&self, path: impl AsRef<Path>) -> Result<Vec<PathBuf>> {
+        save_requested(self, path.as_ref())
+    }
+}
+
+/// Renders `r` into each path, as SVG or PNG by its extension (missing parent folders are
+/// created); every failure names the file.
+fn write_files<R: Render>(r: &R, paths: &[&Path]) -> Result<()> {
+    r.check()?;
+    ensure_font()?;
+    for path in paths {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| anyhow!("cannot create folder {}: {e}", dir.display()))?;
+        }
+        let size = r.pixels();
+        let fail = |e: &dyn std::fmt::Display| anyhow!("writing {}: {e}", path.display());
+        let svg = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        if svg {
+            let root = SVGBackend::new(path, size).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| fail(&e))?;
+            r.render(&root).map_err(|e| fail(&e))?;
+            root.present().map_err(|e| fail(&e))?;
+        } else {
+            let root = BitMapBackend::new(path, size).into_drawing_area();
+            root.fill(&WHITE).map_err(|e| fail(&e))?;
+            r.render(&root).map_err(|e| fail(&e))?;
+            root.present().map_err(|e| fail(&e))?;
+        }
+        // plotters reports some write failures only on drop: make sure the file is there.
+        if !path.is_file() {
+            return Err(anyhow!("could not write {}", path.display()));
+        }
+    }
+    Ok(())
 }
 
 /// The nominal font size for a one-line title: `nominal`, shrunk (not below 23, i.e. 18.5 px) so that
@@ -777,12 +825,19 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
     (lo - 0.04 * span, hi + 0.04 * span)
 }
 
+/// From this magnitude on, tick labels are written as 2.5e5 rather than 250000, so that nine
+/// of them fit side by side in a panel (stiffness axes in N/m reach 10⁶).
+const TICK_SCIENTIFIC_FROM: f64 = 1e5;
+
 /// Tick labels with up to 6 significant digits; values within 1e-9 of the span of zero
-/// print as 0 (no "1e-17" at the origin).
+/// print as 0 (no "1e-17" at the origin); large values in short scientific form (2.5e5).
 fn tick_formatter(span: f64) -> impl Fn(&f64) -> String {
     move |v: &f64| {
         if v.abs() < 1e-9 * span.abs() {
             "0".to_string()
+        } else if v.abs() >= TICK_SCIENTIFIC_FROM {
+            let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(*v);
+            format!("{rounded:e}")
         } else {
             crate::output::sig(*v, 6)
         }

@@ -4,7 +4,6 @@
 //! saturation. All simulation lives in `hapstab::simulation`; this module parses flags,
 //! writes the CSV trace and the plots, and formats the verdicts.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
@@ -18,7 +17,6 @@ use hapstab::simulation::{
 };
 use hapstab::zoh::WallScale;
 use hapstab::{AffineFamily, Normalized, PlantModel as LibPlantModel, Verdict};
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -1180,17 +1178,7 @@ fn boundary_points(
     betas: &[f64],
     stable_when: StableWhen,
 ) -> Result<Vec<EmpiricalPoint>> {
-    let bar = if a.json || !std::io::stdout().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        let b = ProgressBar::new(betas.len() as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} β values, {elapsed} {msg}")
-        {
-            b.set_style(style);
-        }
-        b
-    };
+    let bar = crate::progress::Bar::new(betas.len(), "β values", !a.json);
     let points: Vec<EmpiricalPoint> = betas
         .par_iter()
         .map(|&beta| {
@@ -1203,11 +1191,11 @@ fn boundary_points(
                 stable_when,
             };
             let r = empirical_boundary(&search).map(|v| v[0]);
-            bar.inc(1);
+            bar.inc();
             r
         })
         .collect::<hapstab::Result<_>>()?;
-    bar.finish_and_clear();
+    bar.finish();
     Ok(points)
 }
 

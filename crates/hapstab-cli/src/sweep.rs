@@ -2,13 +2,11 @@
 //! delay, sampling period, filter cut-off or any plant parameter — as text, CSV, JSON and a
 //! plot, computed in parallel.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use hapstab::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange, sweep_param};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, describe_loop};
@@ -96,19 +94,6 @@ fn k_max_at(a: &SweepArgs) -> Result<KmaxAt> {
     Ok(KmaxAt::Band { lo, hi })
 }
 
-fn progress_bar(a: &SweepArgs, n: usize) -> ProgressBar {
-    let bar = if !a.json && std::io::stderr().is_terminal() {
-        ProgressBar::new(n as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} points {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar
-}
-
 /// Runs `hapstab sweep`.
 pub fn run(a: &SweepArgs) -> Result<()> {
     let range: SweepRange = a.param.parse().context("--param")?;
@@ -117,11 +102,11 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     if rl.normalized {
         bail!("sweep works in physical units; give the device, not --gamma/--delta");
     }
-    let bar = progress_bar(a, range.n);
+    let bar = crate::progress::Bar::new(range.n, "points", !a.json);
     let t = std::time::Instant::now();
-    let points = sweep_param(&rl.lp, &range, at, &|k| bar.set_position(k as u64))?;
+    let points = sweep_param(&rl.lp, &range, at, &bar.stage(0))?;
     let seconds = t.elapsed().as_secs_f64();
-    bar.finish_and_clear();
+    bar.finish();
     if let Some(path) = &a.csv {
         write_csv(path, range.param, &points)?;
     }

@@ -145,10 +145,13 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
         loops.push((spec.trim().to_string(), resolve(&lp, spec)?));
     }
     let dampings = a.table_damping.as_deref();
+    // a comparison analyses several loops: one step each
+    let bar = crate::progress::Bar::new(loops.len(), "loops", !a.json && !a.compare.is_empty());
     let out: Vec<LoopOut> = loops
         .into_iter()
         .map(|(label, rl)| {
             let z = zwidth(&rl.lp, dampings).with_context(|| format!("loop '{label}'"))?;
+            bar.inc();
             Ok(LoopOut {
                 label,
                 input: LoopInput::new(&rl, None),
@@ -156,6 +159,7 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
             })
         })
         .collect::<Result<_>>()?;
+    bar.finish();
     if let Some(path) = &a.csv {
         write_csv(path, &out)?;
     }

@@ -282,6 +282,12 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // no progress bar off a terminal: standard error stays empty
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert!(summary["seconds"].as_f64().unwrap() > 0.0);
     assert_eq!(summary["claims"].as_array().unwrap().len(), 11);
@@ -323,6 +329,19 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
     assert_eq!(html.matches("src=\"data:image/png;base64,").count(), 7);
     assert!(!html.contains("http://") && !html.contains("https://"));
     assert!(md.contains("α_max"));
+    // C4's areas are of K–B regions: (N/m)·(Ns/m) = N²·s/m²
+    let c4_claim = summary["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["id"] == "C4")
+        .unwrap();
+    let measured = c4_claim["measured"].as_str().unwrap();
+    assert!(
+        measured.contains("area") && measured.contains(" N²·s/m²"),
+        "{measured}"
+    );
+    assert!(!md.contains("N²/m²·s⁻¹") && md.contains("N²·s/m²"));
 
     // claims.json: every claim with a measured value and a verdict.
     let json: Value =

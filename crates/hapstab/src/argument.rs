@@ -132,25 +132,59 @@ pub fn winding(fam: &AffineFamily, a: f64, b: f64) -> Winding {
 /// (each step b_j = a_{j+1} − k·a_{n−1−j} cancels when |k| is near 1). Returns (stable, κ);
 /// κ is infinite when a reflection coefficient reaches 1 within rounding.
 pub fn schur_with_condition(c: &[f64]) -> (bool, f64) {
-    let mut a = c.to_vec();
-    let mut b = vec![0.0; c.len()];
-    let mut n = c.len() - 1;
+    let (stable, kappa, _) = schur_checked(&mut c.to_vec());
+    (stable, kappa)
+}
+
+/// Degrees up to this run the recursion on a stack buffer (maps call it once per point, where
+/// a heap allocation would cost as much as the recursion itself).
+const STACK_DEGREE: usize = 63;
+
+/// The recursion with a stack buffer for small degrees; also whether every step's decision
+/// (the side of 1 of each |k_j|) is sure by [`STEP_SAFETY`] over its rounding bound.
+fn schur_checked(c: &mut [f64]) -> (bool, f64, bool) {
+    if c.len() <= STACK_DEGREE + 1 {
+        let mut scratch = [0.0; STACK_DEGREE + 1];
+        schur_recursion(c, &mut scratch[..c.len()])
+    } else {
+        let mut scratch = vec![0.0; c.len()];
+        schur_recursion(c, &mut scratch)
+    }
+}
+
+/// A step's decision 1 − |k_j| > 0 is sure when the gap exceeds this many times its
+/// first-order rounding bound κ_j·n·ε (κ_j the growth factor of the steps before: the
+/// reduced coefficients, and so k_j, carry relative errors of about κ_j·n·ε).
+const STEP_SAFETY: f64 = 64.0;
+
+/// The recursion of [`schur_with_condition`] on two buffers of p's length (both overwritten):
+/// (stable, κ, every decision sure).
+fn schur_recursion<'a>(mut a: &'a mut [f64], mut b: &'a mut [f64]) -> (bool, f64, bool) {
+    let mut n = a.len() - 1;
+    let nf = n as f64;
     let mut kappa = 1.0_f64;
+    let mut sure_all = true;
     while n > 0 {
         let an = a[n];
         if !an.is_finite() || an == 0.0 {
-            return (false, f64::INFINITY);
+            return (false, f64::INFINITY, false);
         }
         let k = a[0] / an;
         if k.is_nan() {
-            return (false, f64::INFINITY);
+            return (false, f64::INFINITY, false);
         }
         let gap = 1.0 - k.abs();
+        let bound = STEP_SAFETY * f64::EPSILON * kappa * nf;
         if gap <= 0.0 {
             // unstable, unless the coefficient is 1 only by rounding
-            let sure = -gap > 64.0 * f64::EPSILON * kappa * n as f64;
-            return (false, if sure { kappa } else { f64::INFINITY });
+            let sure = -gap > bound;
+            return (
+                false,
+                if sure { kappa } else { f64::INFINITY },
+                sure && sure_all,
+            );
         }
+        sure_all &= gap > bound;
         kappa *= (1.0 + k.abs()) / gap;
         for j in 0..n {
             b[j] = a[j + 1] - k * a[n - 1 - j];
@@ -158,24 +192,19 @@ pub fn schur_with_condition(c: &[f64]) -> (bool, f64) {
         std::mem::swap(&mut a, &mut b);
         n -= 1;
     }
-    (true, kappa)
+    (true, kappa, sure_all)
 }
 
-/// The Schur–Cohn answer is trusted while κ·n·ε stays below this (errors of 1e-6 relative in
-/// the reduced polynomials still leave every reflection coefficient's side of 1 intact for
-/// all but walls within 1e-6 of the boundary, which the argument principle then settles).
-const SCHUR_TRUST: f64 = 1e-6;
-
 /// The verdict at one wall (Section V: stable iff every root of p = P0 + a·PK + b·PB lies
-/// strictly inside the unit circle): the Schur–Cohn test where its recursion is
-/// well-conditioned, the argument principle ([`winding`]) where it is not (walls within
+/// strictly inside the unit circle): the Schur–Cohn test where every step's decision is sure
+/// over its rounding bound ([`STEP_SAFETY`]), the argument principle ([`winding`]) where it is not (walls within
 /// rounding of the boundary, clusters of roots near z = 1); `Marginal` where the argument
 /// principle cannot decide either (a root within rounding of the circle). `coeffs` is a
-/// buffer of length degree + 1.
+/// scratch buffer of length degree + 1 (overwritten).
 pub fn verdict_at(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Verdict {
     fam.coefficients_into(a, b, coeffs);
-    let (stable, kappa) = schur_with_condition(coeffs);
-    if kappa * coeffs.len() as f64 * f64::EPSILON < SCHUR_TRUST {
+    let (stable, _, sure) = schur_checked(coeffs);
+    if sure {
         return if stable {
             Verdict::Stable
         } else {

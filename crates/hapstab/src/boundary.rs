@@ -243,7 +243,14 @@ pub struct LineCrossing {
 /// Im(Q conj D) with Q = P0 + from·(PK, PB), D = dir·(PK, PB) at z = e^{iθ} (the shifted
 /// form near z = 1): zero where a real t puts a root there; and that t = −Re(Q conj D)/|D|².
 fn crossing_function(fam: &AffineFamily, line: &WallLine, theta: f64) -> (f64, f64) {
-    let (p0, pk, pb) = fam.parts_on_circle(theta);
+    crossing_from_parts(fam.parts_on_circle(theta), line)
+}
+
+/// [`crossing_function`] from the parts (P0, PK, PB) at one θ.
+fn crossing_from_parts(
+    (p0, pk, pb): (Complex64, Complex64, Complex64),
+    line: &WallLine,
+) -> (f64, f64) {
     let q = p0 + pk * line.from.alpha + pb * line.from.beta;
     let d = pk * line.dir.alpha + pb * line.dir.beta;
     let qc = q * d.conj();
@@ -309,6 +316,56 @@ fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
 /// if it crosses zero, both zeros on either side of it are kept (two crossings closer than
 /// a sample, as a thin region of a lightly damped loop makes them).
 pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> {
+    let ts = scan_thetas(fam);
+    let fs: Vec<f64> = ts
+        .iter()
+        .map(|&t| crossing_function(fam, line, t).0)
+        .collect();
+    crossings_on_scan(fam, line, &ts, &fs)
+}
+
+/// The parts (P0, PK, PB) of a family on the θ grid of the crossing scan, computed once for
+/// many lines: [`line_crossings_tabulated`] then finds the same crossings as
+/// [`line_crossings`] (the same values at the same θ) without re-evaluating p on the grid,
+/// as a robust region's many slices of one plant need.
+#[derive(Debug, Clone)]
+pub struct CircleTable {
+    thetas: Vec<f64>,
+    parts: Vec<(Complex64, Complex64, Complex64)>,
+}
+
+impl CircleTable {
+    /// The table of `fam` on its scan grid.
+    pub fn new(fam: &AffineFamily) -> Self {
+        let thetas = scan_thetas(fam);
+        let parts = thetas.iter().map(|&t| fam.parts_on_circle(t)).collect();
+        Self { thetas, parts }
+    }
+}
+
+/// [`line_crossings`] with the scan's values taken from `table`, which must be the
+/// [`CircleTable`] of `fam`.
+pub fn line_crossings_tabulated(
+    fam: &AffineFamily,
+    table: &CircleTable,
+    line: &WallLine,
+) -> Vec<LineCrossing> {
+    let fs: Vec<f64> = table
+        .parts
+        .iter()
+        .map(|&p| crossing_from_parts(p, line).0)
+        .collect();
+    crossings_on_scan(fam, line, &table.thetas, &fs)
+}
+
+/// The crossings from the scan's samples `fs` of Im(Q conj D) at `ts` (see
+/// [`line_crossings`]).
+fn crossings_on_scan(
+    fam: &AffineFamily,
+    line: &WallLine,
+    ts: &[f64],
+    fs: &[f64],
+) -> Vec<LineCrossing> {
     let mut out: Vec<LineCrossing> = Vec::new();
     for (l, theta) in [(plus_one_line(fam), 0.0), (minus_one_line(fam), PI)] {
         if let Some(t) = l.and_then(|l| root_line_t(&l, line)) {
@@ -323,8 +380,6 @@ pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> 
             out.push(LineCrossing { t, theta });
         }
     };
-    let ts = scan_thetas(fam);
-    let fs: Vec<f64> = ts.iter().map(|&t| f(t)).collect();
     for i in 1..ts.len() {
         let (t0, t1, f0, f1) = (ts[i - 1], ts[i], fs[i - 1], fs[i]);
         if f1 == 0.0 || (f0 > 0.0) != (f1 > 0.0) {
@@ -369,6 +424,17 @@ pub struct Interval {
 /// Schur–Cohn test per gap decides it.
 pub fn stable_alpha_intervals(fam: &AffineFamily, beta: f64) -> Vec<Interval> {
     stable_line_intervals(fam, &WallLine::stiffness_axis(beta))
+}
+
+/// [`stable_alpha_intervals`] with the crossing scan taken from `table`, the
+/// [`CircleTable`] of `fam` (identical results).
+pub fn stable_alpha_intervals_tabulated(
+    fam: &AffineFamily,
+    table: &CircleTable,
+    beta: f64,
+) -> Vec<Interval> {
+    let line = WallLine::stiffness_axis(beta);
+    stable_between(fam, &line, &line_crossings_tabulated(fam, table, &line))
 }
 
 /// The stable intervals of t on a wall line (see [`stable_alpha_intervals`], Section V).
@@ -432,6 +498,29 @@ mod tests {
         }
         assert!(stable_alpha_intervals(&fam, -0.1).is_empty());
         assert!(stable_alpha_intervals(&fam, 2.1).is_empty());
+    }
+
+    #[test]
+    fn tabulated_crossings_are_the_crossings() {
+        for (g, dl, d) in [(0.001, 0.015, 0), (0.5, 1.0, 1), (9.8, 0.0, 2)] {
+            let pf = crate::closed_loop::PolyFamily::new(
+                crate::params::PlantParams::new(g, dl).unwrap(),
+                d,
+            )
+            .unwrap();
+            let table = CircleTable::new(&pf);
+            for b in [-0.3, 0.0, 0.01, 0.4, 1.5] {
+                let line = WallLine::stiffness_axis(b);
+                assert_eq!(
+                    line_crossings_tabulated(&pf, &table, &line),
+                    line_crossings(&pf, &line)
+                );
+                assert_eq!(
+                    stable_alpha_intervals_tabulated(&pf, &table, b),
+                    stable_alpha_intervals(&pf, b)
+                );
+            }
+        }
     }
 
     #[test]

@@ -14,7 +14,7 @@
 
 use serde::Serialize;
 
-use crate::boundary::stable_alpha_intervals;
+use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_alpha_intervals};
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite};
 use crate::params::{Normalized, Physical, PlantParams, check_delay};
@@ -221,20 +221,30 @@ pub struct ValidityPoint {
 
 /// First β of the scan for the validity points: the scan starts at β₀ = 1e-7 (β = 0⁺).
 pub const VALIDITY_BETA_START: f64 = 1e-7;
-/// Ratio of the geometric β scan that brackets a level before bisection.
+/// Ratio of the geometric β scan that brackets a level before bisection (the fallback).
 const SCAN_RATIO: f64 = 1.01;
+/// Ratio of the coarse geometric β check below an exact crossing: the error (24) must stay
+/// below the level there, else the upper boundary jumps and the scan decides (a quarter step
+/// resolves the slow, roughly linear growth of the error many times over).
+const CHECK_RATIO: f64 = 1.25;
 /// Relative tolerance on β of the bisection (well below the required 1e-9).
 const BETA_TOL: f64 = 1e-13;
+/// Relative agreement of the error (24) with the level at a validity point: a crossing of
+/// the level line is on the upper boundary when its error meets the level to this (the
+/// crossings are exact to rounding; a crossing with another branch misses by far more).
+const LEVEL_MATCH: f64 = 1e-6;
 
 /// The β and α at which the relative error (24) first reaches each level, going up from
 /// β = 0⁺ (Section VII, Fig. 7 circles and squares).
 ///
-/// The error is sampled on a geometric grid β₀·1.01ᵏ from β₀ = [`VALIDITY_BETA_START`]
-/// (the error grows roughly linearly in β from its value at 0⁺, so a geometric grid resolves
-/// it uniformly), the first sample at or above the level brackets the crossing with the
-/// previous one, and bisection refines β to 1e-13 relative. Where the stable interval at −γ
-/// ends (β beyond the region) the error counts as infinite. Every α(β) is exact by
-/// D-decomposition. Levels must be finite and > 0.
+/// Exact: with α + γ > 0 the error equals the level L on the two lines
+/// α = (α_lin(β) ∓ Lγ)/(1 ± L) of the (α, β)-plane (α below or above α_lin of (23)), so the
+/// points are the D-decomposition crossings of these lines ([`line_crossings`]): the first
+/// one with β > β₀ = [`VALIDITY_BETA_START`] whose α is the exact upper boundary
+/// ([`exact_upper_alpha`]). A coarse geometric check below it confirms that the error stays
+/// under the level (no jump of the upper boundary); otherwise, or without such a crossing,
+/// the error is scanned on the grid β₀·1.01ᵏ and bisected to 1e-13 relative. Where the
+/// stable interval at −γ ends the error counts as infinite. Levels must be finite and > 0.
 pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<ValidityPoint>> {
     check_delay(d)?;
     for &l in levels {
@@ -247,7 +257,6 @@ pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<
         }
     }
     let fam = PolyFamily::new(pp, d)?;
-    let err = |b: f64| relative_error(&fam, b).unwrap_or(f64::INFINITY);
     // The region ends where the closed-form z = −1 bound and the Schur bound |β| < 1/|n0|
     // make it; stop the scan well beyond (no stable region at β ≥ 1/|n0|: |p(0)| = |n0 β|).
     let beta_cap = if fam.plant.n0.abs() > 0.0 {
@@ -258,50 +267,113 @@ pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<
     let mut out = Vec::with_capacity(levels.len());
     for &level in levels {
         let b0 = VALIDITY_BETA_START;
-        let e0 = err(b0);
-        if e0 >= level {
+        if error_at(&fam, b0) >= level {
             out.push(point(&fam, level, b0, true));
             continue;
         }
-        let mut lo = b0;
-        let mut hi = b0;
-        let mut found = false;
-        while hi < beta_cap * 1.01 {
-            hi = lo * SCAN_RATIO;
-            if err(hi) >= level {
-                found = true;
-                break;
-            }
-            lo = hi;
-        }
-        if !found {
-            return Err(Error::Numerical(format!(
-                "relative error (24) never reaches {level} below beta = {beta_cap}"
-            )));
-        }
-        while hi - lo > BETA_TOL * hi {
-            let m = 0.5 * (lo + hi);
-            if m <= lo || m >= hi {
-                break;
-            }
-            if err(m) >= level {
-                hi = m;
-            } else {
-                lo = m;
-            }
-        }
-        // The last point below the level, where α is finite and on the boundary; at the
-        // tolerance both ends agree to 1e-13 relative.
-        let p = point(&fam, level, lo, false);
-        let miss = (p.error - level).abs();
-        if miss.is_nan() || miss > 1e-6 * level {
-            return Err(Error::Numerical(format!(
-                "relative error (24) jumps across {level} at beta = {lo} (the stable interval at -gamma ends there)"
-            )));
-        }
+        let p = match exact_crossing(&fam, level, beta_cap) {
+            Some(p) => p,
+            None => scanned_point(&fam, level, beta_cap)?,
+        };
         out.push(p);
     }
     Ok(out)
+}
+
+/// The error (24) at β, infinite where no stable interval starts at α = −γ.
+fn error_at(fam: &PolyFamily, beta: f64) -> f64 {
+    relative_error(fam, beta).unwrap_or(f64::INFINITY)
+}
+
+/// The lines of the (α, β)-plane on which the error (24) equals `level` (with α + γ > 0),
+/// parameterized by β: α − α_lin = ∓L(α + γ) gives α = (α_lin(β) ∓ Lγ)/(1 ± L).
+fn level_lines(fam: &PolyFamily, level: f64) -> Vec<WallLine> {
+    let c = fam.d as f64 + 0.5;
+    let (g, delta) = (fam.plant.gamma, fam.plant.delta);
+    [1.0, -1.0]
+        .into_iter()
+        .filter(|s| 1.0 + s * level > 0.0)
+        .map(|s| {
+            let q = 1.0 + s * level;
+            WallLine {
+                from: AlphaBeta {
+                    alpha: (delta / c - s * level * g) / q,
+                    beta: 0.0,
+                },
+                dir: AlphaBeta {
+                    alpha: 1.0 / (c * q),
+                    beta: 1.0,
+                },
+            }
+        })
+        .collect()
+}
+
+/// The validity point from the exact crossings of the level lines, if the first one on the
+/// upper boundary is confirmed by the coarse check below it.
+fn exact_crossing(fam: &PolyFamily, level: f64, beta_cap: f64) -> Option<ValidityPoint> {
+    let b0 = VALIDITY_BETA_START;
+    let mut betas: Vec<f64> = level_lines(fam, level)
+        .iter()
+        .flat_map(|l| line_crossings(fam, l))
+        .map(|c| c.t)
+        .filter(|&t| t > b0 && t < beta_cap * 1.01)
+        .collect();
+    betas.sort_by(f64::total_cmp);
+    let p = betas
+        .into_iter()
+        .map(|b| point(fam, level, b, false))
+        .find(|p| (p.error - level).abs() <= LEVEL_MATCH * level)?;
+    let mut b = b0;
+    while b < p.beta {
+        if error_at(fam, b) >= level {
+            return None;
+        }
+        b *= CHECK_RATIO;
+    }
+    Some(p)
+}
+
+/// The validity point by the geometric scan and bisection (see [`validity_points`]).
+fn scanned_point(fam: &PolyFamily, level: f64, beta_cap: f64) -> Result<ValidityPoint> {
+    let err = |b: f64| error_at(fam, b);
+    let mut lo = VALIDITY_BETA_START;
+    let mut hi = lo;
+    let mut found = false;
+    while hi < beta_cap * 1.01 {
+        hi = lo * SCAN_RATIO;
+        if err(hi) >= level {
+            found = true;
+            break;
+        }
+        lo = hi;
+    }
+    if !found {
+        return Err(Error::Numerical(format!(
+            "relative error (24) never reaches {level} below beta = {beta_cap}"
+        )));
+    }
+    while hi - lo > BETA_TOL * hi {
+        let m = 0.5 * (lo + hi);
+        if m <= lo || m >= hi {
+            break;
+        }
+        if err(m) >= level {
+            hi = m;
+        } else {
+            lo = m;
+        }
+    }
+    // The last point below the level, where α is finite and on the boundary; at the
+    // tolerance both ends agree to 1e-13 relative.
+    let p = point(fam, level, lo, false);
+    let miss = (p.error - level).abs();
+    if miss.is_nan() || miss > LEVEL_MATCH * level {
+        return Err(Error::Numerical(format!(
+            "relative error (24) jumps across {level} at beta = {lo} (the stable interval at -gamma ends there)"
+        )));
+    }
+    Ok(p)
 }
 
 fn point(fam: &PolyFamily, level: f64, beta: f64, at_start: bool) -> ValidityPoint {
@@ -353,6 +425,31 @@ pub fn error_curve(pp: PlantParams, d: usize, betas: &[f64]) -> Result<Vec<Error
 mod tests {
     use super::*;
     use crate::params::{Effective, Sampling, Wall};
+
+    /// The exact crossings of the level lines and the 1 %-scan with bisection are
+    /// independent ways to the same validity points.
+    #[test]
+    fn validity_crossings_agree_with_the_scan() {
+        for (gamma, delta, d) in [
+            (0.0, 0.0, 0),
+            (0.001, 0.01, 0),
+            (0.0, 0.015, 1),
+            (0.001, 0.005, 2),
+        ] {
+            let fam = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap();
+            let cap = 1.0 / fam.plant.n0.abs();
+            for level in [0.02, 0.05, 0.2] {
+                let exact = exact_crossing(&fam, level, cap).expect("a crossing");
+                let scan = scanned_point(&fam, level, cap).unwrap();
+                let rel = (exact.beta - scan.beta).abs() / scan.beta;
+                assert!(
+                    rel < 1e-10,
+                    "γ={gamma} δ={delta} d={d} L={level}: {exact:?} {scan:?}"
+                );
+                assert!((exact.alpha - scan.alpha).abs() < 1e-10 * scan.alpha);
+            }
+        }
+    }
 
     #[test]
     fn cubic_scales_to_normalized() {

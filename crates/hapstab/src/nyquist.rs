@@ -32,10 +32,13 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, Interval, stable_alpha_intervals};
+use crate::boundary::{
+    AlphaBeta, CircleTable, Interval, stable_alpha_intervals, stable_alpha_intervals_tabulated,
+};
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::params::{PlantParams, check_delay};
+use std::sync::OnceLock;
 
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -433,6 +436,10 @@ fn intersect(a: &[Interval], b: &[Interval]) -> Vec<Interval> {
 struct Config {
     scale: f64,
     fam: PolyFamily,
+    /// The family's crossing scan, computed on first use when the configuration is one of
+    /// the samples that many β-slices cut (None for the single-use configurations of a
+    /// golden-section refinement).
+    table: Option<OnceLock<CircleTable>>,
 }
 
 /// One unscaled configuration per γ sample, at damping δ and delay d.
@@ -442,6 +449,7 @@ fn unit_configs(gammas: &[f64], delta: f64, d: usize) -> Result<Vec<Config>> {
         .map(|&g| {
             Ok(Config {
                 scale: 1.0,
+                table: Some(OnceLock::new()),
                 fam: PolyFamily::new(PlantParams::new(g, delta)?, d)?,
             })
         })
@@ -453,8 +461,14 @@ impl Config {
     /// set is s·I(β_ref/s).
     fn intervals(&self, beta_ref: f64) -> Vec<Interval> {
         let s = self.scale;
-        stable_alpha_intervals(&self.fam, beta_ref / s)
-            .into_iter()
+        let ivs = match &self.table {
+            Some(t) => {
+                let table = t.get_or_init(|| CircleTable::new(&self.fam));
+                stable_alpha_intervals_tabulated(&self.fam, table, beta_ref / s)
+            }
+            None => stable_alpha_intervals(&self.fam, beta_ref / s),
+        };
+        ivs.into_iter()
             .map(|iv| Interval {
                 lo: iv.lo * s,
                 hi: iv.hi * s,
@@ -735,6 +749,7 @@ pub fn robust_region_with_progress(
         };
         Config {
             scale: 1.0,
+            table: None,
             fam: PolyFamily::new(pp, d).unwrap_or_else(|_| configs[0].fam.clone()),
         }
     };
@@ -928,6 +943,7 @@ pub fn passive_inside_robust_with_progress(
     };
     let make = |_: usize, g: f64| Config {
         scale: 1.0,
+        table: None,
         fam: PolyFamily::new(
             PlantParams {
                 gamma: g.max(0.0),
@@ -1129,6 +1145,7 @@ fn box_configs(pb: &PlantBox, opts: BoxOptions) -> Result<(Vec<Config>, BoxCoord
                 let pp = PlantParams::new(k * t * t / m, b * t / m)?;
                 configs.push(Config {
                     scale: m / m_ref,
+                    table: Some(OnceLock::new()),
                     fam: PolyFamily::new(pp, pb.d)?,
                 });
                 coords.push([m, b, k]);
@@ -1167,6 +1184,7 @@ fn box_slice(
         };
         Config {
             scale: m / m_ref,
+            table: None,
             fam: PolyFamily::new(pp, pb.d).unwrap_or_else(|_| configs[j].fam.clone()),
         }
     };

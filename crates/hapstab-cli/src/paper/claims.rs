@@ -313,7 +313,7 @@ fn c4(r: &Results) -> Result<Claim> {
     let (m0, b0, k0) = (plants[0].1, plants[0].2, plants[0].3);
     let (kmax0, area0) = phys(m0, r.region(c4_key(m0, b0, k0))?);
     let mut parts = vec![format!(
-        "device alone (m = {} kg, b = {} Ns/m): K_max = {} N/m, area {} N²/m²·s⁻¹",
+        "device alone (m = {} kg, b = {} Ns/m): K_max = {} N/m, area {} N²·s/m²",
         sig(m0, 3),
         sig(b0, 3),
         sig(kmax0, 6),
