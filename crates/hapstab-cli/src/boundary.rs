@@ -8,7 +8,7 @@ use hapstab::region::{EdgeKind, StableRegion};
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
-use crate::output::{print_json, sig};
+use crate::output::{csv_num, eng, print_json, sig};
 use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::region;
@@ -39,48 +39,68 @@ struct EdgeOut {
     kind: EdgeKind,
 }
 
+/// The region of a physical loop in N/m and Ns/m.
 #[derive(Serialize)]
 struct PhysicalRegion {
     /// K_max in N/m.
     k_max: f64,
     /// B at K_max in Ns/m.
     b_at_k_max: f64,
-    /// N/m per wall unit a (m/T² for the paper's plant: per unit α).
-    k_per_alpha: f64,
-    /// Ns/m per wall unit b (m/T for the paper's plant: per unit β).
-    b_per_beta: f64,
-    /// Area of the stable region in (N/m)·(Ns/m).
+    /// Area of the stable region in N²·s/m².
     area: f64,
-    /// The polygons as arrays of [K, B] in N/m and Ns/m.
+    /// The polygons as arrays of [K, B] in N/m and Ns/m (counter-clockwise, first vertex
+    /// not repeated).
+    polygons: Vec<Vec<[f64; 2]>>,
+    /// K and B of one wall unit: N/m per unit a and Ns/m per unit b (m/T² and m/T for the
+    /// paper's plant: per unit α and β).
+    wall_units: WallUnits,
+}
+
+#[derive(Serialize)]
+struct WallUnits {
+    stiffness: f64,
+    damping: f64,
+}
+
+/// The region of the paper's loop in normalized units.
+#[derive(Serialize)]
+struct NormalizedRegion {
+    /// Largest stable α.
+    alpha_max: f64,
+    /// β at which it is reached.
+    beta_at_alpha_max: f64,
+    /// Area in α·β.
+    area: f64,
+    /// Closed polygons, each an array of [alpha, beta] (counter-clockwise, first vertex not
+    /// repeated).
     polygons: Vec<Vec<[f64; 2]>>,
 }
 
-/// The paper's plant in normalized units (Table I).
+/// The normalized view of the paper's loop given in physical units (Table I).
 #[derive(Serialize)]
-struct PaperPlant {
+struct NormalizedView {
     gamma: f64,
     delta: f64,
     d: usize,
+    alpha_max: f64,
+    beta_at_alpha_max: f64,
+    area: f64,
 }
 
+/// `boundary --json`: the region in N/m and Ns/m for a physical loop, in α and β for the
+/// normalized one, with the edges of each polygon.
 #[derive(Serialize)]
 struct BoundaryOut {
     input: LoopInput,
     #[serde(flatten)]
-    paper: Option<PaperPlant>,
-    /// Largest stable stiffness in wall units (α for the paper's loop).
-    alpha_max: f64,
-    /// Damping in wall units (β) at which it is reached.
-    beta_at_alpha_max: f64,
-    /// Area in wall units.
-    area: f64,
-    /// Closed polygons in wall units, each an array of [alpha, beta] (counter-clockwise,
-    /// first vertex not repeated).
-    polygons: Vec<Vec<[f64; 2]>>,
+    physical: Option<PhysicalRegion>,
+    #[serde(flatten)]
+    units: Option<NormalizedRegion>,
     /// Edge labels per polygon.
     edges: Vec<Vec<EdgeOut>>,
+    /// The paper's loop given in physical units: its normalized view.
     #[serde(skip_serializing_if = "Option::is_none")]
-    physical: Option<PhysicalRegion>,
+    normalized: Option<NormalizedView>,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     plot: Vec<std::path::PathBuf>,
@@ -137,14 +157,14 @@ fn write_vertices(
             let mut rec = vec![
                 pi.to_string(),
                 vi.to_string(),
-                format!("{:e}", v.alpha),
-                format!("{:e}", v.beta),
-                format!("{:e}", p.thetas[vi]),
+                csv_num(v.alpha),
+                csv_num(v.beta),
+                csv_num(p.thetas[vi]),
                 edge_tag(&p.edges[ei].kind).to_string(),
             ];
             if let Some(f) = fam {
                 let (k, b) = f.to_physical(v.alpha, v.beta);
-                rec.extend([format!("{k:e}"), format!("{b:e}")]);
+                rec.extend([csv_num(k), csv_num(b)]);
             }
             w.write_record(&rec)?;
         }
@@ -159,41 +179,37 @@ fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
     PhysicalRegion {
         k_max,
         b_at_k_max,
-        k_per_alpha: kpa,
-        b_per_beta: bpb,
         area: r.area * kpa * bpb,
-        polygons: r
-            .polygons
-            .iter()
-            .map(|p| {
-                p.vertices
-                    .iter()
-                    .map(|v| {
-                        let (k, b) = fam.to_physical(v.alpha, v.beta);
-                        [k, b]
-                    })
-                    .collect()
-            })
-            .collect(),
+        polygons: polygons(r, |a, b| {
+            let (k, b) = fam.to_physical(a, b);
+            [k, b]
+        }),
+        wall_units: WallUnits {
+            stiffness: kpa,
+            damping: bpb,
+        },
     }
 }
 
+/// The polygons' vertices mapped by `f` from (α, β) (or wall units).
+fn polygons(r: &StableRegion, f: impl Fn(f64, f64) -> [f64; 2]) -> Vec<Vec<[f64; 2]>> {
+    r.polygons
+        .iter()
+        .map(|p| p.vertices.iter().map(|v| f(v.alpha, v.beta)).collect())
+        .collect()
+}
+
 fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOut {
+    let physical = !rl.normalized;
     BoundaryOut {
         input: LoopInput::new(rl, None),
-        paper: rl.lp.paper_view().map(|pp| PaperPlant {
-            gamma: pp.gamma,
-            delta: pp.delta,
-            d: rl.lp.delay.samples,
+        physical: physical.then(|| physical_region(fam, r)),
+        units: (!physical).then(|| NormalizedRegion {
+            alpha_max: r.alpha_max,
+            beta_at_alpha_max: r.beta_at_alpha_max,
+            area: r.area,
+            polygons: polygons(r, |a, b| [a, b]),
         }),
-        alpha_max: r.alpha_max,
-        beta_at_alpha_max: r.beta_at_alpha_max,
-        area: r.area,
-        polygons: r
-            .polygons
-            .iter()
-            .map(|p| p.vertices.iter().map(|v| [v.alpha, v.beta]).collect())
-            .collect(),
         edges: r
             .polygons
             .iter()
@@ -207,7 +223,18 @@ fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOu
                     .collect()
             })
             .collect(),
-        physical: (!rl.normalized).then(|| physical_region(fam, r)),
+        normalized: rl
+            .lp
+            .paper_view()
+            .filter(|_| physical)
+            .map(|pp| NormalizedView {
+                gamma: pp.gamma,
+                delta: pp.delta,
+                d: rl.lp.delay.samples,
+                alpha_max: r.alpha_max,
+                beta_at_alpha_max: r.beta_at_alpha_max,
+                area: r.area,
+            }),
         plot: Vec::new(),
     }
 }
@@ -257,12 +284,12 @@ fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> crate::plo
 }
 
 fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &BoundaryOut) {
-    match &out.paper {
-        Some(p) => println!(
-            "stable region for γ = {}, δ = {}, d = {}",
-            sig(p.gamma, 10),
-            sig(p.delta, 10),
-            p.d
+    let paper = rl.lp.paper_view().map(|pp| (pp, rl.lp.delay.samples));
+    match paper {
+        Some((pp, d)) => println!(
+            "stable region for γ = {}, δ = {}, d = {d}",
+            sig(pp.gamma, 6),
+            sig(pp.delta, 6),
         ),
         None => println!("stable region of the loop"),
     }
@@ -275,32 +302,34 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         println!("empty: no wall (K, B) makes this loop stable");
         return;
     }
-    if out.paper.is_some() {
+    if paper.is_some() {
         println!(
-            "α_max = {:.15e} at β = {:.15e}",
-            r.alpha_max, r.beta_at_alpha_max
+            "α_max = {} at β = {}",
+            sig(r.alpha_max, 6),
+            sig(r.beta_at_alpha_max, 6)
         );
-        println!("area  = {:.12e}", r.area);
+        println!("area  = {} (in α·β)", sig(r.area, 6));
     }
     if let Some(p) = &out.physical {
         println!(
-            "K_max = {} N/m at B = {} Ns/m",
-            sig(p.k_max, 12),
-            sig(p.b_at_k_max, 12)
+            "K_max = {} at B = {}",
+            eng(p.k_max, "N/m", 6),
+            eng(p.b_at_k_max, "Ns/m", 6)
         );
-        println!("area  = {} (N/m)·(Ns/m)", sig(p.area, 12));
+        println!("area  = {} N²·s/m²", sig(p.area, 6));
     }
+    // polygons are numbered from 0, as in the CSV's polygon column and the JSON arrays
     for (i, p) in r.polygons.iter().enumerate() {
-        println!("polygon {} ({} vertices):", i + 1, p.vertices.len());
+        println!("polygon {i} ({} vertices):", p.vertices.len());
         for e in &p.edges {
             let v = p.vertices[e.start];
             let at = if rl.normalized {
-                format!("(α, β) = ({}, {})", sig(v.alpha, 10), sig(v.beta, 10))
+                format!("(α, β) = ({}, {})", sig(v.alpha, 6), sig(v.beta, 6))
             } else {
                 let (k, b) = fam.to_physical(v.alpha, v.beta);
-                format!("(K, B) = ({} N/m, {} Ns/m)", sig(k, 10), sig(b, 10))
+                format!("(K, B) = ({}, {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
             };
-            println!("  from {at}: {}", kind_name(&e.kind, out.paper.is_some()));
+            println!("  from {at}: {}", kind_name(&e.kind, paper.is_some()));
         }
     }
 }

@@ -16,7 +16,7 @@ use crate::model::{
     LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
     resolve_loop_wall,
 };
-use crate::output::{eng, print_json, sig};
+use crate::output::{eng, print_json, radius_text, sig};
 use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::{analysis, linear_k, pick_interval, stable_intervals, wall_units};
@@ -43,7 +43,13 @@ pub struct CheckArgs {
 /// The paper's normalized view of the point (Table I) with the linear condition.
 #[derive(Serialize)]
 struct PaperView {
-    normalized: Normalized,
+    /// The point in normalized units (used by the text output in both modes).
+    #[serde(skip)]
+    point: Normalized,
+    /// The same point in the output, for a loop given in physical units only (in normalized
+    /// mode it is the input).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<Normalized>,
     /// Stable α interval at the given β that contains α, or the one reaching furthest.
     alpha_interval: Option<[f64; 2]>,
     /// Linear condition (23): α < (β + δ)/(d + 1/2).
@@ -165,8 +171,10 @@ fn paper_view(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<P
     } else {
         linear_k(&rl.lp, w.damping)
     };
+    let point = Normalized::new(alpha, beta, pp.gamma, pp.delta, d)?;
     Ok(Some(PaperView {
-        normalized: Normalized::new(alpha, beta, pp.gamma, pp.delta, d)?,
+        point,
+        normalized: (!rl.normalized).then_some(point),
         alpha_interval: interval_units(rl, fam, w)?.map(|iv| [iv.lo, iv.hi]),
         alpha_linear: hapstab::linear::linear_alpha_limit(beta, pp.delta, d),
         k_linear,
@@ -245,26 +253,26 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {
             println!("{line}");
         }
         println!(
-            "wall      K = {} N/m, B = {} Ns/m",
-            sig(w.stiffness, 6),
-            sig(w.damping, 6)
+            "wall      K = {}, B = {}",
+            eng(w.stiffness, "N/m", 6),
+            eng(w.damping, "Ns/m", 6)
         );
     }
     if let Some(p) = &o.paper {
-        let n = &p.normalized;
+        let n = &p.point;
         println!(
             "normalized  α = {}, β = {}, γ = {}, δ = {}, d = {}",
-            sig(n.alpha, 8),
-            sig(n.beta, 8),
-            sig(n.gamma, 8),
-            sig(n.delta, 8),
+            sig(n.alpha, 6),
+            sig(n.beta, 6),
+            sig(n.gamma, 6),
+            sig(n.delta, 6),
             n.d
         );
     }
     println!(
-        "verdict     {} (spectral radius {:.15})",
+        "verdict     {} (spectral radius {})",
         o.verdict.to_uppercase(),
-        o.spectral_radius
+        radius_text(o.spectral_radius)
     );
     if rl.normalized {
         print_alpha_interval(o);
@@ -279,12 +287,12 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
         if rl.normalized {
             format!("{} cycles/sample", sig(f, 6))
         } else {
-            eng(f, "Hz", 5)
+            eng(f, "Hz", 6)
         }
     };
     let secs = |s: f64| {
         if rl.normalized {
-            format!("{} samples", sig(s, 8))
+            format!("{} samples", sig(s, 6))
         } else {
             eng(s, "s", 6)
         }
@@ -295,10 +303,10 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
             .critical_frequency_hz
             .map(|f| format!(" (oscillates at {})", hz(f)))
             .unwrap_or_default();
-        parts.push(format!("gain ×{} on K{at}", sig(g, 8)));
+        parts.push(format!("gain ×{} on K{at}", sig(g, 6)));
     }
     if let Some(g) = m.gain_margin_kb {
-        parts.push(format!("×{} on (K, B)", sig(g, 8)));
+        parts.push(format!("×{} on (K, B)", sig(g, 6)));
     }
     if let (Some(p), Some(f)) = (m.phase_margin_deg, m.phase_crossover_hz) {
         parts.push(format!("phase {}° at {}", sig(p, 6), hz(f)));
@@ -326,33 +334,33 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
 
 fn print_alpha_interval(o: &CheckOut) {
     let Some(p) = &o.paper else { return };
-    let beta = sig(p.normalized.beta, 8);
+    let beta = sig(p.point.beta, 6);
     match p.alpha_interval {
         Some([lo, hi]) => println!(
             "stiffness   stable for {} < α < {} at β = {beta} (linear condition (23): α < {})",
-            sig(lo, 12),
-            sig(hi, 12),
-            sig(p.alpha_linear, 12)
+            sig(lo, 6),
+            sig(hi, 6),
+            sig(p.alpha_linear, 6)
         ),
         None => println!("stiffness   no stable α at β = {beta}"),
     }
 }
 
 fn print_k_interval(w: Wall, o: &CheckOut) {
-    let b = sig(w.damping, 6);
+    let b = eng(w.damping, "Ns/m", 6);
     let linear = o
         .paper
         .as_ref()
         .and_then(|p| p.k_linear)
-        .map(|k| format!(" (linear condition (22): K < {} N/m)", sig(k, 10)))
+        .map(|k| format!(" (linear condition (22): K < {})", eng(k, "N/m", 6)))
         .unwrap_or_default();
     match &o.k_interval {
         Some(Some([lo, hi])) => println!(
-            "stiffness   stable for {} < K < {} N/m at B = {b} Ns/m{linear}",
-            sig(*lo, 10),
-            sig(*hi, 10)
+            "stiffness   stable for {} < K < {} at B = {b}{linear}",
+            eng(*lo, "N/m", 6),
+            eng(*hi, "N/m", 6)
         ),
-        Some(None) => println!("stiffness   no stable K at B = {b} Ns/m"),
+        Some(None) => println!("stiffness   no stable K at B = {b}"),
         None => {}
     }
 }

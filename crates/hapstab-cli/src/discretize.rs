@@ -61,8 +61,6 @@ struct VelocityOut {
 #[derive(Serialize)]
 struct DiscretizeOut {
     input: LoopInput,
-    /// Sampling period T in s.
-    period: f64,
     /// H(z) from force (N) to position (m).
     plant: TfOut,
     /// V(z) from position (m) to velocity (m/s).
@@ -81,7 +79,6 @@ pub fn run(a: &DiscretizeArgs) -> Result<()> {
     let v = dl.velocity_tf_physical();
     let out = DiscretizeOut {
         input: LoopInput::new(&rl, Some(w)),
-        period: rl.lp.period,
         plant: dl.plant_tf_physical().into(),
         velocity: VelocityOut {
             num: descending(&v.num),
@@ -156,7 +153,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &DiscretizeOut) {
         poly_text(&o.characteristic, "z", TEXT_DIGITS)
     );
     if units {
-        println!("\nSample time: {} seconds", sig(o.period, TEXT_DIGITS));
+        println!("\nSample time: {} seconds", sig(rl.lp.period, TEXT_DIGITS));
     } else {
         println!("\nSample time: 1 (normalized time t/T, Table I)");
     }

@@ -7,7 +7,7 @@ use hapstab::AffineFamily;
 use serde::Serialize;
 
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
-use crate::output::{print_json, sig};
+use crate::output::{eng, print_json, sig};
 use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
@@ -53,7 +53,7 @@ pub struct KmaxArgs {
     #[arg(long, allow_hyphen_values = true)]
     wall_damping: Option<f64>,
     /// Virtual damping the device can render, LO:HI in Ns/m (HI may be `inf`): K_max is
-    /// searched with LO ≤ B ≤ HI [default 0:inf]
+    /// searched with LO ≤ B ≤ HI [default: 0:inf]
     #[arg(long, value_name = "LO:HI", value_parser = parse_damping_range,
           allow_hyphen_values = true, conflicts_with_all = ["wall_damping", "robust"])]
     damping_range: Option<DampingRange>,
@@ -82,22 +82,46 @@ struct PaperView {
     d: usize,
 }
 
+/// The loop and the given damping, or the damping range searched.
+#[derive(Serialize)]
+struct KmaxInput {
+    #[serde(flatten)]
+    lp: LoopInput,
+    /// B in Ns/m, when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_damping: Option<f64>,
+    /// The damping range searched without a B, [lo, hi] in Ns/m (hi null: unbounded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    damping_range: Option<[Option<f64>; 2]>,
+}
+
+impl KmaxInput {
+    fn new(
+        rl: &ResolvedLoop,
+        wall_damping: Option<f64>,
+        damping_range: Option<[Option<f64>; 2]>,
+    ) -> Self {
+        KmaxInput {
+            lp: LoopInput::new(rl, None),
+            wall_damping,
+            damping_range,
+        }
+    }
+}
+
 #[derive(Serialize)]
 struct KmaxOut {
-    input: LoopInput,
+    input: KmaxInput,
     /// Largest stable K in N/m.
     k_max: Option<f64>,
     /// B at which K_max over the damping range is reached (when no B was given), Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     b_at_k_max: Option<f64>,
-    /// The damping range searched, [lo, hi] in Ns/m (hi null: unbounded).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    damping_range: Option<[Option<f64>; 2]>,
     /// K_max with no virtual damping (B = 0: the plant's own damping only), N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     k_max_at_zero_damping: Option<f64>,
-    /// The given B, Ns/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// The given B, Ns/m (echoed under `input`).
+    #[serde(skip)]
     wall_damping: Option<f64>,
     /// Stable K interval at the given B, N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -105,7 +129,8 @@ struct KmaxOut {
     /// Linear condition (22): (b + B)/(t_d + T/2) at the same B, N/m (the paper's loop).
     #[serde(skip_serializing_if = "Option::is_none")]
     k_linear: Option<f64>,
-    #[serde(flatten)]
+    /// The paper's loop: the same result in normalized units (Table I).
+    #[serde(rename = "normalized", skip_serializing_if = "Option::is_none")]
     paper: Option<PaperView>,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -121,10 +146,9 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
     let best = k_max_at_damping(&rl.lp, fam, bu)?;
     let k = |a: f64| fam.to_physical(a, 0.0).0;
     Ok(KmaxOut {
-        input: LoopInput::new(rl, None),
+        input: KmaxInput::new(rl, Some(b), None),
         k_max: best.map(|i| k(i.hi)),
         b_at_k_max: None,
-        damping_range: None,
         k_max_at_zero_damping: None,
         wall_damping: Some(b),
         k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
@@ -148,10 +172,13 @@ fn within(rl: &ResolvedLoop, fam: &AffineFamily, band: DampingRange) -> Result<K
     let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
     let at_zero = k_max_at_damping(&rl.lp, fam, 0.0)?;
     Ok(KmaxOut {
-        input: LoopInput::new(rl, None),
+        input: KmaxInput::new(
+            rl,
+            None,
+            Some([Some(band.lo), band.hi.is_finite().then_some(band.hi)]),
+        ),
         k_max: phys.map(|p| p.0),
         b_at_k_max: phys.map(|p| p.1),
-        damping_range: Some([Some(band.lo), band.hi.is_finite().then_some(band.hi)]),
         k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
         wall_damping: None,
         k_interval: None,
@@ -212,11 +239,11 @@ fn figure(
 
 fn band_text(band: DampingRange) -> String {
     let hi = if band.hi.is_finite() {
-        format!("{} Ns/m", sig(band.hi, 8))
+        eng(band.hi, "Ns/m", 6)
     } else {
         "∞".to_string()
     };
-    format!("{} ≤ B ≤ {hi}", sig(band.lo, 8))
+    format!("{} ≤ B ≤ {hi}", eng(band.lo, "Ns/m", 6))
 }
 
 fn paper_view(rl: &ResolvedLoop, alpha_max: Option<f64>, beta: Option<f64>) -> Option<PaperView> {
@@ -257,26 +284,28 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     for line in describe_loop(&rl.lp) {
         println!("{line}");
     }
+    let kt = |k: f64| eng(k, "N/m", 6);
+    let bt = |b: f64| eng(b, "Ns/m", 6);
     let linear = |what: &str| {
         out.k_linear
-            .map(|k| format!("; linear condition (22){what}: {} N/m", sig(k, 12)))
+            .map(|k| format!("; linear condition (22){what}: {}", kt(k)))
             .unwrap_or_default()
     };
     match (out.k_max, out.wall_damping, out.b_at_k_max) {
         (None, None, _) => println!("no stiffness is stable for {}", band_text(band)),
-        (None, Some(b), _) => println!("no stiffness is stable at B = {} Ns/m", sig(b, 8)),
+        (None, Some(b), _) => println!("no stiffness is stable at B = {}", bt(b)),
         (Some(k), Some(b), _) => println!(
-            "K_max = {} N/m at B = {} Ns/m (stable for {} < K < {}){}",
-            sig(k, 12),
-            sig(b, 8),
-            sig(out.k_interval.map_or(f64::NAN, |i| i[0]), 8),
-            sig(k, 12),
+            "K_max = {} at B = {} (stable for {} < K < {}){}",
+            kt(k),
+            bt(b),
+            out.k_interval.map_or("—".into(), |i| kt(i[0])),
+            kt(k),
             linear("")
         ),
         (Some(k), None, Some(b)) => println!(
-            "K_max = {} N/m, reached at B = {} Ns/m (largest over {}){}",
-            sig(k, 12),
-            sig(b, 12),
+            "K_max = {}, reached at B = {} (largest over {}){}",
+            kt(k),
+            bt(b),
             band_text(band),
             linear(" at that B")
         ),
@@ -288,8 +317,8 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     if a.wall_damping.is_none() {
         match out.k_max_at_zero_damping {
             Some(k) => println!(
-                "K_max = {} N/m at B = 0 (no virtual damping, the plant's own damping only)",
-                sig(k, 12)
+                "K_max = {} at B = 0 (no virtual damping, the plant's own damping only)",
+                kt(k)
             ),
             None => println!("no stiffness is stable at B = 0"),
         }

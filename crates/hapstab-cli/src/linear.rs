@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use crate::budget::{self, Driver};
 use crate::model::PlantArgs;
-use crate::output::{print_json, sig};
+use crate::output::{eng, print_json, sig};
 
 /// Arguments of `hapstab linear`.
 #[derive(Args, Debug)]
@@ -46,11 +46,46 @@ struct PointOut {
     wall_damping: Option<f64>,
 }
 
+/// The plant as given (after defaults) and the error levels.
 #[derive(Serialize)]
-struct LinearOut {
+struct LinearInput {
+    #[serde(flatten)]
+    plant: PlantInput,
+    levels: Vec<f64>,
+}
+
+/// The plant: normalized (Table I) or the effective plant in SI units.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum PlantInput {
+    Normalized {
+        gamma: f64,
+        delta: f64,
+        d: usize,
+    },
+    Physical {
+        mass: f64,
+        damping: f64,
+        stiffness: f64,
+        period: f64,
+        d: usize,
+    },
+}
+
+/// The normalized view of a physical plant (Table I).
+#[derive(Serialize)]
+struct NormalizedPlant {
     gamma: f64,
     delta: f64,
     d: usize,
+}
+
+#[derive(Serialize)]
+struct LinearOut {
+    input: LinearInput,
+    /// γ, δ, d of a plant given in physical units.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<NormalizedPlant>,
     /// Condition (23): α < (β + δ)/(d + 1/2), as slope and intercept in β.
     linear_slope: f64,
     linear_intercept: f64,
@@ -82,10 +117,30 @@ pub fn run(a: &LinearArgs) -> Result<()> {
         .physical
         .map(|(eff, s)| (eff.mass / (s.period * s.period), eff.mass / s.period));
     let tr = pm.d as f64 + 0.5;
+    let plant = match pm.physical {
+        None => PlantInput::Normalized {
+            gamma: pm.gamma,
+            delta: pm.delta,
+            d: pm.d,
+        },
+        Some((eff, s)) => PlantInput::Physical {
+            mass: eff.mass,
+            damping: eff.damping,
+            stiffness: eff.stiffness,
+            period: s.period,
+            d: pm.d,
+        },
+    };
     let out = LinearOut {
-        gamma: pm.gamma,
-        delta: pm.delta,
-        d: pm.d,
+        input: LinearInput {
+            plant,
+            levels: a.levels.clone(),
+        },
+        normalized: pm.physical.map(|_| NormalizedPlant {
+            gamma: pm.gamma,
+            delta: pm.delta,
+            d: pm.d,
+        }),
         linear_slope: 1.0 / tr,
         linear_intercept: pm.delta / tr,
         alpha_lower: -pm.gamma,
@@ -107,20 +162,22 @@ pub fn run(a: &LinearArgs) -> Result<()> {
     }
     println!(
         "plant       γ = {}, δ = {}, d = {}",
-        sig(out.gamma, 8),
-        sig(out.delta, 8),
-        out.d
+        sig(pm.gamma, 6),
+        sig(pm.delta, 6),
+        pm.d
     );
     println!(
         "linear      (23): α < (β + δ)/(d + 1/2) = {}·β + {};  (19): α > {}",
-        sig(out.linear_slope, 8),
-        sig(out.linear_intercept, 8),
-        sig(out.alpha_lower, 8)
+        sig(out.linear_slope, 6),
+        sig(out.linear_intercept, 6),
+        sig(out.alpha_lower, 6)
     );
     println!("error (24) first reaches, going up from β = 0⁺ (α on the exact boundary):");
     for (p, q) in out.points.iter().zip(&pts) {
         let phys = match (p.wall_stiffness, p.wall_damping) {
-            (Some(k), Some(b)) => format!("   (K = {} N/m, B = {} Ns/m)", sig(k, 8), sig(b, 8)),
+            (Some(k), Some(b)) => {
+                format!("   (K = {}, B = {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
+            }
             _ => String::new(),
         };
         let note = if q.at_start {
@@ -131,9 +188,9 @@ pub fn run(a: &LinearArgs) -> Result<()> {
         println!(
             "  {:>5} %   β = {}   α = {}   α_lin = {}{phys}{note}",
             sig(p.level * 100.0, 4),
-            sig(p.beta, 12),
-            sig(p.alpha, 12),
-            sig(p.alpha_linear, 12)
+            sig(p.beta, 6),
+            sig(p.alpha, 6),
+            sig(p.alpha_linear, 6)
         );
     }
     Ok(())

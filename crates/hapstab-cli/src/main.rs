@@ -25,46 +25,51 @@ mod zwidth;
 
 use clap::{Parser, Subcommand};
 
-/// Exact stability of haptic virtual walls with a human operator (Hulin et al. 2008).
+/// Exact stability of haptic virtual walls held by a human (Hulin et al. 2008): is a wall
+/// stable, how stiff may it be, which (K, B) are stable or passive, for the paper's loop or
+/// the loop you run.
 #[derive(Parser)]
-#[command(name = "hapstab", version, about, long_about = None)]
+#[command(name = "hapstab", version, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
 
+/// The commands, in the order a user needs them: the verdict on one wall, the stiffness
+/// limit and the regions, their conditions, the design tools, then simulation, the paper and
+/// the explorer.
 #[derive(Subcommand)]
 enum Command {
-    /// Time-domain simulation with nonlinear effects: verdict, CSV trace and plot (issue 6)
-    Simulate(simulate::SimulateArgs),
-    /// Empirical stability boundary of a nonlinear setting by simulation (issue 6)
-    Simboundary(simulate::SimboundaryArgs),
     /// Is this virtual wall stable, and how stiff may it be? (Sections III and V)
     Check(check::CheckArgs),
-    /// The exact discrete loop as coefficients: plant H(z) with its delay, velocity filter V(z), p(z)
-    Discretize(discretize::DiscretizeArgs),
-    /// The exact stable region in the (α, β)-plane, α_max and area (Section V, Figs. 4–6)
-    Boundary(boundary::BoundaryArgs),
     /// Largest stable virtual stiffness K in N/m, beside the linear condition (22)
     Kmax(kmax::KmaxArgs),
+    /// The exact stable region in the wall plane, K_max (α_max) and area (Section V, Figs. 4–6)
+    Boundary(boundary::BoundaryArgs),
+    /// Grid map of stability over two of α, β, γ, δ or over (K, B), in parallel (Section V)
+    Map(map::MapArgs),
+    /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
+    Linear(linear::LinearArgs),
+    /// Regions up to the Nyquist frequency, robust region, passivity; Remark 4 (Section VIII)
+    Nyquist(nyquist::NyquistArgs),
     /// Device damping a wall needs to be passive (Colgate–Schenkel, eq. 28) and the passive region
     Passivity(passivity::PassivityArgs),
     /// Z-width: stable and passive (K, B) regions of a device, K_max table; compare loops
     Zwidth(zwidth::ZwidthArgs),
     /// K_max (stable and passive) against delay, period, filter cut-off or a plant parameter
     Sweep(sweep::SweepArgs),
-    /// Grid map of stability over two of α, β, γ, δ (the paper's method), in parallel
-    Map(map::MapArgs),
-    /// Interactive explorer in the browser: local web server with the exact region (issue 7)
-    Serve(serve::ServeArgs),
     /// The γ and δ ranges of real haptic systems for a sampling period (Section IV, eq. 11–15)
     Ranges(ranges::RangesArgs),
-    /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
-    Linear(linear::LinearArgs),
-    /// Regions up to the Nyquist frequency, robust region, passivity; Remark 4 (Section VIII)
-    Nyquist(nyquist::NyquistArgs),
+    /// The exact discrete loop as coefficients: plant H(z) with its delay, velocity filter V(z), p(z)
+    Discretize(discretize::DiscretizeArgs),
+    /// Time-domain simulation with nonlinear effects: verdict, and on request a CSV trace and plot
+    Simulate(simulate::SimulateArgs),
+    /// Empirical stability boundary of a nonlinear setting by simulation
+    Simboundary(simulate::SimboundaryArgs),
     /// Reproduce the paper: Figs. 4–10 (SVG, PNG), claims C1–C11 with verdicts, α_max table
     Paper(paper::PaperArgs),
+    /// Interactive explorer in the browser: a local web server drawing the exact region live
+    Serve(serve::ServeArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
@@ -89,20 +94,26 @@ fn run(cli: Cli) -> anyhow::Result<()> {
 
 /// One clear line from clap's message: its first line names the flag and the value; a first
 /// line that ends in ':' (a conflict with several flags) is completed by the indented lines
-/// that list them.
+/// that list them, and clap's suggestion ("tip: a similar subcommand exists: 'check'") is
+/// kept after a semicolon.
 fn one_line(text: &str) -> String {
     let mut lines = text.lines();
     let first = lines.next().unwrap_or("error: invalid arguments");
-    match first.strip_suffix(':') {
+    let mut line = match first.strip_suffix(':') {
         Some(head) => {
             let items: Vec<&str> = lines
+                .clone()
                 .take_while(|l| l.starts_with(' ') && !l.trim().is_empty())
                 .map(str::trim)
                 .collect();
             format!("{head} {}", items.join(", "))
         }
         None => first.to_string(),
+    };
+    if let Some(tip) = lines.find_map(|l| l.trim().strip_prefix("tip: a similar")) {
+        line.push_str(&format!("; a similar{tip}"));
     }
+    line
 }
 
 fn main() {
@@ -172,6 +183,7 @@ mod tests {
         for (args, flag) in [
             (vec!["hapstab", "map", "--x", "alpha:0:1:10"], "--y"),
             (vec!["hapstab", "paper"], "--out"),
+            (vec!["hapstab", "chek"], "'check'"),
         ] {
             let e = Cli::try_parse_from(&args).err().expect("a parse error");
             let line = one_line(&e.render().to_string());

@@ -43,10 +43,10 @@ pub struct MapArgs {
     y: String,
     #[command(flatten)]
     lp: LoopArgs,
-    /// Fixed α of a normalized map (when not gridded) [default 0].
+    /// Fixed α of a normalized map (when not gridded) [default: 0].
     #[arg(long, allow_hyphen_values = true)]
     alpha: Option<f64>,
-    /// Fixed β of a normalized map (when not gridded) [default 0].
+    /// Fixed β of a normalized map (when not gridded) [default: 0].
     #[arg(long, allow_hyphen_values = true)]
     beta: Option<f64>,
     /// Also compute the spectral radius at every point (slower).
@@ -133,7 +133,7 @@ fn axis_label(name: Name) -> &'static str {
 struct Values {
     stable: Vec<bool>,
     radius: Option<Vec<f64>>,
-    input: Option<LoopInput>,
+    input: LoopInput,
 }
 
 /// Layout of the `--out` file.
@@ -145,10 +145,19 @@ enum Format {
     Npy,
 }
 
+/// The map's inputs: the axes as given, the loop (or the fixed normalized parameters).
+#[derive(Serialize)]
+struct MapInput {
+    x: String,
+    y: String,
+    #[serde(flatten)]
+    lp: LoopInput,
+    radius: bool,
+}
+
 #[derive(Serialize)]
 struct MapSummary {
-    #[serde(skip_serializing_if = "Option::is_none")]
-    input: Option<LoopInput>,
+    input: MapInput,
     points: usize,
     stable_points: usize,
     seconds: f64,
@@ -180,7 +189,13 @@ fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
-        input: None,
+        input: LoopInput::Normalized {
+            gamma: base.gamma,
+            delta: base.delta,
+            d,
+            alpha: Some(base.alpha),
+            beta: Some(base.beta),
+        },
     })
 }
 
@@ -202,7 +217,7 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
-        input: Some(LoopInput::new(&rl, None)),
+        input: LoopInput::new(&rl, None),
     })
 }
 
@@ -468,7 +483,12 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let out = a.out.as_ref().map(|p| p.display().to_string());
     if a.json {
         return print_json(&MapSummary {
-            input: v.input,
+            input: MapInput {
+                x: a.x.clone(),
+                y: a.y.clone(),
+                lp: v.input,
+                radius: a.radius,
+            },
             points,
             stable_points,
             seconds: secs,

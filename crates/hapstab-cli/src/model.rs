@@ -53,28 +53,28 @@ pub struct PlantArgs {
     /// Effective stiffness k = k_H in N/m.
     #[arg(long, allow_hyphen_values = true, conflicts_with = "arm_stiffness")]
     pub stiffness: Option<f64>,
-    /// Device mass m_L in kg [default 0.1].
+    /// Device mass m_L in kg [default: 0.1].
     #[arg(long, allow_hyphen_values = true)]
     pub device_mass: Option<f64>,
-    /// Device damping b_L in Ns/m [default 1.5].
+    /// Device damping b_L in Ns/m [default: 1.5].
     #[arg(long, allow_hyphen_values = true)]
     pub device_damping: Option<f64>,
-    /// Arm mass m_H in kg [default 1.0].
+    /// Arm mass m_H in kg [default: 1.0].
     #[arg(long, allow_hyphen_values = true)]
     pub arm_mass: Option<f64>,
-    /// Arm damping b_H in Ns/m [default 6].
+    /// Arm damping b_H in Ns/m [default: 6].
     #[arg(long, allow_hyphen_values = true)]
     pub arm_damping: Option<f64>,
-    /// Arm stiffness k_H in N/m [default 350].
+    /// Arm stiffness k_H in N/m [default: 350].
     #[arg(long, allow_hyphen_values = true)]
     pub arm_stiffness: Option<f64>,
     /// No human arm: the ungrabbed device (k_H = b_H = m_H = 0).
     #[arg(long, conflicts_with_all = ["arm_mass", "arm_damping", "arm_stiffness", "mass", "damping", "stiffness"])]
     pub no_arm: bool,
-    /// Sampling period T in s [default 0.001].
+    /// Sampling period T in s [default: 0.001].
     #[arg(long, allow_hyphen_values = true)]
     pub period: Option<f64>,
-    /// Delay d in whole samples [default 0].
+    /// Delay d in whole samples [default: 0].
     #[arg(long, allow_hyphen_values = true, conflicts_with = "delay_time")]
     pub delay: Option<f64>,
     /// Delay t_d = (d + λ)T in seconds; a fraction λ of a period is discretized exactly
@@ -208,10 +208,10 @@ pub struct WallArgs {
     /// Normalized virtual damping β = BT/m (the paper's plant only).
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["wall_stiffness", "wall_damping"])]
     pub beta: Option<f64>,
-    /// Virtual stiffness K in N/m [default 10000 in physical mode].
+    /// Virtual stiffness K in N/m [default: 10000 in physical mode].
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["gamma", "delta"])]
     pub wall_stiffness: Option<f64>,
-    /// Virtual damping B in Ns/m [default 10 in physical mode].
+    /// Virtual damping B in Ns/m [default: 10 in physical mode].
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["gamma", "delta"])]
     pub wall_damping: Option<f64>,
 }
@@ -391,24 +391,24 @@ pub struct LoopArgs {
     /// measures (needs --transmission-stiffness; the arm flags act on the handle).
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
     pub motor_mass: Option<f64>,
-    /// Two-mass device: motor-side viscous damping b_m in Ns/m [default 0].
+    /// Two-mass device: motor-side viscous damping b_m in Ns/m [default: 0].
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
     pub motor_damping: Option<f64>,
-    /// Two-mass device: handle mass m_h in kg [default 0]; the arm's mass adds to it.
+    /// Two-mass device: handle mass m_h in kg [default: 0]; the arm's mass adds to it.
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
     pub handle_mass: Option<f64>,
     /// Two-mass device: transmission stiffness k_t in N/m between motor and handle.
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
     pub transmission_stiffness: Option<f64>,
-    /// Two-mass device: transmission damping b_t in Ns/m [default 0].
+    /// Two-mass device: transmission damping b_t in Ns/m [default: 0].
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = TWO_MASS_CONFLICTS)]
     pub transmission_damping: Option<f64>,
     /// Actuator lag: the applied force follows the commanded one through 1/(τs + 1), τ in s
-    /// (the current loop's time constant) [default 0: no lag].
+    /// (the current loop's time constant) [default: 0: no lag].
     #[arg(long, value_name = "TAU", allow_hyphen_values = true,
           value_parser = time_constant, conflicts_with_all = ["gamma", "delta"])]
     pub force_lag: Option<f64>,
-    /// Velocity estimator of the wall's damper [default backward]:
+    /// Velocity estimator of the wall's damper [default: backward]:
     ///   backward                v_k = (y_k − y_{k−1})/T  (the paper's)
     ///   lowpass:FC              v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T,
     ///                           a = exp(−2π·f_c·T), f_c = FC in Hz

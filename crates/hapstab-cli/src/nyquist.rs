@@ -14,7 +14,8 @@ use hapstab::nyquist::{
 use serde::Serialize;
 
 use crate::budget::{self, Driver};
-use crate::output::{print_json, sig};
+use crate::model::{DEFAULT_PERIOD, PlantArgs, delay_samples};
+use crate::output::{eng, or_dash, print_json, sig};
 use crate::progress::Bar;
 
 /// Default of `--steps`.
@@ -26,15 +27,16 @@ const DEFAULT_GAMMA_SAMPLES: usize = 41;
 /// β samples of the passivity check (Section VIII-A).
 const PASSIVE_SAMPLES: usize = 41;
 
-/// Arguments of `hapstab nyquist`.
+/// Arguments of `hapstab nyquist`: the normalized plant (--delta, --delay) for the regions,
+/// or the plant in physical units (the same flags as every command) for Remark 4.
+/// `--gamma` and `--stiffness` are refused (γ is swept, Remark 4 computes the stiffness), so
+/// their help is hidden.
 #[derive(Args, Debug)]
+#[command(mut_arg("gamma", |a| a.hide(true)))]
+#[command(mut_arg("stiffness", |a| a.hide(true)))]
 pub struct NyquistArgs {
-    /// Normalized physical damping δ = bT/m.
-    #[arg(long, allow_hyphen_values = true)]
-    delta: Option<f64>,
-    /// Delay d in whole samples.
-    #[arg(long, default_value_t = 0)]
-    delay: usize,
+    #[command(flatten)]
+    plant: PlantArgs,
     /// Sweep γ up to this fraction of γ_N = π² + δ²/4 (eq. 27).
     #[arg(long, allow_hyphen_values = true, default_value_t = 1.0)]
     gamma_fraction: f64,
@@ -47,18 +49,79 @@ pub struct NyquistArgs {
     /// γ samples of the robust region.
     #[arg(long, default_value_t = DEFAULT_GAMMA_SAMPLES)]
     gamma_samples: usize,
-    /// Remark 4: effective mass m in kg.
-    #[arg(long, allow_hyphen_values = true)]
-    mass: Option<f64>,
-    /// Remark 4: sampling period T in s [default 0.001].
-    #[arg(long, allow_hyphen_values = true)]
-    period: Option<f64>,
-    /// Remark 4: effective damping b in Ns/m [default 0].
-    #[arg(long, allow_hyphen_values = true)]
-    damping: Option<f64>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+}
+
+/// Below this |α_max| a swept region has no stable point with α > 0: its α_max comes out of
+/// the golden-section search at round-off level (about 1e-16·γ for γ up to γ_N ≈ 10), far
+/// below this bound, and is reported as 0.
+const ALPHA_ROUNDOFF: f64 = 1e-12;
+
+/// The inputs of the normalized analysis, after defaults.
+#[derive(Serialize)]
+struct SweepInput {
+    delta: f64,
+    d: usize,
+    gamma_fraction: f64,
+    steps: usize,
+    beta_samples: usize,
+    gamma_samples: usize,
+}
+
+/// One region of the γ sweep (α_max of 0 when every stable point has α ≤ 0, to round-off).
+#[derive(Serialize)]
+struct SweepRow {
+    gamma: f64,
+    degenerate: bool,
+    empty: bool,
+    beta_min: f64,
+    beta_max: f64,
+    alpha_min: f64,
+    alpha_max: f64,
+    /// Null when α_max is 0 to round-off (then reached along a boundary segment).
+    beta_at_alpha_max: Option<f64>,
+    area: f64,
+}
+
+impl From<&RegionSummary> for SweepRow {
+    fn from(s: &RegionSummary) -> Self {
+        let roundoff = s.alpha_max.abs() <= ALPHA_ROUNDOFF;
+        SweepRow {
+            gamma: s.gamma,
+            degenerate: s.degenerate,
+            empty: s.empty,
+            beta_min: s.beta_min,
+            beta_max: s.beta_max,
+            alpha_min: s.alpha_min,
+            alpha_max: if roundoff { 0.0 } else { s.alpha_max },
+            beta_at_alpha_max: (!roundoff).then_some(s.beta_at_alpha_max),
+            area: s.area,
+        }
+    }
+}
+
+/// Remark 4's inputs: the effective mass and damping and the period.
+#[derive(Serialize)]
+struct Remark4Input {
+    mass: f64,
+    damping: f64,
+    period: f64,
+}
+
+/// `nyquist --json` with physical units (Remark 4).
+#[derive(Serialize)]
+struct Remark4Out {
+    input: Remark4Input,
+    /// k = π² m/T² + b²/(4m) in N/m.
+    stiffness: f64,
+    /// δ = bT/m.
+    delta: f64,
+    /// γ_N = π² + δ²/4 (eq. 27).
+    gamma_nyquist: f64,
+    /// The Nyquist frequency 1/(2T) in Hz.
+    nyquist_frequency_hz: f64,
 }
 
 #[derive(Serialize)]
@@ -71,12 +134,14 @@ struct RobustOut {
     area: f64,
     degenerate_gammas: Vec<f64>,
     multiple_intervals: bool,
-    polygon: Vec<AlphaBeta>,
+    /// Counter-clockwise vertices [alpha, beta].
+    polygon: Vec<[f64; 2]>,
 }
 
 #[derive(Serialize)]
 struct PassiveOut {
-    vertices: Vec<AlphaBeta>,
+    /// Vertices [alpha, beta].
+    vertices: Vec<[f64; 2]>,
     area: f64,
     /// Eq. (28) is Colgate's condition for d = 0.
     applies: bool,
@@ -85,11 +150,10 @@ struct PassiveOut {
 
 #[derive(Serialize)]
 struct NyquistOut {
-    delta: f64,
-    d: usize,
+    input: SweepInput,
     /// γ_N = π² + δ²/4 (eq. 27).
     gamma_nyquist: f64,
-    sweep: Vec<RegionSummary>,
+    sweep: Vec<SweepRow>,
     robust: RobustOut,
     #[serde(skip_serializing_if = "Option::is_none")]
     passive: Option<PassiveOut>,
@@ -97,22 +161,15 @@ struct NyquistOut {
 
 /// Runs `hapstab nyquist`.
 pub fn run(a: &NyquistArgs) -> Result<()> {
-    let physical = a.mass.is_some() || a.period.is_some() || a.damping.is_some();
-    if physical {
-        if a.delta.is_some() {
-            bail!("give either --delta (normalized) or --mass/--period/--damping, not both");
-        }
-        let Some(m) = a.mass else {
-            bail!("Remark 4 needs --mass (kg)");
-        };
-        let r = nyquist_stiffness(m, a.damping.unwrap_or(0.0), a.period.unwrap_or(1e-3))?;
-        if a.json {
-            return print_json(&r);
-        }
-        print_remark4(&r);
-        return Ok(());
+    let p = &a.plant;
+    if p.gamma.is_some() {
+        bail!("--gamma: nyquist sweeps γ itself up to γ_N; give the plant's --delta");
     }
-    let delta = a.delta.unwrap_or(0.0);
+    if p.any_physical() {
+        return run_remark4(a);
+    }
+    let delta = p.delta.unwrap_or(0.0);
+    let delay = delay_samples(p.delay.unwrap_or(0.0))?;
     if !(a.gamma_fraction.is_finite() && a.gamma_fraction >= 0.0) {
         bail!(
             "--gamma-fraction must be a finite number >= 0 (got {})",
@@ -122,12 +179,11 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     if a.steps == 0 {
         bail!("--steps must be >= 1");
     }
-    hapstab::params::check_delay(a.delay)?;
     let opts = RobustOptions {
         gamma_samples: a.gamma_samples.max(2),
         ..Default::default()
     };
-    let cost = estimate(a, delta, opts);
+    let cost = estimate(a, delta, delay, opts);
     budget::check(
         cost,
         "the sweep and the robust region",
@@ -135,7 +191,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
             Driver::count("--steps", a.steps, DEFAULT_STEPS),
             Driver::count("--beta-samples", a.beta_samples, DEFAULT_BETA_SAMPLES),
             Driver::count("--gamma-samples", a.gamma_samples, DEFAULT_GAMMA_SAMPLES),
-            Driver::delay(a.delay),
+            Driver::delay(delay),
         ],
     )?;
     let gn = nyquist_gamma(delta);
@@ -149,18 +205,18 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     );
     let sweep = gamma_sweep_with_progress(
         delta,
-        a.delay,
+        delay,
         a.gamma_fraction,
         a.steps,
         a.beta_samples,
         &bar.stage(0),
     )?;
-    let r = robust_region_with_progress(delta, a.delay, 0.0, g_hi, opts, &bar.stage(stages[0]))?;
+    let r = robust_region_with_progress(delta, delay, 0.0, g_hi, opts, &bar.stage(stages[0]))?;
     let passive = if delta > 0.0 {
         let p = passive_region(delta)?;
         let check = passive_inside_robust_with_progress(
             delta,
-            a.delay,
+            delay,
             0.0,
             g_hi,
             PASSIVE_SAMPLES,
@@ -169,8 +225,8 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
         )?;
         Some(PassiveOut {
             area: p.area(),
-            vertices: p.vertices,
-            applies: a.delay == 0,
+            vertices: pairs(&p.vertices),
+            applies: delay == 0,
             check,
         })
     } else {
@@ -178,10 +234,16 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     };
     bar.finish();
     let out = NyquistOut {
-        delta,
-        d: a.delay,
+        input: SweepInput {
+            delta,
+            d: delay,
+            gamma_fraction: a.gamma_fraction,
+            steps: a.steps,
+            beta_samples: a.beta_samples,
+            gamma_samples: a.gamma_samples,
+        },
         gamma_nyquist: gn,
-        sweep,
+        sweep: sweep.iter().map(SweepRow::from).collect(),
         robust: RobustOut {
             gamma_lo: 0.0,
             gamma_hi: g_hi,
@@ -191,7 +253,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
             area: r.area,
             degenerate_gammas: r.degenerate_gammas,
             multiple_intervals: r.multiple_intervals,
-            polygon: r.polygon,
+            polygon: pairs(&r.polygon),
         },
         passive,
     };
@@ -202,54 +264,88 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     Ok(())
 }
 
+/// Vertices as [alpha, beta] pairs, as every command writes polygons.
+fn pairs(v: &[AlphaBeta]) -> Vec<[f64; 2]> {
+    v.iter().map(|p| [p.alpha, p.beta]).collect()
+}
+
 /// The estimated cost of the sweep, the robust region and the passivity check.
-fn estimate(a: &NyquistArgs, delta: f64, opts: RobustOptions) -> Cost {
-    let sweep = gamma_sweep_cost(a.steps, a.beta_samples, a.delay);
+fn estimate(a: &NyquistArgs, delta: f64, delay: usize, opts: RobustOptions) -> Cost {
+    let sweep = gamma_sweep_cost(a.steps, a.beta_samples, delay);
     let robust = robust_region_cost(
         opts.gamma_samples,
         opts.beta_samples,
-        a.delay,
+        delay,
         opts.refine_gamma,
         opts.refine_beta_rounds,
     );
     let passive = if delta > 0.0 {
-        passive_check_cost(PASSIVE_SAMPLES, opts.gamma_samples, a.delay)
+        passive_check_cost(PASSIVE_SAMPLES, opts.gamma_samples, delay)
     } else {
         Cost::ZERO
     };
     sweep.then(robust).then(passive)
 }
 
+/// Remark 4 for the effective plant of the physical flags: the stiffness that brings it to
+/// the Nyquist frequency (the arm's own stiffness and the delay play no part).
+fn run_remark4(a: &NyquistArgs) -> Result<()> {
+    let p = &a.plant;
+    if p.stiffness.is_some() {
+        bail!(
+            "--stiffness: Remark 4 computes the stiffness that reaches the Nyquist frequency; leave it out"
+        );
+    }
+    let eff = p.effective()?;
+    let r = nyquist_stiffness(eff.mass, eff.damping, p.period.unwrap_or(DEFAULT_PERIOD))?;
+    if a.json {
+        return print_json(&Remark4Out {
+            input: Remark4Input {
+                mass: r.mass,
+                damping: r.damping,
+                period: r.period,
+            },
+            stiffness: r.stiffness,
+            delta: r.delta,
+            gamma_nyquist: r.gamma,
+            nyquist_frequency_hz: 0.5 / r.period,
+        });
+    }
+    print_remark4(&r);
+    Ok(())
+}
+
 fn print_remark4(r: &NyquistStiffness) {
     println!(
-        "device      m = {} kg, b = {} Ns/m, T = {} ms (δ = {})",
-        sig(r.mass, 6),
-        sig(r.damping, 6),
-        sig(r.period * 1e3, 6),
+        "device      m = {}, b = {}, T = {} (δ = {})",
+        eng(r.mass, "kg", 6),
+        eng(r.damping, "Ns/m", 6),
+        eng(r.period, "s", 6),
         sig(r.delta, 6)
     );
     println!(
-        "Remark 4    k = π² m/T² + b²/(4m) = {:.1} kN/m ({} N/m) reaches the Nyquist frequency π/T = {} rad/s",
-        r.stiffness / 1e3,
-        sig(r.stiffness, 10),
-        sig(r.nyquist_frequency, 6)
+        "Remark 4    k = π² m/T² + b²/(4m) = {} reaches the Nyquist frequency π/T = {} rad/s ({})",
+        eng(r.stiffness, "N/m", 6),
+        sig(r.nyquist_frequency, 6),
+        eng(0.5 / r.period, "Hz", 6)
     );
     println!(
         "            (γ_N = π² + δ²/4 = {}, eq. 27)",
-        sig(r.gamma, 10)
+        sig(r.gamma, 6)
     );
 }
 
 fn print_text(o: &NyquistOut) {
+    let (delta, gn) = (o.input.delta, o.gamma_nyquist);
     println!(
         "plant       δ = {}, d = {};  Nyquist at γ_N = π² + δ²/4 = {} (eq. 27)",
-        sig(o.delta, 8),
-        o.d,
-        sig(o.gamma_nyquist, 10)
+        sig(delta, 6),
+        o.input.d,
+        sig(gn, 6)
     );
-    println!("stable regions (exact α-intervals on a β grid):");
+    println!("stable regions (exact α-intervals on a β grid; — where undefined):");
     println!(
-        "  {:>12}  {:>12}  {:>14}  {:>12}  {:>12}  note",
+        "  {:>12}  {:>12}  {:>12}  {:>12}  {:>12}  note",
         "γ", "γ/γ_N", "α_max", "β at α_max", "area"
     );
     for s in &o.sweep {
@@ -257,47 +353,49 @@ fn print_text(o: &NyquistOut) {
             "pole at z = ±1 for every (α, β): limit stable at best"
         } else if s.empty {
             "empty"
-        } else if s.alpha_max <= 1e-12 {
-            "all stable points have α ≤ 0"
+        } else if s.beta_at_alpha_max.is_none() {
+            "every stable point has α ≤ 0 (α_max below 1e-12: round-off)"
         } else {
             ""
         };
+        let num = |x: f64| or_dash(x, |v| sig(v, 6));
         println!(
-            "  {:>12}  {:>12}  {:>14}  {:>12}  {:>12}  {note}",
-            sig(s.gamma, 8),
-            sig(s.gamma / o.gamma_nyquist, 4),
-            sig(s.alpha_max, 8),
-            sig(s.beta_at_alpha_max, 6),
-            sig(s.area, 6)
+            "  {:>12}  {:>12}  {:>12}  {:>12}  {:>12}  {note}",
+            sig(s.gamma, 6),
+            sig(s.gamma / gn, 6),
+            num(s.alpha_max),
+            s.beta_at_alpha_max.map_or("—".into(), num),
+            num(s.area)
         );
     }
     let r = &o.robust;
     if r.empty {
         println!(
             "robust      over γ ∈ [0, {}]: no robustly stable point off the boundary (at most the origin)",
-            sig(r.gamma_hi, 8)
+            sig(r.gamma_hi, 6)
         );
     } else {
         println!(
             "robust      over γ ∈ [0, {}]: α_max = {} at β = {}, area = {} ({} polygon vertices)",
-            sig(r.gamma_hi, 8),
-            sig(r.alpha_max, 8),
+            sig(r.gamma_hi, 6),
+            sig(r.alpha_max, 6),
             sig(r.beta_at_alpha_max, 6),
             sig(r.area, 6),
             r.polygon.len()
         );
     }
     if !r.degenerate_gammas.is_empty() {
+        let gs: Vec<String> = r.degenerate_gammas.iter().map(|g| sig(*g, 6)).collect();
         println!(
-            "            degenerate γ (limit from inside used): {:?}",
-            r.degenerate_gammas
+            "            degenerate γ (limit from inside used): {}",
+            gs.join(", ")
         );
     }
     if let Some(p) = &o.passive {
         println!(
             "passive     eq. (28): δ > α/2 + |β|, α ≥ 0: triangle (0, ±{}), ({}, 0), area {}{}",
-            sig(o.delta, 6),
-            sig(2.0 * o.delta, 6),
+            sig(delta, 6),
+            sig(2.0 * delta, 6),
             sig(p.area, 6),
             if p.applies {
                 ""
@@ -312,7 +410,7 @@ fn print_text(o: &NyquistOut) {
             } else {
                 "NOT inside"
             },
-            sig(p.check.min_right_margin, 4),
+            sig(p.check.min_right_margin, 6),
             sig(p.check.beta_at_min_right_margin, 6)
         );
     }

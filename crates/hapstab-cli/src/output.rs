@@ -1,11 +1,97 @@
 //! Shared output helpers: JSON printing and number formatting.
 
-use serde::Serialize;
+use std::io;
 
-/// Prints a value as pretty JSON on stdout.
+use serde::Serialize;
+use serde_json::ser::{Formatter, PrettyFormatter};
+
+/// Prints a value as pretty JSON on stdout: shortest round-trip floats, and a negative zero
+/// written as 0 (its sign carries no information in any result).
 pub fn print_json<T: Serialize>(v: &T) -> anyhow::Result<()> {
-    println!("{}", serde_json::to_string_pretty(v)?);
+    println!("{}", json_text(v)?);
     Ok(())
+}
+
+/// The pretty JSON text of a value as [`print_json`] writes it.
+pub fn json_text<T: Serialize>(v: &T) -> anyhow::Result<String> {
+    let mut bytes = Vec::new();
+    let mut ser = serde_json::Serializer::with_formatter(&mut bytes, Clean::default());
+    v.serialize(&mut ser)?;
+    Ok(String::from_utf8(bytes)?)
+}
+
+/// serde_json's pretty formatter with −0 written as 0.
+#[derive(Default)]
+struct Clean(PrettyFormatter<'static>);
+
+/// Delegates a formatter method to the pretty formatter.
+macro_rules! delegate {
+    ($($name:ident$(($arg:ident: $t:ty))?),* $(,)?) => {$(
+        fn $name<W: ?Sized + io::Write>(&mut self, w: &mut W $(, $arg: $t)?) -> io::Result<()> {
+            self.0.$name(w $(, $arg)?)
+        }
+    )*};
+}
+
+impl Formatter for Clean {
+    delegate!(
+        begin_array,
+        end_array,
+        begin_array_value(first: bool),
+        end_array_value,
+        begin_object,
+        end_object,
+        begin_object_key(first: bool),
+        begin_object_value,
+        end_object_value,
+    );
+
+    fn write_f64<W: ?Sized + io::Write>(&mut self, w: &mut W, v: f64) -> io::Result<()> {
+        self.0.write_f64(w, if v == 0.0 { 0.0 } else { v })
+    }
+
+    fn write_f32<W: ?Sized + io::Write>(&mut self, w: &mut W, v: f32) -> io::Result<()> {
+        self.0.write_f32(w, if v == 0.0 { 0.0 } else { v })
+    }
+}
+
+/// Significant digits of the human-readable output.
+pub const TEXT_DIGITS: usize = 6;
+
+/// A spectral radius (or growth factor per sample) in 6 significant digits, or in as many
+/// more as it takes not to round to 1 (a radius beside a verdict must show on which side of
+/// the unit circle it lies).
+pub fn radius_text(rho: f64) -> String {
+    (TEXT_DIGITS..=17)
+        .map(|d| sig(rho, d))
+        .find(|t| t != "1" || rho == 1.0)
+        .unwrap_or_else(|| format!("{rho:e}"))
+}
+
+/// A number for a CSV field: the shortest decimal text that reads back to the same f64
+/// ("0.5", "1e-7"), −0 written as "0", and an empty field for NaN (no value).
+pub fn csv_num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if x.is_nan() {
+        String::new()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        let mut buf = ryu::Buffer::new();
+        buf.format_finite(x).trim_end_matches(".0").to_string()
+    }
+}
+
+/// [`csv_num`] of an optional value (empty when absent).
+pub fn csv_opt(x: Option<f64>) -> String {
+    x.map(csv_num).unwrap_or_default()
+}
+
+/// A value that may be undefined in a human-readable table: the formatted number, or "—"
+/// for NaN.
+pub fn or_dash(x: f64, f: impl Fn(f64) -> String) -> String {
+    if x.is_nan() { "—".into() } else { f(x) }
 }
 
 /// Formats a number with `sig` significant digits (trailing zeros dropped), switching to
@@ -18,7 +104,9 @@ pub fn sig(x: f64, sig: usize) -> String {
         return format!("{x}");
     }
     let e = x.abs().log10().floor() as i32;
-    if !(-4..=7).contains(&e) {
+    // scientific below 1e-4, and from 1e6 on where the integer part alone would show more
+    // digits than asked (axis ticks of 4 digits keep "20000")
+    if !(-4..=7).contains(&e) || e >= (sig as i32).max(6) {
         let s = format!("{:.*e}", sig.saturating_sub(1), x);
         let (m, ex) = s.split_once('e').unwrap_or((&s, "0"));
         format!("{}e{}", trim(m), ex)
@@ -39,6 +127,10 @@ fn trim(s: &str) -> &str {
 /// Engineering notation with an SI prefix: `eng(2.5e-5, "m", 4)` is "25 µm". The mantissa lies
 /// in [1, 1000) from pico to giga; outside that range (and for 0) the number stays unprefixed.
 pub fn eng(x: f64, unit: &str, digits: usize) -> String {
+    if unit == "kg" {
+        // the prefix goes on the gram: 100 g, 1.1 kg
+        return eng(x * 1e3, "g", digits);
+    }
     const PREFIXES: [(i32, &str); 7] = [
         (-12, "p"),
         (-9, "n"),
@@ -104,6 +196,44 @@ mod tests {
     use super::*;
 
     #[test]
+    fn json_writes_negative_zero_as_zero_and_keeps_key_order() {
+        #[derive(Serialize)]
+        struct T {
+            z: f64,
+            a: [f64; 2],
+        }
+        let text = json_text(&T {
+            z: -0.0,
+            a: [-0.0, -1.5e-7],
+        })
+        .unwrap();
+        assert!(!text.contains("-0.0"), "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["a"][1].as_f64(), Some(-1.5e-7));
+        assert!(text.find("\"z\"") < text.find("\"a\""), "{text}");
+    }
+
+    #[test]
+    fn radius_text_never_rounds_to_one() {
+        assert_eq!(radius_text(0.994314440240548), "0.994314");
+        assert_eq!(radius_text(1.0 - 1e-9), "0.999999999");
+        assert_eq!(radius_text(1.0 + 2e-12), "1.000000000002");
+        assert_eq!(radius_text(1.0), "1");
+    }
+
+    #[test]
+    fn csv_numbers_are_shortest_round_trip() {
+        for x in [0.1, 1.0 / 3.0, -2.5e-300, 1e22, 350.0, 123456.789] {
+            assert_eq!(csv_num(x).parse::<f64>().unwrap(), x);
+        }
+        assert_eq!(csv_num(0.0), "0");
+        assert_eq!(csv_num(-0.0), "0");
+        assert_eq!(csv_num(350.0), "350");
+        assert_eq!(csv_num(1e-7), "1e-7");
+        assert_eq!(csv_num(f64::NAN), "");
+    }
+
+    #[test]
     fn engineering_notation_picks_the_prefix() {
         assert_eq!(eng(2.5e-5, "m", 4), "25 µm");
         assert_eq!(eng(0.0013832, "m", 4), "1.383 mm");
@@ -111,6 +241,10 @@ mod tests {
         assert_eq!(eng(20_000.0, "N/m", 3), "20 kN/m");
         assert_eq!(eng(0.0, "s", 3), "0 s");
         assert_eq!(eng(1e-20, "m", 3), "1e-20 m");
+        assert_eq!(eng(0.1, "kg", 6), "100 g");
+        assert_eq!(eng(1.1, "kg", 6), "1.1 kg");
+        assert_eq!(sig(9526042.3, 6), "9.52604e6");
+        assert_eq!(sig(986960.44, 6), "986960");
     }
 
     #[test]

@@ -36,8 +36,13 @@ struct ClaimSummary {
 }
 
 #[derive(Serialize)]
-struct Summary {
+struct PaperInput {
     out: String,
+}
+
+#[derive(Serialize)]
+struct Summary {
+    input: PaperInput,
     files: Vec<String>,
     claims: Vec<ClaimSummary>,
     seconds: f64,
@@ -133,7 +138,9 @@ pub fn run(a: &PaperArgs) -> Result<()> {
     bar.finish();
     let seconds = t0.elapsed().as_secs_f64();
     let summary = Summary {
-        out: a.out.display().to_string(),
+        input: PaperInput {
+            out: a.out.display().to_string(),
+        },
         files,
         claims: rep
             .claims
@@ -152,7 +159,7 @@ pub fn run(a: &PaperArgs) -> Result<()> {
     println!(
         "wrote {} files to {} in {:.2} s",
         summary.files.len(),
-        summary.out,
+        summary.input.out,
         seconds
     );
     for c in &rep.claims {

@@ -136,7 +136,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
     };
     let num = |x: f64, unit: &str| {
         if unit.is_empty() {
-            sig(x, 8)
+            sig(x, 6)
         } else {
             eng(x, unit, 6)
         }
@@ -149,7 +149,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
     let (what, k, b, area_unit) = if rl.normalized {
         ("δ", "α", "β", "")
     } else {
-        ("b", "K", "B", " N/m·Ns/m")
+        ("b", "K", "B", " N²·s/m²")
     };
     println!(
         "wall        {k} = {}, {b} = {}",

@@ -4,8 +4,9 @@
 use anyhow::Result;
 use clap::Args;
 use hapstab::ranges::{Ranges, ranges};
+use serde::Serialize;
 
-use crate::output::{print_json, sig};
+use crate::output::{eng, print_json, sig};
 
 /// Arguments of `hapstab ranges`.
 #[derive(Args, Debug)]
@@ -18,11 +19,36 @@ pub struct RangesArgs {
     json: bool,
 }
 
+#[derive(Serialize)]
+struct RangesInput {
+    period: f64,
+}
+
+/// `ranges --json`: the period under `input`, the ranges at the top level.
+#[derive(Serialize)]
+struct RangesOut<'a> {
+    input: RangesInput,
+    limits: &'a hapstab::ranges::RatioLimits,
+    gamma_max: f64,
+    delta_max: f64,
+    extended_gamma_max: f64,
+    extended_delta_max: f64,
+    within_extended: bool,
+}
+
 /// Runs `hapstab ranges`.
 pub fn run(a: &RangesArgs) -> Result<()> {
     let r = ranges(a.period)?;
     if a.json {
-        return print_json(&r);
+        return print_json(&RangesOut {
+            input: RangesInput { period: r.period },
+            limits: &r.limits,
+            gamma_max: r.gamma_max,
+            delta_max: r.delta_max,
+            extended_gamma_max: r.extended_gamma_max,
+            extended_delta_max: r.extended_delta_max,
+            within_extended: r.within_extended,
+        });
     }
     print_text(&r);
     Ok(())
@@ -30,7 +56,7 @@ pub fn run(a: &RangesArgs) -> Result<()> {
 
 fn print_text(r: &Ranges) {
     let l = &r.limits;
-    println!("period      T = {} ms", sig(r.period * 1e3, 6));
+    println!("period      T = {}", eng(r.period, "s", 6));
     println!(
         "ratios      k_H/m_H < {} s⁻², b_H/m_H < {} s⁻¹ (eq. 11), b_L/m_L < {} s⁻¹",
         sig(l.arm_stiffness_per_mass, 6),

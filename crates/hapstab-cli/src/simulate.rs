@@ -50,7 +50,7 @@ pub struct RunArgs {
     /// With --unilateral: the wall never pulls (F_wall >= 0; the damper cannot hold the device).
     #[arg(long, requires = "unilateral")]
     pub no_pull: bool,
-    /// Wall position x_w in m: the spring's rest position and the unilateral surface [default 0].
+    /// Wall position x_w in m: the spring's rest position and the unilateral surface [default: 0].
     #[arg(long, allow_hyphen_values = true, value_name = "M")]
     pub wall_position: Option<f64>,
     /// Coulomb (sliding) friction F_c of the device in N.
@@ -65,16 +65,16 @@ pub struct RunArgs {
     /// Actuator force limit F_max in N: |F_wall| <= F_max.
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub saturation: Option<f64>,
-    /// Constant human force F_H in N, positive into the wall [default 0].
+    /// Constant human force F_H in N, positive into the wall [default: 0].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub push: Option<f64>,
-    /// Initial position x(0) in m, positive into the wall [default 0.001].
+    /// Initial position x(0) in m, positive into the wall [default: 0.001].
     #[arg(long, allow_hyphen_values = true, value_name = "M")]
     pub initial_position: Option<f64>,
-    /// Initial velocity ẋ(0) in m/s [default 0].
+    /// Initial velocity ẋ(0) in m/s [default: 0].
     #[arg(long, allow_hyphen_values = true, value_name = "M/S")]
     pub initial_velocity: Option<f64>,
-    /// Run length in seconds (physical mode) [default 10 s].
+    /// Run length in seconds (physical mode) [default: 10 s].
     #[arg(
         long,
         allow_hyphen_values = true,
@@ -82,7 +82,7 @@ pub struct RunArgs {
         conflicts_with = "duration_samples"
     )]
     pub duration: Option<f64>,
-    /// Run length in samples [default 10000].
+    /// Run length in samples [default: 10000].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub duration_samples: Option<f64>,
     /// Horizon in seconds: a run whose second half has not settled is extended (doubling)
@@ -95,7 +95,7 @@ pub struct RunArgs {
         conflicts_with = "max_duration_samples"
     )]
     pub max_duration: Option<f64>,
-    /// Horizon in samples (see --max-duration) [default 1000000].
+    /// Horizon in samples (see --max-duration) [default: 1000000].
     #[arg(long, allow_hyphen_values = true, value_name = "N")]
     pub max_duration_samples: Option<f64>,
 }
@@ -129,7 +129,7 @@ fn run_length(
             if s / period > MAX_SAMPLES {
                 bail!(
                     "{sname} {s} s is {} samples; at most {MAX_SAMPLES:e} are allowed",
-                    sig(s / period, 4)
+                    sig(s / period, 6)
                 );
             }
             Some(samples_for_duration(s, period)?)
@@ -232,18 +232,18 @@ fn model_caption(m: &SimModel) -> String {
             let p = m.params;
             format!(
                 "α = {}, β = {}, γ = {}, δ = {}, d = {}",
-                sig(p.alpha, 4),
-                sig(p.beta, 4),
-                sig(p.gamma, 3),
-                sig(p.delta, 3),
+                sig(p.alpha, 6),
+                sig(p.beta, 6),
+                sig(p.gamma, 6),
+                sig(p.delta, 6),
                 p.d
             )
         }
         SimModel::Loop(l) => format!(
             "K = {}, B = {}, t_d = {}",
-            eng(l.wall.stiffness, "N/m", 4),
-            eng(l.wall.damping, "Ns/m", 4),
-            eng(l.lp.delay_time(), "s", 4)
+            eng(l.wall.stiffness, "N/m", 6),
+            eng(l.wall.damping, "Ns/m", 6),
+            eng(l.lp.delay_time(), "s", 6)
         ),
     }
 }
@@ -372,13 +372,21 @@ struct SimulateOut<'a> {
     period: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     normalized: Option<Normalized>,
-    /// The loop and its wall as given.
-    input: LoopInput,
+    /// The loop, its wall and the run's setting as given.
+    input: SimInput,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    files: Option<Files>,
+}
+
+/// The inputs of a simulation: the loop and its wall, the nonlinear effects, the human's
+/// force and the initial state.
+#[derive(Serialize)]
+struct SimInput {
+    #[serde(flatten)]
+    lp: LoopInput,
     effects: Effects,
     human_force: f64,
     initial: Initial,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    files: Option<Files>,
 }
 
 /// Bytes per kept trace row in memory (five f64 columns).
@@ -483,11 +491,13 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
         units: units.name(),
         mass: sl.paper().map(|m| m.mass),
         period,
-        normalized: sl.paper().map(|m| m.params),
-        input: LoopInput::new(&sl.rl, Some(sl.wall)),
-        effects: settings.effects,
-        human_force: settings.human_force,
-        initial: settings.initial,
+        normalized: sl.paper().filter(|_| !sl.rl.normalized).map(|m| m.params),
+        input: SimInput {
+            lp: LoopInput::new(&sl.rl, Some(sl.wall)),
+            effects: settings.effects,
+            human_force: settings.human_force,
+            initial: settings.initial,
+        },
         files,
     };
     if a.json {
@@ -563,18 +573,18 @@ fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
 /// A frequency in Hz (physical) or cycles per sample (normalized).
 fn frequency(hz: f64, units: Units) -> String {
     if units.physical {
-        eng(hz, "Hz", 4)
+        eng(hz, "Hz", 6)
     } else {
-        format!("{} cycles/sample", sig(hz, 4))
+        format!("{} cycles/sample", sig(hz, 6))
     }
 }
 
 /// A time in s (physical) or a sample count (normalized).
 fn time_text(seconds: f64, units: Units) -> String {
     if units.physical {
-        eng(seconds, "s", 4)
+        eng(seconds, "s", 6)
     } else {
-        format!("{} samples", sig(seconds, 8))
+        format!("{} samples", sig(seconds, 6))
     }
 }
 
@@ -590,7 +600,7 @@ fn outcome_summary(r: &RunResult, units: Units) -> String {
             format!(
                 "limit cycle{}: {} peak-to-peak{counts}, {}",
                 if lc.bouncing { ", bouncing" } else { "" },
-                eng(lc.peak_to_peak, "m", 4),
+                eng(lc.peak_to_peak, "m", 6),
                 frequency(lc.frequency_hz, units)
             )
         }
@@ -789,10 +799,10 @@ fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
     };
     println!(
         "model       α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
-        sig(n.alpha, 8),
-        sig(n.beta, 8),
-        sig(n.gamma, 8),
-        sig(n.delta, 8),
+        sig(n.alpha, 6),
+        sig(n.beta, 6),
+        sig(n.gamma, 6),
+        sig(n.delta, 6),
         n.d,
         match o.mass {
             Some(m) if units.physical => {
@@ -845,8 +855,8 @@ fn run_text(o: &SimulateOut, units: Units) -> String {
         "{} samples ({}) from x(0) = {}, ẋ(0) = {} {}",
         r.samples,
         time_text(o.duration, units),
-        eng(o.initial.position, "m", 6),
-        sig(o.initial.velocity, 6),
+        eng(o.input.initial.position, "m", 6),
+        sig(o.input.initial.velocity, 6),
         units.velocity()
     );
     if r.blown_up {
@@ -871,7 +881,10 @@ fn analysis_text(r: &RunResult, s: &RunSettings) -> Option<String> {
     let v = &r.verdict;
     let rho = v.spectral_radius?;
     let lin = v.linear_verdict.map_or("", |x| x.as_str());
-    let analysis = format!("spectral radius {} ({lin})", sig(rho, 9));
+    let analysis = format!(
+        "spectral radius {} ({lin})",
+        crate::output::radius_text(rho)
+    );
     let in_contact = if v.linear_window {
         ""
     } else {
@@ -885,7 +898,7 @@ fn analysis_text(r: &RunResult, s: &RunSettings) -> Option<String> {
     Some(match (v.outcome, measured) {
         (Outcome::Growing | Outcome::Decaying | Outcome::Undecided, Some(g)) => format!(
             "growth      measured {} per sample{}; analysis: {analysis}{in_contact}",
-            sig(g, 9),
+            crate::output::radius_text(g),
             if v.outcome == Outcome::Undecided {
                 " (not settled)"
             } else {
@@ -1039,24 +1052,19 @@ struct BoundaryRow {
     k_simulated: Option<f64>,
 }
 
+/// γ, δ and d of the paper's loop (Table I).
 #[derive(Serialize)]
-struct SimboundaryOut {
-    /// The paper's loop: γ, δ, d and m (Table I); absent for other loops.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    gamma: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    delta: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    d: Option<usize>,
-    units: &'static str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    mass: Option<f64>,
-    period: f64,
-    /// The loop as given.
-    input: LoopInput,
-    /// Other loops: K = a·stiffness (N/m) and B = b·damping (Ns/m) for the a, b columns.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    wall_units: Option<WallScale>,
+struct PaperPlant {
+    gamma: f64,
+    delta: f64,
+    d: usize,
+}
+
+/// The inputs of `simboundary`: the loop, the runs' setting and the scan.
+#[derive(Serialize)]
+struct SimboundaryInput {
+    #[serde(flatten)]
+    lp: LoopInput,
     effects: Effects,
     human_force: f64,
     initial: Initial,
@@ -1065,6 +1073,22 @@ struct SimboundaryOut {
     stable_when: StableWhen,
     grid: usize,
     rel_tol: f64,
+}
+
+#[derive(Serialize)]
+struct SimboundaryOut {
+    /// The paper's loop given in physical units: γ, δ, d (Table I).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalized: Option<PaperPlant>,
+    units: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mass: Option<f64>,
+    period: f64,
+    /// The loop and the runs' setting as given.
+    input: SimboundaryInput,
+    /// Other loops: K = a·stiffness (N/m) and B = b·damping (Ns/m) for the a, b columns.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wall_units: Option<WallScale>,
     /// α_max of the exact linear stable region (Section V) and the β where it is reached.
     exact_alpha_max: f64,
     exact_beta_at_alpha_max: f64,
@@ -1227,25 +1251,29 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         None => None,
     };
     let out = SimboundaryOut {
-        gamma: pm.map(|p| p.gamma),
-        delta: pm.map(|p| p.delta),
-        d: pm.map(|p| p.d),
+        normalized: pm.filter(|_| !rl.normalized).map(|p| PaperPlant {
+            gamma: p.gamma,
+            delta: p.delta,
+            d: p.d,
+        }),
         units: units.name(),
         mass: match &model {
             SimModel::Paper(m) => Some(m.mass),
             SimModel::Loop(_) => None,
         },
         period: model.period(),
-        input: LoopInput::new(&rl, None),
+        input: SimboundaryInput {
+            lp: LoopInput::new(&rl, None),
+            effects: settings.effects,
+            human_force: settings.human_force,
+            initial: settings.initial,
+            samples: settings.samples,
+            max_samples: settings.max_samples,
+            stable_when,
+            grid: a.grid,
+            rel_tol: a.rel_tol,
+        },
         wall_units: pm.is_none().then_some(fam.scale),
-        effects: settings.effects,
-        human_force: settings.human_force,
-        initial: settings.initial,
-        samples: settings.samples,
-        max_samples: settings.max_samples,
-        stable_when,
-        grid: a.grid,
-        rel_tol: a.rel_tol,
         exact_alpha_max: region.alpha_max,
         exact_beta_at_alpha_max: region.beta_at_alpha_max,
         warnings: boundary_warnings(&points, &settings),
@@ -1325,7 +1353,7 @@ fn beta_values(a: &SimboundaryArgs, region: &hapstab::region::StableRegion) -> R
 
 /// Shortest round-trip text of a number, in exponent form when very large or small.
 fn num(v: f64) -> String {
-    format!("{v:?}")
+    crate::output::csv_num(v)
 }
 
 fn opt(v: Option<f64>) -> String {
@@ -1472,7 +1500,11 @@ fn boundary_plot(
 /// The loop of a boundary search: the paper's (γ, δ, d), or the loop in words with its wall
 /// units.
 fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
-    let (Some(gamma), Some(delta), Some(d)) = (o.gamma, o.delta, o.d) else {
+    let Some((gamma, delta, d)) = rl
+        .lp
+        .paper_view()
+        .map(|pp| (pp.gamma, pp.delta, rl.lp.delay.samples))
+    else {
         for line in describe_loop(&rl.lp) {
             println!("{line}");
         }
@@ -1487,8 +1519,8 @@ fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
     };
     println!(
         "plant       γ = {}, δ = {}, d = {}{}",
-        sig(gamma, 8),
-        sig(delta, 8),
+        sig(gamma, 6),
+        sig(delta, 6),
         d,
         match o.mass {
             Some(m) if units.physical => {
@@ -1504,10 +1536,10 @@ fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, uni
     println!("effects     {}", describe_effects(s, units.force()));
     println!(
         "runs        {} samples each (extended up to {} until settled) from x(0) = {}; stable = {}",
-        o.samples,
-        o.max_samples,
-        eng(o.initial.position, "m", 6),
-        match o.stable_when {
+        o.input.samples,
+        o.input.max_samples,
+        eng(o.input.initial.position, "m", 6),
+        match o.input.stable_when {
             StableWhen::Decaying => "decaying".to_string(),
             StableWhen::AmplitudeBelow(m) => format!(
                 "decaying or limit cycle below {} peak-to-peak",
@@ -1518,15 +1550,15 @@ fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, uni
     match o.wall_units {
         None => println!(
             "exact       α_max = {} at β = {} (linear stable region, Section V)",
-            sig(o.exact_alpha_max, 8),
-            sig(o.exact_beta_at_alpha_max, 8)
+            sig(o.exact_alpha_max, 6),
+            sig(o.exact_beta_at_alpha_max, 6)
         ),
         Some(w) => println!(
             "exact       K_max = {} N/m at B = {} Ns/m (a = {}, b = {}; linear stable region)",
-            sig(o.exact_alpha_max * w.stiffness, 8),
-            sig(o.exact_beta_at_alpha_max * w.damping, 8),
-            sig(o.exact_alpha_max, 8),
-            sig(o.exact_beta_at_alpha_max, 8)
+            sig(o.exact_alpha_max * w.stiffness, 6),
+            sig(o.exact_beta_at_alpha_max * w.damping, 6),
+            sig(o.exact_alpha_max, 6),
+            sig(o.exact_beta_at_alpha_max, 6)
         ),
     }
     println!();
@@ -1595,7 +1627,7 @@ fn print_simboundary(o: &SimboundaryOut, rl: &ResolvedLoop, s: &RunSettings, uni
     }
     println!();
     if s.effects.quantization.is_some()
-        && o.stable_when == StableWhen::Decaying
+        && o.input.stable_when == StableWhen::Decaying
         && o.points.iter().any(|r| {
             r.point.alpha_simulated.is_none()
                 && r.point.alpha_unstable.is_some()

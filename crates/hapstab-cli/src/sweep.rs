@@ -10,7 +10,7 @@ use hapstab::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange, sweep_param};
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, describe_loop};
-use crate::output::{eng, print_json, sig};
+use crate::output::{csv_num, csv_opt, eng, print_json, sig};
 use crate::plot::{Figure, Legend, Marker, Series, palette};
 
 /// Arguments of `hapstab sweep`.
@@ -43,12 +43,20 @@ pub struct SweepArgs {
     json: bool,
 }
 
+/// The loop, the swept parameter and the damping at which K_max is taken.
+#[derive(Serialize)]
+struct SweepInput {
+    #[serde(flatten)]
+    lp: LoopInput,
+    param: SweepParam,
+    k_max_at: KmaxAt,
+}
+
 #[derive(Serialize)]
 struct SweepOut {
-    input: LoopInput,
-    param: SweepParam,
+    input: SweepInput,
+    /// Unit of the swept values.
     unit: &'static str,
-    k_max_at: KmaxAt,
     points: Vec<SweepPoint>,
     /// Wall-clock time of the analysis, s.
     seconds: f64,
@@ -107,10 +115,12 @@ pub fn run(a: &SweepArgs) -> Result<()> {
         None => None,
     };
     let out = SweepOut {
-        input: LoopInput::new(&rl, None),
-        param: range.param,
+        input: SweepInput {
+            lp: LoopInput::new(&rl, None),
+            param: range.param,
+            k_max_at: at,
+        },
         unit: range.param.unit(),
-        k_max_at: at,
         points,
         seconds,
         plot,
@@ -125,7 +135,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
 fn value_text(p: SweepParam, v: f64) -> String {
     match p {
         SweepParam::Window => format!("{v}"),
-        _ => eng(v, p.unit(), 5),
+        _ => eng(v, p.unit(), 6),
     }
 }
 
@@ -133,31 +143,31 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
     for line in describe_loop(lp) {
         println!("{line}");
     }
-    let at = match o.k_max_at {
+    let at = match o.input.k_max_at {
         KmaxAt::Overall => "over every damping B".to_string(),
-        KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 5)),
+        KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 6)),
         KmaxAt::Band { lo, hi } => format!("for {} ≤ B ≤ {} Ns/m", sig(lo, 6), sig(hi, 6)),
     };
     println!(
         "sweep       {} ({} points), K_max {at}",
-        o.param.name(),
+        o.input.param.name(),
         o.points.len()
     );
     println!(
         "  {:>14}  {:>14}  {:>14}  {:>14}",
-        o.param.name(),
+        o.input.param.name(),
         "K_max stable",
         "B at K_max",
         "K_max passive"
     );
-    let k = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| eng(v, "N/m", 5));
+    let k = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| eng(v, "N/m", 6));
     for p in &o.points {
         let b = p
             .b_at_k_max
-            .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 5));
+            .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 6));
         println!(
             "  {:>14}  {:>14}  {:>14}  {:>14}",
-            value_text(o.param, p.value),
+            value_text(o.input.param, p.value),
             k(p.k_max),
             b,
             k(p.k_max_passive)
@@ -175,10 +185,10 @@ fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -
     let mut w =
         csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
     w.write_record([param.name(), "k_max", "b_at_k_max", "k_max_passive", "note"])?;
-    let cell = |x: Option<f64>| x.map(|v| v.to_string()).unwrap_or_default();
+    let cell = csv_opt;
     for p in points {
         w.write_record([
-            p.value.to_string(),
+            csv_num(p.value),
             cell(p.k_max),
             cell(p.b_at_k_max),
             cell(p.k_max_passive),

@@ -12,7 +12,7 @@ use hapstab::zwidth::{ZWidth, zwidth};
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
-use crate::output::{eng, print_json, sig};
+use crate::output::{csv_num, csv_opt, eng, print_json, sig};
 use crate::plot::{Figure, Grid, Legend, Marker, Series, palette};
 
 /// Arguments of `hapstab zwidth`.
@@ -62,8 +62,18 @@ struct LoopOut {
     zwidth: ZWidth,
 }
 
+/// The command's inputs: the compared specs and the table's dampings (each loop's own
+/// inputs are under `loops[i].input`).
+#[derive(Serialize)]
+struct ZwidthInput {
+    compare: Vec<String>,
+    /// Null: 11 dampings from 0 to the largest stable B of each loop.
+    table_damping: Option<Vec<f64>>,
+}
+
 #[derive(Serialize)]
 struct ZwidthOut {
+    input: ZwidthInput,
     loops: Vec<LoopOut>,
     #[serde(skip_serializing_if = "Option::is_none")]
     plot: Option<crate::plot::Saved>,
@@ -155,7 +165,15 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
     }
     let plot = a.plot.as_ref().map(|p| figure(&out).save(p)).transpose()?;
     if a.json {
-        return print_json(&ZwidthOut { loops: out, plot });
+        let input = ZwidthInput {
+            compare: a.compare.clone(),
+            table_damping: a.table_damping.clone(),
+        };
+        return print_json(&ZwidthOut {
+            input,
+            loops: out,
+            plot,
+        });
     }
     for (i, o) in out.iter().enumerate() {
         if i > 0 {
@@ -179,11 +197,11 @@ fn label_of(lp: &LoopArgs, spec: Option<&str>) -> String {
 }
 
 fn kn(x: f64) -> String {
-    eng(x, "N/m", 5)
+    eng(x, "N/m", 6)
 }
 
 fn ns(x: f64) -> String {
-    eng(x, "Ns/m", 5)
+    eng(x, "Ns/m", 6)
 }
 
 fn print_loop(o: &LoopOut, titled: bool) {
@@ -203,7 +221,7 @@ fn print_loop(o: &LoopOut, titled: bool) {
                 .map(|w| format!("; with B ≥ 0: {} at B = {}", kn(w.stiffness), ns(w.damping)))
                 .unwrap_or_else(|| "; nothing stable with B ≥ 0".into());
             println!(
-                "stable      K_max = {} at B = {}{nonneg}; area {} N/m·Ns/m",
+                "stable      K_max = {} at B = {}{nonneg}; area {} N²·s/m²",
                 kn(k.stiffness),
                 ns(k.damping),
                 sig(z.stable_area, 5)
@@ -216,7 +234,7 @@ fn print_loop(o: &LoopOut, titled: bool) {
         println!(
             "linear (22) K < (b + B)/(t_d + T/2) = ({} + B)/{}",
             ns(l.device_damping),
-            eng(l.effective_delay, "s", 5)
+            eng(l.effective_delay, "s", 6)
         );
     }
     print_table(z);
@@ -234,7 +252,7 @@ fn print_passive(z: &ZWidth) {
                 None => "",
             };
             println!(
-                "passive     b = {}: K_max = {} at B = {}; area {} N/m·Ns/m; {inside}",
+                "passive     b = {}: K_max = {} at B = {}; area {} N²·s/m²; {inside}",
                 ns(p.device_damping),
                 kn(p.k_max),
                 ns(p.b_at_k_max),
@@ -301,12 +319,12 @@ fn write_csv(path: &std::path::Path, out: &[LoopOut]) -> Result<()> {
         "k_max_passive",
         "k_linear",
     ])?;
-    let cell = |x: Option<f64>| x.map(|v| v.to_string()).unwrap_or_default();
+    let cell = csv_opt;
     for o in out {
         for r in &o.zwidth.table {
             w.write_record([
                 o.label.clone(),
-                r.damping.to_string(),
+                csv_num(r.damping),
                 cell(r.k_max),
                 cell(r.k_min),
                 cell(r.k_max_passive),

@@ -24,7 +24,11 @@ fn check_json_against_pure_mass_closed_form() {
     assert_eq!(v["verdict"], "stable");
     assert!(v["spectral_radius"].as_f64().unwrap() < 1.0);
     assert_eq!(v["roots"].as_array().unwrap().len(), 3);
-    assert_eq!(v["normalized"]["d"], 0);
+    assert_eq!(v["input"]["d"], 0);
+    assert!(
+        v.get("normalized").is_none(),
+        "the input is already normalized"
+    );
     let hi = v["alpha_interval"][1].as_f64().unwrap();
     assert!((hi - 0.6).abs() < 1e-14, "{hi}");
     let v = json(&["check", "--alpha", "0.61", "--beta", "0.5"]);
@@ -185,7 +189,7 @@ fn kmax_physical_units() {
         v["k_max"].as_f64().unwrap(),
         v["b_at_k_max"].as_f64().unwrap(),
     );
-    let alpha = v["alpha_max"].as_f64().unwrap();
+    let alpha = v["normalized"]["alpha_max"].as_f64().unwrap();
     assert!((kmax - alpha * 0.1 / 1e-6).abs() < 1e-9 * kmax);
     // linear condition (22) at that B: (b + B)/(T/2)
     assert!((v["k_linear"].as_f64().unwrap() - (1.5 + b) / 0.0005).abs() < 1e-6 * kmax);

@@ -79,7 +79,7 @@ fn kmax_damping_range_bounds_the_damping() {
     assert!((f(&v["k_max"]) - k).abs() <= 1e-12 * k);
     assert!((f(&v["b_at_k_max"]) - b).abs() <= 1e-9 * 50.0);
     assert!(f(&v["b_at_k_max"]) <= 50.0 + 1e-9);
-    assert_eq!(v["damping_range"], serde_json::json!([0.0, 50.0]));
+    assert_eq!(v["input"]["damping_range"], serde_json::json!([0.0, 50.0]));
 }
 
 #[test]

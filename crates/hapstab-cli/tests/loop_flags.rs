@@ -75,7 +75,7 @@ fn discretize_reproduces_matlab_c2d_example_json() {
     for (got, want) in den.iter().zip(MATLAB_DEN) {
         assert_eq!(round_sig(*got, 4), round_sig(want.parse().unwrap(), 4));
     }
-    assert_eq!(v["period"], 0.1);
+    assert_eq!(v["input"]["loop"]["period"], 0.1);
     assert_eq!(v["input"]["delay_time"], 0.25);
     assert_eq!(v["input"]["loop"]["delay"]["samples"], 2);
     assert_eq!(v["input"]["loop"]["delay"]["fraction"], 0.5);
@@ -442,13 +442,13 @@ fn boundary_and_kmax_of_the_paper_loop_in_physical_units() {
     // K = α m/T², B = β m/T with m = 0.1 kg, T = 1 ms
     let b = json(&["boundary", "--no-arm"]);
     let k = json(&["kmax", "--no-arm"]);
-    let (kmax, bk) = (f(&b["physical"]["k_max"]), f(&b["physical"]["b_at_k_max"]));
-    assert!((kmax - f(&b["alpha_max"]) * 1e5).abs() < 1e-9 * kmax);
-    assert!((bk - f(&b["beta_at_alpha_max"]) * 100.0).abs() < 1e-9 * bk);
+    let (kmax, bk) = (f(&b["k_max"]), f(&b["b_at_k_max"]));
+    let n = &b["normalized"];
+    assert!((kmax - f(&n["alpha_max"]) * 1e5).abs() < 1e-9 * kmax);
+    assert!((bk - f(&n["beta_at_alpha_max"]) * 100.0).abs() < 1e-9 * bk);
     assert!((f(&k["k_max"]) - kmax).abs() < 1e-9 * kmax);
-    let poly = b["physical"]["polygons"][0].as_array().unwrap();
-    let first = &b["polygons"][0][0];
-    assert!((f(&poly[0][0]) - f(&first[0]) * 1e5).abs() < 1e-6);
+    assert!((f(&b["wall_units"]["stiffness"]) - 1e5).abs() < 1e-9);
+    assert!((f(&b["area"]) - f(&n["area"]) * 1e5 * 100.0).abs() < 1e-9 * f(&b["area"]));
     assert_eq!(b["input"]["loop"]["plant"]["model"]["mass"], 0.1);
 }
 
@@ -473,7 +473,7 @@ fn boundary_vertices_of_a_two_mass_loop_are_marginal() {
         "0.0013",
     ];
     let b = json(&[&["boundary"][..], &loop_flags].concat());
-    let poly = b["physical"]["polygons"][0].as_array().unwrap();
+    let poly = b["polygons"][0].as_array().unwrap();
     let corners: Vec<usize> = b["edges"][0]
         .as_array()
         .unwrap()

@@ -841,14 +841,11 @@ fn robust_range_in_arm_stiffness_is_the_gamma_range_and_kmax_robust() {
         "kmax",
         "--robust",
         "--box-mass",
-        "1.1",
-        "1.1",
+        "1.1,1.1",
         "--box-damping",
-        "7.5",
-        "7.5",
+        "7.5:7.5",
         "--box-stiffness",
-        "0",
-        "350",
+        "0,350",
     ]);
     let k_cli = cli["k_max"].as_f64().unwrap();
     // The explorer's 64 β slices find the peak of a smooth boundary from below; the CLI

@@ -741,7 +741,7 @@ fn friction_needs_a_mass() {
         "1",
     ]);
     let v = json(&args);
-    assert_eq!(v["effects"]["friction"]["coulomb"], 0.2);
+    assert_eq!(v["input"]["effects"]["friction"]["coulomb"], 0.2);
 }
 
 /// `simboundary` on a general loop, linear and bilateral: at every damping the simulated

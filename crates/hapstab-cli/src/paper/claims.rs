@@ -1,4 +1,4 @@
-//! The paper's claims C1–C11 (issue 5), each measured through the library and judged.
+//! The paper's claims C1–C11, each measured through the library and judged.
 
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -56,7 +56,7 @@ impl Verdict {
 pub struct Claim {
     /// C1 … C11.
     pub id: &'static str,
-    /// The claim, as listed in issue 5.
+    /// The claim, as the paper states it.
     pub claim: &'static str,
     /// The figure or number that tests it.
     pub figure: &'static str,
