@@ -397,11 +397,13 @@ fn slices(fam: &AffineFamily) -> usize {
 fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P, bool)> {
     let (x0, x1, y0, y1) = wbox;
     let n = slices(fam);
+    // One θ scan of the family serves every slice (the same crossings, no sine per slice).
+    let table = crate::boundary::CircleTable::new(fam);
     (0..n)
         .into_par_iter()
         .flat_map_iter(|j| {
             let b = y0 + (y1 - y0) * (j as f64 + 0.5 + GRID_JITTER) / n as f64;
-            let ivs = crate::boundary::stable_alpha_intervals(fam, b);
+            let ivs = crate::boundary::stable_alpha_intervals_tabulated(fam, &table, b);
             let mut out = Vec::new();
             let mut prev_hi = x0;
             for iv in &ivs {
