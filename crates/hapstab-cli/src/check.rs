@@ -6,7 +6,7 @@
 use anyhow::Result;
 use clap::Args;
 use hapstab::boundary::Interval;
-use hapstab::margins::margins;
+use hapstab::margins::margins_beside_verdict;
 use hapstab::params::Wall;
 use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
@@ -112,28 +112,7 @@ impl MarginsOut {
     /// is not stable, or when the verdict and the margins' own test disagree (a wall on the
     /// boundary to rounding).
     fn new(rl: &ResolvedLoop, w: Wall, stable: bool) -> Result<Self> {
-        let none = |note: &str| MarginsOut {
-            gain_margin: None,
-            gain_margin_kb: None,
-            phase_margin_deg: None,
-            phase_crossover_hz: None,
-            delay_margin: None,
-            delay_margin_frequency_hz: None,
-            delay_margin_at_least: None,
-            critical_frequency_hz: None,
-            margin_notes: vec![note.to_string()],
-        };
-        if !stable {
-            return Ok(none(
-                "the wall is not stable: margins are defined for stable walls",
-            ));
-        }
-        let m = margins(&rl.lp, w)?;
-        if !m.stable {
-            return Ok(none(
-                "undecided: the wall lies on the stability boundary to rounding",
-            ));
-        }
+        let m = margins_beside_verdict(&rl.lp, w, stable)?;
         Ok(MarginsOut {
             gain_margin: m.gain.map(|g| g.factor),
             gain_margin_kb: m.gain_kb.map(|g| g.factor),

@@ -1,22 +1,15 @@
 //! `margins`: how far a stable wall is from the stability boundary of Section V, through the
 //! library calls of the command line's `hapstab check` (the same verdict, then
-//! `hapstab::margins::margins`), with the same rule: no margin for a wall that is not stable.
+//! `hapstab::margins::margins_beside_verdict`): no margin for a wall that is not stable.
 
 use hapstab::loop_analysis::{analysis, wall_units};
-use hapstab::margins::{Margins, margins as wall_margins};
+use hapstab::margins::{Margins, margins_beside_verdict};
 use pyo3::prelude::*;
 
 use crate::errors::Context;
 use crate::loops::PyLoop;
 use crate::text::num;
 use crate::wall::WallArgs;
-
-/// Why every margin is None when the check's verdict is not stable (the command line's words).
-const NOT_STABLE: &str = "the wall is not stable: margins are defined for stable walls";
-
-/// Why every margin is None when the verdict is stable but the margins' own Schur–Cohn test
-/// is not: the wall sits on the boundary to rounding.
-const UNDECIDED: &str = "undecided: the wall lies on the stability boundary to rounding";
 
 /// The result of `margins`. Every margin is None when the wall is not stable or the margin
 /// is unbounded; `notes` says which and why.
@@ -65,24 +58,9 @@ impl PyMargins {
     }
 }
 
-fn withheld(stable: bool, note: &str) -> PyMargins {
-    PyMargins {
-        stable,
-        gain_margin: None,
-        gain_margin_kb: None,
-        phase_margin_deg: None,
-        phase_crossover_hz: None,
-        delay_margin: None,
-        delay_margin_frequency_hz: None,
-        delay_margin_at_least: None,
-        critical_frequency_hz: None,
-        notes: vec![note.to_string()],
-    }
-}
-
 fn margins_object(m: Margins) -> PyMargins {
     PyMargins {
-        stable: true,
+        stable: m.stable,
         gain_margin: m.gain.map(|g| g.factor),
         gain_margin_kb: m.gain_kb.map(|g| g.factor),
         phase_margin_deg: m.phase.map(|p| p.degrees),
@@ -134,12 +112,9 @@ pub fn margins(
     };
     let w = args.resolve(r#loop, &fam)?;
     let units = wall_units(lp, &fam, w).py()?;
-    if !analysis(lp, &fam, units).py()?.stable() {
-        return Ok(withheld(false, NOT_STABLE));
-    }
-    let m = py.detach(|| wall_margins(lp, w)).py()?;
-    if !m.stable {
-        return Ok(withheld(true, UNDECIDED));
-    }
+    let verdict_stable = analysis(lp, &fam, units).py()?.stable();
+    let m = py
+        .detach(|| margins_beside_verdict(lp, w, verdict_stable))
+        .py()?;
     Ok(margins_object(m))
 }

@@ -145,6 +145,38 @@ pub fn margins(lp: &Loop, wall: Wall) -> Result<Margins> {
     Ok(out)
 }
 
+/// Why every margin is withheld beside a verdict that is not stable.
+pub const NOT_STABLE_NOTE: &str = "the wall is not stable: margins are defined for stable walls";
+
+/// Why every margin is withheld when the verdict says stable but the margins' own
+/// Schur–Cohn test does not: the wall sits on the boundary to rounding.
+pub const UNDECIDED_NOTE: &str = "undecided: the wall lies on the stability boundary to rounding";
+
+/// The margins reported beside a stability verdict (what `check` and the Python package
+/// print): none, with the reason in `notes`, when the verdict is not stable or when the
+/// margins' own Schur–Cohn test disagrees with it (a wall on the boundary to rounding);
+/// otherwise [`margins`]. `stable` is the verdict's.
+pub fn margins_beside_verdict(lp: &Loop, wall: Wall, verdict_stable: bool) -> Result<Margins> {
+    let withheld = |note: &str| Margins {
+        stable: verdict_stable,
+        gain: None,
+        gain_kb: None,
+        phase: None,
+        delay: None,
+        delay_at_least: None,
+        critical_frequency_hz: None,
+        notes: vec![note.to_string()],
+    };
+    if !verdict_stable {
+        return Ok(withheld(NOT_STABLE_NOTE));
+    }
+    let m = margins(lp, wall)?;
+    if !m.stable {
+        return Ok(withheld(UNDECIDED_NOTE));
+    }
+    Ok(m)
+}
+
 /// The factor on the stiffness at fixed damping that reaches the stability boundary: the end
 /// of the exact stable interval of K (Section V) on the side away from K = 0, divided by K.
 /// None when K = 0 or when the interval is unbounded on that side.
