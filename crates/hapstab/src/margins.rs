@@ -377,8 +377,9 @@ const GAIN_FRACTIONS: usize = 64;
 /// [`SMALL_GAIN_LIMIT`] between two grid points).
 const GAIN_REFINE_FLOOR: f64 = 0.5;
 
-/// The delay scan's work bound in evaluations of p's coefficients (≈ 0.3 s on one core):
-/// past it the scan reports a lower bound instead of running on with p's growing degree.
+/// The delay scan's work bound in evaluations of p's coefficients (estimated at about 0.3 s
+/// on one core): past it the scan reports a lower bound instead of running on with p's
+/// growing degree.
 const DELAY_SCAN_WORK: f64 = 3e8;
 
 /// Work of one scan step: the robustness bound's θ grid times p's degree.
