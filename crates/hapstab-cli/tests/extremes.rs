@@ -111,3 +111,49 @@ fn linear_condition_at_long_delay_prints_numbers() {
     assert_eq!(code, 0);
     assert!(!out.contains("null") && !out.contains("NaN"), "{out}");
 }
+
+/// Past the exact discretization's range the loop is refused in one line that names the
+/// parameter, its value and the range; just inside it the answers stay right.
+#[test]
+fn out_of_range_time_scales_name_the_parameter() {
+    let refused: [(&[&str], &[&str]); 5] = [
+        (
+            &["kmax", "--stiffness", "1e308"],
+            &["stiffness k = 1e308 N/m", "rate × T ≤ 1e7"],
+        ),
+        (
+            &["check", "--damping", "1e300", "--alpha", "0", "--beta", "0"],
+            &["damping b = 1e300 Ns/m", "rate × T ≤ 1e50"],
+        ),
+        (
+            &["kmax", "--force-lag", "1e-60"],
+            &["force lag tau = 1e-60 s", "rate × T ≤ 1e50"],
+        ),
+        (
+            &["kmax", "--period", "1e-300"],
+            &["sampling period T", "[1e-7, 1] s", "1e-300"],
+        ),
+        (
+            &["boundary", "--period", "2"],
+            &["sampling period T", "[1e-7, 1] s"],
+        ),
+    ];
+    for (args, words) in refused {
+        let (code, _, err) = run(args, Duration::from_secs(10));
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        for w in words {
+            assert!(err.contains(w), "{args:?}: {err} lacks {w}");
+        }
+    }
+    // A damper 10⁴³ times the mass per second still has its closed form: with k = 0 and
+    // δ = bT/m ≫ 1 the plant is T/b·1/(z − 1) and K_max at B = 0 is 2b/T.
+    let (code, out, err) = run(
+        &["kmax", "--damping", "1e40", "--stiffness", "0", "--json"],
+        Duration::from_secs(30),
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let k0 = v["k_max_at_zero_damping"].as_f64().unwrap();
+    assert!((k0 / 2e43 - 1.0).abs() < 1e-9, "{out}");
+}

@@ -53,7 +53,7 @@ pub enum Error {
         max: usize,
     },
     /// A parameter lies outside a documented range.
-    #[error("{name} must be in {range} (got {value})")]
+    #[error("{name} must be in {range} (got {})", shown(*.value))]
     OutOfRange {
         /// Parameter name.
         name: &'static str,
@@ -87,6 +87,15 @@ pub enum Error {
     /// A numerical routine did not converge.
     #[error("numerical failure: {0}")]
     Numerical(String),
+}
+
+/// A value in an error message: plain below 1e15 and from 1e-4 on, else in e-notation.
+fn shown(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e15).contains(&v.abs()) || !v.is_finite() {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 /// Result type of the library.

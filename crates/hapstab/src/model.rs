@@ -227,6 +227,151 @@ impl Plant {
     }
 }
 
+/// Shortest sampling period accepted, in seconds (10 MHz).
+pub const MIN_PERIOD: f64 = 1e-7;
+
+/// Longest sampling period accepted, in seconds (1 Hz).
+pub const MAX_PERIOD: f64 = 1.0;
+
+/// Largest rate of an oscillating plant mode times the sampling period: beyond it a mode
+/// turns by more than 10⁷ rad per sample, and the sampled plant's phase, known to about that
+/// many times the rounding unit, is no longer exact to nine digits.
+pub const MAX_RATE_PER_SAMPLE: f64 = 1e7;
+
+/// Largest rate of a decaying plant mode (a damper's b/m, the actuator lag's 1/τ) times the
+/// sampling period: such a mode is gone within the sample (e^{−rate·T} is exactly 0), but past
+/// about 10¹⁵⁰ the wall's scale overflows; 10⁵⁰ keeps far from that.
+pub const MAX_DECAY_PER_SAMPLE: f64 = 1e50;
+
+impl Plant {
+    /// The plant's fastest rates in 1/s with the parameter that sets each: √(k/m) and b/m for
+    /// the paper's plant; the transmission, arm and damping rates of a two-mass device; a
+    /// bound on the poles (Fujiwara's, within a factor 2 of the largest) for a transfer
+    /// function; 1/τ for the actuator lag.
+    fn rates(&self) -> Vec<Rate> {
+        let mut r = match &self.model {
+            PlantModel::MassSpringDamper(e) => vec![
+                (
+                    "stiffness k",
+                    e.stiffness,
+                    "N/m",
+                    e.stiffness.sqrt() / e.mass.sqrt(),
+                    MAX_RATE_PER_SAMPLE,
+                ),
+                (
+                    "damping b",
+                    e.damping,
+                    "Ns/m",
+                    e.damping / e.mass,
+                    MAX_DECAY_PER_SAMPLE,
+                ),
+            ],
+            PlantModel::TwoMass(t) => {
+                let (j, mh) = (t.motor_mass, t.handle_mass + t.arm.mass);
+                let (kt, bt) = (t.transmission_stiffness, t.transmission_damping);
+                vec![
+                    (
+                        "transmission stiffness",
+                        kt,
+                        "N/m",
+                        kt.sqrt() / j.sqrt() + kt.sqrt() / mh.sqrt(),
+                        MAX_RATE_PER_SAMPLE,
+                    ),
+                    (
+                        "arm stiffness k_H",
+                        t.arm.stiffness,
+                        "N/m",
+                        t.arm.stiffness.sqrt() / mh.sqrt(),
+                        MAX_RATE_PER_SAMPLE,
+                    ),
+                    (
+                        "motor damping",
+                        t.motor_damping,
+                        "Ns/m",
+                        t.motor_damping / j,
+                        MAX_DECAY_PER_SAMPLE,
+                    ),
+                    (
+                        "transmission damping",
+                        bt,
+                        "Ns/m",
+                        bt / j + bt / mh,
+                        MAX_DECAY_PER_SAMPLE,
+                    ),
+                    (
+                        "arm damping b_H",
+                        t.arm.damping,
+                        "Ns/m",
+                        t.arm.damping / mh,
+                        MAX_DECAY_PER_SAMPLE,
+                    ),
+                ]
+            }
+            PlantModel::TransferFunction { den, .. } => {
+                vec![(
+                    "plant denominator",
+                    f64::NAN,
+                    "",
+                    pole_bound(strip_leading_zeros(den)),
+                    MAX_RATE_PER_SAMPLE,
+                )]
+            }
+        };
+        if self.force_lag > 0.0 {
+            r.push((
+                "force lag tau",
+                self.force_lag,
+                "s",
+                1.0 / self.force_lag,
+                MAX_DECAY_PER_SAMPLE,
+            ));
+        }
+        r
+    }
+
+    /// Refuses a plant with a mode too fast for the sampling period (see
+    /// [`MAX_RATE_PER_SAMPLE`] and [`MAX_DECAY_PER_SAMPLE`]), naming the parameter that makes it so.
+    fn check_time_scale(&self, period: f64) -> Result<()> {
+        for (name, value, unit, rate, limit) in self.rates() {
+            let per_sample = rate * period;
+            if per_sample.is_nan() || per_sample <= limit {
+                continue;
+            }
+            let what = if value.is_nan() {
+                String::new()
+            } else {
+                format!("= {value:e} {unit} ")
+            };
+            return Err(Error::Invalid {
+                name,
+                reason: format!(
+                    "{what}makes a plant mode as fast as {rate:.3e} rad/s, {per_sample:.3e} per sampling \
+                     period T = {period:e} s: beyond the exact discretization's range \
+                     (rate × T ≤ {limit:e})"
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A plant rate: the parameter that sets it, its value and unit, the rate in 1/s, and the
+/// largest rate × T accepted.
+type Rate = (&'static str, f64, &'static str, f64, f64);
+
+/// Fujiwara's bound on the roots of a polynomial with descending coefficients:
+/// 2·max |a_i/a_0|^{1/i} (the last term halved).
+fn pole_bound(den: &[f64]) -> f64 {
+    let n = den.len().saturating_sub(1);
+    (1..=n)
+        .map(|i| {
+            let c = (den[i] / den[0]).abs();
+            let c = if i == n { 0.5 * c } else { c };
+            2.0 * c.powf(1.0 / i as f64)
+        })
+        .fold(0.0, f64::max)
+}
+
 /// Two springs in series, k1·k2/(k1 + k2) (0 when either is 0).
 fn series_stiffness(k1: f64, k2: f64) -> f64 {
     if k1 == 0.0 || k2 == 0.0 {
@@ -410,7 +555,15 @@ impl Loop {
         velocity: VelocityEstimator,
     ) -> Result<Self> {
         positive("sampling period T", period)?;
+        if !(MIN_PERIOD..=MAX_PERIOD).contains(&period) {
+            return Err(Error::OutOfRange {
+                name: "sampling period T",
+                value: period,
+                range: "[1e-7, 1] s",
+            });
+        }
         let plant = Plant::new(plant.model, plant.force_lag)?;
+        plant.check_time_scale(period)?;
         Ok(Self {
             plant,
             period,

@@ -30,13 +30,14 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::argument::stable_at;
+use crate::argument::{stable_at, verdict_at};
 use crate::boundary::{
     AlphaBeta, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta, minus_one_line,
     plus_one_line,
 };
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
+use crate::stability::Verdict;
 
 /// What an edge of a region polygon is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -110,9 +111,34 @@ pub struct StableRegion {
 }
 
 impl StableRegion {
-    /// True iff (a, b) lies inside one of the polygons.
+    /// True iff (a, b) lies inside one of the polygons. The polygons follow the exact boundary
+    /// to their chord tolerance (`rel_tol` × [`StableRegion::size`]); a wall closer than that
+    /// to [`StableRegion::boundary_distance`] is decided by the point test, not by this.
     pub fn contains(&self, p: AlphaBeta) -> bool {
         self.polygons.iter().any(|q| q.contains(p))
+    }
+
+    /// The region's size, the scale its chord tolerance is relative to: the larger side of
+    /// the polygons' bounding box (0 when empty).
+    pub fn size(&self) -> f64 {
+        let pts = self
+            .polygons
+            .iter()
+            .flat_map(|q| q.vertices.iter().map(|v| P::of(*v)));
+        bbox(pts).map_or(0.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0))
+    }
+
+    /// Euclidean distance from a wall to the nearest polygon edge (infinite when empty).
+    pub fn boundary_distance(&self, p: AlphaBeta) -> f64 {
+        let q = P::of(p);
+        self.polygons
+            .iter()
+            .flat_map(|poly| {
+                let v = &poly.vertices;
+                (0..v.len()).map(move |i| (P::of(v[i]), P::of(v[(i + 1) % v.len()])))
+            })
+            .map(|(a, b)| segment_distance(q, a, b))
+            .fold(f64::INFINITY, f64::min)
     }
 
     fn empty() -> Self {
@@ -154,7 +180,7 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
     let bounds = Bounds::new(fam)?;
     let mut focus: Option<BoxF> = None;
     for i in 0..MAX_ATTEMPTS {
-        let (region, checked) = attempt(fam, &bounds, focus, rel_tol, &budget)?;
+        let (region, checked) = attempt(fam, &bounds, (focus, i as i32), rel_tol, &budget)?;
         match verify(fam, &bounds, &region, checked, i) {
             None => return Ok(region),
             Some(zoom) => focus = Some(zoom),
@@ -176,11 +202,11 @@ const MAX_ATTEMPTS: usize = 4;
 type BoxF = (f64, f64, f64, f64);
 
 /// One pass of the method (steps 2–6 of the module doc) with an optional focus box for the
-/// coarse sampling; returns the region and the search window's box.
+/// coarse sampling and its refinement level (the attempt's number); returns the region and the search window's box.
 fn attempt(
     fam: &AffineFamily,
     bounds: &Bounds,
-    focus: Option<BoxF>,
+    focus: (Option<BoxF>, i32),
     rel_tol: f64,
     budget: &Budget,
 ) -> Result<(StableRegion, Checked)> {
@@ -319,6 +345,14 @@ fn verify(
     if checked.thorough {
         suspects.extend(slice_suspects(fam, &index, wbox));
     }
+    // A region far smaller than the window may fall between the window's grid points and
+    // slices: check around it too (its own box, doubled).
+    if let Some(rbox) = region_box(region).filter(|r| box_size(*r) < 0.1 * box_size(wbox)) {
+        suspects.extend(grid_suspects(fam, &index, rbox, m));
+        if checked.thorough {
+            suspects.extend(slice_suspects(fam, &index, rbox));
+        }
+    }
     let wrong = suspects.iter().any(|(_, agree)| !agree);
     if !wrong {
         return None;
@@ -333,6 +367,22 @@ fn verify(
     Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
 }
 
+/// The regions's bounding box doubled about its centre (None when empty).
+fn region_box(region: &StableRegion) -> Option<BoxF> {
+    let pts = region
+        .polygons
+        .iter()
+        .flat_map(|q| q.vertices.iter().map(|v| P::of(*v)));
+    let (x0, x1, y0, y1) = bbox(pts)?;
+    let (hx, hy) = (x1 - x0, y1 - y0);
+    Some((x0 - 0.5 * hx, x1 + 0.5 * hx, y0 - 0.5 * hy, y1 + 0.5 * hy))
+}
+
+/// The larger side of a box.
+fn box_size((x0, x1, y0, y1): BoxF) -> f64 {
+    (x1 - x0).max(y1 - y0)
+}
+
 /// Grid points that are stable or where the region disagrees with the Schur–Cohn test,
 /// each with "agrees?".
 fn grid_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF, m: usize) -> Vec<(P, bool)> {
@@ -345,7 +395,7 @@ fn grid_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF, m: usize) -
             // Irrational offsets keep grid points off the z = ±1 lines and the axes.
             let p = P {
                 x: x0 + hx * (i as f64 + 0.5 + GRID_JITTER),
-                y: y0 + hy * (j as f64 + 0.5 - GRID_JITTER),
+                y: y0 + hy * (j as f64 + 0.5 + GRID_JITTER_Y),
             };
             out.extend(probe(fam, region, p, &mut coeffs));
         }
@@ -376,7 +426,11 @@ const PROBE_RADIUS: f64 = 1e-3;
 /// A verification point if it is stable or the region disagrees with the Schur–Cohn test
 /// there.
 fn probe(fam: &AffineFamily, region: &EdgeIndex, p: P, coeffs: &mut [f64]) -> Option<(P, bool)> {
-    let stable = stable_at(fam, p.x, p.y, coeffs);
+    // A wall with a root within rounding of the circle is on the boundary: either side agrees.
+    let stable = match verdict_at(fam, p.x, p.y, coeffs) {
+        Verdict::Marginal => return None,
+        v => v == Verdict::Stable,
+    };
     let agree = stable == region.contains(p);
     (stable || !agree).then_some((p, agree))
 }
@@ -406,14 +460,18 @@ fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P,
             let ivs = crate::boundary::stable_alpha_intervals_tabulated(fam, &table, b);
             let mut out = Vec::new();
             let mut prev_hi = x0;
+            // Intervals and gaps narrower than this are the boundary itself, to rounding.
+            let tiny = 1e-9 * (x1 - x0);
             for iv in &ivs {
                 let (lo, hi) = (iv.lo.max(x0 - (x1 - x0)), iv.hi.min(x1 + (x1 - x0)));
                 let inside = P {
                     x: 0.5 * (lo + hi),
                     y: b,
                 };
-                out.push((inside, region.contains(inside)));
-                if iv.lo > prev_hi {
+                if hi - lo > tiny {
+                    out.push((inside, region.contains(inside)));
+                }
+                if iv.lo > prev_hi + tiny {
                     let gap = P {
                         x: 0.5 * (prev_hi + iv.lo),
                         y: b,
@@ -427,8 +485,14 @@ fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P,
         .collect()
 }
 
-/// Offset of the verification grid within its cells (√2 − 1.3, an irrational fraction).
+/// Offset of the verification grid within its cells in a (√2 − 1.3, an irrational fraction).
 const GRID_JITTER: f64 = 0.114_213_562_373_095_05;
+
+/// Offset in b (the golden ratio's 0.618… − 0.5). It differs from [`GRID_JITTER`] and their
+/// sum is irrational, so that no diagonal of the box runs through grid points: the window's
+/// corners often lie on a z = ±1 line, and a grid on that line's diagonal would test walls
+/// with a root exactly on the circle.
+const GRID_JITTER_Y: f64 = 0.118_033_988_749_894_85;
 
 // ---------------------------------------------------------------------------------------
 // Geometry helpers
@@ -503,6 +567,37 @@ fn sub(a: P, b: P) -> P {
 /// Euclidean length (plain square root: coordinates stay far below overflow).
 fn norm(a: P) -> f64 {
     (a.x * a.x + a.y * a.y).sqrt()
+}
+
+/// Distance along the ray m + t·dir (t > 0) to the first edge of the closed polyline other
+/// than edge `skip`; None when the ray meets none.
+fn ray_exit(pts: &[P], skip: usize, m: P, dir: P) -> Option<f64> {
+    let n = pts.len();
+    (0..n)
+        .filter(|&j| j != skip)
+        .filter_map(|j| {
+            let (q, e) = (pts[j], sub(pts[(j + 1) % n], pts[j]));
+            let den = cross(dir, e);
+            if den == 0.0 {
+                return None;
+            }
+            let w = sub(q, m);
+            let (t, s) = (cross(w, e) / den, cross(w, dir) / den);
+            (t > 0.0 && (0.0..=1.0).contains(&s)).then_some(t)
+        })
+        .min_by(f64::total_cmp)
+}
+
+/// Distance from q to the segment ab.
+fn segment_distance(q: P, a: P, b: P) -> f64 {
+    let ab = sub(b, a);
+    let len2 = ab.x * ab.x + ab.y * ab.y;
+    let t = if len2 > 0.0 {
+        (((q.x - a.x) * ab.x + (q.y - a.y) * ab.y) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    norm(sub(q, a.lerp(b, t)))
 }
 
 fn cross(a: P, b: P) -> f64 {
@@ -813,7 +908,7 @@ fn knot_count(fam: &AffineFamily) -> usize {
 fn coarse_curve(
     fam: &AffineFamily,
     bounds: &Bounds,
-    zoom: Option<BoxF>,
+    (zoom, level): (Option<BoxF>, i32),
     budget: &Budget,
 ) -> Result<Vec<(f64, P)>> {
     let m = knot_count(fam);
@@ -838,9 +933,13 @@ fn coarse_curve(
         .collect();
     let focus = zoom.unwrap_or_else(|| focus_box(bounds, &knots));
     let size = (focus.1 - focus.0).max(focus.3 - focus.2);
+    // Each retry also samples 16 times finer (4 times the points): features of the boundary
+    // far below the coarse tolerance (several branches crossing within 1e-4 of the window)
+    // are resolved within a few attempts.
+    let fine = 0.0625_f64.powi(level);
     let s = Sampling {
-        tol: 1e-3 * size,
-        focus: Some((&focus, 0.25 * size)),
+        tol: 1e-3 * size * fine,
+        focus: Some((&focus, 0.25 * size * fine.sqrt())),
     };
     let pieces: Vec<Result<Vec<(f64, P)>>> = knots
         .par_windows(2)
@@ -1685,30 +1784,43 @@ fn faces_size(faces: &[Face]) -> f64 {
     bbox(pts).map_or(0.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0))
 }
 
-/// A point strictly inside a counter-clockwise polygon: the midpoint of a long edge moved a
-/// little to its left, checked by the even-odd rule.
+/// A point strictly inside a counter-clockwise polygon, as deep inside as a few probes find:
+/// halfway across the face from the midpoint of one of its longest edges, checked by the
+/// even-odd rule; else a grid point inside.
 fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
     let n = v.len();
+    let pts: Vec<P> = v.iter().map(|q| P::of(*q)).collect();
     let mut idx: Vec<usize> = (0..n).collect();
-    let len = |i: usize| {
-        let (a, b) = (v[i], v[(i + 1) % n]);
-        (b.alpha - a.alpha).hypot(b.beta - a.beta)
-    };
+    let len = |i: usize| norm(sub(pts[(i + 1) % n], pts[i]));
     idx.sort_by(|&a, &b| len(b).total_cmp(&len(a)));
-    for &i in idx.iter().take(16) {
-        let (a, b) = (v[i], v[(i + 1) % n]);
-        if len(i) == 0.0 {
+    // From the midpoints of the longest edges, halfway across the face along the inward
+    // normal: the face's edges are chords of the curve, and a point just inside a chord may
+    // lie beyond the curve it approximates (outside the true face).
+    let mut best: Option<(f64, P)> = None;
+    for &i in idx.iter().take(4) {
+        let (a, b) = (pts[i], pts[(i + 1) % n]);
+        let l = len(i);
+        if l == 0.0 {
             continue;
         }
-        for f in [1e-3, 1e-2, 1e-4, 0.1] {
-            let p = AlphaBeta {
-                alpha: 0.5 * (a.alpha + b.alpha) - f * (b.beta - a.beta),
-                beta: 0.5 * (a.beta + b.beta) + f * (b.alpha - a.alpha),
-            };
-            if point_in(v, p) {
-                return Some(p);
-            }
+        let m = a.lerp(b, 0.5);
+        let dir = P {
+            x: -(b.y - a.y) / l,
+            y: (b.x - a.x) / l,
+        };
+        let Some(t) = ray_exit(&pts, i, m, dir) else {
+            continue;
+        };
+        let p = P {
+            x: m.x + 0.5 * t * dir.x,
+            y: m.y + 0.5 * t * dir.y,
+        };
+        if best.is_none_or(|(w, _)| t > w) && point_in(v, p.ab()) {
+            best = Some((t, p));
         }
+    }
+    if let Some((_, p)) = best {
+        return Some(p.ab());
     }
     // A thin or intricate face: search a grid over its bounding box.
     let (x0, x1, y0, y1) = bbox(v.iter().map(|p| P::of(*p)))?;
@@ -1716,7 +1828,7 @@ fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
     (0..m * m).find_map(|k| {
         let p = AlphaBeta {
             alpha: x0 + (x1 - x0) * ((k % m) as f64 + 0.5 + GRID_JITTER) / m as f64,
-            beta: y0 + (y1 - y0) * ((k / m) as f64 + 0.5 - GRID_JITTER) / m as f64,
+            beta: y0 + (y1 - y0) * ((k / m) as f64 + 0.5 + GRID_JITTER_Y) / m as f64,
         };
         point_in(v, p).then_some(p)
     })

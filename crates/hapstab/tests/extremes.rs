@@ -11,9 +11,9 @@
 use hapstab::AffineFamily;
 use hapstab::argument::verdict_at;
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
-use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
-use hapstab::params::Effective;
-use hapstab::region::stable_region;
+use hapstab::model::{Delay, Loop, MAX_PERIOD, MIN_PERIOD, Plant, VelocityEstimator};
+use hapstab::params::{Effective, PlantParams};
+use hapstab::region::{DEFAULT_REL_TOL, stable_region, stable_region_with};
 use hapstab::stability::Verdict;
 use proptest::prelude::*;
 
@@ -38,7 +38,7 @@ prop_compose! {
         m in log_uniform(1e-3, 10.0),
         b in maybe_zero(log_uniform(1e-3, 1e3)),
         k in maybe_zero(log_uniform(1e-2, 1e6)),
-        period in log_uniform(1e-7, 1.0),
+        period in log_uniform(1e-7, 1.0).prop_map(|t| t.clamp(MIN_PERIOD, MAX_PERIOD)),
         d in 0usize..12,
         frac in prop_oneof![3 => Just(0.0), 1 => 0.01f64..0.99],
         v in velocity(),
@@ -134,7 +134,7 @@ proptest! {
         let d = lp.delay.in_samples() + 0.5;
         let (a, b) = (a / d, b / d.sqrt());
         let Ok(r) = stable_region(&fam) else {
-            return Ok(()); // an honest refusal is allowed; counted in the report test
+            return Ok(()); // an honest refusal is allowed; its rate is held by `region_refusals_are_rare`
         };
         prop_assert!(r.area.is_finite());
         for p in &r.polygons {
@@ -147,22 +147,23 @@ proptest! {
         let stable = verdict == Verdict::Stable;
         let inside = r.contains(AlphaBeta { alpha: a, beta: b });
         if stable != inside {
-            // only allowed within the polygon tolerance of the boundary: check by intervals
-            let ivs = stable_alpha_intervals(&fam, b);
-            let scale = r.alpha_max.abs().max(a.abs()).max(1e-300);
-            let near = ivs.iter().any(|iv| (iv.lo - a).abs() < 1e-8 * scale || (iv.hi - a).abs() < 1e-8 * scale);
-            prop_assert!(near, "a = {a}, b = {b}: point test {stable}, region {inside}, intervals {ivs:?}");
+            // only allowed within the polygon's chord tolerance of its boundary
+            let w = AlphaBeta { alpha: a, beta: b };
+            let (dist, tol) = (r.boundary_distance(w), DEFAULT_REL_TOL * r.size());
+            prop_assert!(
+                dist <= tol,
+                "a = {a}, b = {b}: point test {stable}, region {inside}, {dist} from its edges (tolerance {tol})"
+            );
         }
     }
 }
 
-/// Known defect, found by a long random run: an undamped plant far outside the paper's ranges
-/// (γ = 6.5e6, δ = 0, d = 3: m = 22 g, k = 681 kN/m at T = 0.46 s) has stable walls at
-/// (α, β) ≈ (−0.19, −0.29), a distance of 1e-8 of the region's size from the wall-free
-/// corner, that the drawn region leaves out (the stable intervals and the point test agree
-/// that they are stable).
+/// Found by a long random run: an undamped plant far outside the paper's ranges (γ = 6.5e6,
+/// δ = 0, d = 3: m = 22 g, k = 681 kN/m at T = 0.46 s) has stable walls at (α, β) ≈
+/// (−0.19, −0.29), 0.14 from the region's edge in a region 1.8e8 across. The polygon may
+/// leave them out at its default tolerance (1e-9 of the size, here 0.18) but must be within
+/// that tolerance of them, and a tighter tolerance must include them.
 #[test]
-#[ignore = "known defect: a region feature at 1e-8 of the region's size near an undamped corner"]
 fn undamped_corner_at_extreme_gamma() {
     let plant = Plant::mass_spring_damper(
         Effective::new(0.02224805533028814, 0.0, 680605.0573079706).unwrap(),
@@ -176,11 +177,124 @@ fn undamped_corner_at_extreme_gamma() {
     )
     .unwrap();
     let fam = AffineFamily::of_loop(&lp).unwrap();
-    let (a, b) = (-0.18875524752594028, -0.2914861175691367);
+    let w = AlphaBeta {
+        alpha: -0.18875524752594028,
+        beta: -0.2914861175691367,
+    };
     assert_eq!(
-        verdict_at(&fam, a, b, &mut fam.coefficients(a, b)),
+        verdict_at(
+            &fam,
+            w.alpha,
+            w.beta,
+            &mut fam.coefficients(w.alpha, w.beta)
+        ),
         Verdict::Stable
     );
+    // the exact boundary at this damping (stable intervals) is 0.11 away in α
+    let ivs = stable_alpha_intervals(&fam, w.beta);
+    assert!(ivs.iter().any(|iv| iv.lo < w.alpha && w.alpha < iv.hi));
     let r = stable_region(&fam).unwrap();
-    assert!(r.contains(AlphaBeta { alpha: a, beta: b }));
+    if !r.contains(w) {
+        assert!(r.boundary_distance(w) <= DEFAULT_REL_TOL * r.size());
+    }
+    let fine = stable_region_with(&fam, 1e-11).unwrap();
+    assert!(fine.contains(w));
+}
+
+/// Found by a long random run: a loop sampled at 1 s with 11.01 samples of delay and a
+/// 15-sample average (p of degree 29) whose boundary curve spans 10⁹ in β while the stable
+/// region is 10⁷ tall. The region once came out as a few triangles inside the true one and
+/// the verification grid, spread over the curve's extent, fell between them; the region's
+/// own box is now checked too. The answer must contain the stable wall-free point or be an
+/// honest refusal.
+#[test]
+fn region_far_smaller_than_its_curve_is_right_or_refused() {
+    let plant = Plant::mass_spring_damper(
+        Effective::new(0.00765658591764391, 1.0, 4115.459237322136).unwrap(),
+    )
+    .unwrap();
+    let delay = Delay {
+        samples: 11,
+        fraction: 0.01,
+    };
+    let lp = Loop::new(
+        plant,
+        1.0,
+        delay,
+        VelocityEstimator::Average { samples: 15 },
+    )
+    .unwrap();
+    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let origin = AlphaBeta {
+        alpha: 0.0,
+        beta: 0.0,
+    };
+    assert_eq!(
+        verdict_at(&fam, 0.0, 0.0, &mut fam.coefficients(0.0, 0.0)),
+        Verdict::Stable
+    );
+    if let Ok(r) = stable_region(&fam) {
+        assert!(r.contains(origin), "{} polygons", r.polygons.len());
+    }
+}
+
+/// Refusals of the region stay rare over the random loops of the property above (the same
+/// strategy and CI seed): at most 2 % of 400.
+#[test]
+fn region_refusals_are_rare() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, TestRng, TestRunner};
+    let rng = TestRng::from_seed(proptest::test_runner::RngAlgorithm::ChaCha, &[7; 32]);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let n = 400;
+    let refused = (0..n)
+        .filter(|_| {
+            let lp = a_loop().new_tree(&mut runner).unwrap().current();
+            let e = stable_region(&AffineFamily::of_loop(&lp).unwrap()).err();
+            if let Some(e) = &e {
+                eprintln!("{lp:?}: {e}");
+            }
+            e.is_some()
+        })
+        .count();
+    eprintln!("{refused} of {n} regions refused");
+    assert!(refused * 50 <= n, "{refused} of {n} regions refused");
+}
+
+/// The paper's loop over the explorer's ranges (γ ≤ 1000, δ ≤ 100): every region resolves
+/// and agrees with the point test on a grid over its box, to its chord tolerance. Found
+/// refused in 25 of these 270 settings: grid points on the diagonal of the window ran along
+/// a z = −1 line, a face was classified by a point just inside a chord (beyond the curve it
+/// approximates), rounding-wide gaps between stable intervals counted as gaps, and several
+/// branches crossing within 1e-4 of the window (δ = 10, where the plant's poles are all but
+/// gone) were left coarser than their crossings.
+#[test]
+fn paper_regions_resolve_over_the_explorer_ranges() {
+    for g in [0.01, 1.0, 10.0, 50.0, 100.0, 200.0, 400.0, 700.0, 1000.0] {
+        for dl in [0.0, 0.1, 1.0, 2.4, 10.0] {
+            for d in [0usize, 1, 2, 3, 5, 8] {
+                let lp = Loop::normalized(PlantParams::new(g, dl).unwrap(), d).unwrap();
+                let fam = AffineFamily::of_loop(&lp).unwrap();
+                let r = stable_region(&fam)
+                    .unwrap_or_else(|e| panic!("γ = {g}, δ = {dl}, d = {d}: {e}"));
+                let tol = DEFAULT_REL_TOL * r.size();
+                let (a0, a1) = (-g - 1.0, r.alpha_max + 1.0);
+                let (b0, b1) = (-3.0 * g - 10.0, 3.0 * g + 10.0);
+                let mut c = fam.coefficients(0.0, 0.0);
+                for i in 0..12 {
+                    for j in 0..12 {
+                        let w = AlphaBeta {
+                            alpha: a0 + (a1 - a0) * (i as f64 + 0.37) / 12.0,
+                            beta: b0 + (b1 - b0) * (j as f64 + 0.61) / 12.0,
+                        };
+                        let v = verdict_at(&fam, w.alpha, w.beta, &mut c);
+                        if v != Verdict::Marginal && r.contains(w) != (v == Verdict::Stable) {
+                            let dist = r.boundary_distance(w);
+                            assert!(dist <= tol, "γ = {g}, δ = {dl}, d = {d}: {v:?} at {w:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
