@@ -71,7 +71,7 @@ pub struct PlantArgs {
     /// No human arm: the ungrabbed device (k_H = b_H = m_H = 0).
     #[arg(long, conflicts_with_all = ["arm_mass", "arm_damping", "arm_stiffness", "mass", "damping", "stiffness"])]
     pub no_arm: bool,
-    /// Sampling period T in s [default: 0.001].
+    /// Sampling period T in s, from 1e-7 to 1 [default: 0.001].
     #[arg(long, allow_hyphen_values = true)]
     pub period: Option<f64>,
     /// Delay d in whole samples [default: 0].

@@ -192,8 +192,8 @@ impl AffineFamily {
         z: Complex64,
         zk: Complex64,
     ) -> (Complex64, Complex64, Complex64) {
-        let p0 = zk * poly::eval(&self.p0_core, z);
-        (p0, poly::eval(&self.pk, z), poly::eval(&self.pb, z))
+        let [c, pk, pb] = poly::eval3(&self.p0_core, &self.pk, &self.pb, z);
+        (zk * c, pk, pb)
     }
 
     /// (P0, PK, PB) at z = e^{iθ}, near z = 1 from the shifted form with
@@ -205,11 +205,8 @@ impl AffineFamily {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
                 let h = (0.5 * theta).sin();
                 let w = Complex64::new(-2.0 * h * h, theta.sin());
-                (
-                    zk * poly::eval(&sh.p0_core, w),
-                    poly::eval(&sh.pk, w),
-                    poly::eval(&sh.pb, w),
-                )
+                let [c, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
+                (zk * c, pk, pb)
             }
             _ => self.parts_with_power(Complex64::from_polar(1.0, theta), zk),
         }

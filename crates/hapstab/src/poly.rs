@@ -51,6 +51,26 @@ pub fn eval(c: &[f64], z: Complex64) -> Complex64 {
         .fold(Complex64::new(0.0, 0.0), |acc, &ci| acc * z + ci)
 }
 
+/// Three polynomials (ascending coefficients) at one complex point by Horner's rule, in one
+/// pass: the three recurrences are independent, so they run side by side. Each value is
+/// bit for bit that of [`eval`] (a shorter polynomial's leading zeros stay exact zeros).
+pub fn eval3(a: &[f64], b: &[f64], c: &[f64], z: Complex64) -> [Complex64; 3] {
+    let n = a.len().max(b.len()).max(c.len());
+    let (zr, zi) = (z.re, z.im);
+    let at = |p: &[f64], i: usize| if i < p.len() { p[i] } else { 0.0 };
+    let (mut ar, mut ai, mut br, mut bi, mut cr, mut ci) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for i in (0..n).rev() {
+        (ar, ai) = (ar * zr - ai * zi + at(a, i), ar * zi + ai * zr);
+        (br, bi) = (br * zr - bi * zi + at(b, i), br * zi + bi * zr);
+        (cr, ci) = (cr * zr - ci * zi + at(c, i), cr * zi + ci * zr);
+    }
+    [
+        Complex64::new(ar, ai),
+        Complex64::new(br, bi),
+        Complex64::new(cr, ci),
+    ]
+}
+
 /// Value and first derivative at a complex point by Horner's rule.
 pub fn eval_with_derivative(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
     let zero = Complex64::new(0.0, 0.0);

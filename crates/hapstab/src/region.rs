@@ -282,15 +282,34 @@ impl EdgeIndex {
         let (_, _, y0, y1) = bbox(pts).unwrap_or((0.0, 0.0, 0.0, 0.0));
         let nb = 256;
         let h = ((y1 - y0) / nb as f64).max(f64::MIN_POSITIVE);
-        let mut buckets = vec![Vec::new(); nb];
-        for poly in &region.polygons {
+        // (truncation is the floor here: the argument is clamped to be non-negative)
+        let bucket = |y: f64| (((y - y0) / h).max(0.0) as usize).min(nb - 1);
+        let ranges: Vec<Vec<(usize, usize)>> = region
+            .polygons
+            .iter()
+            .map(|poly| {
+                let v = &poly.vertices;
+                (0..v.len())
+                    .map(|i| {
+                        let (a, b) = (v[i].beta, v[(i + 1) % v.len()].beta);
+                        (bucket(a.min(b)), bucket(a.max(b)))
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut counts = vec![0_usize; nb];
+        for &(lo, hi) in ranges.iter().flatten() {
+            for c in &mut counts[lo..=hi] {
+                *c += 1;
+            }
+        }
+        let mut buckets: Vec<Vec<(P, P)>> = counts.iter().map(|&c| Vec::with_capacity(c)).collect();
+        for (poly, rs) in region.polygons.iter().zip(&ranges) {
             let v = &poly.vertices;
-            for i in 0..v.len() {
-                let (a, b) = (P::of(v[i]), P::of(v[(i + 1) % v.len()]));
-                let lo = (((a.y.min(b.y) - y0) / h).floor().max(0.0) as usize).min(nb - 1);
-                let hi = (((a.y.max(b.y) - y0) / h).floor().max(0.0) as usize).min(nb - 1);
+            for (i, &(lo, hi)) in rs.iter().enumerate() {
+                let e = (P::of(v[i]), P::of(v[(i + 1) % v.len()]));
                 for bucket in &mut buckets[lo..=hi] {
-                    bucket.push((a, b));
+                    bucket.push(e);
                 }
             }
         }
@@ -345,6 +364,13 @@ fn verify(
     if checked.thorough {
         suspects.extend(slice_suspects(fam, &index, wbox));
     }
+    // "Nothing is stable" is checked exactly where it matters most, on the stiffness axis
+    // (no virtual damping): a region far thinner than the window would slip between slices.
+    if region.polygons.is_empty()
+        && let Some(zoom) = missed_on_the_axis(fam, wbox)
+    {
+        return Some(zoom);
+    }
     // A region far smaller than the window may fall between the window's grid points and
     // slices: check around it too (its own box, doubled).
     if let Some(rbox) = region_box(region).filter(|r| box_size(*r) < 0.1 * box_size(wbox)) {
@@ -365,6 +391,46 @@ fn verify(
     let mx = (2.0 * (x1 - x0) / m as f64 * shrink).max(0.5 * (a1 - a0));
     let my = (2.0 * (y1 - y0) / m as f64 * shrink).max(0.5 * (b1 - b0));
     Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
+}
+
+/// For an empty answer: the box of the stable walls on the stiffness axis (b = 0, exact
+/// intervals) and along the lines b = ±w·4^k above and below it (w the intervals' width),
+/// inflated by half; None when the axis has no stable wall. A region far thinner than the
+/// window slips between its slices; this box is where the next attempt must look.
+fn missed_on_the_axis(fam: &AffineFamily, wbox: BoxF) -> Option<BoxF> {
+    let span = |b: f64| {
+        let ivs = crate::boundary::stable_alpha_intervals(fam, b);
+        let lo = ivs
+            .iter()
+            .map(|iv| iv.lo.max(wbox.0))
+            .fold(f64::INFINITY, f64::min);
+        let hi = ivs
+            .iter()
+            .map(|iv| iv.hi.min(wbox.1))
+            .fold(f64::NEG_INFINITY, f64::max);
+        (hi > lo).then_some((lo, hi))
+    };
+    let (mut lo, mut hi) = span(0.0)?;
+    let w = hi - lo;
+    let (mut b0, mut b1) = (-w, w);
+    for sign in [-1.0, 1.0] {
+        let mut step = w;
+        let limit = if sign < 0.0 { -wbox.2 } else { wbox.3 };
+        while step < 1e300 && step <= limit {
+            let Some((l, h)) = span(sign * step) else {
+                break;
+            };
+            (lo, hi) = (lo.min(l), hi.max(h));
+            if sign < 0.0 {
+                b0 = -4.0 * step;
+            } else {
+                b1 = 4.0 * step;
+            }
+            step *= 4.0;
+        }
+    }
+    let (mx, my) = (0.5 * (hi - lo), 0.25 * (b1 - b0));
+    Some((lo - mx, hi + mx, b0 - my, b1 + my))
 }
 
 /// The regions's bounding box doubled about its centre (None when empty).
@@ -941,14 +1007,26 @@ fn coarse_curve(
         tol: 1e-3 * size * fine,
         focus: Some((&focus, 0.25 * size * fine.sqrt())),
     };
-    let pieces: Vec<Result<Vec<(f64, P)>>> = knots
-        .par_windows(2)
-        .with_min_len(8)
-        .map(|w| match (w[0], w[1]) {
-            ((t0, Some(p0)), (t1, Some(p1))) => sample_arc(fam, (t0, p0), (t1, p1), s, budget),
-            // a gap (no point): the next piece starts afresh at its own first knot
-            ((_, None), (t1, Some(p1))) => Ok(vec![(t1, p1)]),
-            _ => Ok(Vec::new()),
+    let intervals = knots.len() - 1;
+    let pieces: Vec<Result<Vec<(f64, P)>>> = (0..intervals)
+        .step_by(RUN)
+        .collect::<Vec<usize>>()
+        .par_iter()
+        .map(|&i0| {
+            let mut out = Vec::new();
+            let mut scratch = ArcScratch::default();
+            for w in knots[i0..(i0 + RUN + 1).min(knots.len())].windows(2) {
+                match (w[0], w[1]) {
+                    ((t0, Some(p0)), (t1, Some(p1))) => {
+                        let (a, b) = ((t0, p0), (t1, p1));
+                        sample_arc_into(fam, a, b, s, budget, &mut out, &mut scratch)?;
+                    }
+                    // a gap (no point): the next piece starts afresh at its own first knot
+                    ((_, None), (t1, Some(p1))) => out.push((t1, p1)),
+                    _ => {}
+                }
+            }
+            Ok(out)
         })
         .collect();
     let mut coarse: Vec<(f64, P)> = Vec::new();
@@ -960,6 +1038,9 @@ fn coarse_curve(
     }
     Ok(coarse)
 }
+
+/// Knot intervals per parallel task of the curve sampling (one buffer and work space each).
+const RUN: usize = 16;
 
 /// The box where the coarse curve matters: around the knots inside the bounds (all of the
 /// bounds when none is), inflated by half its size.
@@ -988,24 +1069,38 @@ const TURN_TOL: f64 = 0.025;
 /// Deepest bisection of one arc: 2⁻⁴⁸ of a knot interval is below the resolution of θ.
 const MAX_DEPTH: u32 = 48;
 
-/// Adaptive sampling of the curve between two points (θ, C(θ)); returns the points after the
-/// first (the last included). An explicit stack replaces recursion; every point drawn comes
-/// out of the budget.
-fn sample_arc(
+/// Work space of [`sample_arc_into`], reused across arcs.
+#[derive(Default)]
+struct ArcScratch {
+    stack: Vec<(ArcEnd, ArcEnd, u32)>,
+    parts: Vec<ArcEnd>,
+}
+
+/// Adaptive sampling of the curve between two points (θ, C(θ)); appends the points after
+/// the first (the last included) to `out`. An explicit stack (in `scratch`, reused across
+/// arcs) replaces recursion; every point drawn comes out of the budget.
+fn sample_arc_into(
     fam: &AffineFamily,
     a: (f64, P),
     b: (f64, P),
     s: Sampling<'_>,
     budget: &Budget,
-) -> Result<Vec<(f64, P)>> {
-    let mut out = Vec::new();
+    out: &mut Vec<(f64, P)>,
+    scratch: &mut ArcScratch,
+) -> Result<()> {
+    let ArcScratch { stack, parts } = scratch;
     // Stack of pending arcs, the leftmost on top.
-    let mut stack = vec![((a.0, unit(a.0), a.1), (b.0, unit(b.0), b.1), 0_u32)];
+    stack.clear();
+    stack.push(((a.0, unit(a.0), a.1), (b.0, unit(b.0), b.1), 0_u32));
     while let Some((l, r, depth)) = stack.pop() {
-        let Some(parts) = split(fam, l, r, depth, s) else {
-            out.push((r.0, r.2));
-            continue;
-        };
+        match split(fam, l, r, depth, s, parts) {
+            Split::Accept(mid) => {
+                out.extend(mid.map(|m| (m.0, m.2)));
+                out.push((r.0, r.2));
+                continue;
+            }
+            Split::Into => {}
+        }
         if !budget.take(parts.len()) {
             return Err(Budget::exhausted());
         }
@@ -1016,38 +1111,51 @@ fn sample_arc(
         }
         stack.push((l, right, depth + 1));
     }
-    Ok(out)
+    Ok(())
 }
 
 /// One end of an arc: θ, z = e^{iθ} and the curve point.
 type ArcEnd = (f64, Complex64, P);
 
+/// What to do with an arc: keep its chord (with the midpoint evaluated for the test when
+/// that point is kept as well), or split it at the points left in the caller's buffer.
+enum Split {
+    Accept(Option<ArcEnd>),
+    Into,
+}
+
 /// Deepest level at which a chord is split into more than two parts: deeper, the curvature
 /// estimate from one midpoint is no longer worth trusting for more.
 const MULTI_SPLIT_DEPTH: u32 = 8;
 
-/// The interior points an arc must be split at, or None if its chord follows the curve.
-/// The arc's midpoint is (z0 + z1)/|z0 + z1| and k equal parts are powers of e^{iΔθ/k}, so
-/// no sine or cosine is evaluated per point. A smooth arc is split into k ≈ √(dev/tol)
-/// parts at once (the deviation of a chord shrinks with the square of its length).
+/// Decides an arc: accepted when its chord follows the curve, else split at interior points
+/// written to `parts`. The arc's midpoint is (z0 + z1)/|z0 + z1| and k equal parts are
+/// powers of e^{iΔθ/k}, so no sine or cosine is evaluated per point. A smooth arc is split
+/// into k ≈ √(dev/tol) parts at once (the deviation of a chord shrinks with the square of its
+/// length). Fine passes keep the midpoint they evaluate: an arc whose midpoint is within
+/// 4·tol of the chord is kept as the two half-chords, each within tol (a quarter of the
+/// deviation), so that no evaluation is spent only on a test.
 fn split(
     fam: &AffineFamily,
     l: ArcEnd,
     r: ArcEnd,
     depth: u32,
     s: Sampling<'_>,
-) -> Option<Vec<ArcEnd>> {
+    parts: &mut Vec<ArcEnd>,
+) -> Split {
     let ((t0, z0, p0), (t1, z1, p1)) = (l, r);
     if depth >= MAX_DEPTH || !s.relevant(p0, p1) {
-        return None;
+        return Split::Accept(None);
     }
     let zs = z0 + z1;
     let zm = zs / zs.norm();
     if zm.im <= 0.0 {
-        return None;
+        return Split::Accept(None);
     }
     let tm = 0.5 * (t0 + t1);
-    let pm = point_at(fam, tm, zm)?;
+    let Some(pm) = point_at(fam, tm, zm) else {
+        return Split::Accept(None);
+    };
     let mid = (tm, zm, pm);
     let ch = sub(p1, p0);
     let q = sub(pm, p0);
@@ -1058,9 +1166,11 @@ fn split(
     } else {
         norm(q)
     };
-    // Accept when the midpoint is within tol of the chord and projects into [−1/4, 5/4] of
-    // it; coarse passes also bound the turning per chord (scale-free, so that loops far
-    // smaller than the focus are resolved) down to a floor below which it is noise.
+    // Accept when the midpoint is within the limit of the chord and projects into
+    // [−1/4, 5/4] of it; coarse passes also bound the turning per chord (scale-free, so that
+    // loops far smaller than the focus are resolved) down to a floor below which it is noise.
+    let keep_mid = s.focus.is_none();
+    let limit = if keep_mid { 4.0 * s.tol } else { s.tol };
     let t = if len2 > 0.0 {
         (q.x * ch.x + q.y * ch.y) / len2
     } else {
@@ -1069,7 +1179,15 @@ fn split(
     // A chord and midpoint all within the tolerance of one point is done whatever its
     // direction (a direction made of rounding noise would otherwise split to the depth limit).
     let tiny = norm(q) <= s.tol && norm(sub(pm, p1)) <= s.tol;
-    let within = tiny || (dev <= s.tol && (-0.25..=1.25).contains(&t));
+    // The half-chords of a kept midpoint deviate by a quarter of its deviation where the arc
+    // is close to a parabola, which shows in a midpoint projecting near the chord's middle;
+    // elsewhere the chord itself must be within tol.
+    let limit = if (0.45..=0.55).contains(&t) {
+        limit
+    } else {
+        s.tol
+    };
+    let within = tiny || (dev <= limit && (-0.25..=1.25).contains(&t));
     let turning = s.focus.is_some() && dev > TURN_TOL * len && dev > 1e-7 * s.tol;
     let far = norm(q) + norm(sub(pm, p1)) > 1.5 * len + s.tol;
     // Coarse passes bound the chord length near the focus, so that a chord to a far point
@@ -1078,28 +1196,31 @@ fn split(
         .focus
         .is_some_and(|(_, maxlen)| depth < 30 && len > maxlen);
     if within && !turning && !far && !long {
-        return None;
+        return Split::Accept((keep_mid && !tiny).then_some(mid));
     }
+    parts.clear();
     let k = if far || long || turning || depth > MULTI_SPLIT_DEPTH {
         2
     } else {
-        ((dev / s.tol).sqrt().ceil() as usize).clamp(2, 64)
+        ((dev / limit).sqrt().ceil() as usize).clamp(2, 64)
     };
     if k == 2 {
-        return Some(vec![mid]);
+        parts.push(mid);
+        return Split::Into;
     }
     let w = unit((t1 - t0) / k as f64);
     let mut z = z0;
-    let mut parts = Vec::with_capacity(k - 1);
     for i in 1..k {
         z *= w;
         let t = t0 + (t1 - t0) * i as f64 / k as f64;
         let Some(p) = point_at(fam, t, z) else {
-            return Some(vec![mid]);
+            parts.clear();
+            parts.push(mid);
+            return Split::Into;
         };
         parts.push((t, z, p));
     }
-    Some(parts)
+    Split::Into
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1250,9 +1371,19 @@ fn refine_cc(fam: &AffineFamily, a: &Seg, b: &Seg) -> (P, f64, f64) {
             .flat_map(|x| sb.iter().map(move |y| (*x, *y)))
             .find(|(x, y)| seg_intersect(x, y).is_some());
         let Some((x, y)) = hit else { break };
+        // Halving further is useless once both halves are straight to rounding: the midpoint
+        // just evaluated lies within 1e-14 of the coordinates' size from the old chord.
+        let straight = |old: &Seg, half: &[Seg; 2]| {
+            let m = half[0].q;
+            let ch = sub(old.q, old.p);
+            let len = norm(ch);
+            len == 0.0
+                || cross(ch, sub(m, old.p)).abs() / len <= 1e-14 * (norm(old.p) + norm(old.q) + len)
+        };
+        let done = straight(&a, &sa) && straight(&b, &sb);
         a = x;
         b = y;
-        if (a.tq - a.tp).abs() < 1e-16 && (b.tq - b.tp).abs() < 1e-16 {
+        if done || ((a.tq - a.tp).abs() < 1e-16 && (b.tq - b.tp).abs() < 1e-16) {
             break;
         }
     }
@@ -1941,12 +2072,19 @@ fn refine_arc(
         fine.push(w[1]);
     }
     let s = Sampling { tol, focus: None };
-    let pieces: Vec<Result<Vec<(f64, P)>>> = fine
-        .par_windows(2)
-        .with_min_len(4)
-        .map(|w| sample_arc(fam, w[0], w[1], s, budget))
+    let starts: Vec<usize> = (0..fine.len().saturating_sub(1)).step_by(RUN).collect();
+    let pieces: Vec<Result<Vec<(f64, P)>>> = starts
+        .par_iter()
+        .map(|&i0| {
+            let mut out = Vec::new();
+            let mut scratch = ArcScratch::default();
+            for i in i0..(i0 + RUN).min(fine.len() - 1) {
+                sample_arc_into(fam, fine[i], fine[i + 1], s, budget, &mut out, &mut scratch)?;
+            }
+            Ok(out)
+        })
         .collect();
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(pieces.iter().map(|p| p.as_ref().map_or(0, Vec::len)).sum());
     for p in pieces {
         out.extend(p?);
     }

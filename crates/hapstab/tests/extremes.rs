@@ -239,7 +239,10 @@ fn region_far_smaller_than_its_curve_is_right_or_refused() {
 }
 
 /// Refusals of the region stay rare over the random loops of the property above (the same
-/// strategy and CI seed): at most 2 % of 400.
+/// strategy, a fixed seed): at most 5 % of 400. Those refused are regions far thinner than
+/// the window (fast sampling with a low-pass velocity filter of a few hertz: 1e6 times
+/// taller than wide) and nearly pure delays (δ > 20); the thin ones were once answered as
+/// empty beside stable walls on the stiffness axis, which the verification now checks.
 #[test]
 fn region_refusals_are_rare() {
     use proptest::strategy::ValueTree;
@@ -258,7 +261,7 @@ fn region_refusals_are_rare() {
         })
         .count();
     eprintln!("{refused} of {n} regions refused");
-    assert!(refused * 50 <= n, "{refused} of {n} regions refused");
+    assert!(refused * 20 <= n, "{refused} of {n} regions refused");
 }
 
 /// The paper's loop over the explorer's ranges (γ ≤ 1000, δ ≤ 100): every region resolves
@@ -296,5 +299,40 @@ fn paper_regions_resolve_over_the_explorer_ranges() {
                 }
             }
         }
+    }
+}
+
+/// Found by a long random run: sampled at 1.2 µs with a 1 Hz low-pass velocity filter, the
+/// stable region is 1.8 wide and 10⁶ tall in (α, β); it was answered as empty while the
+/// stiffness axis has stable walls. It must now be a region that holds them, or a refusal.
+#[test]
+fn thin_region_is_not_called_empty() {
+    let plant = Plant::mass_spring_damper(
+        Effective::new(0.0024941309540034142, 38.07596165071776, 0.0).unwrap(),
+    )
+    .unwrap();
+    let lp = Loop::new(
+        plant,
+        1.222811141433756e-6,
+        Delay::samples(5).unwrap(),
+        VelocityEstimator::LowPass { cutoff_hz: 1.0 },
+    )
+    .unwrap();
+    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let w = AlphaBeta {
+        alpha: 0.0027542652682587252,
+        beta: 0.0,
+    };
+    assert_eq!(
+        verdict_at(
+            &fam,
+            w.alpha,
+            w.beta,
+            &mut fam.coefficients(w.alpha, w.beta)
+        ),
+        Verdict::Stable
+    );
+    if let Ok(r) = stable_region(&fam) {
+        assert!(r.contains(w), "{} polygons", r.polygons.len());
     }
 }
