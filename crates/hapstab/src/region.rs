@@ -181,7 +181,7 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
     let mut focus: Option<BoxF> = None;
     for i in 0..MAX_ATTEMPTS {
         let (region, checked) = attempt(fam, &bounds, (focus, i as i32), rel_tol, &budget)?;
-        match verify(fam, &bounds, &region, checked, i) {
+        match verify(fam, &bounds, &region, checked, (i, rel_tol)) {
             None => return Ok(region),
             Some(zoom) => focus = Some(zoom),
         }
@@ -345,15 +345,17 @@ fn grid_side(fam: &AffineFamily) -> usize {
 }
 
 /// Checks the region against a grid of direct Schur–Cohn tests over the search window (and
-/// the bounds' box when the window is absent), and when `thorough` also against the exact
-/// stable intervals on slices of constant damping. None when they agree; otherwise the box to
-/// zoom the next attempt onto: the disagreeing and the stable points, two cells wide.
+/// the bounds' box when the window is absent), the wall-free point, and when `thorough` also
+/// against the exact stable intervals on slices of constant damping; disagreements within
+/// twice the chord tolerance (`rel_tol` of the size) of the polygon's edges do not count.
+/// None when they agree; otherwise the box to zoom the next attempt onto: the disagreeing and
+/// the stable points, two cells wide.
 fn verify(
     fam: &AffineFamily,
     bounds: &Bounds,
     region: &StableRegion,
     checked: Checked,
-    attempt: usize,
+    (attempt, rel_tol): (usize, f64),
 ) -> Option<BoxF> {
     let wbox = checked
         .wbox
@@ -379,7 +381,15 @@ fn verify(
             suspects.extend(slice_suspects(fam, &index, rbox));
         }
     }
-    let wrong = suspects.iter().any(|(_, agree)| !agree);
+    // The wall-free point itself, decided (a root within rounding of the circle, as for an
+    // undamped plant whose corner it is, makes it marginal and uninformative).
+    let origin = P { x: 0.0, y: 0.0 };
+    suspects.extend(probe(fam, &index, origin, &mut vec![0.0; fam.degree() + 1]));
+    // A disagreement within the chord tolerance of the polygon's edges is no disagreement.
+    let band = 2.0 * rel_tol * region.size();
+    let wrong = suspects
+        .iter()
+        .any(|(p, agree)| !agree && region.boundary_distance(p.ab()) > band);
     if !wrong {
         return None;
     }

@@ -336,3 +336,37 @@ fn thin_region_is_not_called_empty() {
         assert!(r.contains(w), "{} polygons", r.polygons.len());
     }
 }
+
+/// Found by a long random run: sampled at 0.76 s with 5.1 samples of delay and an
+/// 18-sample average (γ = 2024, δ = 22), the region came out as a piece 2000 away from the
+/// stable wall-free point. The verification now tests that point too.
+#[test]
+fn region_holds_the_stable_wall_free_point() {
+    let plant = Plant::mass_spring_damper(
+        Effective::new(0.0454953215252378, 1.339569676351949, 158.69861020164703).unwrap(),
+    )
+    .unwrap();
+    let delay = Delay {
+        samples: 5,
+        fraction: 0.09765039015745926,
+    };
+    let lp = Loop::new(
+        plant,
+        0.7618021233319427,
+        delay,
+        VelocityEstimator::Average { samples: 18 },
+    )
+    .unwrap();
+    let fam = AffineFamily::of_loop(&lp).unwrap();
+    assert_eq!(
+        verdict_at(&fam, 0.0, 0.0, &mut fam.coefficients(0.0, 0.0)),
+        Verdict::Stable
+    );
+    if let Ok(r) = stable_region(&fam) {
+        let origin = AlphaBeta {
+            alpha: 0.0,
+            beta: 0.0,
+        };
+        assert!(r.contains(origin), "{} polygons", r.polygons.len());
+    }
+}

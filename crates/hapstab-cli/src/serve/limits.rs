@@ -20,10 +20,8 @@ pub const MAX_MASS: f64 = 1e4;
 pub const MAX_PHYS_DAMPING: f64 = 1e7;
 /// Physical mode: largest arm stiffness in N/m.
 pub const MAX_PHYS_STIFFNESS: f64 = 1e9;
-/// Physical mode: smallest sampling period in s.
-pub const MIN_PERIOD: f64 = 1e-7;
-/// Physical mode: largest sampling period in s.
-pub const MAX_PERIOD: f64 = 1.0;
+/// Physical mode: the sampling periods the library accepts, in s.
+pub use hapstab::model::{MAX_PERIOD, MIN_PERIOD};
 /// Smallest and largest relative simplification tolerance of drawn polygons.
 pub const MIN_TOL: f64 = 0.0;
 pub const MAX_TOL: f64 = 0.01;
