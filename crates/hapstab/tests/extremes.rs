@@ -49,6 +49,26 @@ prop_compose! {
     }
 }
 
+/// The family of the paper's plant (m, b, k) with a sampling period, delay and estimator.
+fn msd_family(
+    (m, b, k): (f64, f64, f64),
+    period: f64,
+    delay: Delay,
+    v: VelocityEstimator,
+) -> AffineFamily {
+    let plant = Plant::mass_spring_damper(Effective::new(m, b, k).unwrap()).unwrap();
+    AffineFamily::of_loop(&Loop::new(plant, period, delay, v).unwrap()).unwrap()
+}
+
+/// A wall the point test decides stable lies in the loop's region, or the region is refused.
+fn stable_wall_in_region_or_refused(fam: &AffineFamily, w: AlphaBeta) {
+    let mut c = fam.coefficients(w.alpha, w.beta);
+    assert_eq!(verdict_at(fam, w.alpha, w.beta, &mut c), Verdict::Stable);
+    if let Ok(r) = stable_region(fam) {
+        assert!(r.contains(w), "{w:?} outside {} polygons", r.polygons.len());
+    }
+}
+
 /// Relative distance below which a stiffness counts as on an interval's end.
 const ON_BOUNDARY: f64 = 1e-9;
 
@@ -165,18 +185,12 @@ proptest! {
 /// that tolerance of them, and a tighter tolerance must include them.
 #[test]
 fn undamped_corner_at_extreme_gamma() {
-    let plant = Plant::mass_spring_damper(
-        Effective::new(0.02224805533028814, 0.0, 680605.0573079706).unwrap(),
-    )
-    .unwrap();
-    let lp = Loop::new(
-        plant,
+    let fam = msd_family(
+        (0.02224805533028814, 0.0, 680605.0573079706),
         0.4600570433599097,
         Delay::samples(3).unwrap(),
         VelocityEstimator::Backward,
-    )
-    .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
+    );
     let w = AlphaBeta {
         alpha: -0.18875524752594028,
         beta: -0.2914861175691367,
@@ -209,33 +223,23 @@ fn undamped_corner_at_extreme_gamma() {
 /// honest refusal.
 #[test]
 fn region_far_smaller_than_its_curve_is_right_or_refused() {
-    let plant = Plant::mass_spring_damper(
-        Effective::new(0.00765658591764391, 1.0, 4115.459237322136).unwrap(),
-    )
-    .unwrap();
     let delay = Delay {
         samples: 11,
         fraction: 0.01,
     };
-    let lp = Loop::new(
-        plant,
+    let fam = msd_family(
+        (0.00765658591764391, 1.0, 4115.459237322136),
         1.0,
         delay,
         VelocityEstimator::Average { samples: 15 },
-    )
-    .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    let origin = AlphaBeta {
-        alpha: 0.0,
-        beta: 0.0,
-    };
-    assert_eq!(
-        verdict_at(&fam, 0.0, 0.0, &mut fam.coefficients(0.0, 0.0)),
-        Verdict::Stable
     );
-    if let Ok(r) = stable_region(&fam) {
-        assert!(r.contains(origin), "{} polygons", r.polygons.len());
-    }
+    stable_wall_in_region_or_refused(
+        &fam,
+        AlphaBeta {
+            alpha: 0.0,
+            beta: 0.0,
+        },
+    );
 }
 
 /// Refusals of the region stay rare over the random loops of the property above (the same
@@ -307,34 +311,17 @@ fn paper_regions_resolve_over_the_explorer_ranges() {
 /// stiffness axis has stable walls. It must now be a region that holds them, or a refusal.
 #[test]
 fn thin_region_is_not_called_empty() {
-    let plant = Plant::mass_spring_damper(
-        Effective::new(0.0024941309540034142, 38.07596165071776, 0.0).unwrap(),
-    )
-    .unwrap();
-    let lp = Loop::new(
-        plant,
+    let fam = msd_family(
+        (0.0024941309540034142, 38.07596165071776, 0.0),
         1.222811141433756e-6,
         Delay::samples(5).unwrap(),
         VelocityEstimator::LowPass { cutoff_hz: 1.0 },
-    )
-    .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
+    );
     let w = AlphaBeta {
         alpha: 0.0027542652682587252,
         beta: 0.0,
     };
-    assert_eq!(
-        verdict_at(
-            &fam,
-            w.alpha,
-            w.beta,
-            &mut fam.coefficients(w.alpha, w.beta)
-        ),
-        Verdict::Stable
-    );
-    if let Ok(r) = stable_region(&fam) {
-        assert!(r.contains(w), "{} polygons", r.polygons.len());
-    }
+    stable_wall_in_region_or_refused(&fam, w);
 }
 
 /// Found by a long random run: sampled at 0.76 s with 5.1 samples of delay and an
@@ -342,31 +329,21 @@ fn thin_region_is_not_called_empty() {
 /// stable wall-free point. The verification now tests that point too.
 #[test]
 fn region_holds_the_stable_wall_free_point() {
-    let plant = Plant::mass_spring_damper(
-        Effective::new(0.0454953215252378, 1.339569676351949, 158.69861020164703).unwrap(),
-    )
-    .unwrap();
     let delay = Delay {
         samples: 5,
         fraction: 0.09765039015745926,
     };
-    let lp = Loop::new(
-        plant,
+    let fam = msd_family(
+        (0.0454953215252378, 1.339569676351949, 158.69861020164703),
         0.7618021233319427,
         delay,
         VelocityEstimator::Average { samples: 18 },
-    )
-    .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    assert_eq!(
-        verdict_at(&fam, 0.0, 0.0, &mut fam.coefficients(0.0, 0.0)),
-        Verdict::Stable
     );
-    if let Ok(r) = stable_region(&fam) {
-        let origin = AlphaBeta {
+    stable_wall_in_region_or_refused(
+        &fam,
+        AlphaBeta {
             alpha: 0.0,
             beta: 0.0,
-        };
-        assert!(r.contains(origin), "{} polygons", r.polygons.len());
-    }
+        },
+    );
 }
