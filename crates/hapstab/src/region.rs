@@ -368,10 +368,13 @@ fn verify(
     }
     // "Nothing is stable" is checked exactly where it matters most, on the stiffness axis
     // (no virtual damping): a region far thinner than the window would slip between slices.
-    if region.polygons.is_empty()
-        && let Some(zoom) = missed_on_the_axis(fam, wbox)
-    {
-        return Some(zoom);
+    if region.polygons.is_empty() {
+        let ivs = crate::boundary::stable_alpha_intervals(fam, 0.0);
+        let mids = ivs.iter().filter(|iv| iv.hi > iv.lo).map(|iv| {
+            let x = 0.5 * (iv.lo.max(wbox.0) + iv.hi.min(wbox.1));
+            (P { x, y: 0.0 }, false)
+        });
+        suspects.extend(mids);
     }
     // A region far smaller than the window may fall between the window's grid points and
     // slices: check around it too (its own box, doubled).
@@ -403,47 +406,7 @@ fn verify(
     Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
 }
 
-/// For an empty answer: the box of the stable walls on the stiffness axis (b = 0, exact
-/// intervals) and along the lines b = ±w·4^k above and below it (w the intervals' width),
-/// inflated by half; None when the axis has no stable wall. A region far thinner than the
-/// window slips between its slices; this box is where the next attempt must look.
-fn missed_on_the_axis(fam: &AffineFamily, wbox: BoxF) -> Option<BoxF> {
-    let span = |b: f64| {
-        let ivs = crate::boundary::stable_alpha_intervals(fam, b);
-        let lo = ivs
-            .iter()
-            .map(|iv| iv.lo.max(wbox.0))
-            .fold(f64::INFINITY, f64::min);
-        let hi = ivs
-            .iter()
-            .map(|iv| iv.hi.min(wbox.1))
-            .fold(f64::NEG_INFINITY, f64::max);
-        (hi > lo).then_some((lo, hi))
-    };
-    let (mut lo, mut hi) = span(0.0)?;
-    let w = hi - lo;
-    let (mut b0, mut b1) = (-w, w);
-    for sign in [-1.0, 1.0] {
-        let mut step = w;
-        let limit = if sign < 0.0 { -wbox.2 } else { wbox.3 };
-        while step < 1e300 && step <= limit {
-            let Some((l, h)) = span(sign * step) else {
-                break;
-            };
-            (lo, hi) = (lo.min(l), hi.max(h));
-            if sign < 0.0 {
-                b0 = -4.0 * step;
-            } else {
-                b1 = 4.0 * step;
-            }
-            step *= 4.0;
-        }
-    }
-    let (mx, my) = (0.5 * (hi - lo), 0.25 * (b1 - b0));
-    Some((lo - mx, hi + mx, b0 - my, b1 + my))
-}
-
-/// The regions's bounding box doubled about its centre (None when empty).
+/// The region's bounding box doubled about its centre (None when empty).
 fn region_box(region: &StableRegion) -> Option<BoxF> {
     let pts = region
         .polygons
