@@ -958,6 +958,7 @@ fn coarse_curve(
     let thetas: Vec<f64> = (0..=m).map(|i| pi * i as f64 / m as f64).collect();
     let knots: Vec<(f64, Option<P>)> = thetas
         .par_iter()
+        .with_min_len(128)
         .map(|&t| {
             match point(fam, t) {
                 // Where the curve runs to infinity at θ = π, end just short of it so that the
@@ -985,6 +986,7 @@ fn coarse_curve(
         .step_by(RUN)
         .collect::<Vec<usize>>()
         .par_iter()
+        .with_min_len(4)
         .map(|&i0| {
             let mut out = Vec::new();
             let mut scratch = ArcScratch::default();
@@ -1121,7 +1123,8 @@ fn split(
         return Split::Accept(None);
     }
     let zs = z0 + z1;
-    let zm = zs / zs.norm();
+    // |z0 + z1| ≤ 2: the plain square root is exact enough and far cheaper than hypot
+    let zm = zs / (zs.re * zs.re + zs.im * zs.im).sqrt();
     if zm.im <= 0.0 {
         return Split::Accept(None);
     }
@@ -2048,6 +2051,7 @@ fn refine_arc(
     let starts: Vec<usize> = (0..fine.len().saturating_sub(1)).step_by(RUN).collect();
     let pieces: Vec<Result<Vec<(f64, P)>>> = starts
         .par_iter()
+        .with_min_len(4)
         .map(|&i0| {
             let mut out = Vec::new();
             let mut scratch = ArcScratch::default();
