@@ -198,24 +198,17 @@ impl AffineFamily {
 
     /// (P0, PK, PB) at z = e^{iθ}, near z = 1 from the shifted form with
     /// w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ (no cancellation), elsewhere from the
-    /// z-coefficients. One sine and cosine, of θ/2: z = e^{iθ/2}², z^k = e^{iθ/2}^{2k} by
-    /// repeated squaring, brought back to modulus 1.
+    /// z-coefficients; z^k = e^{ikθ} in polar form.
     pub fn parts_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64) {
-        let (s, c) = (0.5 * theta).sin_cos();
-        let half = Complex64::new(c, s);
-        let zk = if self.k == 0 {
-            Complex64::new(1.0, 0.0)
-        } else {
-            let p = half.powu(2 * self.k as u32);
-            p / p.norm()
-        };
+        let zk = Complex64::from_polar(1.0, theta * self.k as f64);
         match &self.shifted {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
-                let w = Complex64::new(-2.0 * s * s, 2.0 * s * c);
+                let h = (0.5 * theta).sin();
+                let w = Complex64::new(-2.0 * h * h, theta.sin());
                 let [c, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
                 (zk * c, pk, pb)
             }
-            _ => self.parts_with_power(Complex64::new(c * c - s * s, 2.0 * s * c), zk),
+            _ => self.parts_with_power(Complex64::from_polar(1.0, theta), zk),
         }
     }
 

@@ -347,3 +347,39 @@ fn region_holds_the_stable_wall_free_point() {
         },
     );
 }
+
+/// Undamped plants whose poles sit at e^{±iπ/4}…e^{±iπ/2} (γ = π²/16, π²/4): the boundary
+/// curve passes through the same wall at two angles that are knots of the coarse sampling.
+/// A change of the circle's evaluation by one rounding unit once split that point into a
+/// sliver and broke the arrangement (the paper's Nyquist figures use these loops). Each
+/// region resolves and agrees with the point test on a grid.
+#[test]
+fn undamped_regions_whose_curve_touches_itself_at_a_knot() {
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    for g in [pi2 / 16.0, pi2 / 4.0] {
+        for d in 0..4 {
+            let fam = AffineFamily::of_loop(
+                &Loop::normalized(PlantParams::new(g, 0.0).unwrap(), d).unwrap(),
+            )
+            .unwrap();
+            let r = stable_region(&fam).unwrap_or_else(|e| panic!("γ = {g}, d = {d}: {e}"));
+            let band = 2.0 * DEFAULT_REL_TOL * r.size();
+            let mut c = fam.coefficients(0.0, 0.0);
+            for i in 0..20 {
+                for j in 0..20 {
+                    let w = AlphaBeta {
+                        alpha: -g + (g + 2.0) * (i as f64 + 0.41) / 20.0,
+                        beta: -g + (g + 1.0) * (j as f64 + 0.73) / 20.0,
+                    };
+                    let v = verdict_at(&fam, w.alpha, w.beta, &mut c);
+                    if v != Verdict::Marginal && r.contains(w) != (v == Verdict::Stable) {
+                        assert!(
+                            r.boundary_distance(w) <= band,
+                            "γ = {g}, d = {d}: {v:?} at {w:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
