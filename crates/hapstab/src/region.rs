@@ -2033,30 +2033,32 @@ fn refine_arc(
         }
     }
     let knots = &kept;
-    let mut fine: Vec<(f64, P)> = Vec::with_capacity(8 * knots.len());
-    for (k, w) in knots.windows(2).enumerate() {
-        if k == 0 {
-            fine.push(w[0]);
-        }
-        let interior = w[0].0 > 0.0 && w[1].0 < std::f64::consts::PI;
-        for j in 1..8 {
-            let t = w[0].0 + (w[1].0 - w[0].0) * j as f64 / 8.0;
-            if let (true, Some(p)) = (interior, point(fam, t)) {
-                fine.push((t, p));
-            }
-        }
-        fine.push(w[1]);
-    }
+    // Each task takes a run of knot intervals: splits each into 8 equal θ-parts and samples
+    // every part (the 7 interior points are evaluated in the task, not before it).
     let s = Sampling { tol, focus: None };
-    let starts: Vec<usize> = (0..fine.len().saturating_sub(1)).step_by(RUN).collect();
+    let starts: Vec<usize> = (0..knots.len().saturating_sub(1)).step_by(2).collect();
     let pieces: Vec<Result<Vec<(f64, P)>>> = starts
         .par_iter()
         .with_min_len(4)
-        .map(|&i0| {
+        .map(|&k0| {
             let mut out = Vec::new();
             let mut scratch = ArcScratch::default();
-            for i in i0..(i0 + RUN).min(fine.len() - 1) {
-                sample_arc_into(fam, fine[i], fine[i + 1], s, budget, &mut out, &mut scratch)?;
+            for w in knots[k0..(k0 + 3).min(knots.len())].windows(2) {
+                let interior = w[0].0 > 0.0 && w[1].0 < std::f64::consts::PI;
+                let mut left = w[0];
+                for j in 1..=8 {
+                    let right = if j == 8 {
+                        w[1]
+                    } else {
+                        let t = w[0].0 + (w[1].0 - w[0].0) * j as f64 / 8.0;
+                        match (interior, point(fam, t)) {
+                            (true, Some(p)) => (t, p),
+                            _ => continue,
+                        }
+                    };
+                    sample_arc_into(fam, left, right, s, budget, &mut out, &mut scratch)?;
+                    left = right;
+                }
             }
             Ok(out)
         })
