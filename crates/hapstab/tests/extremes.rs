@@ -13,7 +13,7 @@ use hapstab::argument::verdict_at;
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
 use hapstab::model::{Delay, Loop, MAX_PERIOD, MIN_PERIOD, Plant, VelocityEstimator};
 use hapstab::params::{Effective, PlantParams};
-use hapstab::region::{DEFAULT_REL_TOL, stable_region, stable_region_with};
+use hapstab::region::{DEFAULT_REL_TOL, StableRegion, stable_region, stable_region_with};
 use hapstab::stability::Verdict;
 use proptest::prelude::*;
 
@@ -66,6 +66,31 @@ fn stable_wall_in_region_or_refused(fam: &AffineFamily, w: AlphaBeta) {
     assert_eq!(verdict_at(fam, w.alpha, w.beta, &mut c), Verdict::Stable);
     if let Ok(r) = stable_region(fam) {
         assert!(r.contains(w), "{w:?} outside {} polygons", r.polygons.len());
+    }
+}
+
+/// On an n × n grid over the box, the region contains exactly the walls the point test calls
+/// stable, except within its chord tolerance of its edges.
+fn region_agrees_on_a_grid(
+    fam: &AffineFamily,
+    r: &StableRegion,
+    (a0, a1): (f64, f64),
+    (b0, b1): (f64, f64),
+    n: usize,
+) {
+    let band = DEFAULT_REL_TOL * r.size();
+    let mut c = fam.coefficients(0.0, 0.0);
+    for i in 0..n {
+        for j in 0..n {
+            let w = AlphaBeta {
+                alpha: a0 + (a1 - a0) * (i as f64 + 0.37) / n as f64,
+                beta: b0 + (b1 - b0) * (j as f64 + 0.61) / n as f64,
+            };
+            let v = verdict_at(fam, w.alpha, w.beta, &mut c);
+            if v != Verdict::Marginal && r.contains(w) != (v == Verdict::Stable) {
+                assert!(r.boundary_distance(w) <= band, "{v:?} at {w:?}");
+            }
+        }
     }
 }
 
@@ -284,23 +309,9 @@ fn paper_regions_resolve_over_the_explorer_ranges() {
                 let fam = AffineFamily::of_loop(&lp).unwrap();
                 let r = stable_region(&fam)
                     .unwrap_or_else(|e| panic!("γ = {g}, δ = {dl}, d = {d}: {e}"));
-                let tol = DEFAULT_REL_TOL * r.size();
-                let (a0, a1) = (-g - 1.0, r.alpha_max + 1.0);
-                let (b0, b1) = (-3.0 * g - 10.0, 3.0 * g + 10.0);
-                let mut c = fam.coefficients(0.0, 0.0);
-                for i in 0..12 {
-                    for j in 0..12 {
-                        let w = AlphaBeta {
-                            alpha: a0 + (a1 - a0) * (i as f64 + 0.37) / 12.0,
-                            beta: b0 + (b1 - b0) * (j as f64 + 0.61) / 12.0,
-                        };
-                        let v = verdict_at(&fam, w.alpha, w.beta, &mut c);
-                        if v != Verdict::Marginal && r.contains(w) != (v == Verdict::Stable) {
-                            let dist = r.boundary_distance(w);
-                            assert!(dist <= tol, "γ = {g}, δ = {dl}, d = {d}: {v:?} at {w:?}");
-                        }
-                    }
-                }
+                let a = (-g - 1.0, r.alpha_max + 1.0);
+                let b = (-3.0 * g - 10.0, 3.0 * g + 10.0);
+                region_agrees_on_a_grid(&fam, &r, a, b, 12);
             }
         }
     }
@@ -363,23 +374,7 @@ fn undamped_regions_whose_curve_touches_itself_at_a_knot() {
             )
             .unwrap();
             let r = stable_region(&fam).unwrap_or_else(|e| panic!("γ = {g}, d = {d}: {e}"));
-            let band = 2.0 * DEFAULT_REL_TOL * r.size();
-            let mut c = fam.coefficients(0.0, 0.0);
-            for i in 0..20 {
-                for j in 0..20 {
-                    let w = AlphaBeta {
-                        alpha: -g + (g + 2.0) * (i as f64 + 0.41) / 20.0,
-                        beta: -g + (g + 1.0) * (j as f64 + 0.73) / 20.0,
-                    };
-                    let v = verdict_at(&fam, w.alpha, w.beta, &mut c);
-                    if v != Verdict::Marginal && r.contains(w) != (v == Verdict::Stable) {
-                        assert!(
-                            r.boundary_distance(w) <= band,
-                            "γ = {g}, d = {d}: {v:?} at {w:?}"
-                        );
-                    }
-                }
-            }
+            region_agrees_on_a_grid(&fam, &r, (-g, 2.0), (-g, 1.0), 20);
         }
     }
 }
