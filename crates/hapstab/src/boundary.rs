@@ -443,7 +443,8 @@ pub fn stable_line_intervals(fam: &AffineFamily, line: &WallLine) -> Vec<Interva
 }
 
 /// The stable intervals of t on a wall line from its crossings (as returned by
-/// [`line_crossings`], sorted by t): one Schur–Cohn test in each gap, merged into intervals.
+/// [`line_crossings`], sorted by t): one test of the roots inside the circle in each gap
+/// ([`crate::verdict::inside_unit_circle`]), merged into intervals.
 /// Every finite interval end is one of the crossings' t, exactly.
 pub fn stable_between(
     fam: &AffineFamily,
@@ -456,9 +457,12 @@ pub fn stable_between(
     }
     let scale = xs.iter().fold(1e-3_f64, |m, x| m.max(x.abs()));
     let mut coeffs = vec![0.0; fam.degree() + 1];
+    // A gap holds a constant number of roots inside the circle: it is classified by that
+    // count, not by one wall's banded verdict (a gap thinner than the marginal band is still
+    // stable where its roots are inside).
     let mut stable_at = |t: f64| {
         let p = line.at(t);
-        crate::argument::stable_at(fam, p.alpha, p.beta, &mut coeffs)
+        crate::verdict::inside_unit_circle(fam, p.alpha, p.beta, &mut coeffs) == Some(true)
     };
     let mut out: Vec<Interval> = Vec::new();
     let push = |lo: f64, hi: f64, out: &mut Vec<Interval>| match out.last_mut() {

@@ -112,10 +112,16 @@ impl AffineFamily {
         let plus_one = dl
             .dc_stiffness
             .filter(|_| n1 * vd1 != 0.0)
-            .map(|s| (s, vn1 / vd1));
-        // P0(1) = N(1)Vd(1)·s: the static stiffness is exact where det(E) rounds.
+            .map(|s| (s, dl.velocity_dc));
+        // P0(1) = N(1)Vd(1)·s: the static stiffness is exact where det(E) rounds; PB(1) =
+        // N(1)Vd(1)·V(1) with the estimator's exact DC gain (0 for a differentiator).
         let p0_one = plus_one.map_or(d1 * vd1, |(s, _)| n1 * vd1 * s);
-        let at_one = [p0_one, n1 * vd1, n1 * vn1];
+        let pb_one = if vd1 == 0.0 {
+            n1 * vn1
+        } else {
+            n1 * vd1 * dl.velocity_dc
+        };
+        let at_one = [p0_one, n1 * vd1, pb_one];
         let slope_at_one = [
             kf * d1 * vd1 + dd1 * vd1 + d1 * dvd1,
             dn1 * vd1 + n1 * dvd1,
@@ -123,11 +129,23 @@ impl AffineFamily {
         ];
         let shifted = (vd.len().max(vn.len()) <= MAX_SHIFTED_FILTER).then(|| {
             let (vd_w, vn_w) = (poly::taylor_shift(vd, 1.0), poly::taylor_shift(vn, 1.0));
-            ShiftedParts {
+            let mut parts = ShiftedParts {
                 p0_core: poly::mul(&den_w, &vd_w),
                 pk: poly::mul(&num_w, &vd_w),
                 pb: poly::mul(&num_w, &vn_w),
+            };
+            // The values at w = 0 are the parts at z = 1, exactly as `at_one` forms them (the
+            // static stiffness where det(E) rounds): a wall on the z = 1 line then has its
+            // root at z = 1 exactly in the shifted form, as in the loop.
+            for (c, v) in [&mut parts.p0_core, &mut parts.pk, &mut parts.pb]
+                .into_iter()
+                .zip(at_one)
+            {
+                if let Some(c0) = c.first_mut() {
+                    *c0 = v;
+                }
             }
+            parts
         });
         Self {
             p0_core,

@@ -8,7 +8,8 @@ use serde::{Deserialize, Serialize};
 use crate::closed_loop::{AffineFamily, PolyFamily};
 use crate::error::{Error, Result};
 use crate::params::{Normalized, PlantParams};
-use crate::stability::{schur_stable, spectral_radius_schur};
+use crate::stability::Analysis;
+use crate::verdict::{Verdict, decide_coefficients};
 
 /// A gridded parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -104,9 +105,10 @@ pub struct MapSpec {
 /// What a map holds per point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MapKind {
-    /// Stable (true) or not, by the Schur–Cohn test.
+    /// Stable (true) or not, by the one verdict ([`crate::verdict::decide`]).
     Stability,
-    /// Spectral radius, by bisection on the Schur–Cohn test of p(rz).
+    /// The same verdict and the spectral radius from the polished roots, as `check` reports
+    /// it ([`Analysis::of_family`]).
     SpectralRadius,
 }
 
@@ -213,23 +215,26 @@ pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sy
     } else {
         None
     };
-    let coefficients = |ix: usize, iy: usize, c: &mut [f64]| {
+    let point = |ix: usize, iy: usize, c: &mut [f64]| {
         let p = spec.point(ix, iy);
         match &fixed {
-            Some(fam) => fam.coefficients_into(p.alpha, p.beta, c),
-            None => paper_coefficients(
-                &crate::plant::DiscretePlant::from_params(PlantParams {
-                    gamma: p.gamma,
-                    delta: p.delta,
-                }),
-                p.d,
-                p.alpha,
-                p.beta,
-                c,
-            ),
+            Some(fam) => wall_point(fam, p.alpha, p.beta, kind, c),
+            None => {
+                paper_coefficients(
+                    &crate::plant::DiscretePlant::from_params(PlantParams {
+                        gamma: p.gamma,
+                        delta: p.delta,
+                    }),
+                    p.d,
+                    p.alpha,
+                    p.beta,
+                    c,
+                );
+                poly_point(c, kind)
+            }
         }
     };
-    let (stable, radius) = grid(spec.x.n, spec.y.n, deg, kind, progress, coefficients);
+    let (stable, radius) = grid(spec.x.n, spec.y.n, deg, kind, progress, point);
     Map {
         spec: *spec,
         stable,
@@ -259,7 +264,7 @@ impl WallMap {
 }
 
 /// The grid method of Section V for any loop: the wall's stiffness a along x and damping b
-/// along y, one point test ([`crate::argument::stable_at`]) per point, in parallel over rows.
+/// along y, one verdict ([`crate::verdict::decide`]) per point, in parallel over rows.
 pub fn wall_map(
     fam: &AffineFamily,
     x: AxisRange,
@@ -291,8 +296,7 @@ pub fn wall_map(
 }
 
 /// Stable flags (and spectral radii) of the walls (a(ix), b(iy)) of a family over an nx × ny
-/// grid: the point test [`crate::argument::stable_at`] for stability, the Schur–Cohn radius
-/// for the spectral radius; in parallel over rows.
+/// grid, one [`wall_point`] per point, in parallel over rows.
 fn wall_grid(
     fam: &AffineFamily,
     (nx, ny): (usize, usize),
@@ -301,41 +305,34 @@ fn wall_grid(
     kind: MapKind,
     progress: &(dyn Fn(usize) + Sync),
 ) -> (Vec<bool>, Option<Vec<f64>>) {
+    grid(nx, ny, fam.degree(), kind, progress, |ix, iy, c| {
+        wall_point(fam, a(ix), b(iy), kind, c)
+    })
+}
+
+/// One wall of a map: stable by the one verdict ([`crate::verdict::decide`]) and, for a
+/// radius map, the spectral radius of [`Analysis::of_family`] (the same verdict, so the two
+/// modes never differ in what they call stable). NaN when the roots cannot be found.
+fn wall_point(fam: &AffineFamily, a: f64, b: f64, kind: MapKind, c: &mut [f64]) -> (bool, f64) {
     match kind {
-        MapKind::Stability => {
-            let stable = grid_stable(nx, ny, fam.degree(), progress, |ix, iy, c| {
-                crate::argument::stable_at(fam, a(ix), b(iy), c)
-            });
-            (stable, None)
-        }
-        MapKind::SpectralRadius => {
-            let coefficients =
-                |ix: usize, iy: usize, c: &mut [f64]| fam.coefficients_into(a(ix), b(iy), c);
-            grid(nx, ny, fam.degree(), kind, progress, coefficients)
-        }
+        MapKind::Stability => (crate::verdict::stable(fam, a, b, c), f64::NAN),
+        MapKind::SpectralRadius => match Analysis::of_family(fam, a, b) {
+            Ok(an) => (an.verdict == Verdict::Stable, an.spectral_radius),
+            Err(_) => (crate::verdict::stable(fam, a, b, c), f64::NAN),
+        },
     }
 }
 
-/// Stable flags over an nx × ny grid by a decision function of the grid indices (given a
-/// coefficient buffer), in parallel over rows.
-fn grid_stable(
-    nx: usize,
-    ny: usize,
-    deg: usize,
-    progress: &(dyn Fn(usize) + Sync),
-    stable: impl Fn(usize, usize, &mut [f64]) -> bool + Sync,
-) -> Vec<bool> {
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let rows: Vec<Vec<bool>> = (0..ny)
-        .into_par_iter()
-        .map(|iy| {
-            let mut c = vec![0.0; deg + 1];
-            let row = (0..nx).map(|ix| stable(ix, iy, &mut c)).collect();
-            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-            row
-        })
-        .collect();
-    rows.concat()
+/// One point of a map given by its coefficients (a plant that changes from point to point):
+/// the verdict of [`decide_coefficients`], and for a radius map the roots' radius.
+fn poly_point(c: &[f64], kind: MapKind) -> (bool, f64) {
+    match kind {
+        MapKind::Stability => (decide_coefficients(c).verdict == Verdict::Stable, f64::NAN),
+        MapKind::SpectralRadius => match Analysis::of_poly(c) {
+            Ok(an) => (an.verdict == Verdict::Stable, an.spectral_radius),
+            Err(_) => (decide_coefficients(c).verdict == Verdict::Stable, f64::NAN),
+        },
+    }
 }
 
 /// Stable flags (and spectral radii) of a map whose points are given by value.
@@ -354,7 +351,7 @@ fn check_values(name: &'static str, v: &[f64]) -> Result<()> {
 
 /// The grid method of Section V over axes given by value, not necessarily uniform: the
 /// wall's stiffness a[ix] along x and damping b[iy] along y, in wall units, one point test
-/// ([`crate::argument::stable_at`]) per point, in parallel over rows; row-major, value (ix, iy) at index iy·nx + ix.
+/// ([`crate::verdict::decide`]) per point, in parallel over rows; row-major, value (ix, iy) at index iy·nx + ix.
 /// The same computation as [`wall_map`] at the same values.
 pub fn wall_map_values(
     fam: &AffineFamily,
@@ -415,14 +412,10 @@ pub fn wall_map_points(
             let mut st = Vec::with_capacity(ac.len());
             let mut rad = Vec::new();
             for (&x, &y) in ac.iter().zip(bc) {
-                match kind {
-                    MapKind::Stability => {
-                        st.push(crate::argument::stable_at(fam, x, y, &mut c));
-                    }
-                    MapKind::SpectralRadius => {
-                        fam.coefficients_into(x, y, &mut c);
-                        push_point(&c, kind, &mut st, &mut rad);
-                    }
+                let (s, r) = wall_point(fam, x, y, kind, &mut c);
+                st.push(s);
+                if kind == MapKind::SpectralRadius {
+                    rad.push(r);
                 }
             }
             (st, rad)
@@ -430,18 +423,6 @@ pub fn wall_map_points(
         .collect();
     let (stable, radius) = concat(chunks, kind);
     Ok(MapValues { stable, radius })
-}
-
-/// One point of a map: the Schur–Cohn verdict, or the spectral radius and whether it is < 1.
-fn push_point(c: &[f64], kind: MapKind, st: &mut Vec<bool>, rad: &mut Vec<f64>) {
-    match kind {
-        MapKind::Stability => st.push(schur_stable(c)),
-        MapKind::SpectralRadius => {
-            let r = spectral_radius_schur(c);
-            st.push(r < 1.0);
-            rad.push(r);
-        }
-    }
 }
 
 /// Joins per-task results in order.
@@ -460,26 +441,30 @@ fn concat(parts: Vec<(Vec<bool>, Vec<f64>)>, kind: MapKind) -> (Vec<bool>, Optio
     (stable, (kind == MapKind::SpectralRadius).then_some(radius))
 }
 
-/// Stable flags (and spectral radii) over an nx × ny grid whose coefficients `coefficients`
-/// writes, in parallel over rows.
+/// Stable flags (and spectral radii) over an nx × ny grid, `point` deciding one grid point
+/// (given a coefficient buffer), in parallel over rows.
 fn grid(
     nx: usize,
     ny: usize,
     deg: usize,
     kind: MapKind,
     progress: &(dyn Fn(usize) + Sync),
-    coefficients: impl Fn(usize, usize, &mut [f64]) + Sync,
+    point: impl Fn(usize, usize, &mut [f64]) -> (bool, f64) + Sync,
 ) -> (Vec<bool>, Option<Vec<f64>>) {
     let done = std::sync::atomic::AtomicUsize::new(0);
+    let radius = kind == MapKind::SpectralRadius;
     let rows: Vec<(Vec<bool>, Vec<f64>)> = (0..ny)
         .into_par_iter()
         .map(|iy| {
             let mut c = vec![0.0; deg + 1];
             let mut st = Vec::with_capacity(nx);
-            let mut rad = Vec::new();
+            let mut rad = Vec::with_capacity(if radius { nx } else { 0 });
             for ix in 0..nx {
-                coefficients(ix, iy, &mut c);
-                push_point(&c, kind, &mut st, &mut rad);
+                let (s, r) = point(ix, iy, &mut c);
+                st.push(s);
+                if radius {
+                    rad.push(r);
+                }
             }
             let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress(k);

@@ -27,7 +27,8 @@ use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::{Delay, Loop};
 use crate::params::{MAX_DELAY, Wall};
-use crate::stability::{roots, schur_stable};
+use crate::stability::roots;
+use crate::verdict::stable as verdict_stable;
 
 /// A margin as a factor, and where the boundary is met.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -91,7 +92,7 @@ pub fn margins(lp: &Loop, wall: Wall) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     let p = AlphaBeta { alpha: a, beta: b };
     let mut out = Margins {
-        stable: schur_stable(&fam.coefficients(a, b)),
+        stable: verdict_stable(&fam, a, b, &mut fam.coefficients(a, b)),
         gain: None,
         gain_kb: None,
         phase: None,
@@ -320,7 +321,7 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<DelayScan> {
     if gain < SMALL_GAIN_LIMIT {
         return Ok(DelayScan::SmallGain(gain));
     }
-    let stable = |f: &AffineFamily| schur_stable(&f.coefficients(a, b));
+    let stable = |f: &AffineFamily| verdict_stable(f, a, b, &mut f.coefficients(a, b));
     let mut s = s0;
     let mut fam = base;
     let mut work = 0.0;

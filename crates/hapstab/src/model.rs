@@ -546,6 +546,40 @@ impl VelocityEstimator {
     }
 }
 
+impl VelocityEstimator {
+    /// The DC gain of [`VelocityEstimator::per_sample_filter`], T·V(1), formed from the
+    /// estimator's own parameters: exactly 0 for every differentiator (backward difference,
+    /// low-pass, average, and an IIR filter whose numerator sums to zero as typed), where the
+    /// scaled coefficients would leave a rounding residue of 1e-17. T·Σb/Σa for an IIR filter.
+    pub fn per_sample_dc_gain(&self, period: f64) -> f64 {
+        match self {
+            VelocityEstimator::Backward
+            | VelocityEstimator::LowPass { .. }
+            | VelocityEstimator::Average { .. } => 0.0,
+            VelocityEstimator::Iir { b, a } => {
+                let (sb, sa) = (exact_sum(b), exact_sum(a));
+                if sb == 0.0 { 0.0 } else { period * sb / sa }
+            }
+        }
+    }
+}
+
+/// A sum of doubles with compensated (Neumaier) summation: exactly zero when the terms cancel
+/// exactly, as a differentiator's numerator 600, −500, −100 does.
+fn exact_sum(x: &[f64]) -> f64 {
+    let (mut s, mut c) = (0.0_f64, 0.0_f64);
+    for &v in x {
+        let t = s + v;
+        c += if s.abs() >= v.abs() {
+            (s - t) + v
+        } else {
+            (v - t) + s
+        };
+        s = t;
+    }
+    s + c
+}
+
 impl Loop {
     /// Validates and bundles the parts of a loop.
     pub fn new(

@@ -30,14 +30,14 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::argument::{stable_at, verdict_at};
 use crate::boundary::{
     AlphaBeta, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta, minus_one_line,
     plus_one_line,
 };
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
-use crate::stability::Verdict;
+use crate::verdict::Verdict;
+use crate::verdict::{decide, inside_unit_circle};
 
 /// What an edge of a region polygon is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -466,7 +466,7 @@ const PROBE_RADIUS: f64 = 1e-3;
 /// there.
 fn probe(fam: &AffineFamily, region: &EdgeIndex, p: P, coeffs: &mut [f64]) -> Option<(P, bool)> {
     // A wall with a root within rounding of the circle is on the boundary: either side agrees.
-    let stable = match verdict_at(fam, p.x, p.y, coeffs) {
+    let stable = match decide(fam, p.x, p.y, coeffs).verdict {
         Verdict::Marginal => return None,
         v => v == Verdict::Stable,
     };
@@ -1854,7 +1854,8 @@ fn euler_holds(g: &Graph, cycles: usize) -> bool {
     v + cycles == g.edges.len() + 2 * c
 }
 
-/// The counter-clockwise faces whose interior point passes the Schur–Cohn test.
+/// The counter-clockwise faces whose interior point has every root inside the unit circle
+/// ([`inside_unit_circle`]: a face holds a constant number of roots inside).
 fn stable_faces(fam: &AffineFamily, g: &Graph, cycles: Vec<Vec<(usize, bool)>>) -> Vec<Face> {
     let mut coeffs = vec![0.0; fam.degree() + 1];
     cycles
@@ -1865,7 +1866,8 @@ fn stable_faces(fam: &AffineFamily, g: &Graph, cycles: Vec<Vec<(usize, bool)>>) 
                 return None;
             }
             let ip = interior_point(&pts)?;
-            stable_at(fam, ip.alpha, ip.beta, &mut coeffs).then_some((f, pts))
+            (inside_unit_circle(fam, ip.alpha, ip.beta, &mut coeffs) == Some(true))
+                .then_some((f, pts))
         })
         .collect()
 }

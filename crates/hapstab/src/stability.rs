@@ -1,128 +1,21 @@
 //! The stability test of Section V: stable iff every root of p(z) lies strictly inside the
-//! unit circle.
+//! unit circle, with the roots themselves.
 //!
-//! Two independent methods: the Schur–Cohn recursion (an algebraic test, no roots, O(n²)),
-//! used as the fast path and for the verdict, and the roots themselves (Aberth–Ehrlich
-//! iteration of [`crate::polyroots`], with error bounds) for the spectral radius. A full
-//! [`Analysis`] reconciles the two so that its verdict never contradicts its radius.
+//! The verdict is [`crate::verdict`]'s, the one decision of the crate; this module adds the
+//! roots (Aberth–Ehrlich iteration of [`crate::polyroots`], those near z = 1 polished in the
+//! shifted variable w = z − 1) and the spectral radius, and an [`Analysis`] reconciles the two
+//! so that a radius is never printed beside a verdict it contradicts.
 
 use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::closed_loop::{AffineFamily, ClosedLoop, PolyFamily};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::params::Normalized;
 use crate::polyroots::{RootEstimate, aberth, companion};
-
-/// Half-width of the marginal band in spectral radius: a point is `Marginal` when the
-/// spectral radius lies in [1 − MARGINAL_BAND, 1 + MARGINAL_BAND), so the band is 1e-10 wide.
-pub const MARGINAL_BAND: f64 = 5e-11;
-
-/// Stability verdict.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Verdict {
-    /// All roots strictly inside the circle of radius 1 − [`MARGINAL_BAND`].
-    Stable,
-    /// Some root on the unit circle within [`MARGINAL_BAND`], or the Schur–Cohn test and the
-    /// spectral radius on different sides with the radius within its error of that band,
-    /// where double precision cannot tell the side (see [`reconcile`]).
-    Marginal,
-    /// Some root outside the circle of radius 1 + [`MARGINAL_BAND`].
-    Unstable,
-}
-
-impl Verdict {
-    /// The lowercase name used in JSON.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Verdict::Stable => "stable",
-            Verdict::Marginal => "marginal",
-            Verdict::Unstable => "unstable",
-        }
-    }
-}
-
-const STACK: usize = 64;
-
-/// Schur–Cohn test on ascending coefficients `c` (degree n = c.len() − 1, c[n] ≠ 0): true iff
-/// every root lies strictly inside the unit circle. Each step divides out one reflection
-/// coefficient k = c0/cn (|k| < 1 is necessary) and keeps (cn·c(z) − c0·c*(z))/z.
-pub fn schur_stable(c: &[f64]) -> bool {
-    schur_stable_scaled(c, 1.0)
-}
-
-/// Schur–Cohn test of c(r·z): true iff every root of c lies strictly inside |z| < r.
-pub fn schur_stable_scaled(c: &[f64], r: f64) -> bool {
-    let n = c.len();
-    if n <= STACK {
-        let mut a = [0.0_f64; STACK];
-        let mut b = [0.0_f64; STACK];
-        schur_core(c, r, &mut a[..n], &mut b[..n])
-    } else {
-        let mut a = vec![0.0; n];
-        let mut b = vec![0.0; n];
-        schur_core(c, r, &mut a, &mut b)
-    }
-}
-
-fn schur_core(c: &[f64], r: f64, a: &mut [f64], b: &mut [f64]) -> bool {
-    let mut scale = 1.0;
-    for (ai, ci) in a.iter_mut().zip(c) {
-        *ai = ci * scale;
-        scale *= r;
-    }
-    let mut n = c.len() - 1;
-    let (mut a, mut b) = (a, b);
-    while n > 0 {
-        let an = a[n];
-        if !an.is_finite() || an == 0.0 {
-            return false;
-        }
-        let k = a[0] / an;
-        if k.is_nan() || k.abs() >= 1.0 {
-            return false;
-        }
-        for j in 0..n {
-            b[j] = a[j + 1] - k * a[n - 1 - j];
-        }
-        std::mem::swap(&mut a, &mut b);
-        n -= 1;
-    }
-    true
-}
-
-/// Verdict from the algebraic test alone, with the marginal band of [`MARGINAL_BAND`].
-pub fn classify(c: &[f64]) -> Verdict {
-    if schur_stable_scaled(c, 1.0 - MARGINAL_BAND) {
-        Verdict::Stable
-    } else if schur_stable_scaled(c, 1.0 + MARGINAL_BAND) {
-        Verdict::Marginal
-    } else {
-        Verdict::Unstable
-    }
-}
-
-/// Spectral radius by bisection on the Schur–Cohn test of c(r z), with no root finding:
-/// the smallest r for which every root lies inside |z| < r, to about 1e-15 relative.
-pub fn spectral_radius_schur(c: &[f64]) -> f64 {
-    let n = c.len() - 1;
-    let lead = c[n].abs();
-    let mut hi = 1.0 + c[..n].iter().map(|x| (x / lead).abs()).fold(0.0, f64::max);
-    let mut lo = 0.0;
-    while hi - lo > 1e-15 * hi {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if schur_stable_scaled(c, mid) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi
-}
+pub use crate::schur_cohn::schur_stable;
+pub use crate::verdict::{Basis, Decision, MARGINAL_BAND, Verdict, verdict_of_radius};
+use crate::verdict::{decide, decide_coefficients};
 
 /// Horner evaluation of p and p' at z for ascending real coefficients.
 fn horner(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
@@ -183,55 +76,19 @@ fn polish(c: &[f64], mut z: Complex64) -> Complex64 {
 /// The full answer of the stability test of Section V for one parameter set.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Analysis {
-    /// Stable / marginal / unstable: the Schur–Cohn test with the marginal band, reconciled
-    /// with the spectral radius (see [`Analysis::of_poly`]).
+    /// Stable / marginal / unstable: the one verdict of [`crate::verdict::decide`].
     pub verdict: Verdict,
+    /// What decided the verdict (the Schur–Cohn recursion, the argument principle, or
+    /// neither: an undecided wall is marginal).
+    pub basis: Basis,
     /// Largest root modulus of p(z) (from the roots).
     pub spectral_radius: f64,
     /// Estimated error of `spectral_radius`: the first-order (Newton) error of the roots with
-    /// the rounding of p included ([`crate::polyroots::RootEstimate::error`]); the rigorous
-    /// inclusion discs are at most the degree times wider.
+    /// the rounding of p included ([`crate::polyroots::RootEstimate::error`]), widened where
+    /// needed so that ρ ± error reaches the side of the circle the verdict certifies.
     pub spectral_radius_error: f64,
     /// Roots of p(z), largest modulus first.
     pub roots: Vec<Complex64>,
-}
-
-/// The verdict that a spectral radius ρ gives with the marginal band of [`MARGINAL_BAND`].
-pub fn verdict_of_radius(rho: f64) -> Verdict {
-    if rho < 1.0 - MARGINAL_BAND {
-        Verdict::Stable
-    } else if rho < 1.0 + MARGINAL_BAND {
-        Verdict::Marginal
-    } else {
-        Verdict::Unstable
-    }
-}
-
-/// Reconciles the Schur–Cohn verdict with the spectral radius ρ ± `error` of the roots:
-/// their common answer when they agree; `Marginal` when they are consistent but the radius
-/// lies in the marginal band (a root inside the circle by less than [`MARGINAL_BAND`], which
-/// the algebraic test still calls stable) or within its error of the other side (double
-/// precision cannot decide); an [`Error::Numerical`] naming both when they differ by more
-/// than the rounding allows.
-pub fn reconcile(algebraic: Verdict, rho: f64, error: f64) -> Result<Verdict> {
-    if algebraic == verdict_of_radius(rho) {
-        return Ok(algebraic);
-    }
-    let consistent = match algebraic {
-        Verdict::Stable => rho - error < 1.0,
-        Verdict::Unstable => rho + error > 1.0,
-        Verdict::Marginal => {
-            rho - error < 1.0 + MARGINAL_BAND && rho + error >= 1.0 - MARGINAL_BAND
-        }
-    };
-    if consistent {
-        Ok(Verdict::Marginal)
-    } else {
-        Err(Error::Numerical(format!(
-            "the Schur–Cohn test says {} but the roots give spectral radius {rho} ± {error:e}",
-            algebraic.as_str()
-        )))
-    }
 }
 
 impl Analysis {
@@ -244,26 +101,27 @@ impl Analysis {
     }
 
     /// The full answer for the wall (a, b) of a loop's family: the verdict of
-    /// [`crate::argument::verdict_at`] (Schur–Cohn where well-conditioned, the argument
-    /// principle where not), the roots by Aberth–Ehrlich with those near z = 1 polished in the
-    /// shifted variable (where z-coefficients have lost their digits), and the two reconciled
-    /// ([`reconcile`]) so that the verdict never contradicts the radius reported with it.
+    /// [`crate::verdict::decide`], the roots by Aberth–Ehrlich (the companion matrix where it
+    /// fails) with those near z = 1 polished in the shifted variable (where z-coefficients
+    /// have lost their digits), and the radius's error bound made consistent with the verdict.
     pub fn of_family(fam: &AffineFamily, a: f64, b: f64) -> Result<Self> {
         let mut c = fam.coefficients(a, b);
-        let mut estimates = aberth(&c)?;
+        let decision = decide(fam, a, b, &mut c);
+        let mut estimates = root_estimates(&c)?;
         polish_near_one(fam, a, b, &mut estimates);
-        let algebraic = crate::argument::verdict_at(fam, a, b, &mut c);
-        Self::from_estimates(algebraic, &estimates)
+        Ok(Self::from_estimates(decision, &estimates))
     }
 
     /// As [`Analysis::of_family`] for bare ascending coefficients (no shifted form): the
-    /// Schur–Cohn verdict ([`classify`]), the roots with their inclusion radii
-    /// ([`crate::polyroots::aberth`]), and the two reconciled ([`reconcile`]).
+    /// verdict of [`crate::verdict::decide_coefficients`] and the roots with their errors.
     pub fn of_poly(c: &[f64]) -> Result<Self> {
-        Self::from_estimates(classify(c), &aberth(c)?)
+        Ok(Self::from_estimates(
+            decide_coefficients(c),
+            &root_estimates(c)?,
+        ))
     }
 
-    fn from_estimates(algebraic: Verdict, estimates: &[RootEstimate]) -> Result<Self> {
+    fn from_estimates(decision: Decision, estimates: &[RootEstimate]) -> Self {
         let top = estimates
             .iter()
             .max_by(|a, b| a.z.norm().total_cmp(&b.z.norm()));
@@ -274,22 +132,56 @@ impl Analysis {
             .iter()
             .map(|e| e.z.norm() + e.error)
             .fold(0.0, f64::max);
-        let spectral_radius_error = (upper - spectral_radius).max(top.map_or(0.0, |e| e.error));
-        let verdict = reconcile(algebraic, spectral_radius, spectral_radius_error)?;
+        let error = (upper - spectral_radius).max(top.map_or(0.0, |e| e.error));
         let mut roots: Vec<Complex64> = estimates.iter().map(|e| e.z).collect();
         sort_roots(&mut roots);
-        Ok(Self {
-            verdict,
+        Self {
+            verdict: decision.verdict,
+            basis: decision.basis,
             spectral_radius,
-            spectral_radius_error,
+            spectral_radius_error: consistent_error(decision.verdict, spectral_radius, error),
             roots,
-        })
+        }
     }
 
     /// True iff the verdict is `Stable`.
     pub fn stable(&self) -> bool {
         self.verdict == Verdict::Stable
     }
+}
+
+/// The roots with their error estimates: Aberth–Ehrlich, or where it does not converge the
+/// companion matrix's eigenvalues polished by Newton steps (errors from the inclusion radii).
+fn root_estimates(c: &[f64]) -> Result<Vec<RootEstimate>> {
+    aberth(c).or_else(|_| {
+        let zs: Vec<Complex64> = companion(c)?.into_iter().map(|z| polish(c, z)).collect();
+        let radii = crate::polyroots::inclusion_radii(c, &zs)?;
+        Ok(zs
+            .into_iter()
+            .zip(radii)
+            .map(|(z, r)| RootEstimate {
+                z,
+                radius: r,
+                error: r,
+            })
+            .collect())
+    })
+}
+
+/// The radius's error, widened so that ρ ± error reaches the side of the band the verdict
+/// certifies: the verdict's test is exact to rounding, the roots of an ill-conditioned
+/// cluster carry errors their first-order estimate may understate, and a radius printed
+/// beside a verdict never contradicts it.
+fn consistent_error(verdict: Verdict, rho: f64, error: f64) -> f64 {
+    let (lo, hi) = (1.0 - MARGINAL_BAND, 1.0 + MARGINAL_BAND);
+    match verdict {
+        Verdict::Stable if rho - error >= lo => rho - lo,
+        Verdict::Unstable if rho + error <= hi => hi - rho,
+        Verdict::Marginal if rho + error < lo => lo - rho,
+        Verdict::Marginal if rho - error > hi => rho - hi,
+        _ => error,
+    }
+    .max(error)
 }
 
 /// Roots closer to z = 1 than this are polished in the shifted variable w = z − 1.
@@ -354,11 +246,12 @@ fn polish_near_one(fam: &AffineFamily, a: f64, b: f64, est: &mut [RootEstimate])
 /// clusters converge more slowly, and their error estimate says so.
 const POLISH_SWEEPS: usize = 12;
 
-/// Fast stability check of one normalized parameter set by the Schur–Cohn test (strict:
-/// every root inside |z| < 1).
+/// Stability of one normalized parameter set by the one verdict ([`crate::verdict::decide`]):
+/// true iff stable (a marginal wall is not).
 pub fn is_stable(params: &Normalized) -> Result<bool> {
     let cl = ClosedLoop::new(*params)?;
-    Ok(schur_stable(&cl.poly))
+    let mut c = cl.poly.clone();
+    Ok(decide(&cl.family, params.alpha, params.beta, &mut c).verdict == Verdict::Stable)
 }
 
 #[cfg(test)]
@@ -376,24 +269,6 @@ mod tests {
             c = n;
         }
         c
-    }
-
-    #[test]
-    fn schur_on_known_roots() {
-        assert!(schur_stable(&poly_from_roots(&[0.5, -0.9, 0.99])));
-        assert!(!schur_stable(&poly_from_roots(&[0.5, -1.01, 0.2])));
-        assert!(!schur_stable(&poly_from_roots(&[0.5, 1.0, 0.2])));
-        assert_eq!(
-            classify(&poly_from_roots(&[0.5, 1.0 + 1e-8])),
-            Verdict::Unstable
-        );
-        assert_eq!(
-            classify(&poly_from_roots(&[0.5, 1.0 - 1e-8])),
-            Verdict::Stable
-        );
-        assert_eq!(classify(&poly_from_roots(&[0.5, 1.0])), Verdict::Marginal);
-        let rho = spectral_radius_schur(&poly_from_roots(&[0.3, -0.7, 0.25]));
-        assert!((rho - 0.7).abs() < 1e-14, "{rho}");
     }
 
     #[test]

@@ -313,6 +313,9 @@ pub struct DiscreteLoop {
     pub velocity_num: Vec<f64>,
     /// Denominator of the velocity estimator (ascending, monic).
     pub velocity_den: Vec<f64>,
+    /// The estimator's DC gain T·V(1) = num(1)/den(1), exact (0 for every differentiator;
+    /// [`crate::model::VelocityEstimator::per_sample_dc_gain`]).
+    pub velocity_dc: f64,
     /// Wall units.
     pub scale: WallScale,
     /// Sampling period T in s.
@@ -351,6 +354,7 @@ impl DiscreteLoop {
             delay: lp.delay,
             velocity_num,
             velocity_den,
+            velocity_dc: lp.velocity.per_sample_dc_gain(lp.period),
             scale,
             period: lp.period,
             dc_stiffness: lp.plant.dc_stiffness().map(|k| k / scale.stiffness),

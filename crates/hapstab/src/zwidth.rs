@@ -20,7 +20,6 @@ use crate::passivity::{
     DeviceDamping, PassiveRegion, SampledWall, device_damping, k_max_passive_at, passive_region,
 };
 use crate::region::{StableRegion, alpha_max_within, stable_region};
-use crate::stability::schur_stable;
 
 /// The linear stability condition (22): K < (b + B)/t_r with t_r = t_d + T/2.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -215,7 +214,7 @@ fn passive_inside(fam: &AffineFamily, sw: &SampledWall, p: &PassiveRegion) -> bo
                     return true;
                 }
                 let (x, y) = fam.to_units(k, bb);
-                schur_stable(&fam.coefficients(x, y))
+                crate::verdict::stable(fam, x, y, &mut fam.coefficients(x, y))
             })
         })
     })

@@ -17,7 +17,8 @@ use hapstab::nyquist::{
 };
 use hapstab::params::{Effective, Physical, Sampling, Wall};
 use hapstab::ranges::ranges;
-use hapstab::stability::{Verdict, classify, roots, schur_stable};
+use hapstab::stability::{Verdict, roots, schur_stable};
+use hapstab::verdict::decide_coefficients;
 use hapstab::{Normalized, PlantParams, PolyFamily};
 
 const PI2: f64 = PI * PI;
@@ -273,7 +274,7 @@ fn pole_at_minus_one_at_nyquist() {
                 .map(|z| (z + 1.0).norm())
                 .fold(f64::INFINITY, f64::min);
             assert!(near < 1e-9, "d={d} (α, β)=({a}, {b}): {r:?}");
-            assert_ne!(classify(&c), Verdict::Stable);
+            assert_ne!(decide_coefficients(&c).verdict, Verdict::Stable);
         }
     }
     let s = region_summary(PlantParams::new(PI2, 0.0).unwrap(), 0, 101).unwrap();
@@ -321,8 +322,11 @@ fn robust_region_only_origin_delta0() {
     let r = robust_region(0.0, 0, 0.0, PI2, opts).unwrap();
     assert!(r.empty, "{:?}", &r.slices[..r.slices.len().min(5)]);
     assert_eq!(r.degenerate_gammas, vec![PI2]);
+    // Just below γ = π² (1 − 1e-4, not closer: at 1 − 1e-6 the walls near the origin keep a
+    // root within 2.5e-12 of the circle, inside the marginal band, where every front end
+    // reports them marginal).
     for i in 0..=16 {
-        let g = PI2 * i as f64 / 16.0 * (1.0 - 1e-6);
+        let g = PI2 * i as f64 / 16.0 * (1.0 - 1e-4);
         let f = fam(g, 0.0, 0);
         let near = [-1e-3, 1e-3].iter().any(|&b| {
             stable_alpha_intervals(&f, b)

@@ -9,13 +9,18 @@
 //! A longer run: `HAPSTAB_EXTREME_CASES=1000000 cargo test -p hapstab --release --test extremes`.
 
 use hapstab::AffineFamily;
-use hapstab::argument::verdict_at;
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
 use hapstab::model::{Delay, Loop, MAX_PERIOD, MIN_PERIOD, Plant, VelocityEstimator};
 use hapstab::params::{Effective, PlantParams};
 use hapstab::region::{DEFAULT_REL_TOL, StableRegion, stable_region, stable_region_with};
 use hapstab::stability::Verdict;
+use hapstab::verdict::decide;
 use proptest::prelude::*;
+
+/// The one verdict at a wall (the library's `decide`).
+fn verdict_at(fam: &AffineFamily, a: f64, b: f64, c: &mut [f64]) -> Verdict {
+    decide(fam, a, b, c).verdict
+}
 
 fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo.ln()..hi.ln()).prop_map(f64::exp)

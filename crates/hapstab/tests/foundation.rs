@@ -3,7 +3,9 @@
 
 use hapstab::closed_loop::PolyFamily;
 use hapstab::plant::{DiscretePlant, eq10_coefficients};
-use hapstab::stability::{Analysis, Verdict, classify, roots, schur_stable, spectral_radius_schur};
+use hapstab::schur_cohn::spectral_radius_schur;
+use hapstab::stability::{Analysis, Verdict, roots, schur_stable};
+use hapstab::verdict::decide_coefficients;
 use hapstab::{Normalized, PlantParams};
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -15,7 +17,7 @@ fn rel(a: f64, b: f64) -> f64 {
 
 fn verdict(alpha: f64, beta: f64, gamma: f64, delta: f64, d: usize) -> Verdict {
     let fam = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap();
-    classify(&fam.coefficients(alpha, beta))
+    decide_coefficients(&fam.coefficients(alpha, beta)).verdict
 }
 
 /// Pure mass, d = 0: p(z) = z³ + (s/2 − 2)z² + (1 + α/2)z − β/2 with s = α + β. Jury's
@@ -300,7 +302,10 @@ fn marginal_band_is_narrow() {
     let fam = PolyFamily::new(PlantParams::new(0.0, 0.0).unwrap(), 0).unwrap();
     let a0 = pure_mass_alpha(beta);
     let rho = |a: f64| spectral_radius_schur(&fam.coefficients(a, beta));
-    assert_eq!(classify(&fam.coefficients(a0, beta)), Verdict::Marginal);
+    assert_eq!(
+        decide_coefficients(&fam.coefficients(a0, beta)).verdict,
+        Verdict::Marginal
+    );
     for (target, want) in [
         (1.0 + 1e-8, Verdict::Unstable),
         (1.0 - 1e-8, Verdict::Stable),
@@ -321,7 +326,7 @@ fn marginal_band_is_narrow() {
         }
         let c = fam.coefficients(0.5 * (lo + hi), beta);
         assert!((rho(0.5 * (lo + hi)) - target).abs() < 1e-12);
-        assert_eq!(classify(&c), want, "ρ = {target}");
+        assert_eq!(decide_coefficients(&c).verdict, want, "ρ = {target}");
     }
 }
 

@@ -405,7 +405,8 @@ fn general_loops() -> Vec<(&'static str, Loop)> {
 /// 1e-6 of the region's size inward is stable, outward unstable (away from corners).
 #[test]
 fn general_region_vertices_lie_on_the_boundary() {
-    use hapstab::stability::{schur_stable, spectral_radius_schur};
+    use hapstab::schur_cohn::spectral_radius_schur;
+    use hapstab::stability::schur_stable;
     for (name, lp) in general_loops() {
         let fam = family(&lp);
         let r = hapstab::region::stable_region(&fam).unwrap_or_else(|e| panic!("{name}: {e}"));

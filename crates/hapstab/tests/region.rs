@@ -5,7 +5,8 @@
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map};
 use hapstab::region::{EdgeKind, StableRegion, stable_region};
-use hapstab::stability::{schur_stable, spectral_radius_schur};
+use hapstab::schur_cohn::spectral_radius_schur;
+use hapstab::stability::schur_stable;
 use hapstab::{Normalized, PlantParams, PolyFamily};
 
 fn region(g: f64, dl: f64, d: usize) -> (PolyFamily, StableRegion) {

@@ -8,7 +8,7 @@ use hapstab::linear::{error_curve, linear_check, routh_hurwitz_normalized};
 use hapstab::nyquist::{nyquist_stiffness, passive_region, unit_circle_pole};
 use hapstab::params::{Arm, Device};
 use hapstab::plant::{DiscretePlant, eq10_coefficients};
-use hapstab::stability::{Verdict as Stab, classify, roots};
+use hapstab::stability::{Verdict as Stab, roots};
 use hapstab::{Normalized, PlantParams, PolyFamily};
 use serde::Serialize;
 
@@ -517,7 +517,9 @@ fn c7(r: &Results) -> Result<Claim> {
             },
             0,
         )
-        .map(|f| classify(&f.coefficients(0.0, 0.0)) == Stab::Marginal)
+        .map(|f| {
+            hapstab::decide(&f, 0.0, 0.0, &mut f.coefficients(0.0, 0.0)).verdict == Stab::Marginal
+        })
         .unwrap_or(false)
     });
     values.insert("alpha_max_half_nyquist", half.alpha_max);

@@ -1,0 +1,205 @@
+//! The one stability verdict of the crate (Section V: stable iff every root of p(z) lies
+//! strictly inside the unit circle), used by `check`, maps in both modes, intervals,
+//! regions, margins, the explorer and Python alike.
+//!
+//! A wall is
+//! - **stable** when every root lies inside |z| < 1 − [`MARGINAL_BAND`],
+//! - **unstable** when some root lies outside |z| > 1 + [`MARGINAL_BAND`],
+//! - **marginal** otherwise: a root within the band of the circle (an undamped mode, a free
+//!   mass's root at z = 1), or one that double precision cannot place on either side.
+//!
+//! The decision, step by step ([`decide`]):
+//! 1. **Fast path**: one Schur–Cohn recursion ([`crate::schur_cohn`]) on the z-coefficients,
+//!    accepted when every step's decision withstands rounding *and* the scaling of the
+//!    coefficients to the band's radii 1 ∓ band (a relative perturbation of at most
+//!    n·band): then the roots are inside 1 − band, or one is outside 1 + band.
+//! 2. **The band's circles**: the recursion on c((1 − band)·z) and on c((1 + band)·z), each
+//!    accepted when sure against rounding alone.
+//! 3. **Argument principle** ([`crate::argument`]) on the circle that is still open, with
+//!    the family's shifted form near z = 1 (exact there: its value at z = 1 comes from the
+//!    plant's static stiffness, so a wall on the z = 1 line has its root at z = 1 exactly).
+//! 4. Where even that cannot decide (a root within rounding of a band circle), the wall is
+//!    **marginal**, and the answer says that it is undecided.
+
+use serde::Serialize;
+
+use crate::argument::{Coefficients, OnCircle, Wall, winding};
+use crate::closed_loop::AffineFamily;
+use crate::schur_cohn::schur_cohn;
+
+/// Half-width of the marginal band in spectral radius: a wall is marginal when its spectral
+/// radius lies in [1 − MARGINAL_BAND, 1 + MARGINAL_BAND]. 5e-11 is far above the rounding of
+/// a well-conditioned root (1e-15) and far below any stability margin an engineer designs
+/// with.
+pub const MARGINAL_BAND: f64 = 5e-11;
+
+/// Stability verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// All roots strictly inside the circle of radius 1 − [`MARGINAL_BAND`].
+    Stable,
+    /// Some root within [`MARGINAL_BAND`] of the unit circle and none beyond it, or a root
+    /// that double precision cannot place (see [`Basis::Undecided`]).
+    Marginal,
+    /// Some root outside the circle of radius 1 + [`MARGINAL_BAND`].
+    Unstable,
+}
+
+impl Verdict {
+    /// The lowercase name used in JSON.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Verdict::Stable => "stable",
+            Verdict::Marginal => "marginal",
+            Verdict::Unstable => "unstable",
+        }
+    }
+}
+
+/// What decided a verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Basis {
+    /// The Schur–Cohn recursion, every step sure over its rounding bound.
+    SchurCohn,
+    /// The argument principle on a band circle (the recursion was not sure).
+    ArgumentPrinciple,
+    /// Neither could decide: a root lies within rounding of a band circle, so the wall is
+    /// reported marginal.
+    Undecided,
+}
+
+/// A verdict with what decided it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Decision {
+    /// Stable, marginal or unstable.
+    pub verdict: Verdict,
+    /// The method that decided it.
+    pub basis: Basis,
+}
+
+/// The verdict that a spectral radius ρ gives with the marginal band of [`MARGINAL_BAND`].
+pub fn verdict_of_radius(rho: f64) -> Verdict {
+    if rho < 1.0 - MARGINAL_BAND {
+        Verdict::Stable
+    } else if rho <= 1.0 + MARGINAL_BAND {
+        Verdict::Marginal
+    } else {
+        Verdict::Unstable
+    }
+}
+
+/// The verdict of the wall (a, b) of a loop's family (see the module doc). `coeffs` is a
+/// scratch buffer of length degree + 1 (overwritten with p's coefficients).
+pub fn decide(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Decision {
+    fam.coefficients_into(a, b, coeffs);
+    decide_with(coeffs, &Wall { fam, a, b })
+}
+
+/// True iff [`decide`] says stable (a marginal wall is not).
+pub fn stable(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> bool {
+    decide(fam, a, b, coeffs).verdict == Verdict::Stable
+}
+
+/// The verdict of a bare polynomial (ascending coefficients, leading ≠ 0) by the same steps
+/// as [`decide`], with the argument principle on its z-coefficients.
+pub fn decide_coefficients(c: &[f64]) -> Decision {
+    decide_with(c, &Coefficients(c))
+}
+
+/// Whether every root of the wall's p(z) lies strictly inside the unit circle, without the
+/// marginal band: the test that classifies a whole cell of the D-decomposition (a gap between
+/// crossings on a line, a face of the region), where the number of roots inside is constant
+/// and the band only matters for walls reported one by one. The Schur–Cohn recursion where
+/// it is sure, else the argument principle; None when neither can decide (a root within
+/// rounding of the circle).
+pub fn inside_unit_circle(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Option<bool> {
+    fam.coefficients_into(a, b, coeffs);
+    inside_all(coeffs, &Wall { fam, a, b }, 1.0).map(|(inside, _)| inside)
+}
+
+/// Steps 1–4 of the module doc on coefficients `c` of the polynomial `p`.
+fn decide_with(c: &[f64], p: &impl OnCircle) -> Decision {
+    let n = c.len().saturating_sub(1) as f64;
+    let fast = schur_cohn(c, 1.0, n * MARGINAL_BAND);
+    if fast.sure {
+        return schur(if fast.stable {
+            Verdict::Stable
+        } else {
+            Verdict::Unstable
+        });
+    }
+    let (inner, outer) = (1.0 - MARGINAL_BAND, 1.0 + MARGINAL_BAND);
+    match inside_all(c, p, inner) {
+        Some((true, basis)) => {
+            return Decision {
+                verdict: Verdict::Stable,
+                basis,
+            };
+        }
+        Some((false, _)) => {}
+        None => return undecided(),
+    }
+    match inside_all(c, p, outer) {
+        Some((true, basis)) => Decision {
+            verdict: Verdict::Marginal,
+            basis,
+        },
+        Some((false, basis)) => Decision {
+            verdict: Verdict::Unstable,
+            basis,
+        },
+        None => undecided(),
+    }
+}
+
+/// Whether every root lies inside |z| < r, and what decided it: the recursion on c(r·z)
+/// when it is sure, else the argument principle; None when neither can decide.
+fn inside_all(c: &[f64], p: &impl OnCircle, r: f64) -> Option<(bool, Basis)> {
+    let s = schur_cohn(c, r, 0.0);
+    if s.sure {
+        return Some((s.stable, Basis::SchurCohn));
+    }
+    let w = winding(p, r);
+    w.decided()
+        .then_some((w.inside == w.degree, Basis::ArgumentPrinciple))
+}
+
+fn schur(verdict: Verdict) -> Decision {
+    Decision {
+        verdict,
+        basis: Basis::SchurCohn,
+    }
+}
+
+fn undecided() -> Decision {
+    Decision {
+        verdict: Verdict::Marginal,
+        basis: Basis::Undecided,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly_from_roots(rs: &[f64]) -> Vec<f64> {
+        rs.iter()
+            .fold(vec![1.0], |c, &r| crate::poly::mul(&c, &[-r, 1.0]))
+    }
+
+    #[test]
+    fn the_band_decides_roots_near_the_circle() {
+        let v = |rs: &[f64]| decide_coefficients(&poly_from_roots(rs)).verdict;
+        assert_eq!(v(&[0.5, -0.9, 0.99]), Verdict::Stable);
+        assert_eq!(v(&[0.5, -1.01, 0.2]), Verdict::Unstable);
+        assert_eq!(v(&[0.5, 1.0]), Verdict::Marginal);
+        assert_eq!(v(&[0.5, 1.0 - 1e-12]), Verdict::Marginal);
+        assert_eq!(v(&[0.5, 1.0 + 1e-12]), Verdict::Marginal);
+        assert_eq!(v(&[0.5, 1.0 - 1e-8]), Verdict::Stable);
+        assert_eq!(v(&[0.5, 1.0 + 1e-8]), Verdict::Unstable);
+        assert_eq!(v(&[0.5, -1.0 + 1e-9, 1.0 - 1e-12]), Verdict::Marginal);
+        assert_eq!(v(&[0.5, -1.0 - 1e-9, 1.0 - 1e-12]), Verdict::Unstable);
+    }
+}
