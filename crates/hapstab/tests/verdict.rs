@@ -6,7 +6,7 @@
 //! (exact ZOH by the matrix exponential, eigenvalues; 40-digit mpmath) quoted to the digits
 //! the audit that found these cases printed.
 
-use hapstab::map::{AxisRange, Axis, MapKind, wall_map};
+use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
 use hapstab::params::Effective;
 use hapstab::verdict::{Verdict, decide, verdict_of_radius};
@@ -31,7 +31,14 @@ fn tf_loop(num: &[f64], den: &[f64], lag: f64, period: f64, d: usize, fc: f64) -
 /// The audit's first map loop: 1/(0.01s⁴ + 0.5s³ + 20s² + 100s + 1000), T = 0.1 ms, d = 3,
 /// lowpass:50, lag 1 ms (descending coefficients as the CLI takes them).
 fn crowded_loop() -> AffineFamily {
-    tf_loop(&[1.0], &[0.01, 0.5, 20.0, 100.0, 1000.0], 1e-3, 1e-4, 3, 50.0)
+    tf_loop(
+        &[1.0],
+        &[0.01, 0.5, 20.0, 100.0, 1000.0],
+        1e-3,
+        1e-4,
+        3,
+        50.0,
+    )
 }
 
 #[test]
@@ -58,10 +65,16 @@ fn free_mass_at_zero_stiffness_is_marginal_with_its_root_at_one() {
     let an = Analysis::of_family(&fam, a, b).expect("a finite wall always gets an answer");
     assert_eq!(an.verdict, Verdict::Marginal);
     assert_eq!(an.spectral_radius, 1.0);
-    assert_eq!(decide(&fam, a, b, &mut fam.coefficients(a, b)).verdict, Verdict::Marginal);
+    assert_eq!(
+        decide(&fam, a, b, &mut fam.coefficients(a, b)).verdict,
+        Verdict::Marginal
+    );
     // a little stiffness moves the root inside: stable
     let (a1, _) = fam.to_units(100.0, 10.0);
-    assert_eq!(Analysis::of_family(&fam, a1, b).unwrap().verdict, Verdict::Stable);
+    assert_eq!(
+        Analysis::of_family(&fam, a1, b).unwrap().verdict,
+        Verdict::Stable
+    );
 }
 
 #[test]
@@ -72,15 +85,25 @@ fn radius_map_agrees_with_check_where_roots_crowd_one() {
     let y = AxisRange::new(Axis::Beta, 0.0, 0.001 / s.damping, 2).unwrap();
     let plain = wall_map(&fam, x, y, MapKind::Stability, &|_| {}).unwrap();
     let radius = wall_map(&fam, x, y, MapKind::SpectralRadius, &|_| {}).unwrap();
-    assert_eq!(plain.stable, radius.stable, "the verdict must not depend on the radius");
+    assert_eq!(
+        plain.stable, radius.stable,
+        "the verdict must not depend on the radius"
+    );
     // the referee: every wall of this map is stable (50 of 50)
     assert!(plain.stable.iter().all(|&s| s));
     let r = radius.radius.as_ref().unwrap();
     for (i, (&st, &rho)) in radius.stable.iter().zip(r).enumerate() {
         let (ix, iy) = (i % 25, i / 25);
         let an = Analysis::of_family(&fam, x.value(ix), y.value(iy)).unwrap();
-        assert_eq!(rho, an.spectral_radius, "map radius is check's radius at {ix},{iy}");
-        assert_eq!(st, verdict_of_radius(rho) == Verdict::Stable, "{ix},{iy}: ρ = {rho}");
+        assert_eq!(
+            rho, an.spectral_radius,
+            "map radius is check's radius at {ix},{iy}"
+        );
+        assert_eq!(
+            st,
+            verdict_of_radius(rho) == Verdict::Stable,
+            "{ix},{iy}: ρ = {rho}"
+        );
     }
     // (2400 N/m, 0): the referee's ρ = 0.99999217 (stable); the z-coefficients' bisection gave
     // 1.0000091 (unstable)
@@ -94,7 +117,13 @@ fn radius_map_keeps_the_stable_walls_of_a_slow_lag() {
     // gave 0.
     let fam = tf_loop(
         &[1265.00850577, 1165297.29408],
-        &[4.88247269624, 29.0294594768, 233.513650414, 853.157736134, 667.545022956],
+        &[
+            4.88247269624,
+            29.0294594768,
+            233.513650414,
+            853.157736134,
+            667.545022956,
+        ],
         0.0019798911845,
         0.00021027455696,
         5,

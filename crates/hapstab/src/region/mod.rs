@@ -1,0 +1,283 @@
+//! Exact stable regions in the wall plane as closed polygons (Section V, Figs. 4–6), for
+//! any loop's [`AffineFamily`] (for the paper's loop, the (α, β)-plane).
+//!
+//! The method, step by step (each step is one function below):
+//!
+//! 1. **Bounds** ([`Bounds::new`]): necessary conditions of the Schur–Cohn test cut out a
+//!    convex polygon W that contains every stable wall: p(1) > 0 and (−1)^n p(−1) > 0 (the
+//!    z = ±1 lines of [`crate::boundary`]) and, p being monic of degree n, the coefficient
+//!    bounds |c_j| ≤ C(n, j), each a slab in the wall plane.
+//! 2. **Coarse curve** ([`coarse_curve`]): the complex-pair curve C(θ), θ ∈ [0, π], sampled on
+//!    a uniform grid and refined adaptively near W.
+//! 3. **Search window** ([`search_window`]): every vertex of a stable region is a curve point
+//!    or a crossing of the lines, so a box around those inside W, clipped to W, contains
+//!    the stable region.
+//! 4. **Arrangement** ([`arrangement`]): the curve, cut into chains where it runs to infinity,
+//!    and the window's edges split the window into faces; crossings are refined on the curve
+//!    itself (bisection in θ), so every vertex is a point where p has a root on the circle.
+//! 5. **Classification** ([`stable_faces`]): the number of unstable roots is constant in a
+//!    face, so one Schur–Cohn test at an interior point decides it.
+//! 6. **Refinement** ([`refine_face`]): the arcs of stable faces are resampled until every
+//!    chord is within `rel_tol × size` of the curve; α_max is found on the arcs from
+//!    da/dθ = 0.
+//!
+//! Every adaptive step draws curve points from one [`Budget`]; a region that would need
+//! more than [`MAX_CURVE_POINTS`] ends in an error instead of exhausting memory.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use num_complex::Complex64;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::boundary::{
+    AlphaBeta, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta, minus_one_line,
+    plus_one_line,
+};
+use crate::closed_loop::AffineFamily;
+use crate::error::{Error, Result};
+use crate::verdict::Verdict;
+use crate::verdict::{decide, inside_unit_circle};
+
+mod arrangement;
+mod bounds;
+mod curve;
+mod faces;
+mod geometry;
+mod refine;
+mod verify;
+
+use arrangement::*;
+use bounds::*;
+use curve::*;
+use faces::*;
+use geometry::*;
+pub use refine::alpha_max_within;
+use refine::*;
+use verify::*;
+
+/// What an edge of a region polygon is made of.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum EdgeKind {
+    /// The z = 1 line (α = −γ for the paper's loop): a real root at z = 1.
+    ZPlusOne,
+    /// The z = −1 line: a real root at z = −1.
+    ZMinusOne,
+    /// The complex-pair curve between angles θ0 and θ1 (root pair at e^{±iθ}).
+    Complex {
+        /// Angle at the edge's first vertex.
+        theta_start: f64,
+        /// Angle at the edge's last vertex.
+        theta_end: f64,
+    },
+    /// A cut of the search window (never part of a correct stable region; kept for honesty).
+    Window,
+}
+
+/// One edge of a polygon: its kind and the index of its first vertex.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Edge {
+    /// Index in `vertices` of the edge's first vertex; it runs to the next edge's first vertex.
+    pub start: usize,
+    /// What the edge is.
+    pub kind: EdgeKind,
+}
+
+/// A closed, counter-clockwise polygon (first vertex not repeated).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Polygon {
+    /// Vertices in counter-clockwise order.
+    pub vertices: Vec<AlphaBeta>,
+    /// Edges in order; edge i covers vertices edges[i].start ..= edges[i+1].start.
+    pub edges: Vec<Edge>,
+    /// For each vertex on a complex-pair arc, the angle θ of the root pair e^{±iθ} on the
+    /// unit circle there; NaN for vertices on the z = ±1 lines only.
+    pub thetas: Vec<f64>,
+}
+
+impl Polygon {
+    /// Signed area by the shoelace formula (positive for counter-clockwise).
+    pub fn area(&self) -> f64 {
+        shoelace(&self.vertices)
+    }
+
+    /// True iff the point lies inside (even-odd rule).
+    pub fn contains(&self, p: AlphaBeta) -> bool {
+        point_in(&self.vertices, p)
+    }
+
+    /// Indices of vertices where two edges meet (corners).
+    pub fn corners(&self) -> Vec<usize> {
+        self.edges.iter().map(|e| e.start).collect()
+    }
+}
+
+/// The stable region of a loop: every stable component as a polygon in wall units, the
+/// largest stable stiffness and where it is reached, and the total area.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StableRegion {
+    /// Stable components (possibly none).
+    pub polygons: Vec<Polygon>,
+    /// Largest stable a (α_max for the paper's loop; NaN when the region is empty).
+    pub alpha_max: f64,
+    /// b at which α_max is reached (NaN when empty).
+    pub beta_at_alpha_max: f64,
+    /// Total area of the stable region in wall units.
+    pub area: f64,
+}
+
+impl StableRegion {
+    /// True iff (a, b) lies inside one of the polygons. The polygons follow the exact boundary
+    /// to their chord tolerance (`rel_tol` × [`StableRegion::size`]); a wall closer than that
+    /// to [`StableRegion::boundary_distance`] is decided by the point test, not by this.
+    pub fn contains(&self, p: AlphaBeta) -> bool {
+        self.polygons.iter().any(|q| q.contains(p))
+    }
+
+    /// The region's size, the scale its chord tolerance is relative to: the larger side of
+    /// the polygons' bounding box (0 when empty).
+    pub fn size(&self) -> f64 {
+        let pts = self
+            .polygons
+            .iter()
+            .flat_map(|q| q.vertices.iter().map(|v| P::of(*v)));
+        bbox(pts).map_or(0.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0))
+    }
+
+    /// Euclidean distance from a wall to the nearest polygon edge (infinite when empty).
+    pub fn boundary_distance(&self, p: AlphaBeta) -> f64 {
+        let q = P::of(p);
+        self.polygons
+            .iter()
+            .flat_map(|poly| {
+                let v = &poly.vertices;
+                (0..v.len()).map(move |i| (P::of(v[i]), P::of(v[(i + 1) % v.len()])))
+            })
+            .map(|(a, b)| segment_distance(q, a, b))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    pub(super) fn empty() -> Self {
+        Self {
+            polygons: Vec::new(),
+            alpha_max: f64::NAN,
+            beta_at_alpha_max: f64::NAN,
+            area: 0.0,
+        }
+    }
+}
+
+/// Default chord tolerance of region polygons, relative to the stable region's size.
+pub const DEFAULT_REL_TOL: f64 = 1e-9;
+
+/// Smallest chord tolerance accepted: below 1e-13 of the size the curve points themselves
+/// carry rounding errors of that order, so refinement could not converge.
+pub const MIN_REL_TOL: f64 = 1e-13;
+
+/// Most curve points one region may use. The paper's regions need 10³–10⁵; 4·10⁶ points are
+/// about 100 MB, the memory bound of one region computation.
+pub const MAX_CURVE_POINTS: usize = 4_000_000;
+
+/// Computes the stable region of a loop's family (Section V; Figs. 4–6).
+pub fn stable_region(fam: &AffineFamily) -> Result<StableRegion> {
+    stable_region_with(fam, DEFAULT_REL_TOL)
+}
+
+/// As [`stable_region`] with a chord tolerance relative to the region's size.
+pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegion> {
+    if !(rel_tol.is_finite() && (MIN_REL_TOL..=0.1).contains(&rel_tol)) {
+        return Err(Error::OutOfRange {
+            name: "region tolerance",
+            value: rel_tol,
+            range: "[1e-13, 0.1]",
+        });
+    }
+    let budget = Budget::new(MAX_CURVE_POINTS);
+    let bounds = Bounds::new(fam)?;
+    let mut focus: Option<BoxF> = None;
+    for i in 0..MAX_ATTEMPTS {
+        let (region, checked) = attempt(fam, &bounds, (focus, i as i32), rel_tol, &budget)?;
+        match verify(fam, &bounds, &region, checked, (i, rel_tol)) {
+            None => return Ok(region),
+            Some(zoom) => focus = Some(zoom),
+        }
+    }
+    Err(Error::Numerical(
+        "the stable region could not be resolved: its exact boundary and a direct grid of \
+         Schur–Cohn tests keep disagreeing (features far smaller than the boundary curve's \
+         extent); the stable intervals at fixed damping and the grid map remain available"
+            .into(),
+    ))
+}
+
+/// Attempts before giving up: each one zooms the coarse sampling onto where the previous
+/// one disagreed with the grid, so four attempts cover a scale range of about 10¹².
+const MAX_ATTEMPTS: usize = 4;
+
+/// An axis-aligned box (a0, a1, b0, b1).
+type BoxF = (f64, f64, f64, f64);
+
+/// One pass of the method (steps 2–6 of the module doc) with an optional focus box for the
+/// coarse sampling and its refinement level (the attempt's number); returns the region and the search window's box.
+fn attempt(
+    fam: &AffineFamily,
+    bounds: &Bounds,
+    focus: (Option<BoxF>, i32),
+    rel_tol: f64,
+    budget: &Budget,
+) -> Result<(StableRegion, Checked)> {
+    let coarse = coarse_curve(fam, bounds, focus, budget)?;
+    let Some(window) = search_window(bounds, &coarse) else {
+        let none = Checked {
+            wbox: None,
+            thorough: true,
+        };
+        return Ok((StableRegion::empty(), none));
+    };
+    let wbox = bbox(window.polygon.iter().map(|(p, _)| *p));
+    let graph = arrangement(fam, &window, &coarse)?;
+    let cycles = faces(&graph);
+    let consistent = euler_holds(&graph, cycles.len());
+    let faces = stable_faces(fam, &graph, cycles);
+    if faces.is_empty() {
+        return Ok((
+            StableRegion::empty(),
+            Checked {
+                wbox,
+                thorough: true,
+            },
+        ));
+    }
+    // The coarse faces are within the coarse tolerance of the true region, so 0.99 keeps the
+    // chord tolerance below rel_tol of the true size.
+    let tol = 0.99 * rel_tol * faces_size(&faces);
+    let polygons = faces
+        .iter()
+        .map(|(f, _)| refine_face(fam, &graph, f, tol, budget))
+        .collect::<Result<Vec<Polygon>>>()?;
+    let area = polygons.iter().map(|p| p.area()).sum();
+    let (alpha_max, beta_at_alpha_max) = alpha_max_of(fam, &polygons);
+    let region = StableRegion {
+        polygons,
+        alpha_max,
+        beta_at_alpha_max,
+        area,
+    };
+    Ok((
+        region,
+        Checked {
+            wbox,
+            thorough: !consistent,
+        },
+    ))
+}
+
+/// How an attempt's region must be verified: over which box, and whether thoroughly (exact
+/// slices as well as the grid) because the arrangement broke Euler's formula or found
+/// nothing stable.
+#[derive(Clone, Copy)]
+struct Checked {
+    pub(super) wbox: Option<BoxF>,
+    pub(super) thorough: bool,
+}

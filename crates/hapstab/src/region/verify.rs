@@ -1,0 +1,282 @@
+//! The check of a computed region against direct point tests and exact slices of constant
+//! damping, and the box the next attempt zooms onto when they disagree.
+
+use super::*;
+
+/// The region's edges bucketed by damping, for point-in-region tests in O(edges/bucket)
+/// instead of O(vertices) (the even-odd rule counts crossings of a ray toward −∞ in a).
+pub(super) struct EdgeIndex {
+    pub(super) y0: f64,
+    pub(super) h: f64,
+    pub(super) buckets: Vec<Vec<(P, P)>>,
+}
+
+impl EdgeIndex {
+    pub(super) fn new(region: &StableRegion) -> Self {
+        let pts = region
+            .polygons
+            .iter()
+            .flat_map(|p| p.vertices.iter().map(|v| P::of(*v)));
+        let (_, _, y0, y1) = bbox(pts).unwrap_or((0.0, 0.0, 0.0, 0.0));
+        let nb = 256;
+        let h = ((y1 - y0) / nb as f64).max(f64::MIN_POSITIVE);
+        // (truncation is the floor here: the argument is clamped to be non-negative)
+        let bucket = |y: f64| (((y - y0) / h).max(0.0) as usize).min(nb - 1);
+        let ranges: Vec<Vec<(usize, usize)>> = region
+            .polygons
+            .iter()
+            .map(|poly| {
+                let v = &poly.vertices;
+                (0..v.len())
+                    .map(|i| {
+                        let (a, b) = (v[i].beta, v[(i + 1) % v.len()].beta);
+                        (bucket(a.min(b)), bucket(a.max(b)))
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut counts = vec![0_usize; nb];
+        for &(lo, hi) in ranges.iter().flatten() {
+            for c in &mut counts[lo..=hi] {
+                *c += 1;
+            }
+        }
+        let mut buckets: Vec<Vec<(P, P)>> = counts.iter().map(|&c| Vec::with_capacity(c)).collect();
+        for (poly, rs) in region.polygons.iter().zip(&ranges) {
+            let v = &poly.vertices;
+            for (i, &(lo, hi)) in rs.iter().enumerate() {
+                let e = (P::of(v[i]), P::of(v[(i + 1) % v.len()]));
+                for bucket in &mut buckets[lo..=hi] {
+                    bucket.push(e);
+                }
+            }
+        }
+        Self { y0, h, buckets }
+    }
+
+    pub(super) fn is_empty(&self) -> bool {
+        self.buckets.iter().all(Vec::is_empty)
+    }
+
+    pub(super) fn contains(&self, p: P) -> bool {
+        let k = ((p.y - self.y0) / self.h).floor();
+        if !(k >= 0.0 && (k as usize) < self.buckets.len()) {
+            return false;
+        }
+        let mut inside = false;
+        for &(a, b) in &self.buckets[k as usize] {
+            if (a.y > p.y) != (b.y > p.y) {
+                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if p.x < x {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
+    }
+}
+
+/// Side of the verification grid: the region is checked against this many × this many
+/// direct Schur–Cohn tests (fewer for high degrees, where each test costs O(n²)).
+pub(super) fn grid_side(fam: &AffineFamily) -> usize {
+    if fam.degree() <= 64 { 16 } else { 10 }
+}
+
+/// Checks the region against a grid of direct Schur–Cohn tests over the search window (and
+/// the bounds' box when the window is absent), the wall-free point, and when `thorough` also
+/// against the exact stable intervals on slices of constant damping; disagreements within
+/// twice the chord tolerance (`rel_tol` of the size) of the polygon's edges do not count.
+/// None when they agree; otherwise the box to zoom the next attempt onto: the disagreeing and
+/// the stable points, two cells wide.
+pub(super) fn verify(
+    fam: &AffineFamily,
+    bounds: &Bounds,
+    region: &StableRegion,
+    checked: Checked,
+    (attempt, rel_tol): (usize, f64),
+) -> Option<BoxF> {
+    let wbox = checked
+        .wbox
+        .or_else(|| bbox(bounds.polygon.iter().map(|(p, _)| *p)))?;
+    let m = grid_side(fam);
+    let index = EdgeIndex::new(region);
+    let mut suspects = grid_suspects(fam, &index, wbox, m);
+    if checked.thorough {
+        suspects.extend(slice_suspects(fam, &index, wbox));
+    }
+    // "Nothing is stable" is checked exactly where it matters most, on the stiffness axis
+    // (no virtual damping): a region far thinner than the window would slip between slices.
+    if region.polygons.is_empty() {
+        let ivs = crate::boundary::stable_alpha_intervals(fam, 0.0);
+        let mids = ivs.iter().filter(|iv| iv.hi > iv.lo).map(|iv| {
+            let x = 0.5 * (iv.lo.max(wbox.0) + iv.hi.min(wbox.1));
+            (P { x, y: 0.0 }, false)
+        });
+        suspects.extend(mids);
+    }
+    // A region far smaller than the window may fall between the window's grid points and
+    // slices: check around it too (its own box, doubled).
+    if let Some(rbox) = region_box(region).filter(|r| box_size(*r) < 0.1 * box_size(wbox)) {
+        suspects.extend(grid_suspects(fam, &index, rbox, m));
+        if checked.thorough {
+            suspects.extend(slice_suspects(fam, &index, rbox));
+        }
+    }
+    // The wall-free point itself, decided (a root within rounding of the circle, as for an
+    // undamped plant whose corner it is, makes it marginal and uninformative).
+    let origin = P { x: 0.0, y: 0.0 };
+    suspects.extend(probe(fam, &index, origin, &mut vec![0.0; fam.degree() + 1]));
+    // A disagreement within the chord tolerance of the polygon's edges is no disagreement.
+    let band = 2.0 * rel_tol * region.size();
+    let wrong = suspects
+        .iter()
+        .any(|(p, agree)| !agree && region.boundary_distance(p.ab()) > band);
+    if !wrong {
+        return None;
+    }
+    let (x0, x1, y0, y1) = wbox;
+    // Two grid cells around the suspects, shrinking fourfold with every attempt, but never
+    // less than half the suspects' own extent.
+    let shrink = 0.25_f64.powi(attempt as i32);
+    let (a0, a1, b0, b1) = bbox(suspects.into_iter().map(|(p, _)| p))?;
+    let mx = (2.0 * (x1 - x0) / m as f64 * shrink).max(0.5 * (a1 - a0));
+    let my = (2.0 * (y1 - y0) / m as f64 * shrink).max(0.5 * (b1 - b0));
+    Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
+}
+
+/// The region's bounding box doubled about its centre (None when empty).
+pub(super) fn region_box(region: &StableRegion) -> Option<BoxF> {
+    let pts = region
+        .polygons
+        .iter()
+        .flat_map(|q| q.vertices.iter().map(|v| P::of(*v)));
+    let (x0, x1, y0, y1) = bbox(pts)?;
+    let (hx, hy) = (x1 - x0, y1 - y0);
+    Some((x0 - 0.5 * hx, x1 + 0.5 * hx, y0 - 0.5 * hy, y1 + 0.5 * hy))
+}
+
+/// The larger side of a box.
+pub(super) fn box_size((x0, x1, y0, y1): BoxF) -> f64 {
+    (x1 - x0).max(y1 - y0)
+}
+
+/// Grid points that are stable or where the region disagrees with the Schur–Cohn test,
+/// each with "agrees?".
+pub(super) fn grid_suspects(
+    fam: &AffineFamily,
+    region: &EdgeIndex,
+    wbox: BoxF,
+    m: usize,
+) -> Vec<(P, bool)> {
+    let (x0, x1, y0, y1) = wbox;
+    let (hx, hy) = ((x1 - x0) / m as f64, (y1 - y0) / m as f64);
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    let mut out = Vec::new();
+    for i in 0..m {
+        for j in 0..m {
+            // Irrational offsets keep grid points off the z = ±1 lines and the axes.
+            let p = P {
+                x: x0 + hx * (i as f64 + 0.5 + GRID_JITTER),
+                y: y0 + hy * (j as f64 + 0.5 + GRID_JITTER_Y),
+            };
+            out.extend(probe(fam, region, p, &mut coeffs));
+        }
+    }
+    // Walls near the wall-free point: a damped plant is stable there, and a region much
+    // smaller than the window that the grid straddles is found by them.
+    let size = (x1 - x0).max(y1 - y0);
+    // Probes right at the wall-free point only test an empty answer: where a region exists,
+    // the wall-free point may be its corner (an undamped plant), within rounding of the
+    // boundary.
+    let radii: &[f64] = if region.is_empty() {
+        &[PROBE_RADIUS, 1e-9]
+    } else {
+        &[PROBE_RADIUS]
+    };
+    for r in radii.iter().map(|r| r * size) {
+        for k in 0..8 {
+            let (s, c) = (k as f64 * std::f64::consts::FRAC_PI_4 + GRID_JITTER).sin_cos();
+            out.extend(probe(fam, region, P { x: r * c, y: r * s }, &mut coeffs));
+        }
+    }
+    out
+}
+
+/// Distance of the probes from the wall-free point, relative to the window.
+pub(super) const PROBE_RADIUS: f64 = 1e-3;
+
+/// A verification point if it is stable or the region disagrees with the Schur–Cohn test
+/// there.
+pub(super) fn probe(
+    fam: &AffineFamily,
+    region: &EdgeIndex,
+    p: P,
+    coeffs: &mut [f64],
+) -> Option<(P, bool)> {
+    // A wall with a root within rounding of the circle is on the boundary: either side agrees.
+    let stable = match decide(fam, p.x, p.y, coeffs).verdict {
+        Verdict::Marginal => return None,
+        v => v == Verdict::Stable,
+    };
+    let agree = stable == region.contains(p);
+    (stable || !agree).then_some((p, agree))
+}
+
+/// Number of constant-damping slices of a thorough check: each costs O(degree²) (a θ scan
+/// of 256 samples per degree), so fewer for long delays.
+pub(super) fn slices(fam: &AffineFamily) -> usize {
+    match fam.degree() {
+        0..=64 => 48,
+        65..=300 => 16,
+        _ => 6,
+    }
+}
+
+/// On slices of constant damping across the box, the exact stable intervals
+/// ([`crate::boundary::stable_alpha_intervals`]) against the region: each interval's
+/// midpoint must be inside, the midpoints of the gaps outside.
+pub(super) fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P, bool)> {
+    let (x0, x1, y0, y1) = wbox;
+    let n = slices(fam);
+    // One θ scan of the family serves every slice (the same crossings, no sine per slice).
+    let table = crate::boundary::CircleTable::new(fam);
+    (0..n)
+        .into_par_iter()
+        .flat_map_iter(|j| {
+            let b = y0 + (y1 - y0) * (j as f64 + 0.5 + GRID_JITTER) / n as f64;
+            let ivs = crate::boundary::stable_alpha_intervals_tabulated(fam, &table, b);
+            let mut out = Vec::new();
+            let mut prev_hi = x0;
+            // Intervals and gaps narrower than this are the boundary itself, to rounding.
+            let tiny = 1e-9 * (x1 - x0);
+            for iv in &ivs {
+                let (lo, hi) = (iv.lo.max(x0 - (x1 - x0)), iv.hi.min(x1 + (x1 - x0)));
+                let inside = P {
+                    x: 0.5 * (lo + hi),
+                    y: b,
+                };
+                if hi - lo > tiny {
+                    out.push((inside, region.contains(inside)));
+                }
+                if iv.lo > prev_hi + tiny {
+                    let gap = P {
+                        x: 0.5 * (prev_hi + iv.lo),
+                        y: b,
+                    };
+                    out.push((gap, !region.contains(gap)));
+                }
+                prev_hi = prev_hi.max(iv.hi);
+            }
+            out
+        })
+        .collect()
+}
+
+/// Offset of the verification grid within its cells in a (√2 − 1.3, an irrational fraction).
+pub(super) const GRID_JITTER: f64 = 0.114_213_562_373_095_05;
+
+/// Offset in b (the golden ratio's 0.618… − 0.5). It differs from [`GRID_JITTER`] and their
+/// sum is irrational, so that no diagonal of the box runs through grid points: the window's
+/// corners often lie on a z = ±1 line, and a grid on that line's diagonal would test walls
+/// with a root exactly on the circle.
+pub(super) const GRID_JITTER_Y: f64 = 0.118_033_988_749_894_85;
