@@ -165,6 +165,34 @@ impl AffineFamily {
         Ok(Self::new(&lp.discretize()?))
     }
 
+    /// The same family in stretched wall coordinates (x, y) with a = sx·x, b = sy·y:
+    /// p = P0 + x·(sx·PK) + y·(sy·PB). Regions are computed where the stable set is about as
+    /// wide as tall ([`crate::region`]); sx, sy > 0.
+    pub fn stretched(&self, sx: f64, sy: f64) -> AffineFamily {
+        let scaled = |c: &[f64], f: f64| c.iter().map(|x| x * f).collect::<Vec<f64>>();
+        let [p0, pk, pb] = self.at_one;
+        let [d0, dk, db] = self.slope_at_one;
+        AffineFamily {
+            p0_core: self.p0_core.clone(),
+            k: self.k,
+            pk: scaled(&self.pk, sx),
+            pb: scaled(&self.pb, sy),
+            at_one: [p0, pk * sx, pb * sy],
+            slope_at_one: [d0, dk * sx, db * sy],
+            // p(1) = N(1)Vd(1)·(s + a + b·V(1)) = sx·N(1)Vd(1)·(s/sx + x + y·sy·V(1)/sx)
+            plus_one: self.plus_one.map(|(s, v)| (s / sx, sy * v / sx)),
+            scale: WallScale {
+                stiffness: self.scale.stiffness * sx,
+                damping: self.scale.damping * sy,
+            },
+            shifted: self.shifted.as_ref().map(|sh| ShiftedParts {
+                p0_core: sh.p0_core.clone(),
+                pk: scaled(&sh.pk, sx),
+                pb: scaled(&sh.pb, sy),
+            }),
+        }
+    }
+
     /// Degree of p(z) (it is monic).
     pub fn degree(&self) -> usize {
         self.k + self.p0_core.len() - 1

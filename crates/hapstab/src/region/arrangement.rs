@@ -11,19 +11,13 @@ pub(super) struct Seg {
     /// Curve: θ at p and q; border: NaN.
     pub(super) tp: f64,
     pub(super) tq: f64,
-    /// Chain id (curve chains) or [`BORDER`] (window edges).
+    /// The piece it belongs to.
     pub(super) owner: usize,
     /// Index within the owner.
     pub(super) idx: usize,
-    pub(super) kind: EdgeKind,
 }
 
-pub(super) const BORDER: usize = usize::MAX / 2;
-
 impl Seg {
-    pub(super) fn is_curve(&self) -> bool {
-        self.owner != BORDER
-    }
     pub(super) fn at(&self, t: f64) -> P {
         self.p.lerp(self.q, t)
     }
@@ -58,6 +52,20 @@ pub(super) fn split_seg(fam: &AffineFamily, s: &Seg) -> Option<[Seg; 2]> {
             ..*s
         },
     ])
+}
+
+/// The crossing of curve segments a and b (chords crossing at (t, u)) refined on the curve
+/// ([`refine_cc`]), or the chords' own crossing where the refinement strays further than the
+/// two chords are long (the curve between their ends runs off to infinity: the chords do not
+/// follow it there).
+fn refined_crossing(fam: &AffineFamily, a: &Seg, b: &Seg, (t, u): (f64, f64)) -> (P, f64, f64) {
+    let (p, ta, tb) = refine_cc(fam, a, b);
+    let raw = a.at(t);
+    let reach = norm(sub(a.q, a.p)) + norm(sub(b.q, b.p));
+    if p.finite() && norm(sub(p, raw)) <= reach {
+        return (p, ta, tb);
+    }
+    (raw, a.tp + t * (a.tq - a.tp), b.tp + u * (b.tq - b.tp))
 }
 
 /// Refines a curve–curve crossing by repeated halving of both θ-intervals.
@@ -192,9 +200,6 @@ pub(super) fn chains(
     out
 }
 
-/// A cut on a segment: parameter along it, vertex id, θ (curve) or NaN.
-pub(super) type Cut = (f64, usize, f64);
-
 /// Graph edge: end vertex ids, polyline (θ, point) and kind.
 pub(super) type GraphEdge = (usize, usize, Vec<(f64, P)>, EdgeKind);
 
@@ -204,27 +209,21 @@ pub(super) struct Graph {
     pub(super) edges: Vec<GraphEdge>,
 }
 
-/// The curve chains and window edges as segments with their cuts, before the graph is built.
-pub(super) struct Pieces {
-    pub(super) chains: Vec<Vec<(f64, P)>>,
-    pub(super) segs: Vec<Seg>,
-    /// Index of the first window segment.
-    pub(super) first_border: usize,
-    pub(super) verts: Vec<P>,
-    pub(super) cuts: Vec<Vec<Cut>>,
-    pub(super) chain_ends: Vec<(usize, usize)>,
-}
-
+/// The arrangement of step 4: the curve's chains clipped to the window, their crossings, and
+/// the window's edges split where the curve meets them, as a planar graph.
 pub(super) fn arrangement(
     fam: &AffineFamily,
     window: &Window,
     coarse: &[(f64, P)],
 ) -> Result<Graph> {
-    let mut pieces = pieces(chains(fam, coarse, window), window);
-    cut_chain_ends(&mut pieces, window.size);
-    intersect(fam, window, &mut pieces)?;
-    let mut g = build_graph(&pieces);
-    keep_inside(&mut g, window);
+    let mut b = Builder::new(window);
+    for chain in chains(fam, coarse, window) {
+        for piece in clip_chain(fam, window, &chain) {
+            b.add_piece(piece);
+        }
+    }
+    b.intersect(fam)?;
+    let mut g = b.graph();
     prune_dangling(&mut g);
     Ok(g)
 }
@@ -234,246 +233,342 @@ pub(super) fn arrangement(
 /// quadratic in its points; past it the region is refused with an honest error.
 pub(super) const MAX_CROSSINGS: usize = 1_000_000;
 
-pub(super) fn pieces(chains: Vec<Vec<(f64, P)>>, window: &Window) -> Pieces {
-    let mut segs: Vec<Seg> = Vec::new();
-    for (ci, ch) in chains.iter().enumerate() {
-        for (i, w) in ch.windows(2).enumerate() {
-            segs.push(Seg {
+/// Points within this fraction of the window's size of a window edge lie on it: the curve's
+/// ends on the z = ±1 lines are computed to rounding, and a window corner on such a line must
+/// catch them.
+const ON_EDGE: f64 = 1e-12;
+
+/// Vertices on one window edge closer than this fraction of the window's size are one vertex:
+/// the curve passing through one wall at two angles (an undamped mode's z = e^{iθ_r} at the
+/// wall-free point, beside the curve's end at z = 1) meets the edge there twice, to rounding.
+const SNAP: f64 = 1e-10;
+
+/// A piece of a chain inside the window: its points, and the window edge each end lies on
+/// (None for an end inside the window).
+pub(super) struct Piece {
+    pts: Vec<(f64, P)>,
+    ends: [Option<usize>; 2],
+}
+
+/// Where segment p→q is inside the window: the parameter range [t0, t1] and the window edges
+/// it enters and leaves by (None when an end of the range is an end of the segment).
+fn clip_segment(window: &Window, p: P, q: P) -> Option<(f64, f64, Option<usize>, Option<usize>)> {
+    let slack = ON_EDGE * window.size;
+    let (mut t0, mut t1, mut e0, mut e1) = (0.0_f64, 1.0_f64, None, None);
+    for (i, (_, h)) in window.polygon.iter().enumerate() {
+        let (vp, vq) = (h.value(p), h.value(q));
+        if vp > slack && vq > slack {
+            return None;
+        }
+        if vp > slack {
+            let t = vp / (vp - vq);
+            if t > t0 {
+                (t0, e0) = (t, Some(i));
+            }
+        } else if vq > slack {
+            let t = vp / (vp - vq);
+            if t < t1 {
+                (t1, e1) = (t, Some(i));
+            }
+        }
+    }
+    (t0 <= t1).then_some((t0, t1, e0, e1))
+}
+
+/// The window edge a point lies on (within [`ON_EDGE`]), if any.
+fn edge_of(window: &Window, p: P) -> Option<usize> {
+    let slack = ON_EDGE * window.size;
+    window
+        .polygon
+        .iter()
+        .enumerate()
+        .map(|(i, (_, h))| (i, h.value(p).abs()))
+        .filter(|&(_, v)| v <= slack)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, _)| i)
+}
+
+/// The point where curve segment (tp, p)→(tq, q) crosses window edge `e` at parameter t: on a
+/// z = ±1 line refined on the curve itself (bisection in θ), else interpolated; then put on
+/// the edge's line exactly.
+fn crossing_on_edge(
+    fam: &AffineFamily,
+    window: &Window,
+    (tp, p): (f64, P),
+    (tq, q): (f64, P),
+    (t, e): (f64, usize),
+) -> (f64, P) {
+    let h = &window.polygon[e].1;
+    let raw = p.lerp(q, t);
+    if h.line.is_some() {
+        let seg = Seg {
+            p,
+            q,
+            tp,
+            tq,
+            owner: 0,
+            idx: 0,
+        };
+        let (x, th) = refine_cl(fam, &seg, h);
+        // A bisection that strays beyond the chord has found the curve's pole, not the line.
+        if x.finite() && norm(sub(x, raw)) <= norm(sub(q, p)) {
+            return (th, x);
+        }
+    }
+    let r = h.value(raw);
+    let x = raw;
+    (
+        tp + t * (tq - tp),
+        P {
+            x: x.x - r * h.n.x,
+            y: x.y - r * h.n.y,
+        },
+    )
+}
+
+/// Clips one chain to the (convex) window: the pieces inside, each end on the window edge it
+/// crosses (or None inside the window).
+fn clip_chain(fam: &AffineFamily, window: &Window, chain: &[(f64, P)]) -> Vec<Piece> {
+    let mut out = Vec::new();
+    let mut cur: Option<Piece> = None;
+    for w in chain.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let Some((t0, t1, e0, e1)) = clip_segment(window, a.1, b.1) else {
+            out.extend(cur.take());
+            continue;
+        };
+        let mut pc = cur.take().unwrap_or_else(|| {
+            let (start, edge) = match e0 {
+                Some(e) => (crossing_on_edge(fam, window, a, b, (t0, e)), Some(e)),
+                None => (a, edge_of(window, a.1)),
+            };
+            Piece {
+                pts: vec![start],
+                ends: [edge, None],
+            }
+        });
+        match e1 {
+            Some(e) => {
+                pc.pts.push(crossing_on_edge(fam, window, a, b, (t1, e)));
+                pc.ends[1] = Some(e);
+                out.push(pc);
+            }
+            None => {
+                pc.pts.push(b);
+                cur = Some(pc);
+            }
+        }
+    }
+    if let Some(mut pc) = cur {
+        pc.ends[1] = pc.pts.last().and_then(|l| edge_of(window, l.1));
+        out.push(pc);
+    }
+    out.retain(|pc| pc.pts.len() >= 2);
+    out
+}
+
+/// A piece's points (θ, point) and the vertex ids of its two ends.
+type PlacedPiece = (Vec<(f64, P)>, [usize; 2]);
+
+/// A cut of a segment or window edge: parameter along it and vertex id.
+type Cut = (f64, usize);
+
+/// The graph under construction: window corners and edges, the curve pieces as segments, the
+/// cuts of both.
+struct Builder<'a> {
+    window: &'a Window,
+    verts: Vec<P>,
+    /// Each piece's points and its two end vertices.
+    pieces: Vec<PlacedPiece>,
+    segs: Vec<Seg>,
+    /// Cuts per curve segment (θ of the crossing with each).
+    seg_cuts: Vec<Vec<(f64, usize, f64)>>,
+    /// Cuts per window edge.
+    edge_cuts: Vec<Vec<Cut>>,
+}
+
+impl<'a> Builder<'a> {
+    fn new(window: &'a Window) -> Self {
+        let n = window.polygon.len();
+        Builder {
+            window,
+            verts: window.polygon.iter().map(|w| w.0).collect(),
+            pieces: Vec::new(),
+            segs: Vec::new(),
+            seg_cuts: Vec::new(),
+            edge_cuts: vec![Vec::new(); n],
+        }
+    }
+
+    /// The vertex for a point on window edge e: a corner or an earlier cut within
+    /// [`SNAP`] of it, else a new cut.
+    fn edge_vertex(&mut self, e: usize, p: P) -> usize {
+        let n = self.window.polygon.len();
+        let (a, b) = (self.window.polygon[e].0, self.window.polygon[(e + 1) % n].0);
+        let tol = SNAP * self.window.size;
+        if norm(sub(p, a)) <= tol {
+            return e;
+        }
+        if norm(sub(p, b)) <= tol {
+            return (e + 1) % n;
+        }
+        if let Some(&(_, v)) = self.edge_cuts[e]
+            .iter()
+            .find(|&&(_, v)| norm(sub(self.verts[v], p)) <= tol)
+        {
+            return v;
+        }
+        let d = sub(b, a);
+        let t = ((p.x - a.x) * d.x + (p.y - a.y) * d.y) / (d.x * d.x + d.y * d.y);
+        let v = self.verts.len();
+        self.verts.push(p);
+        self.edge_cuts[e].push((t.clamp(0.0, 1.0), v));
+        v
+    }
+
+    /// Adds a piece: its ends become vertices (on the window's edges where they lie there),
+    /// its chords segments.
+    fn add_piece(&mut self, mut pc: Piece) {
+        let mut ends = [0; 2];
+        for (k, end) in ends.iter_mut().enumerate() {
+            let i = if k == 0 { 0 } else { pc.pts.len() - 1 };
+            let p = pc.pts[i].1;
+            *end = match pc.ends[k] {
+                Some(e) => self.edge_vertex(e, p),
+                None => {
+                    self.verts.push(p);
+                    self.verts.len() - 1
+                }
+            };
+            pc.pts[i].1 = self.verts[*end];
+        }
+        let owner = self.pieces.len();
+        for (i, w) in pc.pts.windows(2).enumerate() {
+            self.segs.push(Seg {
                 p: w[0].1,
                 q: w[1].1,
                 tp: w[0].0,
                 tq: w[1].0,
-                owner: ci,
+                owner,
                 idx: i,
-                kind: EdgeKind::Window,
             });
+            self.seg_cuts.push(Vec::new());
         }
+        self.pieces.push((pc.pts, ends));
     }
-    let first_border = segs.len();
-    let nw = window.polygon.len();
-    for i in 0..nw {
-        segs.push(Seg {
-            p: window.polygon[i].0,
-            q: window.polygon[(i + 1) % nw].0,
-            tp: f64::NAN,
-            tq: f64::NAN,
-            owner: BORDER,
-            idx: i,
-            kind: window.polygon[i].1.kind,
-        });
-    }
-    // Vertices: window corners and chain ends.
-    let mut verts: Vec<P> = window.polygon.iter().map(|w| w.0).collect();
-    let chain_ends = chains
-        .iter()
-        .map(|ch| {
-            verts.push(ch[0].1);
-            verts.push(ch[ch.len() - 1].1);
-            (verts.len() - 2, verts.len() - 1)
-        })
-        .collect();
-    let cuts = vec![Vec::new(); segs.len()];
-    Pieces {
-        chains,
-        segs,
-        first_border,
-        verts,
-        cuts,
-        chain_ends,
-    }
-}
 
-/// Chain ends lying on a window edge become cuts of that edge.
-pub(super) fn cut_chain_ends(pc: &mut Pieces, size: f64) {
-    for ci in 0..pc.chains.len() {
-        let ch = &pc.chains[ci];
-        let ends = [
-            (ch[0].1, pc.chain_ends[ci].0),
-            (ch[ch.len() - 1].1, pc.chain_ends[ci].1),
-        ];
-        for (end, vid) in ends {
-            for k in pc.first_border..pc.segs.len() {
-                let s = &pc.segs[k];
-                let d = sub(s.q, s.p);
-                let len2 = d.x * d.x + d.y * d.y;
-                let t = ((end.x - s.p.x) * d.x + (end.y - s.p.y) * d.y) / len2;
-                let dist = cross(d, sub(end, s.p)).abs() / len2.sqrt();
-                if dist <= 1e-12 * size && t > 0.0 && t < 1.0 {
-                    pc.cuts[k].push((t, vid, f64::NAN));
-                }
-            }
-        }
-    }
-}
-
-/// All pairwise crossings by a sweep over bounding boxes sorted along the stiffness axis;
-/// each crossing becomes a vertex refined on the curve and a cut of both segments. At most
-/// [`MAX_CROSSINGS`]; beyond, an error.
-pub(super) fn intersect(fam: &AffineFamily, window: &Window, pc: &mut Pieces) -> Result<()> {
-    let mut crossings = 0_usize;
-    let lo = |s: &Seg| s.p.x.min(s.q.x);
-    let hi = |s: &Seg| s.p.x.max(s.q.x);
-    let mut order: Vec<usize> = (0..pc.segs.len()).collect();
-    order.sort_by(|&i, &j| lo(&pc.segs[i]).total_cmp(&lo(&pc.segs[j])));
-    let mut active: Vec<usize> = Vec::new();
-    for &i in &order {
-        let si = pc.segs[i];
-        active.retain(|&j| hi(&pc.segs[j]) >= lo(&si));
-        for &j in &active {
-            let sj = pc.segs[j];
-            let neighbours =
-                si.owner == sj.owner && (si.owner == BORDER || si.idx.abs_diff(sj.idx) <= 1);
-            let apart =
-                si.p.y.max(si.q.y) < sj.p.y.min(sj.q.y) || sj.p.y.max(sj.q.y) < si.p.y.min(si.q.y);
-            if neighbours || apart {
-                continue;
-            }
-            let Some((t, u)) = seg_intersect(&si, &sj) else {
-                continue;
-            };
-            crossings += 1;
-            if crossings > MAX_CROSSINGS {
-                return Err(Error::Numerical(format!(
-                    "the stable region's boundary curve crosses itself more than \
-                     {MAX_CROSSINGS} times (it retraces itself); the stable intervals at fixed \
-                     damping (`check`, `kmax`) and the grid map remain available"
-                )));
-            }
-            match (si.is_curve(), sj.is_curve()) {
-                (true, true) => {
-                    let (p, ti, tj) = refine_cc(fam, &si, &sj);
-                    let vid = pc.verts.len();
-                    pc.verts.push(p);
-                    pc.cuts[i].push((t, vid, ti));
-                    pc.cuts[j].push((u, vid, tj));
-                }
-                (true, false) => cut_curve_border(fam, window, pc, (i, t), (j, u)),
-                (false, true) => cut_curve_border(fam, window, pc, (j, u), (i, t)),
-                (false, false) => {}
-            }
-        }
-        active.push(i);
-    }
-    Ok(())
-}
-
-/// A crossing of curve segment c (at parameter tc) with window edge b (at tb).
-pub(super) fn cut_curve_border(
-    fam: &AffineFamily,
-    window: &Window,
-    pc: &mut Pieces,
-    (c, tc): (usize, f64),
-    (b, tb): (usize, f64),
-) {
-    let size = window.size;
-    let sc = pc.segs[c];
-    let raw = sc.at(tc);
-    let at_end = pc.chain_ends.iter().any(|&(a, e)| {
-        [a, e].iter().any(|&v| {
-            let q = pc.verts[v];
-            (q.x - raw.x).abs() + (q.y - raw.y).abs() <= 1e-9 * size
-        })
-    });
-    if at_end {
-        return;
-    }
-    let line = window
-        .halfplanes
-        .iter()
-        .find(|h| h.line.is_some() && h.kind == pc.segs[b].kind);
-    let (p, th) = match line {
-        Some(h) => refine_cl(fam, &sc, h),
-        None => (raw, sc.tp + tc * (sc.tq - sc.tp)),
-    };
-    // skip crossings that coincide with a chain end already cut there
-    let dup = pc.cuts[b].iter().any(|&(_, v, _)| {
-        let q = pc.verts[v];
-        (q.x - p.x).abs() + (q.y - p.y).abs() <= 1e-12 * size
-    });
-    if dup {
-        return;
-    }
-    let vid = pc.verts.len();
-    pc.verts.push(p);
-    pc.cuts[c].push((tc, vid, th));
-    pc.cuts[b].push((tb, vid, f64::NAN));
-}
-
-/// The planar graph: chains and window edges split at their cuts.
-pub(super) fn build_graph(pc: &Pieces) -> Graph {
-    let mut g = Graph {
-        verts: pc.verts.clone(),
-        edges: Vec::new(),
-    };
-    let sorted = |si: usize| {
-        let mut cs = pc.cuts[si].clone();
-        cs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        cs
-    };
-    let mut base = 0;
-    for (ci, ch) in pc.chains.iter().enumerate() {
-        let mut start = pc.chain_ends[ci].0;
-        let mut poly: Vec<(f64, P)> = vec![ch[0]];
-        for k in 0..ch.len() - 1 {
-            for (_, v, th) in sorted(base + k) {
-                poly.push((th, g.verts[v]));
-                g.edges
-                    .push((start, v, std::mem::take(&mut poly), EdgeKind::Window));
-                start = v;
-                poly.push((th, g.verts[v]));
-            }
-            poly.push(ch[k + 1]);
-        }
-        let end = pc.chain_ends[ci].1;
-        let n = poly.len();
-        poly[n - 1].1 = g.verts[end];
-        g.edges.push((start, end, poly, EdgeKind::Window));
-        base += ch.len() - 1;
-    }
-    let nw = pc.segs.len() - pc.first_border;
-    for k in 0..nw {
-        let si = pc.first_border + k;
-        let mut start = k;
-        let ends = sorted(si)
-            .into_iter()
-            .map(|(_, v, _)| v)
-            .chain([(k + 1) % nw]);
-        for v in ends {
-            g.edges.push((
-                start,
-                v,
-                vec![(f64::NAN, g.verts[start]), (f64::NAN, g.verts[v])],
-                pc.segs[si].kind,
-            ));
-            start = v;
-        }
-    }
-    g
-}
-
-/// Drops curve edges outside the window and labels the rest as complex-pair arcs.
-pub(super) fn keep_inside(g: &mut Graph, window: &Window) {
-    let slack = 1e-9 * window.size;
-    let inside = |p: P| window.halfplanes.iter().all(|h| h.value(p) <= slack);
-    let is_curve = |e: &GraphEdge| e.3 == EdgeKind::Window && e.2.iter().any(|p| !p.0.is_nan());
-    g.edges.retain(|e| e.0 != e.1 || e.2.len() > 2);
-    g.edges.retain(|e| {
-        if !is_curve(e) {
-            return true;
-        }
-        let mid = if e.2.len() > 2 {
-            e.2[e.2.len() / 2].1
+    /// The first and last segment of each piece with the vertex its end is.
+    fn end_vertex(&self, s: &Seg, at_start: bool) -> Option<usize> {
+        let (pts, ends) = &self.pieces[s.owner];
+        if at_start && s.idx == 0 {
+            Some(ends[0])
+        } else if !at_start && s.idx + 2 == pts.len() {
+            Some(ends[1])
         } else {
-            e.2[0].1.lerp(e.2[1].1, 0.5)
-        };
-        inside(mid)
-    });
-    for e in g.edges.iter_mut() {
-        if is_curve(e) {
+            None
+        }
+    }
+
+    /// True when a crossing of segments i and j at (t, u) is only their shared end vertex.
+    fn shared_end(&self, si: &Seg, sj: &Seg, t: f64, u: f64) -> bool {
+        let near = |x: f64| !(1e-9..=1.0 - 1e-9).contains(&x);
+        if !(near(t) && near(u)) {
+            return false;
+        }
+        let vi = self.end_vertex(si, t < 0.5);
+        let vj = self.end_vertex(sj, u < 0.5);
+        vi.is_some() && vi == vj
+    }
+
+    /// All curve–curve crossings by a sweep over bounding boxes sorted along the stiffness
+    /// axis; each becomes a vertex refined on the curve and a cut of both segments. At most
+    /// [`MAX_CROSSINGS`]; beyond, an error.
+    fn intersect(&mut self, fam: &AffineFamily) -> Result<()> {
+        let mut crossings = 0_usize;
+        let lo = |s: &Seg| s.p.x.min(s.q.x);
+        let hi = |s: &Seg| s.p.x.max(s.q.x);
+        let mut order: Vec<usize> = (0..self.segs.len()).collect();
+        order.sort_by(|&i, &j| lo(&self.segs[i]).total_cmp(&lo(&self.segs[j])));
+        let mut active: Vec<usize> = Vec::new();
+        for &i in &order {
+            let si = self.segs[i];
+            active.retain(|&j| hi(&self.segs[j]) >= lo(&si));
+            for &j in &active {
+                let sj = self.segs[j];
+                let neighbours = si.owner == sj.owner && si.idx.abs_diff(sj.idx) <= 1;
+                let apart = si.p.y.max(si.q.y) < sj.p.y.min(sj.q.y)
+                    || sj.p.y.max(sj.q.y) < si.p.y.min(si.q.y);
+                if neighbours || apart {
+                    continue;
+                }
+                let Some((t, u)) = seg_intersect(&si, &sj) else {
+                    continue;
+                };
+                if self.shared_end(&si, &sj, t, u) {
+                    continue;
+                }
+                crossings += 1;
+                if crossings > MAX_CROSSINGS {
+                    return Err(Error::Numerical(format!(
+                        "the stable region's boundary curve crosses itself more than \
+                         {MAX_CROSSINGS} times (it retraces itself); the stable intervals at \
+                         fixed damping (`check`, `kmax`) and the grid map remain available"
+                    )));
+                }
+                let (p, ti, tj) = refined_crossing(fam, &si, &sj, (t, u));
+                let vid = self.verts.len();
+                self.verts.push(p);
+                self.seg_cuts[i].push((t, vid, ti));
+                self.seg_cuts[j].push((u, vid, tj));
+            }
+            active.push(i);
+        }
+        Ok(())
+    }
+
+    /// The planar graph: pieces split at their crossings, window edges at their cuts.
+    fn graph(self) -> Graph {
+        let mut edges: Vec<GraphEdge> = Vec::new();
+        let mut base = 0;
+        for (pts, ends) in &self.pieces {
+            let mut start = ends[0];
+            let mut poly: Vec<(f64, P)> = vec![pts[0]];
+            for k in 0..pts.len() - 1 {
+                let mut cuts = self.seg_cuts[base + k].clone();
+                cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                for (_, v, th) in cuts {
+                    poly.push((th, self.verts[v]));
+                    edges.push((start, v, std::mem::take(&mut poly), EdgeKind::Window));
+                    start = v;
+                    poly.push((th, self.verts[v]));
+                }
+                poly.push(pts[k + 1]);
+            }
+            edges.push((start, ends[1], poly, EdgeKind::Window));
+            base += pts.len() - 1;
+        }
+        for e in edges.iter_mut() {
             e.3 = EdgeKind::Complex {
                 theta_start: e.2[0].0,
                 theta_end: e.2[e.2.len() - 1].0,
             };
+        }
+        edges.retain(|e| e.0 != e.1 || e.2.len() > 2);
+        let n = self.window.polygon.len();
+        for (k, cuts) in self.edge_cuts.iter().enumerate() {
+            let mut cuts = cuts.clone();
+            cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let kind = self.window.polygon[k].1.kind;
+            let mut start = k;
+            for v in cuts.into_iter().map(|(_, v)| v).chain([(k + 1) % n]) {
+                let line = vec![(f64::NAN, self.verts[start]), (f64::NAN, self.verts[v])];
+                edges.push((start, v, line, kind));
+                start = v;
+            }
+        }
+        Graph {
+            verts: self.verts,
+            edges,
         }
     }
 }

@@ -110,7 +110,6 @@ pub(super) fn coefficient_slabs(fam: &AffineFamily) -> Vec<HalfPlane> {
 /// 5 % margin, clipped to the bounds. None when nothing can be stable.
 pub(super) struct Window {
     pub(super) polygon: Convex,
-    pub(super) halfplanes: Vec<HalfPlane>,
     pub(super) size: f64,
 }
 
@@ -129,17 +128,18 @@ pub(super) fn search_window(bounds: &Bounds, coarse: &[(f64, P)]) -> Option<Wind
     let (x0, x1, y0, y1) = bbox(inside.chain(corners)).unwrap_or(whole);
     let size = (x1 - x0).max(y1 - y0).max(1e-12 * wsize).max(1e-300);
     let margin = 0.05 * size;
-    let boxed = box_polygon(x0 - margin, x1 + margin, y0 - margin, y1 + margin);
+    window_of_box(bounds, (x0 - margin, x1 + margin, y0 - margin, y1 + margin))
+}
+
+/// The window cut from the bounds by a box (None when they do not overlap).
+pub(super) fn window_of_box(bounds: &Bounds, (x0, x1, y0, y1): BoxF) -> Option<Window> {
+    let size = (x1 - x0).max(y1 - y0);
+    let boxed = box_polygon(x0, x1, y0, y1);
     let mut polygon = boxed;
     for h in &bounds.halfplanes {
         polygon = clip(&polygon, h);
     }
-    let halfplanes = active_halfplanes(&polygon, &bounds.halfplanes);
-    (polygon.len() >= 3).then_some(Window {
-        polygon,
-        halfplanes,
-        size: size + 2.0 * margin,
-    })
+    (polygon.len() >= 3).then_some(Window { polygon, size })
 }
 
 pub(super) fn box_halfplanes(x0: f64, x1: f64, y0: f64, y1: f64) -> Vec<HalfPlane> {

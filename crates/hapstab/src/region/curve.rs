@@ -65,7 +65,7 @@ pub(super) fn knot_count(fam: &AffineFamily) -> usize {
 pub(super) fn coarse_curve(
     fam: &AffineFamily,
     bounds: &Bounds,
-    (zoom, level): (Option<BoxF>, i32),
+    (zoom, hint, level): (Option<BoxF>, Option<BoxF>, i32),
     budget: &Budget,
 ) -> Result<Vec<(f64, P)>> {
     let m = knot_count(fam);
@@ -89,7 +89,15 @@ pub(super) fn coarse_curve(
             }
         })
         .collect();
-    let focus = zoom.unwrap_or_else(|| focus_box(bounds, &knots));
+    // The slices' box is the focus when it is far smaller than the knots' own (a region far
+    // smaller than its curve's extent), else the knots inside the bounds decide.
+    let focus = zoom.unwrap_or_else(|| {
+        let knots_box = focus_box(bounds, &knots);
+        match hint {
+            Some(h) if box_size(h) < LIMIT_FRACTION * box_size(knots_box) => h,
+            _ => knots_box,
+        }
+    });
     let size = (focus.1 - focus.0).max(focus.3 - focus.2);
     // Each retry also samples 16 times finer (4 times the points): features of the boundary
     // far below the coarse tolerance (several branches crossing within 1e-4 of the window)
@@ -264,7 +272,7 @@ pub(super) fn split(
     // [−1/4, 5/4] of it; coarse passes also bound the turning per chord (scale-free, so that
     // loops far smaller than the focus are resolved) down to a floor below which it is noise.
     let keep_mid = s.focus.is_none();
-    let limit = if keep_mid { 4.0 * s.tol } else { s.tol };
+    let limit = s.tol;
     let t = if len2 > 0.0 {
         (q.x * ch.x + q.y * ch.y) / len2
     } else {
@@ -273,15 +281,16 @@ pub(super) fn split(
     // A chord and midpoint all within the tolerance of one point is done whatever its
     // direction (a direction made of rounding noise would otherwise split to the depth limit).
     let tiny = norm(q) <= s.tol && norm(sub(pm, p1)) <= s.tol;
-    // The half-chords of a kept midpoint deviate by a quarter of its deviation where the arc
+    // A kept midpoint's half-chords deviate by about a quarter of its deviation where the arc
     // is close to a parabola, which shows in a midpoint projecting near the chord's middle;
-    // elsewhere the chord itself must be within tol.
-    let limit = if (0.45..=0.55).contains(&t) {
-        limit
-    } else {
-        s.tol
-    };
-    let within = tiny || (dev <= limit && (-0.25..=1.25).contains(&t));
+    // the midpoint itself must still be within tol (near a pole of the curve the arc is far
+    // from a parabola, and a quarter would be a promise the halves do not keep).
+    let central = (0.45..=0.55).contains(&t);
+    // A fine pass verifies both halves of a chord whose midpoint is off-centre: one point on
+    // the chord says nothing of a half whose parametrization runs unevenly (the arc from
+    // θ = 0, where the curve starts with zero speed, has its midpoint a quarter along).
+    let unverified = keep_mid && !central && !tiny;
+    let within = !unverified && (tiny || (dev <= limit && (-0.25..=1.25).contains(&t)));
     let turning = s.focus.is_some() && dev > TURN_TOL * len && dev > 1e-7 * s.tol;
     let far = norm(q) + norm(sub(pm, p1)) > 1.5 * len + s.tol;
     // Coarse passes bound the chord length near the focus, so that a chord to a far point

@@ -45,6 +45,7 @@ mod curve;
 mod faces;
 mod geometry;
 mod refine;
+mod stretch;
 mod verify;
 
 use arrangement::*;
@@ -54,6 +55,7 @@ use faces::*;
 use geometry::*;
 pub use refine::alpha_max_within;
 use refine::*;
+use stretch::*;
 use verify::*;
 
 /// What an edge of a region polygon is made of.
@@ -194,13 +196,33 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
         });
     }
     let budget = Budget::new(MAX_CURVE_POINTS);
-    let bounds = Bounds::new(fam)?;
-    let mut focus: Option<BoxF> = None;
-    for i in 0..MAX_ATTEMPTS {
-        let (region, checked) = attempt(fam, &bounds, (focus, i as i32), rel_tol, &budget)?;
-        match verify(fam, &bounds, &region, checked, (i, rel_tol)) {
-            None => return Ok(region),
-            Some(zoom) => focus = Some(zoom),
+    let slices = SliceBox::of(fam);
+    let stretch = stretch(slices);
+    let stretched = stretch.map(|(sx, sy)| fam.stretched(sx, sy));
+    let work = stretched.as_ref().unwrap_or(fam);
+    let bounds = Bounds::new(work)?;
+    let scale = stretch.unwrap_or((1.0, 1.0));
+    // The slices' box, three times its size, is where the first attempts look closely and,
+    // when it is far smaller than the search window, the window the arrangement is built in.
+    let hint: Option<BoxF> = slices.map(|b| b.focus(scale));
+    let mut zoom: Option<BoxF> = None;
+    let mut limit = hint;
+    let mut attempts = 0;
+    for _ in 0..MAX_ATTEMPTS + MAX_GROWTH {
+        let level = (attempts as i32).min(MAX_ATTEMPTS as i32 - 1);
+        match attempt(work, &bounds, (zoom, hint, level), limit, rel_tol, &budget)? {
+            Attempt::Grow(wider) => limit = Some(wider),
+            Attempt::Done(region, checked) => {
+                let v = verify(work, &bounds, &region, checked, (attempts, rel_tol));
+                match v {
+                    None => return Ok(stretch.map_or(region.clone(), |s| unstretched(region, s))),
+                    Some(z) => zoom = Some(z),
+                }
+                attempts += 1;
+                if attempts == MAX_ATTEMPTS {
+                    break;
+                }
+            }
         }
     }
     Err(Error::Numerical(
@@ -215,39 +237,64 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
 /// one disagreed with the grid, so four attempts cover a scale range of about 10¹².
 const MAX_ATTEMPTS: usize = 4;
 
+/// Times a limited window may grow (fourfold each) because a stable face reached its edge:
+/// 4¹² covers the 10⁷ between a slices' box and the widest search window.
+const MAX_GROWTH: usize = 12;
+
+/// A limited window is used when the slices' box is smaller than this fraction of the search
+/// window: the arrangement's tolerances are relative to its window, so a region 10⁶ times
+/// smaller than the curve's extent is built in a window of its own size.
+const LIMIT_FRACTION: f64 = 1e-3;
+
 /// An axis-aligned box (a0, a1, b0, b1).
 type BoxF = (f64, f64, f64, f64);
 
-/// One pass of the method (steps 2–6 of the module doc) with an optional focus box for the
-/// coarse sampling and its refinement level (the attempt's number); returns the region and the search window's box.
+/// What one attempt found: a region to verify, or a stable face that reached the edge of a
+/// limited window (the box to build the next window in).
+enum Attempt {
+    Done(StableRegion, Checked),
+    Grow(BoxF),
+}
+
+/// One pass of the method (steps 2–6 of the module doc) with the coarse sampling's focus (a
+/// zoom from the verification, the slices' hint) and its refinement level (the attempt's
+/// number), and an optional limit box for the window.
 fn attempt(
     fam: &AffineFamily,
     bounds: &Bounds,
-    focus: (Option<BoxF>, i32),
+    focus: (Option<BoxF>, Option<BoxF>, i32),
+    limit: Option<BoxF>,
     rel_tol: f64,
     budget: &Budget,
-) -> Result<(StableRegion, Checked)> {
+) -> Result<Attempt> {
     let coarse = coarse_curve(fam, bounds, focus, budget)?;
-    let Some(window) = search_window(bounds, &coarse) else {
+    let Some(full) = search_window(bounds, &coarse) else {
         let none = Checked {
             wbox: None,
             thorough: true,
         };
-        return Ok((StableRegion::empty(), none));
+        return Ok(Attempt::Done(StableRegion::empty(), none));
     };
-    let wbox = bbox(window.polygon.iter().map(|(p, _)| *p));
-    let graph = arrangement(fam, &window, &coarse)?;
+    let wbox = bbox(full.polygon.iter().map(|(p, _)| *p));
+    let limited = limit
+        .filter(|l| box_size(*l) < LIMIT_FRACTION * full.size)
+        .and_then(|l| window_of_box(bounds, l).map(|w| (l, w)));
+    let window = limited.as_ref().map_or(&full, |(_, w)| w);
+    let graph = arrangement(fam, window, &coarse)?;
     let cycles = faces(&graph);
     let consistent = euler_holds(&graph, cycles.len());
     let faces = stable_faces(fam, &graph, cycles);
+    if let Some((l, _)) = limited
+        && faces.iter().any(|(f, _)| touches_window_cut(&graph, f))
+    {
+        return Ok(Attempt::Grow(grown(l)));
+    }
+    let checked = Checked {
+        wbox,
+        thorough: faces.is_empty() || !consistent,
+    };
     if faces.is_empty() {
-        return Ok((
-            StableRegion::empty(),
-            Checked {
-                wbox,
-                thorough: true,
-            },
-        ));
+        return Ok(Attempt::Done(StableRegion::empty(), checked));
     }
     // The coarse faces are within the coarse tolerance of the true region, so 0.99 keeps the
     // chord tolerance below rel_tol of the true size.
@@ -264,13 +311,24 @@ fn attempt(
         beta_at_alpha_max,
         area,
     };
-    Ok((
-        region,
-        Checked {
-            wbox,
-            thorough: !consistent,
-        },
-    ))
+    Ok(Attempt::Done(region, checked))
+}
+
+/// True when a face has an edge cut by the window's box (not a z = ±1 line nor the curve): the
+/// stable set goes on beyond the window.
+fn touches_window_cut(g: &Graph, f: &[(usize, bool)]) -> bool {
+    f.iter().any(|&(e, _)| g.edges[e].3 == EdgeKind::Window)
+}
+
+/// A box four times as large about the same centre.
+fn grown((x0, x1, y0, y1): BoxF) -> BoxF {
+    let (cx, cy, hx, hy) = (
+        0.5 * (x0 + x1),
+        0.5 * (y0 + y1),
+        2.0 * (x1 - x0),
+        2.0 * (y1 - y0),
+    );
+    (cx - hx, cx + hx, cy - hy, cy + hy)
 }
 
 /// How an attempt's region must be verified: over which box, and whether thoroughly (exact

@@ -99,6 +99,11 @@ pub(super) fn verify(
         .wbox
         .or_else(|| bbox(bounds.polygon.iter().map(|(p, _)| *p)))?;
     let m = grid_side(fam);
+    // Every vertex of a stable region lies in the search window by construction; one outside
+    // means a chord did not follow the curve (it ran off to infinity between samples).
+    if vertex_outside(region, wbox).is_some() {
+        return Some(wbox);
+    }
     let index = EdgeIndex::new(region);
     let mut suspects = grid_suspects(fam, &index, wbox, m);
     if checked.thorough {
@@ -142,6 +147,22 @@ pub(super) fn verify(
     let mx = (2.0 * (x1 - x0) / m as f64 * shrink).max(0.5 * (a1 - a0));
     let my = (2.0 * (y1 - y0) / m as f64 * shrink).max(0.5 * (b1 - b0));
     Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
+}
+
+/// A polygon vertex outside the box (beyond a rounding slack of its size), if any.
+pub(super) fn vertex_outside(region: &StableRegion, (x0, x1, y0, y1): BoxF) -> Option<AlphaBeta> {
+    let slack = 1e-9 * (x1 - x0).max(y1 - y0);
+    region
+        .polygons
+        .iter()
+        .flat_map(|q| q.vertices.iter())
+        .find(|v| {
+            v.alpha < x0 - slack
+                || v.alpha > x1 + slack
+                || v.beta < y0 - slack
+                || v.beta > y1 + slack
+        })
+        .copied()
 }
 
 /// The region's bounding box doubled about its centre (None when empty).

@@ -1,0 +1,121 @@
+//! Before step 1: the stable set's extent along two exact slices, which sets how the wall plane
+//! is stretched (a region 10³ times taller than wide is computed where it is about square) and
+//! where the first coarse sampling looks closely.
+//!
+//! The slices are the exact stable intervals of [`crate::boundary`]: the stiffness axis at
+//! b = 0, the damping axis through the middle of its widest interval, and the stiffness axis
+//! again through the middle of that (or, when no wall without damping is stable, the same
+//! starting from the damping axis at a = 0).
+
+use super::*;
+use crate::boundary::{Interval, WallLine, stable_line_intervals};
+
+/// Aspect ratios within this factor of 1 are left alone: the isotropic sampling resolves them
+/// (the paper's regions are within 30 of square), and their polygons stay bit for bit those
+/// of an unstretched computation.
+pub(super) const MAX_UNSTRETCHED_ASPECT: f64 = 100.0;
+
+/// The extent of the stable set seen on two perpendicular exact slices, in wall units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct SliceBox {
+    /// The box (a0, a1, b0, b1) the two slices' stable intervals span.
+    pub(super) bounds: BoxF,
+}
+
+impl SliceBox {
+    /// The two slices of the module doc; None when neither finds a stable wall with finite
+    /// ends.
+    pub(super) fn of(fam: &AffineFamily) -> Option<Self> {
+        let along_a = |b: f64| span(&crate::boundary::stable_alpha_intervals(fam, b));
+        let along_b = |a: f64| {
+            let line = WallLine {
+                from: AlphaBeta {
+                    alpha: a,
+                    beta: 0.0,
+                },
+                dir: AlphaBeta {
+                    alpha: 0.0,
+                    beta: 1.0,
+                },
+            };
+            span(&stable_line_intervals(fam, &line))
+        };
+        // Three slices: one axis through the wall-free point, the other through the middle of
+        // what it found, the first again through the middle of that (a region that is a
+        // sliver on the stiffness axis, as an undamped plant's, is wide halfway up).
+        let (ax, bx) = match along_a(0.0) {
+            Some((a0, a1, mid)) => {
+                let (b0, b1, bmid) = along_b(mid)?;
+                let (c0, c1, _) = along_a(bmid).unwrap_or((a0, a1, mid));
+                ((a0.min(c0), a1.max(c1)), (b0, b1))
+            }
+            None => {
+                let (b0, b1, mid) = along_b(0.0)?;
+                let (a0, a1, amid) = along_a(mid)?;
+                let (c0, c1, _) = along_b(amid).unwrap_or((b0, b1, mid));
+                ((a0, a1), (b0.min(c0), b1.max(c1)))
+            }
+        };
+        let bounds = (ax.0, ax.1, bx.0, bx.1);
+        (bounds.1 > bounds.0 && bounds.3 > bounds.2).then_some(Self { bounds })
+    }
+
+    /// The box in the plane stretched by (sx, sy), widened to three times its size about its
+    /// centre: the focus of the first coarse sampling.
+    pub(super) fn focus(&self, (sx, sy): (f64, f64)) -> BoxF {
+        let (a0, a1, b0, b1) = self.bounds;
+        let (x0, x1, y0, y1) = (a0 / sx, a1 / sx, b0 / sy, b1 / sy);
+        let (hx, hy) = (x1 - x0, y1 - y0);
+        (x0 - hx, x1 + hx, y0 - hy, y1 + hy)
+    }
+
+    /// Height over width.
+    pub(super) fn aspect(&self) -> f64 {
+        let (a0, a1, b0, b1) = self.bounds;
+        (b1 - b0) / (a1 - a0)
+    }
+}
+
+/// The span (lowest finite end, highest finite end, middle of the widest interval) of a set
+/// of stable intervals, ignoring infinite ends; None when no interval has a finite width.
+fn span(ivs: &[Interval]) -> Option<(f64, f64, f64)> {
+    let finite: Vec<&Interval> = ivs
+        .iter()
+        .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite() && iv.hi > iv.lo)
+        .collect();
+    let widest = finite
+        .iter()
+        .max_by(|x, y| (x.hi - x.lo).total_cmp(&(y.hi - y.lo)))?;
+    let lo = finite.iter().map(|iv| iv.lo).fold(f64::INFINITY, f64::min);
+    let hi = finite
+        .iter()
+        .map(|iv| iv.hi)
+        .fold(f64::NEG_INFINITY, f64::max);
+    Some((lo, hi, 0.5 * (widest.lo + widest.hi)))
+}
+
+/// The stretch (sx, sy) of the wall plane, a = sx·x, b = sy·y, that makes the slices' box
+/// square, when its aspect is beyond [`MAX_UNSTRETCHED_ASPECT`] either way.
+pub(super) fn stretch(slices: Option<SliceBox>) -> Option<(f64, f64)> {
+    let s = slices?;
+    let r = s.aspect();
+    (r.is_finite()
+        && r > 0.0
+        && !(1.0 / MAX_UNSTRETCHED_ASPECT..=MAX_UNSTRETCHED_ASPECT).contains(&r))
+    .then_some((1.0, r))
+}
+
+/// A region computed in the stretched plane, mapped back to wall units: every vertex, the
+/// largest stiffness and its damping, and the area.
+pub(super) fn unstretched(mut r: StableRegion, (sx, sy): (f64, f64)) -> StableRegion {
+    for poly in &mut r.polygons {
+        for v in &mut poly.vertices {
+            v.alpha *= sx;
+            v.beta *= sy;
+        }
+    }
+    r.alpha_max *= sx;
+    r.beta_at_alpha_max *= sy;
+    r.area *= sx * sy;
+    r
+}
