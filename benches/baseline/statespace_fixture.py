@@ -372,7 +372,7 @@ def main():
     jobs = [(args.seed, i) for i in range(len(audit_loops()) + args.loops)]
     if args.jobs > 1:
         with multiprocessing.Pool(args.jobs) as pool:
-            loops = pool.map(one_loop, jobs, chunksize=1)
+            loops = list(pool.imap(one_loop, jobs, chunksize=1))
     else:
         loops = [one_loop(j) for j in jobs]
     fixture = {
