@@ -264,10 +264,14 @@ def damping_guess(case):
 
 
 def clearly_stable_somewhere(ref, b):
-    """True when a coarse K grid (a quarter of the scan's density) has a wall with a double
-    radius below 1 - 1e-9 at damping b: the cheap test of the damping search."""
-    ks = scan_grid(ref.k_ref)[::4]
-    return any(ref.radius_double(k, b) < 1.0 - 1e-9 for k in ks)
+    """True when a coarse K grid (a quarter of the scan's density) has a wall whose double
+    radius is below 1 - 1e-9 by ten times its error (the spread of the referee): the cheap
+    test of the damping search, which must not take rounding noise for a stable wall."""
+    for k in scan_grid(ref.k_ref)[::4]:
+        rho = ref.radius_double(k, b)
+        if rho < 1.0 - 1e-9 and rho + 10.0 * ref.spread(k, b) < 1.0 - 1e-9:
+            return True
+    return False
 
 
 def dampings(rng, ref, case):

@@ -578,7 +578,9 @@ class Referee:
         40-digit one)."""
         rho = self.radius_double(k, b) if rho is None else rho
         if abs(rho - 1.0) < SPREAD_RADIUS and abs(rho - 1.0) < SIGN_MARGIN * self.error(k, b):
-            return self.radius_precise(k, b)[0] < 1
+            # the nearest double decides, as for the fixture's walls: a root exactly on the
+            # circle (rho = 1 - 1e-38 at 40 digits) is not stable
+            return float(self.radius_precise(k, b)[0]) < 1.0
         return rho < 1.0
 
 
