@@ -6,6 +6,8 @@
 # is written only when that passes. Installs numpy, scipy, mpmath and gmpy2 (mpmath's fast
 # backend) into a venv under target/ (never committed). About 35 minutes on two cores.
 # Usage: bash benches/baseline/statespace_fixture.sh [--seed S] [--loops N] [--jobs J]
+# STATESPACE_FIXTURE=PATH writes elsewhere (a larger run for HAPSTAB_REFEREE_FIXTURE=PATH cargo
+# test -p hapstab --test statespace_referee).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 venv=target/referee-venv
@@ -13,7 +15,7 @@ if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
   "$venv/bin/pip" install --quiet numpy scipy mpmath gmpy2
 fi
-fixture=crates/hapstab/tests/fixtures/statespace_loops.json
+fixture=${STATESPACE_FIXTURE:-crates/hapstab/tests/fixtures/statespace_loops.json}
 "$venv/bin/python" benches/baseline/statespace_validate.py
 "$venv/bin/python" benches/baseline/statespace_fixture.py --jobs 2 "$@" --out "$fixture"
 # the radii the fixture took from the double path, spot-checked at 40 digits
