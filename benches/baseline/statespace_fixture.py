@@ -384,6 +384,7 @@ def main():
         "seed": args.seed,
         "digits": ref_mod.DIGITS,
         "near_offset": NEAR_OFFSET,
+        "scan_decades": list(ref_mod.SCAN_DECADES),
         "versions": {"numpy": np.__version__, "scipy": scipy.__version__, "mpmath": mp.__version__},
         "loops": loops,
     }
