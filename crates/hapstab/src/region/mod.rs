@@ -216,7 +216,12 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
                 let v = verify(work, &bounds, &region, checked, (attempts, rel_tol));
                 match v {
                     None => return Ok(stretch.map_or(region.clone(), |s| unstretched(region, s))),
-                    Some(z) => zoom = Some(z),
+                    Some(z) => {
+                        zoom = Some(z);
+                        // A zoom far smaller than the search window is also where the next
+                        // arrangement is built (three times its size).
+                        limit = Some(tripled(z));
+                    }
                 }
                 attempts += 1;
                 if attempts == MAX_ATTEMPTS {
@@ -318,6 +323,12 @@ fn attempt(
 /// stable set goes on beyond the window.
 fn touches_window_cut(g: &Graph, f: &[(usize, bool)]) -> bool {
     f.iter().any(|&(e, _)| g.edges[e].3 == EdgeKind::Window)
+}
+
+/// A box three times as large about the same centre.
+fn tripled((x0, x1, y0, y1): BoxF) -> BoxF {
+    let (hx, hy) = (x1 - x0, y1 - y0);
+    (x0 - hx, x1 + hx, y0 - hy, y1 + hy)
 }
 
 /// A box four times as large about the same centre.

@@ -118,6 +118,7 @@ pub(super) fn verify(
             (P { x, y: 0.0 }, false)
         });
         suspects.extend(mids);
+        suspects.extend(ray_suspects(fam, wbox));
     }
     // A region far smaller than the window may fall between the window's grid points and
     // slices: check around it too (its own box, doubled).
@@ -147,6 +148,64 @@ pub(super) fn verify(
     let mx = (2.0 * (x1 - x0) / m as f64 * shrink).max(0.5 * (a1 - a0));
     let my = (2.0 * (y1 - y0) / m as f64 * shrink).max(0.5 * (b1 - b0));
     Some((a0 - mx, a1 + mx, b0 - my, b1 + my))
+}
+
+/// Decades of the geometric slices an empty answer is checked on: stiffness axes at
+/// b = ±10^{−k} and damping axes at a = ±10^{−k} of the window's size, k = 0..EMPTY_DECADES.
+/// An undamped plant's region is a sliver at the wall-free point, far smaller than any grid
+/// of the window and often thinner than a ray's angle, that one of these slices crosses.
+const EMPTY_DECADES: i32 = 13;
+
+/// The midpoints of the stable intervals on the geometric slices (each a disagreement with an
+/// empty answer), clipped to the box.
+fn ray_suspects(fam: &AffineFamily, (x0, x1, y0, y1): BoxF) -> Vec<(P, bool)> {
+    let size = (x1 - x0).max(y1 - y0);
+    let table = crate::boundary::CircleTable::new(fam);
+    let mut out = Vec::new();
+    for k in 0..EMPTY_DECADES {
+        for sign in [1.0, -1.0] {
+            let v = sign * size * 10f64.powi(-k) * (1.0 + GRID_JITTER);
+            let lines = [
+                (crate::boundary::WallLine::stiffness_axis(v), false),
+                (
+                    crate::boundary::WallLine {
+                        from: AlphaBeta {
+                            alpha: v,
+                            beta: 0.0,
+                        },
+                        dir: AlphaBeta {
+                            alpha: 0.0,
+                            beta: 1.0,
+                        },
+                    },
+                    true,
+                ),
+            ];
+            for (line, vertical) in lines {
+                let cr = crate::boundary::line_crossings_tabulated(fam, &table, &line);
+                for iv in crate::boundary::stable_between(fam, &line, &cr) {
+                    if !(iv.hi > iv.lo) {
+                        continue;
+                    }
+                    let t = match (iv.lo.is_finite(), iv.hi.is_finite()) {
+                        (true, true) => 0.5 * (iv.lo + iv.hi),
+                        (true, false) => iv.lo + size,
+                        (false, true) => iv.hi - size,
+                        (false, false) => 0.0,
+                    };
+                    let p = if vertical {
+                        P { x: v, y: t }
+                    } else {
+                        P { x: t, y: v }
+                    };
+                    if p.finite() && p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1 {
+                        out.push((p, false));
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 /// A polygon vertex outside the box (beyond a rounding slack of its size), if any.
