@@ -184,7 +184,7 @@ fn ray_suspects(fam: &AffineFamily, (x0, x1, y0, y1): BoxF) -> Vec<(P, bool)> {
             for (line, vertical) in lines {
                 let cr = crate::boundary::line_crossings_tabulated(fam, &table, &line);
                 for iv in crate::boundary::stable_between(fam, &line, &cr) {
-                    if !(iv.hi > iv.lo) {
+                    if iv.hi <= iv.lo || iv.hi.is_nan() || iv.lo.is_nan() {
                         continue;
                     }
                     let t = match (iv.lo.is_finite(), iv.hi.is_finite()) {
