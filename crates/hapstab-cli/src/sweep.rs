@@ -104,7 +104,8 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     }
     let bar = crate::progress::Bar::new(range.n, "points", !a.json);
     let t = std::time::Instant::now();
-    let points = sweep_param(&rl.lp, &range, at, &bar.stage(0))?;
+    let points = sweep_param(&rl.lp, &range, at, &bar.stage(0))
+        .with_context(|| format!("--param {}", a.param))?;
     let seconds = t.elapsed().as_secs_f64();
     bar.finish();
     if let Some(path) = &a.csv {
