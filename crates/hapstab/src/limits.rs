@@ -28,8 +28,9 @@ pub const SWEEP_SECONDS_PER_DEGREE: f64 = 10e-6;
 /// Core-seconds of one Schur–Cohn point test: a fixed 100 ns (measured with `map`, 10⁶ points
 /// at d = 0) ...
 pub const POINT_TEST_SECONDS: f64 = 100e-9;
-/// ... plus 1 ns per n² for degree n = d + 3 (the test is O(n²); 400 ns per point at d = 20).
-pub const POINT_TEST_SECONDS_PER_N2: f64 = 1e-9;
+/// ... plus 0.4 ns per n² for degree n = d + 3 at a stable point (the test is O(n²);
+/// measured with `map` at d = 1000, 0.36 ms per stable point).
+pub const POINT_TEST_SECONDS_PER_N2: f64 = 0.4e-9;
 /// Core-seconds of the roots of a polynomial ([`roots_cost`]): a fixed 20 µs ...
 pub const ROOTS_SECONDS: f64 = 20e-6;
 /// ... plus 40 ns per n² (Aberth–Ehrlich: O(n²) per sweep; measured with `check`, 0.19
@@ -64,6 +65,18 @@ pub const SWEEP_REGION_FACTOR: f64 = 0.5;
 pub const PASSIVITY_SECONDS: f64 = 1e-3;
 /// Core-seconds of a passive region per n² (measured with `passivity`: 0.16 s at d = 2000).
 pub const PASSIVITY_SECONDS_PER_N2: f64 = 4e-8;
+/// Core-seconds per n² of one spectral radius of a map: 20 ns, between the two ways of
+/// computing it, so that either is within a factor of two: the bisection on the Schur–Cohn
+/// test of p(rz) (measured with `map --radius`, 10 ns per n² at d = 1000) and the polished
+/// roots of [`roots_cost`] (40 ns per n²).
+pub const MAP_RADIUS_SECONDS_PER_N2: f64 = 20e-9;
+/// Share of a full Schur–Cohn test that an unstable point costs (measured with `map`: 15 µs
+/// per point at d = 1000 where nearly every point is unstable, against 0.4 ms for a full
+/// test).
+pub const UNSTABLE_TEST_FRACTION: f64 = 0.04;
+/// Steps of the delay margin's scan that the estimate counts (each an O(n·core) robustness
+/// bound and an O(n²) test); the scan itself stops at [`DELAY_SCAN_SECONDS`].
+pub const DELAY_SCAN_STEPS: f64 = 10.0;
 /// Extra interval sweeps of a golden-section or bisection refinement (about 50 steps to full
 /// double precision, twice: one per end of an interval).
 pub const REFINEMENT_SWEEPS: f64 = 100.0;
@@ -75,9 +88,11 @@ pub const SLICE_BYTES: f64 = 96.0;
 /// Bytes per sampled curve point of the region construction (the engine documents 4·10⁶
 /// points as about 100 MB).
 pub const REGION_BYTES_PER_POINT: f64 = 25.0;
-/// Core-seconds of one simulated sample per state of the loop (d + 3 states: a matrix-vector
-/// step plus the nonlinear effects).
-pub const SIMULATION_SECONDS_PER_STATE: f64 = 20e-9;
+/// Core-seconds of one simulated sample: the delay is a ring buffer and the velocity filter
+/// a short recursion, so a step costs about the same whatever the loop (measured with
+/// `simulate`: 0.35–0.42 s for 10⁷ samples of the paper's loop at d = 0 and d = 2000 and
+/// with `average:100`).
+pub const SIMULATION_SECONDS_PER_SAMPLE: f64 = 40e-9;
 /// Bytes per recorded row of a simulated trace (time, position, velocity, forces).
 pub const TRACE_ROW_BYTES: f64 = 64.0;
 
@@ -330,22 +345,25 @@ pub fn validity_points_cost(levels: usize, d: usize) -> Cost {
 }
 
 /// Cost of a stability map ([`crate::map::compute_map`]) of `points` grid points of the
-/// paper's loop at delay d: [`map_cost_of_degree`] at n = d + 3.
+/// paper's loop at delay d: [`map_cost_of_degree`] at n = d + 3 with every point stable
+/// (the most a map can cost).
 pub fn map_cost(points: f64, d: usize, radius: bool) -> Cost {
-    map_cost_of_degree(points, d + 3, radius)
+    map_cost_of_degree(points, d + 3, radius, 1.0)
 }
 
-/// Cost of a stability map of `points` grid points whose p(z) has degree n: one Schur–Cohn
-/// test per point (O(n²)), or with `radius` one spectral radius per point, estimated as the
-/// polished roots of [`roots_cost`] (Aberth–Ehrlich, O(n²) per sweep; the bisection on the
-/// Schur–Cohn test of p(rz) costs about as much); one byte per point for the verdicts and
+/// Cost of a stability map of `points` grid points whose p(z) has degree n, of which the
+/// fraction `stable` is stable: one Schur–Cohn test per point, O(n²) at a stable point, and
+/// about [`UNSTABLE_TEST_FRACTION`] of that at an unstable one (the recursion stops at the
+/// first reflection coefficient of modulus 1 or more); or with `radius` one spectral radius
+/// per point, [`MAP_RADIUS_SECONDS_PER_N2`]·n². One byte per point for the verdicts and
 /// eight more for the radii.
-pub fn map_cost_of_degree(points: f64, n: usize, radius: bool) -> Cost {
+pub fn map_cost_of_degree(points: f64, n: usize, radius: bool, stable: f64) -> Cost {
     let nf = n as f64;
     let per_point = if radius {
-        roots_cost(n).seconds
+        ROOTS_SECONDS + MAP_RADIUS_SECONDS_PER_N2 * nf * nf
     } else {
-        POINT_TEST_SECONDS + POINT_TEST_SECONDS_PER_N2 * nf * nf
+        let share = stable + (1.0 - stable) * UNSTABLE_TEST_FRACTION;
+        POINT_TEST_SECONDS + POINT_TEST_SECONDS_PER_N2 * nf * nf * share
     };
     Cost {
         seconds: points * per_point,
@@ -378,14 +396,18 @@ pub fn interval_cost(n: usize) -> Cost {
 /// margin and the two gain margins scan [`MARGIN_GRID_PER_DEGREE`]·(n + 1) frequencies, each
 /// an O(core) evaluation; the small-gain test of the delay margin scans
 /// [`MARGIN_GAIN_FRACTIONS`] fractions of a sample on a grid of the core's degree; the delay
-/// scan ends at its own work bound, [`DELAY_SCAN_SECONDS`], and its bisection tests about
+/// scan takes about [`DELAY_SCAN_STEPS`] steps and ends at its own work bound,
+/// [`DELAY_SCAN_SECONDS`], and its bisection tests about
 /// [`DELAY_BISECTION_TESTS`] delays with the O(n²) point test.
 pub fn margins_cost(n: usize, core: usize) -> Cost {
     let (nf, cf) = (n as f64 + 1.0, core as f64 + 1.0);
-    let evals = MARGIN_GRID_PER_DEGREE * (MARGIN_SCANS * nf * cf + MARGIN_GAIN_FRACTIONS * cf * cf);
-    let bisection = DELAY_BISECTION_TESTS * (POINT_TEST_SECONDS_PER_N2 * nf * nf + 2.0 * roots_cost(core).seconds);
+    let grid = MARGIN_GRID_PER_DEGREE * nf * cf * CIRCLE_EVAL_SECONDS;
+    let gain = MARGIN_GRID_PER_DEGREE * MARGIN_GAIN_FRACTIONS * cf * cf * CIRCLE_EVAL_SECONDS;
+    let test = POINT_TEST_SECONDS_PER_N2 * nf * nf;
+    let scan = (DELAY_SCAN_STEPS * (grid + test)).min(DELAY_SCAN_SECONDS);
+    let bisection = DELAY_BISECTION_TESTS * test;
     Cost {
-        seconds: evals * CIRCLE_EVAL_SECONDS + DELAY_SCAN_SECONDS + bisection,
+        seconds: MARGIN_SCANS * grid + gain + scan + bisection,
         memory: 64.0 * MARGIN_GRID_PER_DEGREE * nf,
     }
 }
@@ -450,11 +472,13 @@ pub fn point_cost(d: usize) -> Cost {
     roots_cost(d + 3)
 }
 
-/// Cost of a simulation of `samples` samples at delay d recording `rows` trace rows.
+/// Cost of a simulation of `samples` samples at delay d recording `rows` trace rows: a
+/// fixed time per sample ([`SIMULATION_SECONDS_PER_SAMPLE`]); the memory of the trace and
+/// of the d + 3 states.
 pub fn simulation_cost(samples: f64, d: usize, rows: f64) -> Cost {
     let states = d as f64 + 3.0;
     Cost {
-        seconds: samples * states * SIMULATION_SECONDS_PER_STATE,
+        seconds: samples * SIMULATION_SECONDS_PER_SAMPLE,
         memory: rows * TRACE_ROW_BYTES + states * 64.0,
     }
 }
