@@ -171,11 +171,11 @@ fn check_budget(
     (alpha, beta): (f64, f64),
 ) -> Result<()> {
     let n = fam.degree();
-    let core = fam.p0_core.len().max(fam.pk.len()).max(fam.pb.len()) - 1;
+    let core = hapstab::limits::core_degree(fam);
     let stable = hapstab::stability::schur_stable(&fam.coefficients(alpha, beta));
     let mut cost = hapstab::limits::check_cost(n, core, stable);
     if a.plot.is_some() {
-        cost = cost.then(hapstab::limits::region_cost_of_degree(n));
+        cost = cost.then(hapstab::limits::region_cost_of_degree(n, core));
     }
     let what = if stable {
         "the verdict and the margins"

@@ -28,7 +28,7 @@ use crate::output::{eng, print_json, sig};
 use crate::plot::{Figure, Grid, Legend, Marker, Saved, Series, palette};
 
 /// Longest run and horizon accepted (samples): 10⁹ samples take 10–60 s per core.
-const MAX_SAMPLES: f64 = 1e9;
+const MAX_SAMPLES: f64 = hapstab::limits::MAX_SIMULATION_SAMPLES;
 /// Default run length: 10 s at the physical period, 10 000 samples in normalized mode.
 const DEFAULT_SAMPLES: usize = 10_000;
 /// Default initial penetration x(0) in m.
@@ -1274,7 +1274,7 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     let (model, pm) = boundary_template(a, &rl)?;
     let (template, settings) = a.run.config(model.clone(), units.physical)?;
     let n = fam.degree();
-    let region_cost = hapstab::limits::region_cost_of_degree(n);
+    let region_cost = hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(&fam));
     crate::budget::check_loop(&a.lp, &rl.lp, region_cost, "the exact region")?;
     let region = hapstab::loop_analysis::region(&rl.lp, &fam)?;
     let betas = beta_values(a, &region)?;

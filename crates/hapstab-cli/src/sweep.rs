@@ -106,9 +106,10 @@ fn check_budget(a: &SweepArgs, base: &hapstab::model::Loop, range: &SweepRange, 
             continue;
         };
         let n = crate::budget::loop_degree(&lp);
+        let core = n.saturating_sub(lp.delay.samples);
         let one = match at {
-            KmaxAt::Damping { .. } => interval_cost(n).then(passivity_cost(n)),
-            _ => sweep_point_cost(n),
+            KmaxAt::Damping { .. } => interval_cost(n).then(passivity_cost(n, core)),
+            _ => sweep_point_cost(n, core),
         };
         cost = Cost {
             seconds: cost.seconds + one.seconds,

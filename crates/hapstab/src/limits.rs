@@ -55,16 +55,26 @@ pub const DELAY_BISECTION_TESTS: f64 = 45.0;
 /// Core-seconds of an exact region's fixed part: its seed slices and checks (measured with
 /// `boundary` at d = 0, 10).
 pub const REGION_SECONDS: f64 = 1e-3;
-/// Core-seconds of an exact region per n² (measured with `boundary`: 0.43 s at d = 1000,
-/// 2.0 s at d = 2000).
-pub const REGION_SECONDS_PER_N2: f64 = 5e-7;
+/// Core-seconds of an exact region per n²·(core + [`REGION_CORE_OFFSET`]) (measured with
+/// `boundary`: 0.43 s at d = 1000 and 2.0 s at d = 2000 with parts of degree 3; 0.48 s with
+/// `--velocity average:200`, 1.5 s with `average:100` at d = 500).
+pub const REGION_SECONDS_PER_N2_CORE: f64 = 55e-9;
+/// What the per-point work of a region adds to the degree of the loop's parts (the fixed
+/// work of each curve point and slice besides the evaluation).
+pub const REGION_CORE_OFFSET: f64 = 6.0;
 /// A sweep's region at its coarser chord tolerance ([`crate::sweep::SWEEP_REL_TOL`]) takes
 /// about this fraction of a drawn region's time.
 pub const SWEEP_REGION_FACTOR: f64 = 0.5;
+/// Exact regions' worth of work of one loop's Z-width ([`crate::zwidth`]): its stable region
+/// and K_max table trace about two regions (measured with `zwidth`: 0.85 s at d = 760 against
+/// 0.38 s for `boundary`).
+pub const ZWIDTH_REGIONS: f64 = 2.0;
 /// Core-seconds of a passive region's fixed part (measured with `passivity`).
 pub const PASSIVITY_SECONDS: f64 = 1e-3;
 /// Core-seconds of a passive region per n² (measured with `passivity`: 0.16 s at d = 2000).
 pub const PASSIVITY_SECONDS_PER_N2: f64 = 4e-8;
+/// ... plus this per n·core (measured with `passivity --velocity average:200`: 0.11 s).
+pub const PASSIVITY_SECONDS_PER_N_CORE: f64 = 2.5e-6;
 /// Core-seconds per n² of one spectral radius of a map: 20 ns, between the two ways of
 /// computing it, so that either is within a factor of two: the bisection on the Schur–Cohn
 /// test of p(rz) (measured with `map --radius`, 10 ns per n² at d = 1000) and the polished
@@ -93,6 +103,9 @@ pub const REGION_BYTES_PER_POINT: f64 = 25.0;
 /// `simulate`: 0.35–0.42 s for 10⁷ samples of the paper's loop at d = 0 and d = 2000 and
 /// with `average:100`).
 pub const SIMULATION_SECONDS_PER_SAMPLE: f64 = 40e-9;
+/// Largest run length of a simulation in samples, in every front end: 10⁹ samples (about 40
+/// core-seconds of stepping, 11.6 days of a 1 kHz loop).
+pub const MAX_SIMULATION_SAMPLES: f64 = 1e9;
 /// Bytes per recorded row of a simulated trace (time, position, velocity, forces).
 pub const TRACE_ROW_BYTES: f64 = 64.0;
 
@@ -371,6 +384,12 @@ pub fn map_cost_of_degree(points: f64, n: usize, radius: bool, stable: f64) -> C
     }
 }
 
+/// The degree of a loop's parts without the plant's pure delay z^k (the largest of P0's
+/// core, PK and PB): what one evaluation of p on the unit circle costs.
+pub fn core_degree(fam: &crate::closed_loop::AffineFamily) -> usize {
+    fam.p0_core.len().max(fam.pk.len()).max(fam.pb.len()).saturating_sub(1)
+}
+
 /// Cost of the roots of a polynomial of degree n by Aberth–Ehrlich
 /// ([`crate::stability::roots`], what `check` reports): [`ROOTS_SECONDS`] +
 /// [`ROOTS_SECONDS_PER_N2`]·n² (O(n²) per sweep, a number of sweeps that hardly grows with n).
@@ -427,41 +446,50 @@ pub fn check_cost(n: usize, core: usize, stable: bool) -> Cost {
     }
 }
 
-/// Cost of the passive region of one loop ([`crate::passivity`]) for p(z) of degree n: a
-/// frequency scan and refinement that grow as n².
-pub fn passivity_cost(n: usize) -> Cost {
+/// Cost of the passive region of one loop ([`crate::passivity`]) for p(z) of degree n with
+/// parts of degree `core`: a frequency scan and refinement that grow as n², and as n·core
+/// with the evaluation of the parts.
+pub fn passivity_cost(n: usize, core: usize) -> Cost {
     let nf = n as f64;
+    let evals = PASSIVITY_SECONDS_PER_N_CORE * nf * core as f64;
     Cost {
-        seconds: PASSIVITY_SECONDS + PASSIVITY_SECONDS_PER_N2 * nf * nf,
+        seconds: PASSIVITY_SECONDS + PASSIVITY_SECONDS_PER_N2 * nf * nf + evals,
         memory: 64.0 * MARGIN_GRID_PER_DEGREE * (nf + 1.0),
     }
 }
 
-/// Cost of one point of a K_max sweep ([`crate::sweep::sweep_param`]) for p(z) of degree n:
+/// Cost of one point of a K_max sweep ([`crate::sweep::sweep_param`]) for p(z) of degree n
+/// (parts of degree `core`):
 /// a stable region at the sweep's coarser tolerance and the passive K_max.
-pub fn sweep_point_cost(n: usize) -> Cost {
-    let r = region_cost_of_degree(n);
+pub fn sweep_point_cost(n: usize, core: usize) -> Cost {
+    let r = region_cost_of_degree(n, core);
     Cost {
         seconds: r.seconds * SWEEP_REGION_FACTOR,
         memory: r.memory,
     }
-    .then(passivity_cost(n))
+    .then(passivity_cost(n, core))
 }
 
 /// Cost of one exact stable region ([`crate::region::stable_region`]) of the paper's loop at
-/// delay d: [`region_cost_of_degree`] at n = d + 3.
+/// delay d: [`region_cost_of_degree`] at n = d + 3 with parts of degree 3.
 pub fn region_cost(d: usize) -> Cost {
-    region_cost_of_degree(d + 3)
+    region_cost_of_degree(d + 3, 3)
 }
 
-/// Cost of one exact stable region of a loop whose p(z) has degree n: the complex-root
-/// curve is sampled at O(n) points, each an O(n) evaluation, so the time is
-/// [`REGION_SECONDS`] + [`REGION_SECONDS_PER_N2`]·n²; the memory is the engine's own bound,
-/// [`crate::region::MAX_CURVE_POINTS`] points, past which it ends with an error.
-pub fn region_cost_of_degree(n: usize) -> Cost {
+/// Cost of one exact stable region of a loop whose p(z) has degree n and whose parts without
+/// the plant's pure delay have degree `core` (see [`AffineFamily::degree`] and its `p0_core`):
+/// the complex-root curve is sampled at O(n) points per slice over O(n) slices, each
+/// evaluation O(core), so the time is [`REGION_SECONDS`] +
+/// [`REGION_SECONDS_PER_N2_CORE`]·n²·(core + [`REGION_CORE_OFFSET`]); the memory is the
+/// engine's own bound, [`crate::region::MAX_CURVE_POINTS`] points, past which it ends with
+/// an error.
+///
+/// [`AffineFamily::degree`]: crate::closed_loop::AffineFamily::degree
+pub fn region_cost_of_degree(n: usize, core: usize) -> Cost {
     let n = n as f64;
+    let core = core as f64 + REGION_CORE_OFFSET;
     Cost {
-        seconds: REGION_SECONDS + REGION_SECONDS_PER_N2 * n * n,
+        seconds: REGION_SECONDS + REGION_SECONDS_PER_N2_CORE * n * n * core,
         memory: crate::region::MAX_CURVE_POINTS as f64 * REGION_BYTES_PER_POINT,
     }
 }

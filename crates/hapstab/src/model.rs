@@ -649,10 +649,10 @@ pub fn check_wall_range(
         if ratio <= MAX_WALL_TERM {
             continue;
         }
-        let (name, unit) = if normalized {
-            (normalized_name, "")
+        let (name, unit, value) = if normalized {
+            (normalized_name, "", t)
         } else {
-            (name, unit)
+            (name, unit, value)
         };
         return Err(Error::Invalid {
             name,
