@@ -541,7 +541,10 @@ fn check_run_budget(
         seconds: horizon.seconds * runs,
         memory: horizon.memory,
     };
-    if hapstab::limits::Budget::COMMAND_LINE.check(horizon).is_err() {
+    if hapstab::limits::Budget::COMMAND_LINE
+        .check(horizon)
+        .is_err()
+    {
         crate::budget::check(
             horizon,
             &format!("{what} up to the horizon"),

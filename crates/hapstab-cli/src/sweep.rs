@@ -97,7 +97,12 @@ fn k_max_at(a: &SweepArgs) -> Result<KmaxAt> {
 /// Refuses a sweep beyond the command-line budget: every point is a stable region (or one
 /// interval at a given damping) and a passive K_max of the loop at that value, whose cost
 /// grows as the square of its p(z)'s degree; blames --param.
-fn check_budget(a: &SweepArgs, base: &hapstab::model::Loop, range: &SweepRange, at: KmaxAt) -> Result<()> {
+fn check_budget(
+    a: &SweepArgs,
+    base: &hapstab::model::Loop,
+    range: &SweepRange,
+    at: KmaxAt,
+) -> Result<()> {
     use hapstab::limits::{Cost, interval_cost, passivity_cost, sweep_point_cost};
     let mut cost = Cost::ZERO;
     for i in 0..range.n {

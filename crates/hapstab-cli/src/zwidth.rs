@@ -220,7 +220,11 @@ fn check_budget(a: &ZwidthArgs, loops: &[(String, ResolvedLoop)]) -> Result<()> 
         }
     }
     let mut drivers = crate::budget::degree_drivers(&a.lp, &heaviest.1.lp);
-    drivers.push(crate::budget::Driver::count("--compare", a.compare.len(), 1));
+    drivers.push(crate::budget::Driver::count(
+        "--compare",
+        a.compare.len(),
+        1,
+    ));
     crate::budget::check(cost, "the regions of the loops", &drivers)
 }
 

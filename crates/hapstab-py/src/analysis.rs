@@ -289,7 +289,8 @@ fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResu
 pub fn region(r#loop: &PyLoop, py: Python<'_>) -> PyResult<PyRegion> {
     let fam = r#loop.family()?;
     let lp = &r#loop.lp;
-    let cost = hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(&fam));
+    let cost =
+        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(&fam));
     crate::budget::check_loop(cost, lp, &fam, "the exact region")?;
     let r = py.detach(|| loop_region(lp, &fam)).py()?;
     region_object(py, &fam, &r)

@@ -339,7 +339,10 @@ impl PyLoop {
             ("motor mass", "plant.motor_mass"),
             ("handle mass", "plant.handle_mass"),
             ("arm mass m_H", "plant.arm_mass"),
-            ("handle mass + arm mass", "plant.handle_mass + plant.arm_mass"),
+            (
+                "handle mass + arm mass",
+                "plant.handle_mass + plant.arm_mass",
+            ),
         ])?;
         let velocity: VelocityEstimator = velocity.parse().py()?;
         let delay = delay_of(delay, delay_samples, period)?;

@@ -84,7 +84,11 @@ pub fn stability_map<'py>(
     };
     let (ks, bs) = (shape_of(wall_stiffness)?, shape_of(wall_damping)?);
     let as_grid = layout(&ks, &bs, grid)?;
-    let shape = if as_grid { vec![bs[0], ks[0]] } else { ks.clone() };
+    let shape = if as_grid {
+        vec![bs[0], ks[0]]
+    } else {
+        ks.clone()
+    };
     // the copies of the inputs in wall units
     let inputs = if as_grid {
         8.0 * (ks[0] + bs[0]) as f64
@@ -159,10 +163,7 @@ fn check_budget(
     }
     let mut cost = hapstab::limits::map_cost_of_degree(points, fam.degree(), radius, 1.0);
     cost.memory += inputs;
-    let why = format!(
-        "use fewer walls; {}",
-        crate::budget::degree_reason(lp, fam)
-    );
+    let why = format!("use fewer walls; {}", crate::budget::degree_reason(lp, fam));
     crate::budget::check(
         cost,
         "wall_stiffness, wall_damping",

@@ -235,7 +235,9 @@ fn check_budget(
         if len as f64 > MAX_SIMULATION_SAMPLES {
             return Err(crate::errors::bad(
                 kw,
-                format!("the run of {len} samples is longer than the {MAX_SIMULATION_SAMPLES:e} samples allowed"),
+                format!(
+                    "the run of {len} samples is longer than the {MAX_SIMULATION_SAMPLES:e} samples allowed"
+                ),
             ));
         }
     }
@@ -310,7 +312,13 @@ pub fn simulate(
         ("max_samples", max_samples),
     )?
     .unwrap_or(n.max(DEFAULT_MAX_SAMPLES));
-    check_budget(&fam, (n, horizon), trace_rows, duration.is_some(), max_duration.is_some())?;
+    check_budget(
+        &fam,
+        (n, horizon),
+        trace_rows,
+        duration.is_some(),
+        max_duration.is_some(),
+    )?;
     let config = Config {
         model,
         effects: effects(

@@ -387,7 +387,11 @@ pub fn map_cost_of_degree(points: f64, n: usize, radius: bool, stable: f64) -> C
 /// The degree of a loop's parts without the plant's pure delay z^k (the largest of P0's
 /// core, PK and PB): what one evaluation of p on the unit circle costs.
 pub fn core_degree(fam: &crate::closed_loop::AffineFamily) -> usize {
-    fam.p0_core.len().max(fam.pk.len()).max(fam.pb.len()).saturating_sub(1)
+    fam.p0_core
+        .len()
+        .max(fam.pk.len())
+        .max(fam.pb.len())
+        .saturating_sub(1)
 }
 
 /// Cost of the roots of a polynomial of degree n by Aberth–Ehrlich
@@ -436,9 +440,7 @@ pub fn margins_cost(n: usize, core: usize) -> Cost {
 /// damping (twice for the paper's loop: in N/m and normalized), and the margins when the wall
 /// is stable.
 pub fn check_cost(n: usize, core: usize, stable: bool) -> Cost {
-    let base = roots_cost(n)
-        .then(interval_cost(n))
-        .then(interval_cost(n));
+    let base = roots_cost(n).then(interval_cost(n)).then(interval_cost(n));
     if stable {
         base.then(margins_cost(n, core))
     } else {

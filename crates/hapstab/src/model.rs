@@ -599,7 +599,10 @@ pub const MAX_FILTER_RATIO: f64 = 1e50;
 /// a0's smallness that makes the ratio.
 fn check_filter_range(b: &[f64], a: &[f64]) -> Result<()> {
     let a0 = a[0];
-    let parts = [("velocity filter numerator b", b), ("velocity filter denominator a", a)];
+    let parts = [
+        ("velocity filter numerator b", b),
+        ("velocity filter denominator a", a),
+    ];
     for (name, part) in parts {
         for (i, &c) in part.iter().enumerate() {
             let ratio = (c / a0).abs();
@@ -641,8 +644,22 @@ pub fn check_wall_range(
     let largest = |c: &[f64]| c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let own = largest(&fam.p0_core).max(1.0);
     let terms = [
-        ("wall stiffness K", "alpha", "N/m", wall.stiffness, units.0, &fam.pk),
-        ("wall damping B", "beta", "Ns/m", wall.damping, units.1, &fam.pb),
+        (
+            "wall stiffness K",
+            "alpha",
+            "N/m",
+            wall.stiffness,
+            units.0,
+            &fam.pk,
+        ),
+        (
+            "wall damping B",
+            "beta",
+            "Ns/m",
+            wall.damping,
+            units.1,
+            &fam.pb,
+        ),
     ];
     for (name, normalized_name, unit, value, t, part) in terms {
         let ratio = t.abs() * largest(part) / own;

@@ -234,7 +234,10 @@ mod tests {
             .to_string();
         assert!(e.len() < 300 && e.contains("'y'"), "{e}");
         assert_eq!(excerpt_list(&[1.0, 2.0]), "1,2");
-        assert_eq!(excerpt_list(&[0.5; 10]), "10 coefficients (0.5, 0.5, 0.5, …)");
+        assert_eq!(
+            excerpt_list(&[0.5; 10]),
+            "10 coefficients (0.5, 0.5, 0.5, …)"
+        );
         let garbage = "x".repeat(500);
         assert!(excerpt(&garbage).contains("(500 characters)"));
     }
