@@ -225,10 +225,15 @@ mod tests {
     #[test]
     fn long_lists_are_shown_by_an_excerpt() {
         let ones = vec!["1"; 2001].join(",");
-        let text = format!("iir:{ones}/x");
+        let text = format!("iir:{ones},y/1");
         let e = text.parse::<VelocityEstimator>().unwrap_err().to_string();
         assert!(e.len() < 300, "{} characters: {e}", e.len());
-        assert!(e.contains("2001 coefficients (1, 1, 1, …)"), "{e}");
+        assert!(e.contains("2002 coefficients (1, 1, 1, …)"), "{e}");
+        let e = format!("iir:{ones}")
+            .parse::<VelocityEstimator>()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("'iir: 2001 coefficients (1, 1, 1, …)'"), "{e}");
         let e = parse_coefficients("num", &format!("{ones},y"))
             .unwrap_err()
             .to_string();
