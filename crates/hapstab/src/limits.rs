@@ -553,6 +553,26 @@ mod tests {
     }
 
     #[test]
+    fn costs_follow_what_the_work_grows_with() {
+        // the margins of a stable wall dominate a long filter's check, not its delay
+        let filter = check_cost(2003, 2001, true).seconds;
+        let delay = check_cost(2003, 3, true).seconds;
+        assert!(filter > 100.0 * delay, "{filter} vs {delay}");
+        assert!(check_cost(2003, 3, false).seconds < delay);
+        // a region grows with the degree of the parts at the same total degree
+        assert!(region_cost_of_degree(1003, 1001).seconds > 50.0 * region_cost(1000).seconds);
+        // an unstable point costs a small part of a stable one's full test
+        let (all, none) = (
+            map_cost_of_degree(1e4, 1003, false, 1.0).seconds,
+            map_cost_of_degree(1e4, 1003, false, 0.0).seconds,
+        );
+        assert!(none < 0.1 * all && none > 0.0);
+        // the radius map at d = 2000 is minutes, not hours
+        let r = map_cost(1e4, 2000, true).seconds;
+        assert!(r > MAX_COMMAND_SECONDS && r < 3600.0, "{r}");
+    }
+
+    #[test]
     fn messages_use_readable_units() {
         assert_eq!(duration(30.0), "30.00 s");
         assert_eq!(duration(600.0), "10 min");
