@@ -243,6 +243,9 @@ fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOu
 pub fn run(a: &BoundaryArgs) -> Result<()> {
     let rl = a.lp.resolve(false)?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
+    let cost =
+        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(&fam));
+    crate::budget::check_loop(&a.lp, &rl.lp, cost, "the exact region")?;
     let r = region(&rl.lp, &fam)?;
     if let Some(path) = &a.csv {
         write_csv(path, &r, (!rl.normalized).then_some(&fam))?;

@@ -160,12 +160,38 @@ fn paper_view(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<P
     }))
 }
 
+/// Refuses a check beyond the command-line budget: the roots and the interval grow as n²
+/// and n in the degree n of p(z), the margins of a stable wall (the Schur–Cohn test, O(n²),
+/// says whether they run) as n times the degree of the loop's parts without the pure delay,
+/// and a --plot draws the exact region. Blames the flag that sets most of the degree.
+fn check_budget(
+    a: &CheckArgs,
+    rl: &ResolvedLoop,
+    fam: &AffineFamily,
+    (alpha, beta): (f64, f64),
+) -> Result<()> {
+    let n = fam.degree();
+    let core = hapstab::limits::core_degree(fam);
+    let stable = hapstab::stability::schur_stable(&fam.coefficients(alpha, beta));
+    let mut cost = hapstab::limits::check_cost(n, core, stable);
+    if a.plot.is_some() {
+        cost = cost.then(hapstab::limits::region_cost_of_degree(n, core));
+    }
+    let what = if stable {
+        "the verdict and the margins"
+    } else {
+        "the verdict"
+    };
+    crate::budget::check(cost, what, &crate::budget::degree_drivers(&a.lp, &rl.lp))
+}
+
 /// Runs `hapstab check`.
 pub fn run(a: &CheckArgs) -> Result<()> {
     let rl = a.lp.resolve(a.wall.normalized())?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
     let units = wall_units(&rl.lp, &fam, w)?;
+    check_budget(a, &rl, &fam, units)?;
     let analysis = analysis(&rl.lp, &fam, units)?;
     let k_interval = if rl.normalized {
         None

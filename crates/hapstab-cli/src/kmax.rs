@@ -266,6 +266,15 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         bail!("kmax works in physical units; for normalized parameters use `hapstab boundary`");
     }
     let fam = AffineFamily::of_loop(&rl.lp)?;
+    let n = fam.degree();
+    let mut cost = hapstab::limits::interval_cost(n);
+    if a.wall_damping.is_none() || a.plot.is_some() {
+        cost = cost.then(hapstab::limits::region_cost_of_degree(
+            n,
+            hapstab::limits::core_degree(&fam),
+        ));
+    }
+    crate::budget::check_loop(&a.lp, &rl.lp, cost, "K_max")?;
     let band = a.damping_range.unwrap_or(DampingRange {
         lo: 0.0,
         hi: f64::INFINITY,

@@ -113,7 +113,22 @@ fn one_line(text: &str) -> String {
     if let Some(tip) = lines.find_map(|l| l.trim().strip_prefix("tip: a similar")) {
         line.push_str(&format!("; a similar{tip}"));
     }
-    line
+    shorten_value(&line)
+}
+
+/// Clap's "invalid value 'VALUE' for '--flag'" with a long VALUE (a list of thousands of
+/// coefficients) shown by its excerpt ([`hapstab::spec::excerpt`]).
+fn shorten_value(line: &str) -> String {
+    let Some((head, rest)) = line.split_once("invalid value '") else {
+        return line.to_string();
+    };
+    let Some((value, tail)) = rest.split_once("' for '") else {
+        return line.to_string();
+    };
+    format!(
+        "{head}invalid value '{}' for '{tail}",
+        hapstab::spec::excerpt(value)
+    )
 }
 
 fn main() {

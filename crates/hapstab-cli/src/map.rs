@@ -18,7 +18,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, ValueEnum};
-use hapstab::limits::map_cost;
+use hapstab::limits::map_cost_of_degree;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
 use plotters::style::RGBColor;
@@ -183,7 +183,7 @@ fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values
         d,
     )?;
     let spec = MapSpec::new(x.range, y.range, base)?;
-    check_budget(a, x, y, d + 3, "--delay", &d.to_string())?;
+    check_budget(a, (x, y), d + 3, 1.0, ("--delay", &d.to_string()))?;
     let bar = map_bar(a, x, y, d + 3);
     let m = compute_map(&spec, kind, &bar.stage(0));
     Ok(Values {
@@ -211,7 +211,13 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     let xa = AxisRange::new(Axis::Alpha, a_lo, a_hi, x.range.n)?;
     let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
     let n = fam.degree();
-    check_budget(a, x, y, n, "the loop's degree", &n.to_string())?;
+    let degree = crate::budget::degree_drivers(&a.lp, &rl.lp)
+        .into_iter()
+        .max_by(|p, q| p.factor.total_cmp(&q.factor))
+        .map(|d| (d.flag, d.value));
+    let (flag, value) = degree.unwrap_or(("--delay", "0".into()));
+    let stable = stable_share(&fam, (a_lo, a_hi), (b_lo, b_hi));
+    check_budget(a, (x, y), n, stable, (flag, &value))?;
     let bar = map_bar(a, x, y, n);
     let m = wall_map(&fam, xa, yb, kind, &bar.stage(0))?;
     Ok(Values {
@@ -222,19 +228,18 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
 }
 
 /// Refuses a map beyond the command-line budget (a point test is O(n²) in the degree n of
-/// p(z), a spectral radius O(n³)), naming --x, --y or what sets the degree.
+/// p(z), a spectral radius about the cost of its roots, O(n²) per sweep), naming --x, --y or
+/// the flag that sets most of the degree.
 fn check_budget(
     a: &MapArgs,
-    x: Grid,
-    y: Grid,
+    (x, y): (Grid, Grid),
     degree: usize,
-    what: &str,
-    value: &str,
+    stable: f64,
+    (what, value): (&str, &str),
 ) -> Result<()> {
     let points = x.range.n as f64 * y.range.n as f64;
-    let d = degree.saturating_sub(3);
     budget::check(
-        map_cost(points, d, a.radius),
+        map_cost_of_degree(points, degree, a.radius, stable),
         &format!("the map of {points} points"),
         &[
             Driver {
@@ -250,10 +255,28 @@ fn check_budget(
             Driver {
                 flag: what,
                 value: value.to_string(),
-                factor: (degree.max(3) as f64 / 3.0).powi(if a.radius { 3 } else { 2 }),
+                factor: (degree.max(3) as f64 / 3.0).powi(2),
             },
         ],
     )
+}
+
+/// Points per axis of the sample that estimates a map's stable share.
+const SHARE_SAMPLES: usize = 8;
+
+/// The share of stable walls on an 8 × 8 sample of the map's window (the Schur–Cohn test,
+/// O(n²) each): a stable point costs a full test, an unstable one a small part of it.
+fn stable_share(fam: &AffineFamily, (a0, a1): (f64, f64), (b0, b1): (f64, f64)) -> f64 {
+    let at = |lo: f64, hi: f64, i: usize| lo + (hi - lo) * i as f64 / (SHARE_SAMPLES - 1) as f64;
+    let mut stable = 0usize;
+    for i in 0..SHARE_SAMPLES {
+        for j in 0..SHARE_SAMPLES {
+            let c = fam.coefficients(at(a0, a1, i), at(b0, b1, j));
+            stable += usize::from(hapstab::stability::schur_stable(&c));
+        }
+    }
+    // one stable point in the sample stands for at least its share of the grid
+    (stable as f64 + 0.5) / (SHARE_SAMPLES * SHARE_SAMPLES) as f64
 }
 
 /// The column names of the output file.
@@ -438,7 +461,7 @@ fn add_cells(fig: &mut Figure, rects: Vec<((f64, f64), (f64, f64))>, color: RGBC
 /// long ([`crate::progress::LONG_SECONDS`]).
 fn map_bar(a: &MapArgs, x: Grid, y: Grid, degree: usize) -> crate::progress::Bar {
     let points = x.range.n as f64 * y.range.n as f64;
-    let cost = map_cost(points, degree.saturating_sub(3), a.radius).seconds;
+    let cost = map_cost_of_degree(points, degree, a.radius, 1.0).seconds;
     crate::progress::Bar::new(
         y.range.n,
         "rows",

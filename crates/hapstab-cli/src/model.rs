@@ -8,6 +8,7 @@ use hapstab::params::{Arm, Device, Effective, Normalized, Physical, Sampling, Wa
 use serde::Serialize;
 
 use crate::output::{poly_text, sig};
+use hapstab::spec::excerpt_list;
 
 /// Default sampling period: 1 ms, the paper's upper limit (Section IV).
 pub const DEFAULT_PERIOD: f64 = 1e-3;
@@ -478,7 +479,8 @@ impl LoopArgs {
             Plant::new(model, self.force_lag.unwrap_or(0.0)).map_err(|e| tf_context(self, e))?;
         let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
         Ok(ResolvedLoop {
-            lp: Loop::new(plant, period, self.delay(period)?, velocity)?,
+            lp: Loop::new(plant, period, self.delay(period)?, velocity)
+                .map_err(|e| self.with_flag(e))?,
             normalized: false,
         })
     }
@@ -530,14 +532,65 @@ impl LoopArgs {
 fn tf_context(a: &LoopArgs, e: hapstab::Error) -> anyhow::Error {
     match (&a.plant_num, &a.plant_den, &e) {
         (Some(n), Some(d), hapstab::Error::Invalid { .. } | hapstab::Error::OutOfRange { .. }) => {
-            anyhow::anyhow!("--plant-num {} --plant-den {}: {e}", list(&n.0), list(&d.0))
+            anyhow::anyhow!(
+                "--plant-num {} --plant-den {}: {e}",
+                excerpt_list(&n.0),
+                excerpt_list(&d.0)
+            )
         }
-        _ => e.into(),
+        _ => a.with_flag(e),
     }
 }
 
-fn list(c: &[f64]) -> String {
-    c.iter().map(f64::to_string).collect::<Vec<_>>().join(",")
+/// The flag that carries a parameter the library names in its errors (None for parameters
+/// without a flag of their own).
+fn flag_of(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "mass m" => "--mass",
+        "damping b" => "--damping",
+        "stiffness k" => "--stiffness",
+        "motor mass" => "--motor-mass",
+        "motor damping" => "--motor-damping",
+        "handle mass" => "--handle-mass",
+        "handle mass + arm mass" => "--handle-mass/--arm-mass",
+        "transmission stiffness" => "--transmission-stiffness",
+        "transmission damping" => "--transmission-damping",
+        "arm mass m_H" => "--arm-mass",
+        "arm damping b_H" => "--arm-damping",
+        "arm stiffness k_H" => "--arm-stiffness",
+        "force lag tau" => "--force-lag",
+        "sampling period T" => "--period",
+        n if n.starts_with("velocity") => "--velocity",
+        _ => return None,
+    })
+}
+
+impl LoopArgs {
+    /// A library error with the flag that carries the parameter it names in front
+    /// ("--motor-mass: motor mass must be in …"); the effective mass of a device and arm
+    /// given separately is named by those flags.
+    fn with_flag(&self, e: hapstab::Error) -> anyhow::Error {
+        let name = match &e {
+            hapstab::Error::Invalid { name, .. }
+            | hapstab::Error::OutOfRange { name, .. }
+            | hapstab::Error::NotPositive { name, .. }
+            | hapstab::Error::Negative { name, .. }
+            | hapstab::Error::NotFinite { name, .. } => *name,
+            _ => return e.into(),
+        };
+        let flag = match (name, self.plant.mass) {
+            ("mass m", None) => Some("--device-mass/--arm-mass"),
+            ("damping b", None) if self.plant.damping.is_none() => {
+                Some("--device-damping/--arm-damping")
+            }
+            ("stiffness k", None) if self.plant.stiffness.is_none() => Some("--arm-stiffness"),
+            _ => flag_of(name),
+        };
+        match flag {
+            Some(f) => anyhow::anyhow!("{f}: {e}"),
+            None => e.into(),
+        }
+    }
 }
 
 impl WallArgs {
@@ -557,10 +610,12 @@ pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs)
         };
         hapstab::Normalized::new(alpha, beta, 0.0, 0.0, 0)?;
         if rl.normalized {
-            return Ok(Wall {
+            let w = Wall {
                 stiffness: alpha,
                 damping: beta,
-            });
+            };
+            check_wall_range(fam, w, true)?;
+            return Ok(w);
         }
         if !matches!(rl.lp.plant.model, LibPlantModel::MassSpringDamper(_)) {
             bail!(
@@ -568,7 +623,9 @@ pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs)
             );
         }
         let (stiffness, damping) = fam.to_physical(alpha, beta);
-        return Ok(Wall { stiffness, damping });
+        let w = Wall { stiffness, damping };
+        check_wall_range(fam, w, false)?;
+        return Ok(w);
     }
     let w = Wall {
         stiffness: wall.wall_stiffness.unwrap_or(DEFAULT_WALL.stiffness),
@@ -583,7 +640,24 @@ pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs)
     if !w.damping.is_finite() {
         bail!("wall damping B must be a finite number (got {})", w.damping);
     }
+    check_wall_range(fam, w, false)?;
     Ok(w)
+}
+
+/// Refuses a wall beyond the representable range ([`hapstab::model::check_wall_range`]),
+/// naming its flag: --wall-stiffness/--wall-damping, or --alpha/--beta for a normalized loop.
+fn check_wall_range(fam: &AffineFamily, w: Wall, normalized: bool) -> Result<()> {
+    let units = fam.to_units(w.stiffness, w.damping);
+    hapstab::model::check_wall_range(fam, w, units, normalized).map_err(|e| {
+        let stiffness = matches!(&e, hapstab::Error::Invalid { name, .. } if name.contains("stiffness") || *name == "alpha");
+        let flag = match (normalized, stiffness) {
+            (true, true) => "--alpha",
+            (true, false) => "--beta",
+            (false, true) => "--wall-stiffness",
+            (false, false) => "--wall-damping",
+        };
+        anyhow::anyhow!("{flag}: {e}")
+    })
 }
 
 /// The loop in words, one line per part (for the text output of the commands).

@@ -165,7 +165,17 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     if p.gamma.is_some() {
         bail!("--gamma: nyquist sweeps γ itself up to γ_N; give the plant's --delta");
     }
+    if let Some(t) = p.delay_time {
+        bail!(
+            "--delay-time {t}: nyquist's regions take a whole delay of the normalized loop (--delay d), and Remark 4 (physical units) does not depend on the delay; leave it out"
+        );
+    }
     if p.any_physical() {
+        if let Some(d) = p.delay {
+            bail!(
+                "--delay {d}: Remark 4 (physical units) does not depend on the delay; leave it out, or give the normalized plant (--delta) for the regions at that delay"
+            );
+        }
         return run_remark4(a);
     }
     let delta = p.delta.unwrap_or(0.0);

@@ -74,6 +74,10 @@ pub fn run(a: &PassivityArgs) -> Result<()> {
     let rl = a.lp.resolve(a.wall.normalized())?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
+    let n = fam.degree();
+    let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(&fam))
+        .then(hapstab::limits::roots_cost(n));
+    crate::budget::check_loop(&a.lp, &rl.lp, cost, "the passive region")?;
     let sw = SampledWall::new(&rl.lp)?;
     let p = passivity_with(&sw, &rl.lp, w);
     let units = wall_units(&rl.lp, &fam, w)?;

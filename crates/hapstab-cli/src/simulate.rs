@@ -28,7 +28,7 @@ use crate::output::{eng, print_json, sig};
 use crate::plot::{Figure, Grid, Legend, Marker, Saved, Series, palette};
 
 /// Longest run and horizon accepted (samples): 10⁹ samples take 10–60 s per core.
-const MAX_SAMPLES: f64 = 1e9;
+const MAX_SAMPLES: f64 = hapstab::limits::MAX_SIMULATION_SAMPLES;
 /// Default run length: 10 s at the physical period, 10 000 samples in normalized mode.
 const DEFAULT_SAMPLES: usize = 10_000;
 /// Default initial penetration x(0) in m.
@@ -475,6 +475,7 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     let (mut cfg, settings) = a.run.config(sl.model.clone(), units.physical)?;
     let files_wanted = a.csv.is_some() || a.plot.is_some();
     cfg.trace_rows = if files_wanted { a.max_rows } else { 0 };
+    check_run_budget(&a.lp, &sl.rl.lp, &cfg, 1.0, "the run")?;
     let mut result = simulate(&cfg)?;
     let trace = result.trace.take().unwrap_or_default();
     let files = if files_wanted {
@@ -504,6 +505,56 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
         return print_json(&out);
     }
     print_simulate(&out, &sl, &settings, units);
+    Ok(())
+}
+
+/// Refuses `runs` simulations of `cfg` beyond the command-line budget: each costs its run
+/// length times the loop's states ([`hapstab::limits::simulation_cost`]); a run that may
+/// extend to its horizon is refused when the horizon alone is beyond the budget. Blames the
+/// run length's flag, or the flag that sets most of the loop's degree.
+fn check_run_budget(
+    args: &LoopArgs,
+    lp: &hapstab::model::Loop,
+    cfg: &Config,
+    runs: f64,
+    what: &str,
+) -> Result<()> {
+    let n = crate::budget::loop_degree(lp);
+    let states = n.saturating_sub(3);
+    let rows = cfg.trace_rows as f64;
+    let one = hapstab::limits::simulation_cost(cfg.samples as f64, states, rows)
+        .then(hapstab::limits::roots_cost(n));
+    let cost = hapstab::limits::Cost {
+        seconds: one.seconds * runs,
+        memory: one.memory,
+    };
+    let mut drivers = crate::budget::degree_drivers(args, lp);
+    let length = cfg.samples as f64 / DEFAULT_SAMPLES as f64;
+    drivers.push(crate::budget::Driver {
+        flag: "--duration",
+        value: format!("{} samples", cfg.samples),
+        factor: length,
+    });
+    crate::budget::check(cost, what, &drivers)?;
+    let horizon = hapstab::limits::simulation_cost(cfg.max_samples as f64, states, rows);
+    let horizon = hapstab::limits::Cost {
+        seconds: horizon.seconds * runs,
+        memory: horizon.memory,
+    };
+    if hapstab::limits::Budget::COMMAND_LINE
+        .check(horizon)
+        .is_err()
+    {
+        crate::budget::check(
+            horizon,
+            &format!("{what} up to the horizon"),
+            &[crate::budget::Driver {
+                flag: "--max-duration",
+                value: format!("{} samples", cfg.max_samples),
+                factor: 1.0,
+            }],
+        )?;
+    }
     Ok(())
 }
 
@@ -1225,8 +1276,14 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let (model, pm) = boundary_template(a, &rl)?;
     let (template, settings) = a.run.config(model.clone(), units.physical)?;
+    let n = fam.degree();
+    let region_cost = hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(&fam));
+    crate::budget::check_loop(&a.lp, &rl.lp, region_cost, "the exact region")?;
     let region = hapstab::loop_analysis::region(&rl.lp, &fam)?;
     let betas = beta_values(a, &region)?;
+    // every β: the α grid's runs and a bisection of about log2(1/rel-tol) more
+    let runs = betas.len() as f64 * (a.grid as f64 + (1.0 / a.rel_tol).log2().max(1.0));
+    check_run_budget(&a.lp, &rl.lp, &template, runs, "the boundary's runs")?;
     let points = boundary_points(a, &template, &betas, stable_when)?;
     let scale = match (&pm, units.physical) {
         (Some(pm), _) => pm

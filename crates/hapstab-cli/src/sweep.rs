@@ -94,6 +94,44 @@ fn k_max_at(a: &SweepArgs) -> Result<KmaxAt> {
     Ok(KmaxAt::Band { lo, hi })
 }
 
+/// Refuses a sweep beyond the command-line budget: every point is a stable region (or one
+/// interval at a given damping) and a passive K_max of the loop at that value, whose cost
+/// grows as the square of its p(z)'s degree; blames --param.
+fn check_budget(
+    a: &SweepArgs,
+    base: &hapstab::model::Loop,
+    range: &SweepRange,
+    at: KmaxAt,
+) -> Result<()> {
+    use hapstab::limits::{Cost, interval_cost, passivity_cost, sweep_point_cost};
+    let mut cost = Cost::ZERO;
+    for i in 0..range.n {
+        // a value the loop refuses ends the sweep with its own message before any analysis
+        let Ok(lp) = range.param.apply(base, range.value(i)) else {
+            continue;
+        };
+        let n = crate::budget::loop_degree(&lp);
+        let core = n.saturating_sub(lp.delay.samples);
+        let one = match at {
+            KmaxAt::Damping { .. } => interval_cost(n).then(passivity_cost(n, core)),
+            _ => sweep_point_cost(n, core),
+        };
+        cost = Cost {
+            seconds: cost.seconds + one.seconds,
+            memory: cost.memory.max(one.memory),
+        };
+    }
+    crate::budget::check(
+        cost,
+        &format!("the sweep of {} points", range.n),
+        &[crate::budget::Driver {
+            flag: "--param",
+            value: a.param.clone(),
+            factor: 1.0,
+        }],
+    )
+}
+
 /// Runs `hapstab sweep`.
 pub fn run(a: &SweepArgs) -> Result<()> {
     let range: SweepRange = a.param.parse().context("--param")?;
@@ -102,9 +140,11 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     if rl.normalized {
         bail!("sweep works in physical units; give the device, not --gamma/--delta");
     }
+    check_budget(a, &rl.lp, &range, at)?;
     let bar = crate::progress::Bar::new(range.n, "points", !a.json);
     let t = std::time::Instant::now();
-    let points = sweep_param(&rl.lp, &range, at, &bar.stage(0))?;
+    let points = sweep_param(&rl.lp, &range, at, &bar.stage(0))
+        .with_context(|| format!("--param {}", a.param))?;
     let seconds = t.elapsed().as_secs_f64();
     bar.finish();
     if let Some(path) = &a.csv {

@@ -145,6 +145,7 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
         loops.push((spec.trim().to_string(), resolve(&lp, spec)?));
     }
     let dampings = a.table_damping.as_deref();
+    check_budget(a, &loops)?;
     // a comparison analyses several loops: one step each
     let bar = crate::progress::Bar::new(loops.len(), "loops", !a.json && !a.compare.is_empty());
     let out: Vec<LoopOut> = loops
@@ -186,6 +187,45 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
         println!("plot        {} and {}", s.svg.display(), s.png.display());
     }
     Ok(())
+}
+
+/// Refuses the analyses beyond the command-line budget: per loop the stable and passive
+/// regions and the table's intervals; blames --compare or the flag that sets most of the
+/// heaviest loop's degree.
+fn check_budget(a: &ZwidthArgs, loops: &[(String, ResolvedLoop)]) -> Result<()> {
+    use hapstab::limits::{
+        Cost, ZWIDTH_REGIONS, interval_cost, passivity_cost, region_cost_of_degree,
+    };
+    let rows = a.table_damping.as_ref().map_or(8, Vec::len) as f64;
+    let mut cost = Cost::ZERO;
+    let mut heaviest = (0, &loops[0].1);
+    for (_, rl) in loops {
+        let fam = hapstab::AffineFamily::of_loop(&rl.lp)?;
+        let (n, core) = (fam.degree(), hapstab::limits::core_degree(&fam));
+        let region = region_cost_of_degree(n, core);
+        let table = interval_cost(n);
+        let table = Cost {
+            seconds: table.seconds * rows,
+            memory: table.memory,
+        };
+        cost = cost
+            .then(Cost {
+                seconds: region.seconds * ZWIDTH_REGIONS,
+                memory: region.memory,
+            })
+            .then(passivity_cost(n, core))
+            .then(table);
+        if n > heaviest.0 {
+            heaviest = (n, rl);
+        }
+    }
+    let mut drivers = crate::budget::degree_drivers(&a.lp, &heaviest.1.lp);
+    drivers.push(crate::budget::Driver::count(
+        "--compare",
+        a.compare.len(),
+        1,
+    ));
+    crate::budget::check(cost, "the regions of the loops", &drivers)
 }
 
 fn label_of(lp: &LoopArgs, spec: Option<&str>) -> String {

@@ -103,6 +103,9 @@ pub fn check(
     };
     let w = args.resolve(r#loop, &fam)?;
     let (a, b) = wall_units(lp, &fam, w).py()?;
+    let n = fam.degree();
+    let cost = hapstab::limits::check_cost(n, 0, false);
+    crate::budget::check_loop(cost, lp, &fam, "the verdict")?;
     let analysis = analysis(lp, &fam, (a, b)).py()?;
     let interval = pick_interval(&stable_intervals(lp, &fam, b).py()?, a);
     let paper = lp.paper_view();
@@ -286,6 +289,9 @@ fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResu
 pub fn region(r#loop: &PyLoop, py: Python<'_>) -> PyResult<PyRegion> {
     let fam = r#loop.family()?;
     let lp = &r#loop.lp;
+    let cost =
+        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(&fam));
+    crate::budget::check_loop(cost, lp, &fam, "the exact region")?;
     let r = py.detach(|| loop_region(lp, &fam)).py()?;
     region_object(py, &fam, &r)
 }
@@ -396,6 +402,12 @@ pub fn kmax(
     py: Python<'_>,
 ) -> PyResult<PyKmax> {
     let fam = r#loop.family()?;
+    let n = fam.degree();
+    let cost = match wall_damping {
+        Some(_) => hapstab::limits::interval_cost(n),
+        None => hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(&fam)),
+    };
+    crate::budget::check_loop(cost, &r#loop.lp, &fam, "K_max")?;
     match (wall_damping, damping_range) {
         (Some(_), Some(_)) => Err(bad(
             "wall_damping, damping_range",

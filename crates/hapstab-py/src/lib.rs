@@ -6,6 +6,7 @@
 use pyo3::prelude::*;
 
 mod analysis;
+mod budget;
 mod discretize;
 mod errors;
 mod loops;

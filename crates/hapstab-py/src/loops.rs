@@ -334,7 +334,16 @@ impl PyLoop {
                 ("stiffness k", "plant.stiffness"),
             ])?;
         }
-        let plant = Plant::new(model, force_lag).py()?;
+        let plant = Plant::new(model, force_lag).py_with(&[
+            ("mass m", "plant.mass"),
+            ("motor mass", "plant.motor_mass"),
+            ("handle mass", "plant.handle_mass"),
+            ("arm mass m_H", "plant.arm_mass"),
+            (
+                "handle mass + arm mass",
+                "plant.handle_mass + plant.arm_mass",
+            ),
+        ])?;
         let velocity: VelocityEstimator = velocity.parse().py()?;
         let delay = delay_of(delay, delay_samples, period)?;
         Ok(Self {

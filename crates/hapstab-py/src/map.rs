@@ -1,13 +1,14 @@
 //! `stability_map`: the grid method of Section V over the wall (K, B) of any loop, one
 //! Schur–Cohn test per point, in parallel with the GIL released.
 
-use hapstab::map::{MapKind, MapValues, wall_map_points, wall_map_values};
+use hapstab::map::{MapKind, wall_map_points, wall_map_values};
 use numpy::{
     AllowTypeChange, IxDyn, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
     PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 
+use crate::budget::shape_of;
 use crate::errors::{Context, bad};
 use crate::loops::PyLoop;
 
@@ -55,18 +56,25 @@ fn shaped<'py, T: numpy::Element>(
 /// (K, B) the Schur–Cohn test of p(z) = P0(z) + K·PK(z) + B·PB(z) (eq. 9, generalized), in
 /// parallel on all cores with the GIL released.
 ///
-/// wall_stiffness (K in N/m) and wall_damping (B in Ns/m) are either two 1-D arrays, the
-/// grid's axes (the result has shape (len(wall_damping), len(wall_stiffness)): rows are B,
+/// wall_stiffness (K in N/m) and wall_damping (B in Ns/m) are either the grid's two 1-D axes
+/// (grid=True: the result has shape (len(wall_damping), len(wall_stiffness)), rows are B and
 /// columns K, as numpy.meshgrid(wall_stiffness, wall_damping)), or two arrays of the same
-/// shape, one wall per element (the result has that shape).
+/// shape, one wall per element (grid=False: the result has that shape). By default
+/// (grid=None) two 1-D arrays are axes and arrays of any other same shape are walls; pass
+/// grid=False for an elementwise map of two 1-D arrays.
+///
+/// The cost is estimated from the arrays' shapes before they are copied, and a map beyond
+/// the command line's budget is refused naming wall_stiffness, wall_damping.
 #[pyfunction]
-#[pyo3(signature = (r#loop, wall_stiffness, wall_damping, *, spectral_radius = false))]
+#[pyo3(signature = (r#loop, wall_stiffness, wall_damping, *, spectral_radius = false,
+                    grid = None))]
 pub fn stability_map<'py>(
     py: Python<'py>,
     r#loop: &PyLoop,
-    wall_stiffness: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    wall_damping: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    wall_stiffness: &Bound<'py, PyAny>,
+    wall_damping: &Bound<'py, PyAny>,
     spectral_radius: bool,
+    grid: Option<bool>,
 ) -> PyResult<PyStabilityMap> {
     let fam = r#loop.family()?;
     let kind = if spectral_radius {
@@ -74,28 +82,32 @@ pub fn stability_map<'py>(
     } else {
         MapKind::Stability
     };
-    let (ks, bs) = (
-        wall_stiffness.shape().to_vec(),
-        wall_damping.shape().to_vec(),
-    );
-    let a = in_units(&wall_stiffness, fam.scale.stiffness);
-    let b = in_units(&wall_damping, fam.scale.damping);
-    let (values, shape): (hapstab::Result<MapValues>, Vec<usize>) = if ks.len() == 1
-        && bs.len() == 1
-    {
-        (
-            py.detach(|| wall_map_values(&fam, &a, &b, kind)),
-            vec![bs[0], ks[0]],
-        )
-    } else if ks == bs {
-        (py.detach(|| wall_map_points(&fam, &a, &b, kind)), ks)
+    let (ks, bs) = (shape_of(wall_stiffness)?, shape_of(wall_damping)?);
+    let as_grid = layout(&ks, &bs, grid)?;
+    let shape = if as_grid {
+        vec![bs[0], ks[0]]
     } else {
-        return Err(bad(
-            "wall_stiffness, wall_damping",
-            format!(
-                "must be two 1-D axes or two arrays of the same shape (got shapes {ks:?} and {bs:?})"
-            ),
-        ));
+        ks.clone()
+    };
+    // the copies of the inputs in wall units
+    let inputs = if as_grid {
+        8.0 * (ks[0] + bs[0]) as f64
+    } else {
+        16.0 * shape.iter().map(|&n| n as f64).product::<f64>()
+    };
+    check_budget(&r#loop.lp, &fam, &shape, spectral_radius, inputs)?;
+    let extract = |x: &Bound<'py, PyAny>, kw: &str| {
+        x.extract::<PyArrayLikeDyn<'py, f64, AllowTypeChange>>()
+            .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("{kw}: {e}")))
+    };
+    let k = extract(wall_stiffness, "wall_stiffness")?;
+    let b = extract(wall_damping, "wall_damping")?;
+    let a = in_units(&k, fam.scale.stiffness);
+    let b = in_units(&b, fam.scale.damping);
+    let values = if as_grid {
+        py.detach(|| wall_map_values(&fam, &a, &b, kind))
+    } else {
+        py.detach(|| wall_map_points(&fam, &a, &b, kind))
     };
     let values = values.py()?;
     Ok(PyStabilityMap {
@@ -105,4 +117,57 @@ pub fn stability_map<'py>(
             .map(|r| shaped(py, r, &shape).map(Bound::unbind))
             .transpose()?,
     })
+}
+
+/// Whether the two shapes are a grid's axes (true) or elementwise walls (false), as `grid`
+/// asks or by default (two 1-D arrays are axes).
+fn layout(ks: &[usize], bs: &[usize], grid: Option<bool>) -> PyResult<bool> {
+    let axes = ks.len() == 1 && bs.len() == 1;
+    match grid {
+        Some(true) if axes => Ok(true),
+        Some(true) => Err(bad(
+            "wall_stiffness, wall_damping",
+            format!("must be two 1-D axes with grid=True (got shapes {ks:?} and {bs:?})"),
+        )),
+        Some(false) if ks == bs => Ok(false),
+        None if axes => Ok(true),
+        None if ks == bs => Ok(false),
+        _ => Err(bad(
+            "wall_stiffness, wall_damping",
+            format!(
+                "must be two 1-D axes or two arrays of the same shape (got shapes {ks:?} and {bs:?})"
+            ),
+        )),
+    }
+}
+
+/// Refuses a map beyond the budget or beyond [`hapstab::limits::MAX_MAP_POINTS`] from its
+/// shape alone: every point a Schur–Cohn test (or a spectral radius) of p(z), and the input
+/// copies (`inputs` bytes) and the results in memory.
+fn check_budget(
+    lp: &hapstab::model::Loop,
+    fam: &hapstab::AffineFamily,
+    shape: &[usize],
+    radius: bool,
+    inputs: f64,
+) -> PyResult<()> {
+    let points = shape.iter().map(|&n| n as f64).product::<f64>();
+    if points > hapstab::limits::MAX_MAP_POINTS as f64 {
+        return Err(bad(
+            "wall_stiffness, wall_damping",
+            format!(
+                "map points: {points:e} walls, at most {:e} are allowed",
+                hapstab::limits::MAX_MAP_POINTS as f64
+            ),
+        ));
+    }
+    let mut cost = hapstab::limits::map_cost_of_degree(points, fam.degree(), radius, 1.0);
+    cost.memory += inputs;
+    let why = format!("use fewer walls; {}", crate::budget::degree_reason(lp, fam));
+    crate::budget::check(
+        cost,
+        "wall_stiffness, wall_damping",
+        &format!("the map of {points:e} walls"),
+        &why,
+    )
 }

@@ -111,6 +111,9 @@ pub fn margins(
         beta,
     };
     let w = args.resolve(r#loop, &fam)?;
+    let core = hapstab::limits::core_degree(&fam);
+    let cost = hapstab::limits::margins_cost(fam.degree(), core);
+    crate::budget::check_loop(cost, lp, &fam, "the margins")?;
     let units = wall_units(lp, &fam, w).py()?;
     let verdict_stable = analysis(lp, &fam, units).py()?.stable();
     let m = py

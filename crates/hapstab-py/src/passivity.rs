@@ -218,6 +218,10 @@ pub fn passivity(
     py: Python<'_>,
 ) -> PyResult<PyPassivity> {
     let fam = r#loop.family()?;
+    let n = fam.degree();
+    let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(&fam))
+        .then(hapstab::limits::roots_cost(n));
+    crate::budget::check_loop(cost, &r#loop.lp, &fam, "the passive region")?;
     let args = WallArgs {
         stiffness: wall_stiffness,
         damping: wall_damping,

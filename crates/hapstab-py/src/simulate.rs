@@ -210,6 +210,60 @@ fn result_object(py: Python<'_>, r: RunResult) -> PyResult<PySimulation> {
 ///
 /// human_force: F_H in N (positive into the wall), constant or one value per sample (the
 /// last is held). The trace keeps at most trace_rows rows (every trace_stride-th sample).
+/// Refuses a run beyond the command line's budget before it starts, naming the keyword that
+/// sets its length: the run of `n` samples ([`hapstab::limits::simulation_cost`] with the
+/// roots of the linear verdict), and the horizon it may extend to.
+fn check_budget(
+    fam: &hapstab::AffineFamily,
+    (n, horizon): (usize, usize),
+    trace_rows: usize,
+    by_duration: bool,
+    horizon_by_duration: bool,
+) -> PyResult<()> {
+    use hapstab::limits::{MAX_SIMULATION_SAMPLES, roots_cost, simulation_cost};
+    for (kw, len) in [
+        (if by_duration { "duration" } else { "samples" }, n),
+        (
+            if horizon_by_duration {
+                "max_duration"
+            } else {
+                "max_samples"
+            },
+            horizon,
+        ),
+    ] {
+        if len as f64 > MAX_SIMULATION_SAMPLES {
+            return Err(crate::errors::bad(
+                kw,
+                format!(
+                    "the run of {len} samples is longer than the {MAX_SIMULATION_SAMPLES:e} samples allowed"
+                ),
+            ));
+        }
+    }
+    let d = fam.degree().saturating_sub(3);
+    let rows = (trace_rows as f64).min(horizon as f64);
+    let run = simulation_cost(n as f64, d, rows).then(roots_cost(fam.degree()));
+    let kw = if by_duration { "duration" } else { "samples" };
+    crate::budget::check(
+        run,
+        kw,
+        &format!("the run of {n} samples"),
+        &format!("use a shorter {kw}"),
+    )?;
+    let kw = if horizon_by_duration {
+        "max_duration"
+    } else {
+        "max_samples"
+    };
+    crate::budget::check(
+        simulation_cost(horizon as f64, d, rows),
+        kw,
+        &format!("the run's horizon of {horizon} samples"),
+        &format!("use a shorter {kw}"),
+    )
+}
+
 #[pyfunction]
 #[pyo3(signature = (r#loop, wall_stiffness = None, wall_damping = None, *, alpha = None,
                     beta = None, duration = None, samples = None, max_duration = None,
@@ -258,6 +312,13 @@ pub fn simulate(
         ("max_samples", max_samples),
     )?
     .unwrap_or(n.max(DEFAULT_MAX_SAMPLES));
+    check_budget(
+        &fam,
+        (n, horizon),
+        trace_rows,
+        duration.is_some(),
+        max_duration.is_some(),
+    )?;
     let config = Config {
         model,
         effects: effects(

@@ -6,7 +6,7 @@ use hapstab::model::PlantModel;
 use hapstab::params::Wall;
 use pyo3::prelude::*;
 
-use crate::errors::{bad, finite};
+use crate::errors::{Context, bad, finite};
 use crate::loops::PyLoop;
 
 /// The wall's keyword arguments as given.
@@ -22,6 +22,15 @@ impl WallArgs {
     /// The wall in N/m and Ns/m. α, β on a physical mass-spring-damper loop convert by
     /// K = α·m/T², B = β·m/T; on a normalized loop they are K and B.
     pub fn resolve(&self, lp: &PyLoop, fam: &AffineFamily) -> PyResult<Wall> {
+        let w = self.given(lp, fam)?;
+        let normalized = self.alpha.is_some() || lp.normalized;
+        let units = fam.to_units(w.stiffness, w.damping);
+        hapstab::model::check_wall_range(fam, w, units, normalized).py()?;
+        Ok(w)
+    }
+
+    /// The wall as given, before the range check of [`WallArgs::resolve`].
+    fn given(&self, lp: &PyLoop, fam: &AffineFamily) -> PyResult<Wall> {
         match (self.stiffness, self.damping, self.alpha, self.beta) {
             (None, None, Some(a), Some(b)) => normalized_wall(lp, fam, a, b),
             (Some(k), Some(b), None, None) => Ok(Wall {

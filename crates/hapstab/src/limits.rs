@@ -28,13 +28,65 @@ pub const SWEEP_SECONDS_PER_DEGREE: f64 = 10e-6;
 /// Core-seconds of one Schur–Cohn point test: a fixed 100 ns (measured with `map`, 10⁶ points
 /// at d = 0) ...
 pub const POINT_TEST_SECONDS: f64 = 100e-9;
-/// ... plus 1 ns per n² for degree n = d + 3 (the test is O(n²); 400 ns per point at d = 20).
-pub const POINT_TEST_SECONDS_PER_N2: f64 = 1e-9;
-/// Core-seconds of one spectral radius (companion-matrix eigenvalues): a fixed 5 µs
-/// (measured with `map --radius`, 10⁶ points at d = 0) ...
-pub const RADIUS_SECONDS: f64 = 5e-6;
-/// ... plus 20 ns per n³ (dense Hessenberg QR is O(n³)).
-pub const RADIUS_SECONDS_PER_N3: f64 = 20e-9;
+/// ... plus 0.4 ns per n² for degree n = d + 3 at a stable point (the test is O(n²);
+/// measured with `map` at d = 1000, 0.36 ms per stable point).
+pub const POINT_TEST_SECONDS_PER_N2: f64 = 0.4e-9;
+/// Core-seconds of the roots of a polynomial ([`roots_cost`]): a fixed 20 µs ...
+pub const ROOTS_SECONDS: f64 = 20e-6;
+/// ... plus 40 ns per n² (Aberth–Ehrlich: O(n²) per sweep; measured with `check`, 0.19
+/// core-seconds at degree 2003 with the interval and the loop's discretization).
+pub const ROOTS_SECONDS_PER_N2: f64 = 40e-9;
+/// Core-seconds of one evaluation of P0, PK and PB at a point of the unit circle per
+/// coefficient of the loop's parts (measured with `check --velocity average:400`, 16 s for
+/// about 2.7·10⁹ coefficient evaluations of the margins).
+pub const CIRCLE_EVAL_SECONDS: f64 = 6e-9;
+/// Frequencies per degree of p(z) of the margins' scans (the margins' own grid).
+pub const MARGIN_GRID_PER_DEGREE: f64 = 256.0;
+/// Scans of the whole grid at p's degree: the phase margin and the two gain margins' line
+/// crossings.
+pub const MARGIN_SCANS: f64 = 3.0;
+/// Fractions of a sample of the delay margin's small-gain test (65 loops without the pure
+/// delay, each scanned on its own grid).
+pub const MARGIN_GAIN_FRACTIONS: f64 = 65.0;
+/// Core-seconds of the delay margin's scan at most (its work bound).
+pub const DELAY_SCAN_SECONDS: f64 = 0.3;
+/// Point tests of the delay margin's bisection (to 1e-13 of the delay, about 45 halvings).
+pub const DELAY_BISECTION_TESTS: f64 = 45.0;
+/// Core-seconds of an exact region's fixed part: its seed slices and checks (measured with
+/// `boundary` at d = 0, 10).
+pub const REGION_SECONDS: f64 = 1e-3;
+/// Core-seconds of an exact region per n²·(core + [`REGION_CORE_OFFSET`]) (measured with
+/// `boundary`: 0.43 s at d = 1000 and 2.0 s at d = 2000 with parts of degree 3; 0.48 s with
+/// `--velocity average:200`, 1.5 s with `average:100` at d = 500).
+pub const REGION_SECONDS_PER_N2_CORE: f64 = 55e-9;
+/// What the per-point work of a region adds to the degree of the loop's parts (the fixed
+/// work of each curve point and slice besides the evaluation).
+pub const REGION_CORE_OFFSET: f64 = 6.0;
+/// A sweep's region at its coarser chord tolerance ([`crate::sweep::SWEEP_REL_TOL`]) takes
+/// about this fraction of a drawn region's time.
+pub const SWEEP_REGION_FACTOR: f64 = 0.5;
+/// Exact regions' worth of work of one loop's Z-width ([`crate::zwidth`]): its stable region
+/// and K_max table trace about two regions (measured with `zwidth`: 0.85 s at d = 760 against
+/// 0.38 s for `boundary`).
+pub const ZWIDTH_REGIONS: f64 = 2.0;
+/// Core-seconds of a passive region's fixed part (measured with `passivity`).
+pub const PASSIVITY_SECONDS: f64 = 1e-3;
+/// Core-seconds of a passive region per n² (measured with `passivity`: 0.16 s at d = 2000).
+pub const PASSIVITY_SECONDS_PER_N2: f64 = 4e-8;
+/// ... plus this per n·core (measured with `passivity --velocity average:200`: 0.11 s).
+pub const PASSIVITY_SECONDS_PER_N_CORE: f64 = 2.5e-6;
+/// Core-seconds per n² of one spectral radius of a map: 20 ns, between the two ways of
+/// computing it, so that either is within a factor of two: the bisection on the Schur–Cohn
+/// test of p(rz) (measured with `map --radius`, 10 ns per n² at d = 1000) and the polished
+/// roots of [`roots_cost`] (40 ns per n²).
+pub const MAP_RADIUS_SECONDS_PER_N2: f64 = 20e-9;
+/// Share of a full Schur–Cohn test that an unstable point costs (measured with `map`: 15 µs
+/// per point at d = 1000 where nearly every point is unstable, against 0.4 ms for a full
+/// test).
+pub const UNSTABLE_TEST_FRACTION: f64 = 0.04;
+/// Steps of the delay margin's scan that the estimate counts (each an O(n·core) robustness
+/// bound and an O(n²) test); the scan itself stops at [`DELAY_SCAN_SECONDS`].
+pub const DELAY_SCAN_STEPS: f64 = 10.0;
 /// Extra interval sweeps of a golden-section or bisection refinement (about 50 steps to full
 /// double precision, twice: one per end of an interval).
 pub const REFINEMENT_SWEEPS: f64 = 100.0;
@@ -43,19 +95,17 @@ pub const REFINEMENT_SWEEPS: f64 = 100.0;
 pub const CONFIG_BYTES: f64 = 256.0;
 /// Bytes held per β slice (the slice value, its interval ends and the refinement bookkeeping).
 pub const SLICE_BYTES: f64 = 96.0;
-/// Sampled points of the complex-root curve per degree of p(z) in a typical exact region
-/// construction (its arcs are resampled adaptively to the chord tolerance); the engine's
-/// own bound is [`crate::region::MAX_CURVE_POINTS`].
-pub const REGION_CURVE_POINTS_PER_DEGREE: f64 = 400.0;
-/// Core-seconds per sampled curve point and degree of p(z): evaluating the curve is O(n)
-/// (measured with `boundary`: 0.06 s at d = 50, 0.19 s at d = 200, wall time on two cores).
-pub const CURVE_POINT_SECONDS_PER_DEGREE: f64 = 2e-9;
 /// Bytes per sampled curve point of the region construction (the engine documents 4·10⁶
 /// points as about 100 MB).
 pub const REGION_BYTES_PER_POINT: f64 = 25.0;
-/// Core-seconds of one simulated sample per state of the loop (d + 3 states: a matrix-vector
-/// step plus the nonlinear effects).
-pub const SIMULATION_SECONDS_PER_STATE: f64 = 20e-9;
+/// Core-seconds of one simulated sample: the delay is a ring buffer and the velocity filter
+/// a short recursion, so a step costs about the same whatever the loop (measured with
+/// `simulate`: 0.35–0.42 s for 10⁷ samples of the paper's loop at d = 0 and d = 2000 and
+/// with `average:100`).
+pub const SIMULATION_SECONDS_PER_SAMPLE: f64 = 40e-9;
+/// Largest run length of a simulation in samples, in every front end: 10⁹ samples (about 40
+/// core-seconds of stepping, 11.6 days of a 1 kHz loop).
+pub const MAX_SIMULATION_SAMPLES: f64 = 1e9;
 /// Bytes per recorded row of a simulated trace (time, position, velocity, forces).
 pub const TRACE_ROW_BYTES: f64 = 64.0;
 
@@ -307,15 +357,26 @@ pub fn validity_points_cost(levels: usize, d: usize) -> Cost {
     }
 }
 
-/// Cost of a stability map ([`crate::map::compute_map`]) of `points` grid points at delay d:
-/// one Schur–Cohn test per point, or one spectral radius per point with `radius`; one byte
-/// per point for the verdicts and eight more for the radii.
+/// Cost of a stability map ([`crate::map::compute_map`]) of `points` grid points of the
+/// paper's loop at delay d: [`map_cost_of_degree`] at n = d + 3 with every point stable
+/// (the most a map can cost).
 pub fn map_cost(points: f64, d: usize, radius: bool) -> Cost {
-    let n = d as f64 + 3.0;
+    map_cost_of_degree(points, d + 3, radius, 1.0)
+}
+
+/// Cost of a stability map of `points` grid points whose p(z) has degree n, of which the
+/// fraction `stable` is stable: one Schur–Cohn test per point, O(n²) at a stable point, and
+/// about [`UNSTABLE_TEST_FRACTION`] of that at an unstable one (the recursion stops at the
+/// first reflection coefficient of modulus 1 or more); or with `radius` one spectral radius
+/// per point, [`MAP_RADIUS_SECONDS_PER_N2`]·n². One byte per point for the verdicts and
+/// eight more for the radii.
+pub fn map_cost_of_degree(points: f64, n: usize, radius: bool, stable: f64) -> Cost {
+    let nf = n as f64;
     let per_point = if radius {
-        RADIUS_SECONDS + RADIUS_SECONDS_PER_N3 * n * n * n
+        ROOTS_SECONDS + MAP_RADIUS_SECONDS_PER_N2 * nf * nf
     } else {
-        POINT_TEST_SECONDS + POINT_TEST_SECONDS_PER_N2 * n * n
+        let share = stable + (1.0 - stable) * UNSTABLE_TEST_FRACTION;
+        POINT_TEST_SECONDS + POINT_TEST_SECONDS_PER_N2 * nf * nf * share
     };
     Cost {
         seconds: points * per_point,
@@ -323,33 +384,131 @@ pub fn map_cost(points: f64, d: usize, radius: bool) -> Cost {
     }
 }
 
-/// Cost of one exact stable region ([`crate::region::stable_region`]) at delay d: the
-/// complex-root curve is typically sampled at about [`REGION_CURVE_POINTS_PER_DEGREE`] points
-/// per degree, each an O(n) evaluation; the memory is the engine's own bound,
-/// [`crate::region::MAX_CURVE_POINTS`] points, past which it ends with an error.
-pub fn region_cost(d: usize) -> Cost {
-    let n = d as f64 + 3.0;
-    let points = REGION_CURVE_POINTS_PER_DEGREE * n;
+/// The degree of a loop's parts without the plant's pure delay z^k (the largest of P0's
+/// core, PK and PB): what one evaluation of p on the unit circle costs.
+pub fn core_degree(fam: &crate::closed_loop::AffineFamily) -> usize {
+    fam.p0_core
+        .len()
+        .max(fam.pk.len())
+        .max(fam.pb.len())
+        .saturating_sub(1)
+}
+
+/// Cost of the roots of a polynomial of degree n by Aberth–Ehrlich
+/// ([`crate::stability::roots`], what `check` reports): [`ROOTS_SECONDS`] +
+/// [`ROOTS_SECONDS_PER_N2`]·n² (O(n²) per sweep, a number of sweeps that hardly grows with n).
+pub fn roots_cost(n: usize) -> Cost {
+    let nf = n as f64;
     Cost {
-        seconds: points * (POINT_TEST_SECONDS + CURVE_POINT_SECONDS_PER_DEGREE * n),
+        seconds: ROOTS_SECONDS + ROOTS_SECONDS_PER_N2 * nf * nf,
+        memory: 64.0 * (nf + 1.0),
+    }
+}
+
+/// Cost of one exact stable interval of the stiffness at one damping
+/// ([`crate::boundary::stable_alpha_intervals`]) for p(z) of degree n.
+pub fn interval_cost(n: usize) -> Cost {
+    Cost {
+        seconds: (n as f64 + 1.0) * SWEEP_SECONDS_PER_DEGREE,
+        memory: 64.0 * (n as f64 + 1.0),
+    }
+}
+
+/// Cost of the stability margins of one stable wall ([`crate::margins::margins`]) for p(z)
+/// of degree n whose parts without the plant's pure delay have degree `core`: the phase
+/// margin and the two gain margins scan [`MARGIN_GRID_PER_DEGREE`]·(n + 1) frequencies, each
+/// an O(core) evaluation; the small-gain test of the delay margin scans
+/// [`MARGIN_GAIN_FRACTIONS`] fractions of a sample on a grid of the core's degree; the delay
+/// scan takes about [`DELAY_SCAN_STEPS`] steps and ends at its own work bound,
+/// [`DELAY_SCAN_SECONDS`], and its bisection tests about
+/// [`DELAY_BISECTION_TESTS`] delays with the O(n²) point test.
+pub fn margins_cost(n: usize, core: usize) -> Cost {
+    let (nf, cf) = (n as f64 + 1.0, core as f64 + 1.0);
+    let grid = MARGIN_GRID_PER_DEGREE * nf * cf * CIRCLE_EVAL_SECONDS;
+    let gain = MARGIN_GRID_PER_DEGREE * MARGIN_GAIN_FRACTIONS * cf * cf * CIRCLE_EVAL_SECONDS;
+    let test = POINT_TEST_SECONDS_PER_N2 * nf * nf;
+    let scan = (DELAY_SCAN_STEPS * (grid + test)).min(DELAY_SCAN_SECONDS);
+    let bisection = DELAY_BISECTION_TESTS * test;
+    Cost {
+        seconds: MARGIN_SCANS * grid + gain + scan + bisection,
+        memory: 64.0 * MARGIN_GRID_PER_DEGREE * nf,
+    }
+}
+
+/// Cost of `check` at one wall for p(z) of degree n (core degree `core`, see
+/// [`margins_cost`]): the roots and the verdict, the stable stiffness interval at the wall's
+/// damping (twice for the paper's loop: in N/m and normalized), and the margins when the wall
+/// is stable.
+pub fn check_cost(n: usize, core: usize, stable: bool) -> Cost {
+    let base = roots_cost(n).then(interval_cost(n)).then(interval_cost(n));
+    if stable {
+        base.then(margins_cost(n, core))
+    } else {
+        base
+    }
+}
+
+/// Cost of the passive region of one loop ([`crate::passivity`]) for p(z) of degree n with
+/// parts of degree `core`: a frequency scan and refinement that grow as n², and as n·core
+/// with the evaluation of the parts.
+pub fn passivity_cost(n: usize, core: usize) -> Cost {
+    let nf = n as f64;
+    let evals = PASSIVITY_SECONDS_PER_N_CORE * nf * core as f64;
+    Cost {
+        seconds: PASSIVITY_SECONDS + PASSIVITY_SECONDS_PER_N2 * nf * nf + evals,
+        memory: 64.0 * MARGIN_GRID_PER_DEGREE * (nf + 1.0),
+    }
+}
+
+/// Cost of one point of a K_max sweep ([`crate::sweep::sweep_param`]) for p(z) of degree n
+/// (parts of degree `core`):
+/// a stable region at the sweep's coarser tolerance and the passive K_max.
+pub fn sweep_point_cost(n: usize, core: usize) -> Cost {
+    let r = region_cost_of_degree(n, core);
+    Cost {
+        seconds: r.seconds * SWEEP_REGION_FACTOR,
+        memory: r.memory,
+    }
+    .then(passivity_cost(n, core))
+}
+
+/// Cost of one exact stable region ([`crate::region::stable_region`]) of the paper's loop at
+/// delay d: [`region_cost_of_degree`] at n = d + 3 with parts of degree 3.
+pub fn region_cost(d: usize) -> Cost {
+    region_cost_of_degree(d + 3, 3)
+}
+
+/// Cost of one exact stable region of a loop whose p(z) has degree n and whose parts without
+/// the plant's pure delay have degree `core` (see [`AffineFamily::degree`] and its `p0_core`):
+/// the complex-root curve is sampled at O(n) points per slice over O(n) slices, each
+/// evaluation O(core), so the time is [`REGION_SECONDS`] +
+/// [`REGION_SECONDS_PER_N2_CORE`]·n²·(core + [`REGION_CORE_OFFSET`]); the memory is the
+/// engine's own bound, [`crate::region::MAX_CURVE_POINTS`] points, past which it ends with
+/// an error.
+///
+/// [`AffineFamily::degree`]: crate::closed_loop::AffineFamily::degree
+pub fn region_cost_of_degree(n: usize, core: usize) -> Cost {
+    let n = n as f64;
+    let core = core as f64 + REGION_CORE_OFFSET;
+    Cost {
+        seconds: REGION_SECONDS + REGION_SECONDS_PER_N2_CORE * n * n * core,
         memory: crate::region::MAX_CURVE_POINTS as f64 * REGION_BYTES_PER_POINT,
     }
 }
 
-/// Cost of the verdict, roots and spectral radius at one point.
+/// Cost of the verdict, roots and spectral radius at one point of the paper's loop at delay
+/// d (degree n = d + 3): [`roots_cost`].
 pub fn point_cost(d: usize) -> Cost {
-    let n = d as f64 + 3.0;
-    Cost {
-        seconds: RADIUS_SECONDS + RADIUS_SECONDS_PER_N3 * n * n * n,
-        memory: 16.0 * n * n,
-    }
+    roots_cost(d + 3)
 }
 
-/// Cost of a simulation of `samples` samples at delay d recording `rows` trace rows.
+/// Cost of a simulation of `samples` samples at delay d recording `rows` trace rows: a
+/// fixed time per sample ([`SIMULATION_SECONDS_PER_SAMPLE`]); the memory of the trace and
+/// of the d + 3 states.
 pub fn simulation_cost(samples: f64, d: usize, rows: f64) -> Cost {
     let states = d as f64 + 3.0;
     Cost {
-        seconds: samples * states * SIMULATION_SECONDS_PER_STATE,
+        seconds: samples * SIMULATION_SECONDS_PER_SAMPLE,
         memory: rows * TRACE_ROW_BYTES + states * 64.0,
     }
 }
@@ -391,6 +550,26 @@ mod tests {
         let s = Cost::ZERO.then(a).then(c);
         assert_eq!(s.seconds, a.seconds + c.seconds);
         assert_eq!(s.memory, a.memory.max(c.memory));
+    }
+
+    #[test]
+    fn costs_follow_what_the_work_grows_with() {
+        // the margins of a stable wall dominate a long filter's check, not its delay
+        let filter = check_cost(2003, 2001, true).seconds;
+        let delay = check_cost(2003, 3, true).seconds;
+        assert!(filter > 100.0 * delay, "{filter} vs {delay}");
+        assert!(check_cost(2003, 3, false).seconds < delay);
+        // a region grows with the degree of the parts at the same total degree
+        assert!(region_cost_of_degree(1003, 1001).seconds > 50.0 * region_cost(1000).seconds);
+        // an unstable point costs a small part of a stable one's full test
+        let (all, none) = (
+            map_cost_of_degree(1e4, 1003, false, 1.0).seconds,
+            map_cost_of_degree(1e4, 1003, false, 0.0).seconds,
+        );
+        assert!(none < 0.1 * all && none > 0.0);
+        // the radius map at d = 2000 is minutes, not hours
+        let r = map_cost(1e4, 2000, true).seconds;
+        assert!(r > MAX_COMMAND_SECONDS && r < 3600.0, "{r}");
     }
 
     #[test]

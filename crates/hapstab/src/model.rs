@@ -387,10 +387,50 @@ pub(crate) fn eval_desc(c: &[f64], s: num_complex::Complex64) -> num_complex::Co
         .fold(num_complex::Complex64::new(0.0, 0.0), |acc, &x| acc * s + x)
 }
 
+/// Smallest mass accepted, in kg (1 mg): with the largest, [`MAX_MASS`], the masses of a loop
+/// stay within 10¹² of each other and of the arm, so that no plant mode is slower or faster
+/// than double precision can tell from z = 1 next to the others (a motor a 10¹⁸ times
+/// heavier than its handle has a mode within 10⁻¹⁸ of the circle).
+pub const MIN_MASS: f64 = 1e-6;
+
+/// Largest mass accepted, in kg (1000 t); see [`MIN_MASS`].
+pub const MAX_MASS: f64 = 1e6;
+
+/// The range of [`MIN_MASS`] and [`MAX_MASS`] for messages.
+const MASS_RANGE: &str = "[1e-6, 1e6] kg";
+
+/// Refuses a mass outside [[`MIN_MASS`], [`MAX_MASS`]], naming it.
+fn check_mass(name: &'static str, m: f64) -> Result<()> {
+    if (MIN_MASS..=MAX_MASS).contains(&m) {
+        return Ok(());
+    }
+    Err(Error::OutOfRange {
+        name,
+        value: m,
+        range: MASS_RANGE,
+    })
+}
+
+/// The masses of a two-mass device in range: the motor's, and the handle's with the arm's
+/// (blaming the larger of the two when the sum is too heavy, the sum when too light).
+fn check_two_mass(t: &TwoMass) -> Result<()> {
+    check_mass("motor mass", t.motor_mass)?;
+    let sum = t.handle_mass + t.arm.mass;
+    if sum > MAX_MASS {
+        return if t.handle_mass >= t.arm.mass {
+            check_mass("handle mass", t.handle_mass.max(sum))
+        } else {
+            check_mass("arm mass m_H", t.arm.mass.max(sum))
+        };
+    }
+    check_mass("handle mass + arm mass", sum)
+}
+
 fn validate_model(model: &PlantModel) -> Result<()> {
     match model {
         PlantModel::MassSpringDamper(e) => {
             Effective::new(e.mass, e.damping, e.stiffness)?;
+            check_mass("mass m", e.mass)?;
         }
         PlantModel::TwoMass(t) => {
             positive("motor mass", t.motor_mass)?;
@@ -407,6 +447,7 @@ fn validate_model(model: &PlantModel) -> Result<()> {
                     value: 0.0,
                 });
             }
+            check_two_mass(t)?;
         }
         PlantModel::TransferFunction { num, den } => validate_tf(num, den)?,
     }
@@ -491,6 +532,7 @@ impl VelocityEstimator {
                         reason: "must be nonzero (the filter must be causal)".into(),
                     });
                 }
+                check_filter_range(b, a)?;
                 if b.is_empty() || b.iter().all(|&x| x == 0.0) {
                     return Err(Error::Invalid {
                         name: "velocity filter numerator",
@@ -578,6 +620,101 @@ fn exact_sum(x: &[f64]) -> f64 {
         s = t;
     }
     s + c
+}
+
+/// Largest magnitude of a velocity filter's coefficient relative to a0, |b_i/a0| and
+/// |a_i/a0|: far beyond any estimator (a differentiator's taps are about 1/T ≤ 10⁷), and far
+/// enough below the overflow of double precision (10³⁰⁸) that p(z), its wall terms and their
+/// squares stay finite.
+pub const MAX_FILTER_RATIO: f64 = 1e50;
+
+/// Refuses a filter whose coefficients relative to a0 exceed [`MAX_FILTER_RATIO`] (or
+/// overflow), blaming the coefficient when it is itself beyond that range and a0 when it is
+/// a0's smallness that makes the ratio.
+fn check_filter_range(b: &[f64], a: &[f64]) -> Result<()> {
+    let a0 = a[0];
+    let parts = [
+        ("velocity filter numerator b", b),
+        ("velocity filter denominator a", a),
+    ];
+    for (name, part) in parts {
+        for (i, &c) in part.iter().enumerate() {
+            let ratio = (c / a0).abs();
+            if ratio <= MAX_FILTER_RATIO {
+                continue;
+            }
+            let letter = if name.ends_with('b') { 'b' } else { 'a' };
+            let (name, value) = if c.abs() > MAX_FILTER_RATIO {
+                (name, c)
+            } else {
+                ("velocity filter a0", a0)
+            };
+            return Err(Error::Invalid {
+                name,
+                reason: format!(
+                    "= {value:e} makes {letter}{i}/a0 = {ratio:e}: beyond the representable range \
+                     (|b_i/a0|, |a_i/a0| ≤ {MAX_FILTER_RATIO:e})"
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Largest ratio of a wall's term of p(z) = P0 + a·PK + b·PB to the loop's own part P0
+/// (largest coefficients, P0 monic): beyond about 10¹⁵⁰ the roots' evaluations square
+/// past the overflow of double precision; 10¹⁰⁰ keeps far from that.
+pub const MAX_WALL_TERM: f64 = 1e100;
+
+/// Refuses a wall whose stiffness or damping term of p(z) exceeds the loop's own part by
+/// more than [`MAX_WALL_TERM`], naming the wall's parameter and its value (`units` is the
+/// wall in the family's units; `normalized` names it α, β instead of K, B).
+pub fn check_wall_range(
+    fam: &crate::closed_loop::AffineFamily,
+    wall: crate::params::Wall,
+    units: (f64, f64),
+    normalized: bool,
+) -> Result<()> {
+    let largest = |c: &[f64]| c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let own = largest(&fam.p0_core).max(1.0);
+    let terms = [
+        (
+            "wall stiffness K",
+            "alpha",
+            "N/m",
+            wall.stiffness,
+            units.0,
+            &fam.pk,
+        ),
+        (
+            "wall damping B",
+            "beta",
+            "Ns/m",
+            wall.damping,
+            units.1,
+            &fam.pb,
+        ),
+    ];
+    for (name, normalized_name, unit, value, t, part) in terms {
+        let ratio = t.abs() * largest(part) / own;
+        if ratio <= MAX_WALL_TERM {
+            continue;
+        }
+        let (name, unit, value) = if normalized {
+            (normalized_name, "", t)
+        } else {
+            (name, unit, value)
+        };
+        return Err(Error::Invalid {
+            name,
+            reason: format!(
+                "= {value:e}{}{unit} makes its term of p(z) {ratio:.1e} times the loop's own: \
+                 beyond the representable range (at most {MAX_WALL_TERM:e})",
+                if unit.is_empty() { "" } else { " " }
+            ),
+        });
+    }
+    Ok(())
 }
 
 impl Loop {

@@ -23,8 +23,58 @@ pub const VELOCITY_FORMS: &str = "backward, lowpass:FC, average:N or iir:b0,b1,�
 fn bad_velocity(text: &str, why: &str) -> Error {
     Error::Invalid {
         name: "velocity estimator",
-        reason: format!("'{text}' {why} (expected {VELOCITY_FORMS})"),
+        reason: format!("'{}' {why} (expected {VELOCITY_FORMS})", excerpt(text)),
     }
+}
+
+/// Items of a list shown in full in a message; a longer list is shown by its length and
+/// its first [`EXCERPT_ITEMS`] items.
+pub const EXCERPT_ITEMS: usize = 3;
+
+/// Characters of a text shown in full in a message (a longer text is cut, see [`excerpt`]).
+pub const EXCERPT_CHARS: usize = 60;
+
+/// A coefficient list for a message: in full up to 8 numbers, else "2001 coefficients
+/// (1, 1, 1, …)".
+pub fn excerpt_list(c: &[f64]) -> String {
+    if c.len() <= 8 {
+        return c.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+    }
+    let head: Vec<String> = c[..EXCERPT_ITEMS].iter().map(f64::to_string).collect();
+    format!("{} coefficients ({}, …)", c.len(), head.join(", "))
+}
+
+/// A text typed by a user, for a message: in full up to [`EXCERPT_CHARS`] characters; a
+/// longer comma-separated list as its number of items and the first few
+/// ("iir: 2001 coefficients (1, 1, 1, …)/1"), any other long text cut with its length.
+pub fn excerpt(text: &str) -> String {
+    if text.chars().count() <= EXCERPT_CHARS {
+        return text.to_string();
+    }
+    let (kind, body) = match text.split_once(':') {
+        Some((k, b)) if !k.contains(',') => (format!("{k}: "), b),
+        _ => (String::new(), text),
+    };
+    let lists: Vec<String> = body.split('/').map(excerpt_items).collect();
+    let short = format!("{kind}{}", lists.join("/"));
+    if short.chars().count() <= 3 * EXCERPT_CHARS {
+        return short;
+    }
+    let cut: String = text.chars().take(EXCERPT_CHARS).collect();
+    format!("{cut}… ({} characters)", text.chars().count())
+}
+
+/// One comma-separated list in full when short, else "N coefficients (x, y, z, …)".
+fn excerpt_items(list: &str) -> String {
+    let items: Vec<&str> = list.split(',').map(str::trim).collect();
+    if items.len() <= 8 {
+        return items.join(",");
+    }
+    format!(
+        "{} coefficients ({}, …)",
+        items.len(),
+        items[..EXCERPT_ITEMS].join(", ")
+    )
 }
 
 /// Parses a comma-separated list of finite numbers; `name` names the parameter in errors.
@@ -41,7 +91,11 @@ pub fn parse_coefficients(name: &'static str, text: &str) -> Result<Vec<f64>> {
             let tok = tok.trim();
             let x: f64 = tok.parse().map_err(|_| Error::Invalid {
                 name,
-                reason: format!("has '{tok}', which is not a number (in '{text}')"),
+                reason: format!(
+                    "has '{}', which is not a number (in '{}')",
+                    excerpt(tok),
+                    excerpt(text)
+                ),
             })?;
             finite(name, x)
         })
@@ -64,7 +118,7 @@ fn parse_number<T: FromStr>(text: &str, value: &str, what: &str) -> Result<T> {
     value.trim().parse().map_err(|_| {
         bad_velocity(
             text,
-            &format!("has '{}', which is not {what}", value.trim()),
+            &format!("has '{}', which is not {what}", excerpt(value.trim())),
         )
     })
 }
@@ -166,6 +220,31 @@ mod tests {
             assert!(e.contains(needle), "{text}: {e}");
             assert!(!e.contains('\n'), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn long_lists_are_shown_by_an_excerpt() {
+        let ones = vec!["1"; 2001].join(",");
+        let text = format!("iir:{ones},y/1");
+        let e = text.parse::<VelocityEstimator>().unwrap_err().to_string();
+        assert!(e.len() < 300, "{} characters: {e}", e.len());
+        assert!(e.contains("2002 coefficients (1, 1, 1, …)"), "{e}");
+        let e = format!("iir:{ones}")
+            .parse::<VelocityEstimator>()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("'iir: 2001 coefficients (1, 1, 1, …)'"), "{e}");
+        let e = parse_coefficients("num", &format!("{ones},y"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.len() < 300 && e.contains("'y'"), "{e}");
+        assert_eq!(excerpt_list(&[1.0, 2.0]), "1,2");
+        assert_eq!(
+            excerpt_list(&[0.5; 10]),
+            "10 coefficients (0.5, 0.5, 0.5, …)"
+        );
+        let garbage = "x".repeat(500);
+        assert!(excerpt(&garbage).contains("(500 characters)"));
     }
 
     #[test]

@@ -33,6 +33,9 @@ Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad argu
 ValueError naming the keyword argument.
 """
 
+import functools as _functools
+import re as _re
+
 from ._hapstab import (
     Check,
     Discretization,
@@ -49,15 +52,47 @@ from ._hapstab import (
     StabilityMap,
     TransferFunction,
     TwoMass,
-    check,
-    discretize,
-    kmax,
-    margins,
-    passivity,
-    region,
-    simulate,
-    stability_map,
 )
+from ._hapstab import check as _check
+from ._hapstab import discretize as _discretize
+from ._hapstab import kmax as _kmax
+from ._hapstab import margins as _margins
+from ._hapstab import passivity as _passivity
+from ._hapstab import region as _region
+from ._hapstab import simulate as _simulate
+from ._hapstab import stability_map as _stability_map
+
+_PROCESSING = _re.compile(r"while processing '([^']+)'")
+
+
+def _named(fn):
+    """The extension function with its argument type errors named by keyword: a TypeError
+    raised while converting an argument ("must be real number, not str") reads
+    "wall_stiffness: must be real number, not str", as every ValueError does."""
+
+    @_functools.wraps(fn)
+    def call(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except TypeError as e:
+            notes = getattr(e, "__notes__", None) or []
+            names = [m.group(1) for n in notes if (m := _PROCESSING.search(n))]
+            message = str(e)
+            if names and not message.startswith(names[0] + ":"):
+                raise TypeError(f"{names[0]}: {message}") from None
+            raise
+
+    return call
+
+
+check = _named(_check)
+discretize = _named(_discretize)
+kmax = _named(_kmax)
+margins = _named(_margins)
+passivity = _named(_passivity)
+region = _named(_region)
+simulate = _named(_simulate)
+stability_map = _named(_stability_map)
 
 __all__ = [
     "Check",

@@ -303,9 +303,11 @@ def stability_map(
     wall_damping: ArrayLike,
     *,
     spectral_radius: bool = False,
+    grid: Optional[bool] = None,
 ) -> StabilityMap:
-    """The grid method (Section V) over 1-D axes (result shape (len(B), len(K))) or
-    same-shape arrays of walls, in parallel with the GIL released."""
+    """The grid method (Section V) over 1-D axes (grid=True, the default for two 1-D arrays:
+    result shape (len(B), len(K))) or same-shape arrays of walls (grid=False, the default for
+    any other same shape), in parallel with the GIL released."""
 
 def discretize(
     loop: Loop,
