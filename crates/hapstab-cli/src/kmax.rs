@@ -117,6 +117,13 @@ struct KmaxOut {
     /// B at which K_max over the damping range is reached (when no B was given), Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     b_at_k_max: Option<f64>,
+    /// False where K_max over the band is a supremum: a corner of the region that only the
+    /// damping `b_at_k_max` touches, approached as B → `b_at_k_max` (absent with a given B).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_max_attained: Option<bool>,
+    /// For a supremum, a damping beside `b_at_k_max` at which K_max·(1 − 1e-9) is stable, Ns/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    b_stable_near_k_max: Option<f64>,
     /// K_max with no virtual damping (B = 0: the plant's own damping only), N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     k_max_at_zero_damping: Option<f64>,
@@ -149,6 +156,8 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
         input: KmaxInput::new(rl, Some(b), None),
         k_max: best.map(|i| k(i.hi)),
         b_at_k_max: None,
+        k_max_attained: None,
+        b_stable_near_k_max: None,
         k_max_at_zero_damping: None,
         wall_damping: Some(b),
         k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
@@ -179,6 +188,10 @@ fn within(rl: &ResolvedLoop, fam: &AffineFamily, band: DampingRange) -> Result<K
         ),
         k_max: phys.map(|p| p.0),
         b_at_k_max: phys.map(|p| p.1),
+        k_max_attained: best.map(|p| p.attained),
+        b_stable_near_k_max: best
+            .filter(|p| !p.attained)
+            .map(|p| fam.to_physical(0.0, p.beta_stable).1),
         k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
         wall_damping: None,
         k_interval: None,
@@ -310,6 +323,17 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
             out.k_interval.map_or("—".into(), |i| kt(i[0])),
             kt(k),
             linear("")
+        ),
+        (Some(k), None, Some(b)) if out.k_max_attained == Some(false) => println!(
+            "K_max = {}, approached as B → {} (largest over {}: a supremum, a corner of the \
+             region that no stiffness at exactly that B reaches; K_max·(1 − 1e-9) is stable at \
+             B = {}){}",
+            kt(k),
+            bt(b),
+            band_text(band),
+            out.b_stable_near_k_max
+                .map_or("—".into(), |b| eng(b, "Ns/m", 10)),
+            linear(" at that B")
         ),
         (Some(k), None, Some(b)) => println!(
             "K_max = {}, reached at B = {} (largest over {}){}",

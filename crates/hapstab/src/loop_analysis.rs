@@ -9,12 +9,12 @@
 //! ([`Loop::paper_view`]) is analysed through the paper's family (eq. 9 in (α, β)), as every
 //! command has always formed it.
 
-use crate::boundary::{AlphaBeta, Interval, stable_alpha_intervals};
+use crate::boundary::{Interval, stable_alpha_intervals};
 use crate::closed_loop::{AffineFamily, PolyFamily};
 use crate::error::Result;
 use crate::model::{Loop, PlantModel};
 use crate::params::{Physical, Sampling, Wall};
-use crate::region::{StableRegion, alpha_max_within, stable_region};
+use crate::region::{ConfirmedMax, StableRegion, alpha_max_within, stable_region};
 use crate::stability::Analysis;
 
 /// The paper's family of a loop that has the normalized view (eq. 9 in (α, β)); its (α, β)
@@ -64,18 +64,19 @@ pub fn k_max_at_damping(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<Option<
 /// K_max with the damping restricted to the band b_lo ≤ b ≤ b_hi (wall units; either end may
 /// be infinite), and the damping that reaches it: the region's α_max when its damping lies in
 /// the band, else the best of the region's arcs and the exact intervals on the band's edges
-/// ([`alpha_max_within`]). None when nothing in the band is stable.
+/// ([`alpha_max_within`]), confirmed by the exact intervals and the verdict beside it (a
+/// supremum says so and where it is approached). None when nothing in the band is stable.
 pub fn k_max_within(
     lp: &Loop,
     fam: &AffineFamily,
     b_lo: f64,
     b_hi: f64,
-) -> Result<Option<AlphaBeta>> {
+) -> Result<Option<ConfirmedMax>> {
     let r = region(lp, fam)?;
-    Ok(match paper_family(lp)? {
+    match paper_family(lp)? {
         Some(pf) => alpha_max_within(&pf, &r, b_lo, b_hi),
         None => alpha_max_within(fam, &r, b_lo, b_hi),
-    })
+    }
 }
 
 /// The linear condition (22) K < (b + B)/(t_d + T/2) in N/m for the paper's loop in physical

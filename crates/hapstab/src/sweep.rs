@@ -433,7 +433,7 @@ fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
             let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
             let (_, b0) = fam.to_units(0.0, lo);
             let (_, b1) = fam.to_units(0.0, hi);
-            alpha_max_within(&fam, &r, b0, b1).map(|p| (p.alpha, p.beta))
+            alpha_max_within(&fam, &r, b0, b1)?.map(|p| (p.alpha, p.beta))
         }
     };
     Ok(best.map(|(a, b)| fam.to_physical(a, b)))

@@ -119,8 +119,15 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
         device_damping: device,
         stable_area: region.area * fam.scale.stiffness * fam.scale.damping,
         k_max: k_max_of(&fam, &region),
-        k_max_nonnegative_damping: alpha_max_within(&fam, &region, 0.0, f64::INFINITY)
-            .map(|p| physical(&fam, p)),
+        k_max_nonnegative_damping: alpha_max_within(&fam, &region, 0.0, f64::INFINITY)?.map(|p| {
+            physical(
+                &fam,
+                AlphaBeta {
+                    alpha: p.alpha,
+                    beta: p.beta,
+                },
+            )
+        }),
         passive_inside_stable: passive.as_ref().map(|p| passive_inside(&fam, &sw, p)),
         stable,
         passive,

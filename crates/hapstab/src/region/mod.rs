@@ -41,6 +41,7 @@ use crate::verdict::{decide, inside_unit_circle};
 
 mod arrangement;
 mod bounds;
+mod confirm;
 mod curve;
 mod faces;
 mod geometry;
@@ -50,6 +51,7 @@ mod verify;
 
 use arrangement::*;
 use bounds::*;
+pub use confirm::{CONFIRM_REL, ConfirmedMax, SUPREMUM_REL, confirm_max};
 use curve::*;
 use faces::*;
 use geometry::*;
@@ -123,8 +125,18 @@ pub struct StableRegion {
     pub polygons: Vec<Polygon>,
     /// Largest stable a (α_max for the paper's loop; NaN when the region is empty).
     pub alpha_max: f64,
-    /// b at which α_max is reached (NaN when empty).
+    /// b at which α_max is reached, or approached where it is a supremum (NaN when empty).
     pub beta_at_alpha_max: f64,
+    /// True when α_max is attained at `beta_at_alpha_max` (stiffnesses up to α_max·(1 − 1e-6)
+    /// are stable there); false where α_max is a corner that only that one damping touches,
+    /// a supremum approached as b → `beta_at_alpha_max` ([`confirm_max`]).
+    pub alpha_max_attained: bool,
+    /// A damping at which `alpha_stable` is stable: `beta_at_alpha_max` when attained, one
+    /// beside it for a supremum (NaN when empty).
+    pub beta_stable: f64,
+    /// A stiffness the verdict confirms stable at `beta_stable`, within 1e-6 of α_max
+    /// ([`ConfirmedMax::alpha_stable`]; NaN when empty).
+    pub alpha_stable: f64,
     /// Total area of the stable region in wall units.
     pub area: f64,
 }
@@ -165,6 +177,9 @@ impl StableRegion {
             polygons: Vec::new(),
             alpha_max: f64::NAN,
             beta_at_alpha_max: f64::NAN,
+            alpha_max_attained: false,
+            beta_stable: f64::NAN,
+            alpha_stable: f64::NAN,
             area: 0.0,
         }
     }
@@ -213,10 +228,15 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
         match attempt(work, &bounds, (zoom, hint, level), limit, rel_tol, &budget)? {
             Attempt::Grow(wider) => limit = Some(wider),
             Attempt::Done(region, checked) => {
-                let v = verify(work, &bounds, &region, checked, (attempts, rel_tol));
-                match v {
-                    None => return Ok(stretch.map_or(region.clone(), |s| unstretched(region, s))),
-                    Some(z) => {
+                let outcome = match verify(work, &bounds, &region, checked, (attempts, rel_tol)) {
+                    None => confirmed(work, region),
+                    Some(z) => Err(z),
+                };
+                match outcome {
+                    Ok(region) => {
+                        return Ok(stretch.map_or(region.clone(), |s| unstretched(region, s)));
+                    }
+                    Err(z) => {
                         zoom = Some(z);
                         // A zoom far smaller than the search window is also where the next
                         // arrangement is built (three times its size).
@@ -314,6 +334,9 @@ fn attempt(
         polygons,
         alpha_max,
         beta_at_alpha_max,
+        alpha_max_attained: false,
+        beta_stable: f64::NAN,
+        alpha_stable: f64::NAN,
         area,
     };
     Ok(Attempt::Done(region, checked))
@@ -323,6 +346,34 @@ fn attempt(
 /// stable set goes on beyond the window.
 fn touches_window_cut(g: &Graph, f: &[(usize, bool)]) -> bool {
     f.iter().any(|&(e, _)| g.edges[e].3 == EdgeKind::Window)
+}
+
+/// The region with its K_max confirmed ([`confirm_max`]), or the box around K_max to zoom the
+/// next attempt onto when the exact intervals or the verdict contradict it. An empty region
+/// is returned as it is.
+fn confirmed(fam: &AffineFamily, mut r: StableRegion) -> std::result::Result<StableRegion, BoxF> {
+    if r.polygons.is_empty() {
+        return Ok(r);
+    }
+    let cand = AlphaBeta {
+        alpha: r.alpha_max,
+        beta: r.beta_at_alpha_max,
+    };
+    let size = r.size();
+    match confirm_max(fam, cand, (f64::NEG_INFINITY, f64::INFINITY), size) {
+        Some(c) => {
+            r.alpha_max = c.alpha;
+            r.beta_at_alpha_max = c.beta;
+            r.alpha_max_attained = c.attained;
+            r.beta_stable = c.beta_stable;
+            r.alpha_stable = c.alpha_stable;
+            Ok(r)
+        }
+        None => {
+            let h = 1e-3 * size;
+            Err((cand.alpha - h, cand.alpha + h, cand.beta - h, cand.beta + h))
+        }
+    }
 }
 
 /// A box three times as large about the same centre.

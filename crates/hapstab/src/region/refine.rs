@@ -165,19 +165,23 @@ pub(super) fn polygon_alpha_max(fam: &AffineFamily, poly: &Polygon) -> (f64, f64
 /// The largest stable stiffness with the damping restricted to [b_lo, b_hi] (a device's
 /// usable damping, e.g. B ≥ 0), and the damping where it is reached: the region's maximum
 /// if it lies in the band, else the best of the arcs' maxima inside the band and the exact
-/// stable intervals on the band's edges. None when nothing in the band is stable.
+/// stable intervals on the band's edges, confirmed as the region's own ([`confirm_max`]).
+/// None when nothing in the band is stable; an error when the candidate cannot be confirmed.
 pub fn alpha_max_within(
     fam: &AffineFamily,
     region: &StableRegion,
     b_lo: f64,
     b_hi: f64,
-) -> Option<AlphaBeta> {
+) -> Result<Option<ConfirmedMax>> {
     let inside = |b: f64| b >= b_lo && b <= b_hi;
-    if inside(region.beta_at_alpha_max) {
-        return Some(AlphaBeta {
+    if inside(region.beta_at_alpha_max) && inside(region.beta_stable) {
+        return Ok(Some(ConfirmedMax {
             alpha: region.alpha_max,
             beta: region.beta_at_alpha_max,
-        });
+            attained: region.alpha_max_attained,
+            beta_stable: region.beta_stable,
+            alpha_stable: region.alpha_stable,
+        }));
     }
     let mut best: Option<AlphaBeta> = None;
     let mut offer = |a: f64, b: f64| {
@@ -210,7 +214,19 @@ pub fn alpha_max_within(
             offer(top, b);
         }
     }
-    best
+    let Some(cand) = best else {
+        return Ok(None);
+    };
+    confirm_max(fam, cand, (b_lo, b_hi), region.size())
+        .map(Some)
+        .ok_or_else(|| {
+            Error::Numerical(format!(
+                "the largest stable stiffness over the damping band, {} at b = {}, is not \
+                 confirmed by the exact stable intervals there; the stable intervals at fixed \
+                 damping remain available",
+                cand.alpha, cand.beta
+            ))
+        })
 }
 
 /// The maximum of a near vertex i on its arc: where it lies inside a complex-pair arc,

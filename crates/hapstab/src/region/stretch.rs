@@ -115,7 +115,9 @@ pub(super) fn unstretched(mut r: StableRegion, (sx, sy): (f64, f64)) -> StableRe
         }
     }
     r.alpha_max *= sx;
+    r.alpha_stable *= sx;
     r.beta_at_alpha_max *= sy;
+    r.beta_stable *= sy;
     r.area *= sx * sy;
     r
 }

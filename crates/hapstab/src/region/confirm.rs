@@ -1,0 +1,132 @@
+//! After step 6: the largest stable stiffness confirmed before it is reported.
+//!
+//! The polygons' K_max and its damping B* are checked against the exact stable intervals at
+//! B* ([`crate::boundary::stable_alpha_intervals`]): their highest end must be K_max to 1e-9
+//! (it then replaces the polygon's value, exact to rounding), and the point test must find
+//! every root of the wall (K_max − δ, B*) inside the unit circle and not of (K_max + δ, B*),
+//! δ = [`CONFIRM_REL`]·|K_max|. Where
+//! K_max is a corner of the region that only one damping touches, no stiffness near K_max is
+//! stable at B* itself: K_max is then a supremum, approached as B → B*, and the confirmation
+//! finds the damping nearest B* (by decades) at which the middle of the wedge's stable
+//! interval is confirmed stable by the verdict, within [`SUPREMUM_REL`] of K_max where the
+//! wedge is wide enough to certify a wall there, and at most [`CONFIRM_REL`] below it. A
+//! candidate that fails either way is a wrong region, and the caller refuses or retries it.
+
+use super::*;
+
+/// Relative distance of the walls beside K_max that the verdict must call stable (inside) and
+/// not stable (outside): far above the rounding of K_max, far below any margin that matters.
+pub const CONFIRM_REL: f64 = 1e-6;
+
+/// Relative shortfall sought for the stiffness confirmed stable beside a supremum's damping.
+/// A wedge whose opening near its corner is below double precision's resolution of the verdict
+/// (a root within ~1e-11 of the circle on both sides) certifies walls only further out, up to
+/// [`CONFIRM_REL`].
+pub const SUPREMUM_REL: f64 = 1e-9;
+
+/// Relative distances are taken of K_max (of B*) but never of less than this fraction of the
+/// region's size: a K_max of 0 or of rounding size (a corner at the wall-free point) is
+/// confirmed at 1e-6 of 1 % of the region, where walls can be told apart from the corner.
+const UNIT_FLOOR: f64 = 1e-2;
+
+/// A stable interval's highest end agrees with the polygon's K_max when within this relative
+/// distance (the polygon's chord tolerance is 1e-9 of the region; its maximum is refined on
+/// the curve itself).
+const AGREE_REL: f64 = 1e-9;
+
+/// The confirmed K_max of a region or band.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ConfirmedMax {
+    /// The largest stable stiffness (a supremum where `attained` is false), wall units.
+    pub alpha: f64,
+    /// The damping at which it is reached or approached.
+    pub beta: f64,
+    /// True when stiffnesses up to K_max·(1 − 1e-6) are stable at `beta` itself.
+    pub attained: bool,
+    /// A damping at which `alpha_stable` is stable: `beta` when attained, else one beside it.
+    pub beta_stable: f64,
+    /// A stiffness confirmed stable at `beta_stable` by the verdict: K_max·(1 − 1e-6) when
+    /// attained, else the middle of the wedge's interval there (within 1e-9 of K_max where
+    /// the wedge allows, at most 1e-6 below it).
+    pub alpha_stable: f64,
+}
+
+/// The highest finite end of the stable intervals at damping b.
+fn top(fam: &AffineFamily, b: f64) -> Option<f64> {
+    crate::boundary::stable_alpha_intervals(fam, b)
+        .iter()
+        .map(|iv| iv.hi)
+        .filter(|h| h.is_finite())
+        .reduce(f64::max)
+}
+
+/// Confirms a candidate K_max at damping b* (see the module doc), searching for the supremum's
+/// stable damping within [b_lo, b_hi]; `scale` is the region's size (the unit of relative
+/// distances where K_max is 0). None when the candidate contradicts the exact intervals or
+/// the verdict.
+pub fn confirm_max(
+    fam: &AffineFamily,
+    cand: AlphaBeta,
+    (b_lo, b_hi): (f64, f64),
+    scale: f64,
+) -> Option<ConfirmedMax> {
+    let unit = cand
+        .alpha
+        .abs()
+        .max(UNIT_FLOOR * scale)
+        .max(f64::MIN_POSITIVE);
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    // Every root inside the unit circle, certified (Schur–Cohn or the argument principle), as
+    // the region's faces are classified: near a wedge's corner the walls confirmed inside may
+    // lie within the marginal band that `check` reports walls by.
+    let mut stable = |a: f64, b: f64| inside_unit_circle(fam, a, b, &mut coeffs) == Some(true);
+    let delta = CONFIRM_REL * unit;
+    let exact = top(fam, cand.beta).filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit);
+    if let Some(t) = exact {
+        if stable(t + delta, cand.beta) {
+            return None;
+        }
+        if stable(t - delta, cand.beta) {
+            return Some(ConfirmedMax {
+                alpha: t,
+                beta: cand.beta,
+                attained: true,
+                beta_stable: cand.beta,
+                alpha_stable: t - delta,
+            });
+        }
+    }
+    if top(fam, cand.beta).is_some_and(|t| t > cand.alpha + AGREE_REL * unit) {
+        return None;
+    }
+    if stable(cand.alpha + delta, cand.beta) {
+        return None;
+    }
+    // Beside a corner the stable intervals shrink to the corner: the nearest damping (by
+    // decades) whose interval's middle is within CONFIRM_REL of K_max and confirmed stable.
+    let floor = cand.alpha - delta;
+    let b_unit = cand
+        .beta
+        .abs()
+        .max(UNIT_FLOOR * scale)
+        .max(f64::MIN_POSITIVE);
+    (3..=15)
+        .rev()
+        .flat_map(|k| [1.0, -1.0].map(|s| cand.beta + s * b_unit * 10f64.powi(-k)))
+        .filter(|&b| b >= b_lo && b <= b_hi)
+        .find_map(|b| {
+            crate::boundary::stable_alpha_intervals(fam, b)
+                .iter()
+                .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite())
+                .map(|iv| 0.5 * (iv.lo + iv.hi))
+                .find(|&m| m >= floor && m <= cand.alpha && stable(m, b))
+                .map(|m| (b, m))
+        })
+        .map(|(b, m)| ConfirmedMax {
+            alpha: cand.alpha,
+            beta: cand.beta,
+            attained: false,
+            beta_stable: b,
+            alpha_stable: m,
+        })
+}
