@@ -508,7 +508,9 @@ fn stiffness_maximum_within_a_damping_band() {
         let r = stable_region(&fam).unwrap();
         // a band around the maximum returns it
         let b = r.beta_at_alpha_max;
-        let p = alpha_max_within(&fam, &r, b - 0.01, b + 0.01).unwrap().unwrap();
+        let p = alpha_max_within(&fam, &r, b - 0.01, b + 0.01)
+            .unwrap()
+            .unwrap();
         assert_eq!((p.alpha, p.beta), (r.alpha_max, b), "{name}");
         // a band below the maximum: compare with a scan of exact intervals
         let (lo, hi) = (b - 0.5 * b.abs().max(0.05), b - 0.1 * b.abs().max(0.05));

@@ -7,8 +7,8 @@
 //! δ = [`CONFIRM_REL`]·|K_max|. Where
 //! K_max is a corner of the region that only one damping touches, no stiffness near K_max is
 //! stable at B* itself: K_max is then a supremum, approached as B → B*, and the confirmation
-//! finds the damping nearest B* (by decades) at which the middle of the wedge's stable
-//! interval is confirmed stable by the verdict, within [`SUPREMUM_REL`] of K_max where the
+//! finds the damping nearest B* (by decades) at which a stiffness of the wedge's stable
+//! interval is confirmed stable by the point test, within [`SUPREMUM_REL`] of K_max where the
 //! wedge is wide enough to certify a wall there, and at most [`CONFIRM_REL`] below it. A
 //! candidate that fails either way is a wrong region, and the caller refuses or retries it.
 
@@ -23,6 +23,10 @@ pub const CONFIRM_REL: f64 = 1e-6;
 /// (a root within ~1e-11 of the circle on both sides) certifies walls only further out, up to
 /// [`CONFIRM_REL`].
 pub const SUPREMUM_REL: f64 = 1e-9;
+
+/// Points of a wedge's interval tried toward its upper end: halving the distance to it 30
+/// times reaches 1e-9 of the interval's width.
+const WEDGE_STEPS: i32 = 30;
 
 /// Relative distances are taken of K_max (of B*) but never of less than this fraction of the
 /// region's size: a K_max of 0 or of rounding size (a corner at the wall-free point) is
@@ -103,8 +107,14 @@ pub fn confirm_max(
         return None;
     }
     // Beside a corner the stable intervals shrink to the corner: the nearest damping (by
-    // decades) whose interval's middle is within CONFIRM_REL of K_max and confirmed stable.
-    let floor = cand.alpha - delta;
+    // decades) with a stiffness in its interval within CONFIRM_REL of K_max and confirmed
+    // stable, tried from the middle toward the upper end (a wedge whose other side is steep
+    // has its middle far below the corner).
+    // The supremum's stiffness is sought within CONFIRM_REL of K_max or of the region's size,
+    // whichever is larger: a corner at the wall-free point of an undamped plant (K_max = 0,
+    // approached as B → 0) has walls that double precision certifies only 1e-9 of the region
+    // away from it.
+    let floor = cand.alpha - CONFIRM_REL * cand.alpha.abs().max(scale);
     let b_unit = cand
         .beta
         .abs()
@@ -117,8 +127,8 @@ pub fn confirm_max(
         .find_map(|b| {
             crate::boundary::stable_alpha_intervals(fam, b)
                 .iter()
-                .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite())
-                .map(|iv| 0.5 * (iv.lo + iv.hi))
+                .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite() && iv.hi > iv.lo)
+                .flat_map(|iv| (1..=WEDGE_STEPS).map(|j| iv.hi - (iv.hi - iv.lo) * 0.5f64.powi(j)))
                 .find(|&m| m >= floor && m <= cand.alpha && stable(m, b))
                 .map(|m| (b, m))
         })
