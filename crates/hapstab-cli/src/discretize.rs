@@ -7,6 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use hapstab::AffineFamily;
 use hapstab::params::Wall;
+use hapstab::stability::Analysis;
 use hapstab::zoh::DiscreteTf;
 use serde::Serialize;
 
@@ -67,7 +68,21 @@ struct DiscretizeOut {
     velocity: VelocityOut,
     /// Monic p(z) = z^k·den·Vd + num·(K·Vd + B·Vn) of the closed loop (descending).
     characteristic: Vec<f64>,
+    /// The same polynomial in w = z − 1, p(1 + w) (descending powers of w), built from the
+    /// loop's shifted form; null for a velocity filter too long to shift.
+    characteristic_shifted: Option<Vec<f64>>,
+    /// The loop's spectral radius (as `check` prints it: roots polished in w = z − 1).
+    spectral_radius: f64,
+    /// The largest root modulus of `characteristic` itself, as a user's root finder sees it.
+    spectral_radius_of_coefficients: Option<f64>,
+    /// True when the two radii differ by more than 1e-9: the roots crowd z = 1 and the
+    /// z-coefficients have lost digits of them; use `characteristic_shifted`.
+    ill_conditioned: bool,
 }
+
+/// Radii of the loop and of its z-coefficients further apart than this mark p(z) as
+/// ill-conditioned.
+const CONDITIONING_TOL: f64 = 1e-9;
 
 /// Runs `hapstab discretize`.
 pub fn run(a: &DiscretizeArgs) -> Result<()> {
@@ -77,6 +92,9 @@ pub fn run(a: &DiscretizeArgs) -> Result<()> {
     let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
     let (wa, wb) = fam.to_units(w.stiffness, w.damping);
     let v = dl.velocity_tf_physical();
+    let coeffs = fam.coefficients(wa, wb);
+    let radius = Analysis::of_family(&fam, wa, wb)?.spectral_radius;
+    let of_coefficients = Analysis::of_poly(&coeffs).ok().map(|an| an.spectral_radius);
     let out = DiscretizeOut {
         input: LoopInput::new(&rl, Some(w)),
         plant: dl.plant_tf_physical().into(),
@@ -84,7 +102,11 @@ pub fn run(a: &DiscretizeArgs) -> Result<()> {
             num: descending(&v.num),
             den: descending(&v.den),
         },
-        characteristic: descending(&fam.coefficients(wa, wb)),
+        characteristic: descending(&coeffs),
+        characteristic_shifted: fam.coefficients_shifted(wa, wb).map(|c| descending(&c)),
+        spectral_radius: radius,
+        spectral_radius_of_coefficients: of_coefficients,
+        ill_conditioned: of_coefficients.is_none_or(|r| (r - radius).abs() > CONDITIONING_TOL),
     };
     if a.json {
         return print_json(&out);
@@ -152,9 +174,28 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &DiscretizeOut) {
         "  p(z) = {}",
         poly_text(&o.characteristic, "z", TEXT_DIGITS)
     );
+    if o.ill_conditioned {
+        print_conditioning(o);
+    }
     if units {
         println!("\nSample time: {} seconds", sig(rl.lp.period, TEXT_DIGITS));
     } else {
         println!("\nSample time: 1 (normalized time t/T, Table I)");
+    }
+}
+
+/// The note printed where the z-coefficients have lost digits of the roots, with p(1 + w).
+fn print_conditioning(o: &DiscretizeOut) {
+    let shown = |r: Option<f64>| r.map_or("none (the root finder failed)".into(), |r| sig(r, 12));
+    println!(
+        "\nnote: the roots of these coefficients (rounded to double precision) have spectral \
+         radius {}, the loop's is {}: its roots crowd z = 1, where the coefficients in z \
+         are ill-conditioned.",
+        shown(o.spectral_radius_of_coefficients),
+        sig(o.spectral_radius, 12)
+    );
+    if let Some(w) = &o.characteristic_shifted {
+        println!("In w = z − 1 the polynomial keeps them (full precision with --json):\n");
+        println!("  p(1 + w) = {}", poly_text(w, "w", TEXT_DIGITS));
     }
 }

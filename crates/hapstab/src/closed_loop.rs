@@ -226,6 +226,28 @@ impl AffineFamily {
         c
     }
 
+    /// The ascending coefficients of p(1 + w) in the shifted variable w = z − 1 for wall
+    /// (a, b): (1 + w)^k·D(w)Vd(w) + a·N(w)Vd(w) + b·N(w)Vn(w), built from the shifted parts
+    /// (exact at w = 0, see [`AffineFamily::new`]) instead of shifting the rounded z-coefficients.
+    /// Where many roots crowd z = 1 these coefficients keep the roots that the z-coefficients
+    /// lose (a root at distance r from 1 moves by ε^{1/m} for m crowded roots in z, by far less
+    /// in w). None when the loop has no shifted form (a velocity filter longer than
+    /// [`MAX_SHIFTED_FILTER`]).
+    pub fn coefficients_shifted(&self, a: f64, b: f64) -> Option<Vec<f64>> {
+        let sh = self.shifted.as_ref()?;
+        let mut binom = vec![1.0];
+        for _ in 0..self.k {
+            binom = poly::mul(&binom, &[1.0, 1.0]);
+        }
+        let p0 = poly::mul(&binom, &sh.p0_core);
+        let mut out = vec![0.0; p0.len().max(sh.pk.len()).max(sh.pb.len())];
+        for (i, o) in out.iter_mut().enumerate() {
+            let at = |c: &[f64]| c.get(i).copied().unwrap_or(0.0);
+            *o = at(&p0) + a * at(&sh.pk) + b * at(&sh.pb);
+        }
+        Some(out)
+    }
+
     /// (P0(z), PK(z), PB(z)) at a complex point; z^k by repeated squaring.
     pub fn parts_at(&self, z: Complex64) -> (Complex64, Complex64, Complex64) {
         self.parts_with_power(z, z.powu(self.k as u32))

@@ -51,6 +51,12 @@ impl Bounds {
         })
     }
 
+    /// Largest extent of the bounds' polygon.
+    pub(super) fn size(&self) -> f64 {
+        bbox(self.polygon.iter().map(|(p, _)| *p))
+            .map_or(0.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0))
+    }
+
     /// Signed excess beyond the bounds (≤ 0 inside).
     pub(super) fn excess(&self, p: P) -> f64 {
         self.halfplanes

@@ -46,6 +46,7 @@ mod curve;
 mod faces;
 mod geometry;
 mod refine;
+mod scan;
 mod stretch;
 mod verify;
 
@@ -57,6 +58,7 @@ use faces::*;
 use geometry::*;
 pub use refine::alpha_max_within;
 use refine::*;
+use scan::*;
 use stretch::*;
 use verify::*;
 
@@ -211,7 +213,7 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
         });
     }
     let budget = Budget::new(MAX_CURVE_POINTS);
-    let slices = SliceBox::of(fam);
+    let slices = SliceBox::of(fam, Bounds::new(fam)?.size());
     let stretch = stretch(slices);
     let stretched = stretch.map(|(sx, sy)| fam.stretched(sx, sy));
     let work = stretched.as_ref().unwrap_or(fam);
@@ -223,19 +225,25 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
     let mut zoom: Option<BoxF> = None;
     let mut limit = hint;
     let mut attempts = 0;
+    let mut window: Option<BoxF> = None;
+    let mut failure: Option<Error> = None;
     for _ in 0..MAX_ATTEMPTS + MAX_GROWTH {
         let level = (attempts as i32).min(MAX_ATTEMPTS as i32 - 1);
-        match attempt(work, &bounds, (zoom, hint, level), limit, rel_tol, &budget)? {
-            Attempt::Grow(wider) => limit = Some(wider),
-            Attempt::Done(region, checked) => {
+        let outcome = attempt(work, &bounds, (zoom, hint, level), limit, rel_tol, &budget);
+        match outcome {
+            Err(e) => {
+                failure = Some(e);
+                break;
+            }
+            Ok(Attempt::Grow(wider)) => limit = Some(wider),
+            Ok(Attempt::Done(region, checked)) => {
+                window = window.or(checked.wbox);
                 let outcome = match verify(work, &bounds, &region, checked, (attempts, rel_tol)) {
                     None => confirmed(work, region),
                     Some(z) => Err(z),
                 };
                 match outcome {
-                    Ok(region) => {
-                        return Ok(stretch.map_or(region.clone(), |s| unstretched(region, s)));
-                    }
+                    Ok(region) => return Ok(unstretched_by(region, stretch)),
                     Err(z) => {
                         zoom = Some(z);
                         // A zoom far smaller than the search window is also where the next
@@ -250,12 +258,59 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
             }
         }
     }
-    Err(Error::Numerical(
-        "the stable region could not be resolved: its exact boundary and a direct grid of \
-         Schur–Cohn tests keep disagreeing (features far smaller than the boundary curve's \
-         extent); the stable intervals at fixed damping and the grid map remain available"
-            .into(),
-    ))
+    let scan_box = window.or_else(|| bbox(bounds.polygon.iter().map(|(p, _)| *p)));
+    if let Some(region) = scan_box.and_then(|b| scanned_and_checked(work, &bounds, b, rel_tol)) {
+        return Ok(unstretched_by(region, stretch));
+    }
+    Err(failure.unwrap_or_else(|| {
+        Error::Numerical(
+            "the stable region could not be resolved: its exact boundary, exact slices of \
+             constant damping and a direct grid of Schur–Cohn tests keep disagreeing (features \
+             far smaller than the boundary curve's extent); the stable intervals at fixed \
+             damping and the grid map remain available"
+                .into(),
+        )
+    }))
+}
+
+/// The region mapped back from a stretched plane (unchanged without a stretch).
+fn unstretched_by(region: StableRegion, stretch: Option<(f64, f64)>) -> StableRegion {
+    stretch.map_or(region.clone(), |s| unstretched(region, s))
+}
+
+/// The region from exact slices ([`scanned_region`]) where the arrangement could not resolve
+/// it: scanned over the window, then again over the found region's own box at the chord
+/// tolerance of its size, verified thoroughly and its K_max confirmed; None when any of that
+/// fails.
+fn scanned_and_checked(
+    fam: &AffineFamily,
+    bounds: &Bounds,
+    wbox: BoxF,
+    rel_tol: f64,
+) -> Option<StableRegion> {
+    let first = scanned_region(fam, wbox, rel_tol * box_size(wbox))?;
+    let region = match bbox(
+        first
+            .polygons
+            .iter()
+            .flat_map(|p| p.vertices.iter().map(|v| P::of(*v))),
+    ) {
+        None => first,
+        Some(own) => {
+            let (x0, x1, y0, y1) = own;
+            let m = 0.05 * (x1 - x0).max(y1 - y0);
+            let grown = (x0 - m, x1 + m, (y0 - m).max(wbox.2), (y1 + m).min(wbox.3));
+            scanned_region(fam, grown, 0.99 * rel_tol * first.size())?
+        }
+    };
+    let checked = Checked {
+        wbox: Some(wbox),
+        thorough: true,
+    };
+    if verify(fam, bounds, &region, checked, (MAX_ATTEMPTS, rel_tol)).is_some() {
+        return None;
+    }
+    confirmed(fam, region).ok()
 }
 
 /// Attempts before giving up: each one zooms the coarse sampling onto where the previous

@@ -23,40 +23,18 @@ pub(super) struct SliceBox {
 }
 
 impl SliceBox {
-    /// The two slices of the module doc; None when neither finds a stable wall with finite
-    /// ends.
-    pub(super) fn of(fam: &AffineFamily) -> Option<Self> {
-        let along_a = |b: f64| span(&crate::boundary::stable_alpha_intervals(fam, b));
-        let along_b = |a: f64| {
-            let line = WallLine {
-                from: AlphaBeta {
-                    alpha: a,
-                    beta: 0.0,
-                },
-                dir: AlphaBeta {
-                    alpha: 0.0,
-                    beta: 1.0,
-                },
-            };
-            span(&stable_line_intervals(fam, &line))
-        };
-        // Three slices: one axis through the wall-free point, the other through the middle of
-        // what it found, the first again through the middle of that (a region that is a
-        // sliver on the stiffness axis, as an undamped plant's, is wide halfway up).
-        let (ax, bx) = match along_a(0.0) {
-            Some((a0, a1, mid)) => {
-                let (b0, b1, bmid) = along_b(mid)?;
-                let (c0, c1, _) = along_a(bmid).unwrap_or((a0, a1, mid));
-                ((a0.min(c0), a1.max(c1)), (b0, b1))
-            }
-            None => {
-                let (b0, b1, mid) = along_b(0.0)?;
-                let (a0, a1, amid) = along_a(mid)?;
-                let (c0, c1, _) = along_b(amid).unwrap_or((b0, b1, mid));
-                ((a0, a1), (b0.min(c0), b1.max(c1)))
-            }
-        };
-        let bounds = (ax.0, ax.1, bx.0, bx.1);
+    /// The slices of the module doc; None when none finds a stable wall with finite ends.
+    /// When neither axis through the wall-free point finds one (an undamped plant, whose
+    /// stable set touches the axes only at its corner), the same slices are taken through
+    /// points ±10^{−k} of `size` (the bounds' extent) off it, k = 1..[`OFFSET_DECADES`].
+    pub(super) fn of(fam: &AffineFamily, size: f64) -> Option<Self> {
+        let offsets = (1..=OFFSET_DECADES).flat_map(|k| {
+            let v = size * 10f64.powi(-k);
+            [v, -v]
+        });
+        let bounds = std::iter::once(0.0)
+            .chain(offsets)
+            .find_map(|v| from_stiffness_axis(fam, v).or_else(|| from_damping_axis(fam, v)))?;
         (bounds.1 > bounds.0 && bounds.3 > bounds.2).then_some(Self { bounds })
     }
 
@@ -74,6 +52,48 @@ impl SliceBox {
         let (a0, a1, b0, b1) = self.bounds;
         (b1 - b0) / (a1 - a0)
     }
+}
+
+/// Decades below the bounds' extent at which slices are taken off the wall-free point.
+const OFFSET_DECADES: i32 = 15;
+
+/// The stable interval's span along the stiffness axis at damping b (lowest end, highest end,
+/// middle of the widest interval).
+fn along_a(fam: &AffineFamily, b: f64) -> Option<(f64, f64, f64)> {
+    span(&crate::boundary::stable_alpha_intervals(fam, b))
+}
+
+/// The same along the damping axis at stiffness a.
+fn along_b(fam: &AffineFamily, a: f64) -> Option<(f64, f64, f64)> {
+    let line = WallLine {
+        from: AlphaBeta {
+            alpha: a,
+            beta: 0.0,
+        },
+        dir: AlphaBeta {
+            alpha: 0.0,
+            beta: 1.0,
+        },
+    };
+    span(&stable_line_intervals(fam, &line))
+}
+
+/// Three slices from the stiffness axis at damping b: it, the damping axis through the middle
+/// of what it found, the stiffness axis again through the middle of that (a region that is a
+/// sliver on the first axis, as an undamped plant's, is wide halfway up).
+fn from_stiffness_axis(fam: &AffineFamily, b: f64) -> Option<BoxF> {
+    let (a0, a1, mid) = along_a(fam, b)?;
+    let (b0, b1, bmid) = along_b(fam, mid)?;
+    let (c0, c1, _) = along_a(fam, bmid).unwrap_or((a0, a1, mid));
+    Some((a0.min(c0), a1.max(c1), b0.min(b), b1.max(b)))
+}
+
+/// The same three slices starting from the damping axis at stiffness a.
+fn from_damping_axis(fam: &AffineFamily, a: f64) -> Option<BoxF> {
+    let (b0, b1, mid) = along_b(fam, a)?;
+    let (a0, a1, amid) = along_a(fam, mid)?;
+    let (c0, c1, _) = along_b(fam, amid).unwrap_or((b0, b1, mid));
+    Some((a0.min(a), a1.max(a), b0.min(c0), b1.max(c1)))
 }
 
 /// The span (lowest finite end, highest finite end, middle of the widest interval) of a set
