@@ -94,6 +94,16 @@ pub(super) fn euler_holds(g: &Graph, cycles: usize) -> bool {
     v + cycles == g.edges.len() + 2 * c
 }
 
+/// True when an island lies inside a face that is not bounded by the island itself: the
+/// face has a hole.
+pub(super) fn has_hole(islands: &[(AlphaBeta, Vec<usize>)], faces: &[Face]) -> bool {
+    islands.iter().any(|(p, edges)| {
+        faces
+            .iter()
+            .any(|(f, v)| f.iter().all(|(e, _)| !edges.contains(e)) && point_in(v, *p))
+    })
+}
+
 /// The counter-clockwise faces whose interior point has every root inside the unit circle
 /// ([`inside_unit_circle`]: a face holds a constant number of roots inside).
 pub(super) fn stable_faces(
@@ -112,6 +122,26 @@ pub(super) fn stable_faces(
             let ip = interior_point(&pts)?;
             (inside_unit_circle(fam, ip.alpha, ip.beta, &mut coeffs) == Some(true))
                 .then_some((f, pts))
+        })
+        .collect()
+}
+
+/// A vertex of each clockwise cycle made of curve edges only (the outer boundary of a closed
+/// curve loop, an island, seen from the face around it), with the cycle's edges.
+pub(super) fn island_points(
+    g: &Graph,
+    cycles: &[Vec<(usize, bool)>],
+) -> Vec<(AlphaBeta, Vec<usize>)> {
+    cycles
+        .iter()
+        .filter(|f| {
+            f.iter()
+                .all(|&(e, _)| matches!(g.edges[e].3, EdgeKind::Complex { .. }))
+        })
+        .filter_map(|f| {
+            let pts = face_points(g, f);
+            let edges = f.iter().map(|&(e, _)| e).collect();
+            (pts.len() >= 3 && shoelace(&pts) < 0.0).then(|| (pts[0], edges))
         })
         .collect()
 }

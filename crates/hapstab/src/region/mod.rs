@@ -236,6 +236,7 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
                 break;
             }
             Ok(Attempt::Grow(wider)) => limit = Some(wider),
+            Ok(Attempt::Holed) => break,
             Ok(Attempt::Done(region, checked)) => {
                 window = window.or(checked.wbox);
                 let outcome = match verify(work, &bounds, &region, checked, (attempts, rel_tol)) {
@@ -330,10 +331,13 @@ const LIMIT_FRACTION: f64 = 1e-3;
 type BoxF = (f64, f64, f64, f64);
 
 /// What one attempt found: a region to verify, or a stable face that reached the edge of a
-/// limited window (the box to build the next window in).
+/// limited window (the box to build the next window in), or a region with a hole.
 enum Attempt {
     Done(StableRegion, Checked),
     Grow(BoxF),
+    /// A stable face with an unstable island inside (a hole): built from exact slices
+    /// instead, as polygons around the hole.
+    Holed,
 }
 
 /// One pass of the method (steps 2–6 of the module doc) with the coarse sampling's focus (a
@@ -363,7 +367,11 @@ fn attempt(
     let graph = arrangement(fam, window, &coarse)?;
     let cycles = faces(&graph);
     let consistent = euler_holds(&graph, cycles.len());
+    let islands = island_points(&graph, &cycles);
     let faces = stable_faces(fam, &graph, cycles);
+    if has_hole(&islands, &faces) {
+        return Ok(Attempt::Holed);
+    }
     if let Some((l, _)) = limited
         && faces.iter().any(|(f, _)| touches_window_cut(&graph, f))
     {

@@ -223,3 +223,67 @@ fn strand_polygon(run: &[Slice], k: usize) -> Option<Polygon> {
         thetas: vec![f64::NAN; n],
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn slice(b: f64, ivs: &[(f64, f64)]) -> Slice {
+        Slice {
+            b,
+            ivs: ivs.iter().map(|&(lo, hi)| Interval { lo, hi }).collect(),
+        }
+    }
+
+    /// A stable band [0, 4] × [0, 6] with the hole (1, 3) × (2, 4): the polygons cover the
+    /// band around the hole, not the hole, and their areas add up to the band's minus the hole's.
+    #[test]
+    fn a_hole_is_left_out_of_the_polygons() {
+        let one = [(0.0, 4.0)];
+        let two = [(0.0, 1.0), (3.0, 4.0)];
+        let slices = vec![
+            slice(0.0, &one),
+            slice(1.0, &one),
+            slice(2.0, &one),
+            slice(2.0 + 1e-12, &two),
+            slice(3.0, &two),
+            slice(4.0, &two),
+            slice(4.0 + 1e-12, &one),
+            slice(5.0, &one),
+            slice(6.0, &one),
+        ];
+        let polys = joined(&slices);
+        assert_eq!(polys.len(), 4);
+        let inside = |a: f64, b: f64| {
+            polys
+                .iter()
+                .any(|p| p.contains(AlphaBeta { alpha: a, beta: b }))
+        };
+        assert!(!inside(2.0, 3.0), "the hole");
+        assert!(inside(0.5, 3.0) && inside(3.5, 3.0) && inside(2.0, 1.0) && inside(2.0, 5.0));
+        let area: f64 = polys.iter().map(Polygon::area).sum();
+        assert!((area - (24.0 - 4.0)).abs() < 1e-9, "{area}");
+        assert!(polys.iter().all(|p| p.area() > 0.0), "counter-clockwise");
+    }
+
+    /// Slices whose ends move along straight lines need no bisection; a change in the number
+    /// of intervals is located to the topology tolerance.
+    #[test]
+    fn bisection_locates_a_split() {
+        let at = |b: f64| {
+            if b < 0.3 {
+                slice(b, &[(0.0, 1.0 + b)])
+            } else {
+                slice(b, &[(0.0, 0.4), (0.6, 1.0 + b)])
+            }
+        };
+        let mut out = vec![at(0.0)];
+        refine_between(&at, &at(0.0), &at(1.0), (1e-9, 1e-12), &mut out).unwrap();
+        let split = out
+            .windows(2)
+            .find(|w| w[0].ivs.len() != w[1].ivs.len())
+            .unwrap();
+        assert!(split[0].b < 0.3 && split[1].b >= 0.3 && split[1].b - split[0].b <= 1e-12);
+        assert!(out.len() < 100, "{} slices", out.len());
+    }
+}
