@@ -273,10 +273,10 @@ fn region_far_smaller_than_its_curve_is_right_or_refused() {
 }
 
 /// Refusals of the region stay rare over the random loops of the property above (the same
-/// strategy, a fixed seed): at most 5 % of 400. Those refused are regions far thinner than
-/// the window (fast sampling with a low-pass velocity filter of a few hertz: 1e6 times
-/// taller than wide) and nearly pure delays (δ > 20); the thin ones were once answered as
-/// empty beside stable walls on the stiffness axis, which the verification now checks.
+/// strategy, a fixed seed): under 0.5 % of 400 (at most one). Regions far thinner than the
+/// window (fast sampling with a low-pass velocity filter of a few hertz: 10⁶ times taller
+/// than wide) are computed in a stretched plane, and regions the curve's arrangement cannot
+/// resolve are built from exact slices; 18 of these 400 were refused before either.
 #[test]
 fn region_refusals_are_rare() {
     use proptest::strategy::ValueTree;
@@ -295,7 +295,7 @@ fn region_refusals_are_rare() {
         })
         .count();
     eprintln!("{refused} of {n} regions refused");
-    assert!(refused * 20 <= n, "{refused} of {n} regions refused");
+    assert!(refused * 200 < n, "{refused} of {n} regions refused");
 }
 
 /// The paper's loop over the explorer's ranges (γ ≤ 1000, δ ≤ 100): every region resolves
