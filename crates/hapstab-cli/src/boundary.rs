@@ -46,6 +46,15 @@ struct PhysicalRegion {
     k_max: f64,
     /// B at K_max in Ns/m.
     b_at_k_max: f64,
+    /// False where K_max is a supremum: a corner of the region that only the damping
+    /// `b_at_k_max` touches, approached as B → `b_at_k_max`.
+    k_max_attained: bool,
+    /// A damping (Ns/m) at which `k_stable_near_k_max` is stable: `b_at_k_max` when K_max is
+    /// attained, one beside it for a supremum.
+    b_stable_near_k_max: f64,
+    /// A stiffness (N/m) within 1e-6 of K_max that the verdict confirms stable at
+    /// `b_stable_near_k_max`.
+    k_stable_near_k_max: f64,
     /// Area of the stable region in N²·s/m².
     area: f64,
     /// The polygons as arrays of [K, B] in N/m and Ns/m (counter-clockwise, first vertex
@@ -179,6 +188,9 @@ fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
     PhysicalRegion {
         k_max,
         b_at_k_max,
+        k_max_attained: r.alpha_max_attained,
+        b_stable_near_k_max: fam.to_physical(0.0, r.beta_stable).1,
+        k_stable_near_k_max: fam.to_physical(r.alpha_stable, 0.0).0,
         area: r.area * kpa * bpb,
         polygons: polygons(r, |a, b| {
             let (k, b) = fam.to_physical(a, b);
@@ -314,11 +326,22 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         println!("area  = {} (in α·β)", sig(r.area, 6));
     }
     if let Some(p) = &out.physical {
-        println!(
-            "K_max = {} at B = {}",
-            eng(p.k_max, "N/m", 6),
-            eng(p.b_at_k_max, "Ns/m", 6)
-        );
+        if p.k_max_attained {
+            println!(
+                "K_max = {} at B = {}",
+                eng(p.k_max, "N/m", 6),
+                eng(p.b_at_k_max, "Ns/m", 6)
+            );
+        } else {
+            println!(
+                "K_max = {}, approached as B → {} (a supremum: a corner of the region; K = {} \
+                 is stable at B = {})",
+                eng(p.k_max, "N/m", 6),
+                eng(p.b_at_k_max, "Ns/m", 6),
+                eng(p.k_stable_near_k_max, "N/m", 10),
+                eng(p.b_stable_near_k_max, "Ns/m", 10)
+            );
+        }
         println!("area  = {} N²·s/m²", sig(p.area, 6));
     }
     // polygons are numbered from 0, as in the CSV's polygon column and the JSON arrays

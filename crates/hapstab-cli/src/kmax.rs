@@ -121,9 +121,14 @@ struct KmaxOut {
     /// damping `b_at_k_max` touches, approached as B → `b_at_k_max` (absent with a given B).
     #[serde(skip_serializing_if = "Option::is_none")]
     k_max_attained: Option<bool>,
-    /// For a supremum, a damping beside `b_at_k_max` at which K_max·(1 − 1e-9) is stable, Ns/m.
+    /// For a supremum, a damping beside `b_at_k_max` at which `k_stable_near_k_max` is
+    /// stable, Ns/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     b_stable_near_k_max: Option<f64>,
+    /// For a supremum, a stiffness within 1e-6 of K_max (1e-9 where the corner's wedge is
+    /// wide enough) that the verdict confirms stable at `b_stable_near_k_max`, N/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_stable_near_k_max: Option<f64>,
     /// K_max with no virtual damping (B = 0: the plant's own damping only), N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     k_max_at_zero_damping: Option<f64>,
@@ -158,6 +163,7 @@ fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> 
         b_at_k_max: None,
         k_max_attained: None,
         b_stable_near_k_max: None,
+        k_stable_near_k_max: None,
         k_max_at_zero_damping: None,
         wall_damping: Some(b),
         k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
@@ -192,6 +198,9 @@ fn within(rl: &ResolvedLoop, fam: &AffineFamily, band: DampingRange) -> Result<K
         b_stable_near_k_max: best
             .filter(|p| !p.attained)
             .map(|p| fam.to_physical(0.0, p.beta_stable).1),
+        k_stable_near_k_max: best
+            .filter(|p| !p.attained)
+            .map(|p| fam.to_physical(p.alpha_stable, 0.0).0),
         k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
         wall_damping: None,
         k_interval: None,
@@ -326,11 +335,12 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         ),
         (Some(k), None, Some(b)) if out.k_max_attained == Some(false) => println!(
             "K_max = {}, approached as B → {} (largest over {}: a supremum, a corner of the \
-             region that no stiffness at exactly that B reaches; K_max·(1 − 1e-9) is stable at \
-             B = {}){}",
+             region that no stiffness at exactly that B reaches; K = {} is stable at B = {}){}",
             kt(k),
             bt(b),
             band_text(band),
+            out.k_stable_near_k_max
+                .map_or("—".into(), |k| eng(k, "N/m", 10)),
             out.b_stable_near_k_max
                 .map_or("—".into(), |b| eng(b, "Ns/m", 10)),
             linear(" at that B")

@@ -7,7 +7,7 @@ use hapstab::loop_analysis::{
     analysis, damping_units, k_max_at_damping, k_max_within, linear_k, pick_interval,
     region as loop_region, stable_intervals, wall_units,
 };
-use hapstab::region::{EdgeKind, Polygon, StableRegion};
+use hapstab::region::{ConfirmedMax, EdgeKind, Polygon, StableRegion};
 use num_complex::Complex64;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
@@ -207,6 +207,15 @@ pub struct PyRegion {
     pub k_max: Option<f64>,
     /// The damping B in Ns/m at which K_max is reached.
     pub b_at_k_max: Option<f64>,
+    /// False where K_max is a supremum: a corner of the region that only the damping
+    /// b_at_k_max touches (approached as B → b_at_k_max); None when nothing is stable.
+    pub k_max_attained: Option<bool>,
+    /// A damping in Ns/m at which k_stable_near_k_max is stable: b_at_k_max when K_max is
+    /// attained, one beside it for a supremum.
+    pub b_stable_near_k_max: Option<f64>,
+    /// A stiffness in N/m within 1e-6 of K_max that the verdict confirms stable at
+    /// b_stable_near_k_max.
+    pub k_stable_near_k_max: Option<f64>,
     /// K_max in normalized units (α_max for the paper's loop).
     pub alpha_max: Option<f64>,
     /// β at α_max.
@@ -269,6 +278,9 @@ fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResu
         edges: r.polygons.iter().map(edges).collect(),
         k_max: found.then_some(k),
         b_at_k_max: found.then_some(b),
+        k_max_attained: found.then_some(r.alpha_max_attained),
+        b_stable_near_k_max: found.then(|| fam.to_physical(0.0, r.beta_stable).1),
+        k_stable_near_k_max: found.then(|| fam.to_physical(r.alpha_stable, 0.0).0),
         alpha_max: found.then_some(r.alpha_max),
         beta_at_alpha_max: found.then_some(r.beta_at_alpha_max),
         area: r.area * kpa * bpb,
@@ -312,6 +324,14 @@ pub struct PyKmax {
     pub beta_at_alpha_max: Option<f64>,
     /// The paper's loop: linear condition (22), (b + B)/(t_d + T/2) in N/m at the same B.
     pub k_linear: Option<f64>,
+    /// Without wall_damping: False where K_max is a supremum, a corner of the region that
+    /// only the damping b_at_k_max touches (approached as B → b_at_k_max); None with a B.
+    pub k_max_attained: Option<bool>,
+    /// For a supremum: a damping in Ns/m beside b_at_k_max at which k_stable_near_k_max is
+    /// stable.
+    pub b_stable_near_k_max: Option<f64>,
+    /// For a supremum: a stiffness in N/m within 1e-6 of K_max, stable at b_stable_near_k_max.
+    pub k_stable_near_k_max: Option<f64>,
 }
 
 #[pymethods]
@@ -351,6 +371,9 @@ fn kmax_at(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<PyKmax> {
         alpha_max: best.map(|iv| iv.hi),
         beta_at_alpha_max: best.map(|_| bu),
         k_linear: linear_k(&lp.lp, b),
+        k_max_attained: None,
+        b_stable_near_k_max: None,
+        k_stable_near_k_max: None,
     })
 }
 
@@ -372,12 +395,17 @@ fn kmax_within(
     let blo = band_units(lp, fam, lo)?;
     let bhi = band_units(lp, fam, hi)?;
     let best = py.detach(|| k_max_within(&lp.lp, fam, blo, bhi)).py()?;
-    Ok(overall_from(lp, fam, best.map(|p| (p.alpha, p.beta))))
+    Ok(overall_from(lp, fam, best))
 }
 
-fn overall_from(lp: &PyLoop, fam: &AffineFamily, best: Option<(f64, f64)>) -> PyKmax {
+fn overall_from(lp: &PyLoop, fam: &AffineFamily, max: Option<ConfirmedMax>) -> PyKmax {
+    let best = max.map(|p| (p.alpha, p.beta));
     let phys = best.map(|(a, b)| fam.to_physical(a, b));
+    let supremum = max.filter(|p| !p.attained);
     PyKmax {
+        k_max_attained: max.map(|p| p.attained),
+        b_stable_near_k_max: supremum.map(|p| fam.to_physical(0.0, p.beta_stable).1),
+        k_stable_near_k_max: supremum.map(|p| fam.to_physical(p.alpha_stable, 0.0).0),
         k_max: phys.map(|p| p.0),
         b_at_k_max: phys.map(|p| p.1),
         k_interval: None,
@@ -418,8 +446,13 @@ pub fn kmax(
         (None, None) => {
             let lp = &r#loop.lp;
             let r = py.detach(|| loop_region(lp, &fam)).py()?;
-            let found = !r.polygons.is_empty();
-            let best = found.then_some((r.alpha_max, r.beta_at_alpha_max));
+            let best = (!r.polygons.is_empty()).then_some(ConfirmedMax {
+                alpha: r.alpha_max,
+                beta: r.beta_at_alpha_max,
+                attained: r.alpha_max_attained,
+                beta_stable: r.beta_stable,
+                alpha_stable: r.alpha_stable,
+            });
             Ok(overall_from(r#loop, &fam, best))
         }
     }

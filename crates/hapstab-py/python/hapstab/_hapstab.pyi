@@ -169,6 +169,9 @@ class Region:
     edges: list[list[Edge]]
     k_max: Optional[float]
     b_at_k_max: Optional[float]
+    k_max_attained: Optional[bool]
+    b_stable_near_k_max: Optional[float]
+    k_stable_near_k_max: Optional[float]
     alpha_max: Optional[float]
     beta_at_alpha_max: Optional[float]
     area: float
@@ -183,6 +186,9 @@ class Kmax:
     alpha_max: Optional[float]
     beta_at_alpha_max: Optional[float]
     k_linear: Optional[float]
+    k_max_attained: Optional[bool]
+    b_stable_near_k_max: Optional[float]
+    k_stable_near_k_max: Optional[float]
 
 class StabilityMap:
     stable: BoolArray

@@ -272,7 +272,6 @@ pub(super) fn split(
     // [−1/4, 5/4] of it; coarse passes also bound the turning per chord (scale-free, so that
     // loops far smaller than the focus are resolved) down to a floor below which it is noise.
     let keep_mid = s.focus.is_none();
-    let limit = s.tol;
     let t = if len2 > 0.0 {
         (q.x * ch.x + q.y * ch.y) / len2
     } else {
@@ -290,6 +289,11 @@ pub(super) fn split(
     // the chord says nothing of a half whose parametrization runs unevenly (the arc from
     // θ = 0, where the curve starts with zero speed, has its midpoint a quarter along).
     let unverified = keep_mid && !central && !tiny;
+    let limit = if keep_mid && central {
+        4.0 * s.tol
+    } else {
+        s.tol
+    };
     let within = !unverified && (tiny || (dev <= limit && (-0.25..=1.25).contains(&t)));
     let turning = s.focus.is_some() && dev > TURN_TOL * len && dev > 1e-7 * s.tol;
     let far = norm(q) + norm(sub(pm, p1)) > 1.5 * len + s.tol;

@@ -213,15 +213,21 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
         });
     }
     let budget = Budget::new(MAX_CURVE_POINTS);
-    let slices = SliceBox::of(fam, Bounds::new(fam)?.size());
+    let raw_bounds = Bounds::new(fam)?;
+    let slices = SliceBox::of(fam, raw_bounds.size());
     let stretch = stretch(slices);
     let stretched = stretch.map(|(sx, sy)| fam.stretched(sx, sy));
     let work = stretched.as_ref().unwrap_or(fam);
-    let bounds = Bounds::new(work)?;
+    let bounds = match &stretched {
+        Some(f) => Bounds::new(f)?,
+        None => raw_bounds,
+    };
     let scale = stretch.unwrap_or((1.0, 1.0));
     // The slices' box, three times its size, is where the first attempts look closely and,
     // when it is far smaller than the search window, the window the arrangement is built in.
-    let hint: Option<BoxF> = slices.map(|b| b.focus(scale));
+    let hint: Option<BoxF> = slices
+        .map(|b| b.focus(scale))
+        .filter(|h| box_size(*h) < HINT_FRACTION * bounds.size());
     let mut zoom: Option<BoxF> = None;
     let mut limit = hint;
     let mut attempts = 0;
@@ -326,6 +332,11 @@ const MAX_GROWTH: usize = 12;
 /// window: the arrangement's tolerances are relative to its window, so a region 10⁶ times
 /// smaller than the curve's extent is built in a window of its own size.
 const LIMIT_FRACTION: f64 = 1e-3;
+
+/// The slices' box guides the first attempts only when it is smaller than this fraction of
+/// the bounds: a region about as large as its bounds (the paper's) is sampled well without
+/// a focus, whose finer coarse pass would cost more than the arrangement.
+const HINT_FRACTION: f64 = 0.1;
 
 /// An axis-aligned box (a0, a1, b0, b1).
 type BoxF = (f64, f64, f64, f64);

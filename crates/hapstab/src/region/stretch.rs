@@ -8,7 +8,10 @@
 //! starting from the damping axis at a = 0).
 
 use super::*;
-use crate::boundary::{Interval, WallLine, stable_line_intervals};
+use crate::boundary::{
+    CircleTable, Interval, WallLine, line_crossings_tabulated, stable_alpha_intervals_tabulated,
+    stable_between,
+};
 
 /// Aspect ratios within this factor of 1 are left alone: the isotropic sampling resolves them
 /// (the paper's regions are within 30 of square), and their polygons stay bit for bit those
@@ -28,6 +31,8 @@ impl SliceBox {
     /// stable set touches the axes only at its corner), the same slices are taken through
     /// points ±10^{−k} of `size` (the bounds' extent) off it, k = 1..[`OFFSET_DECADES`].
     pub(super) fn of(fam: &AffineFamily, size: f64) -> Option<Self> {
+        let table = CircleTable::new(fam);
+        let fam = &(fam, &table);
         let offsets = (1..=OFFSET_DECADES).flat_map(|k| {
             let v = size * 10f64.powi(-k);
             [v, -v]
@@ -57,14 +62,17 @@ impl SliceBox {
 /// Decades below the bounds' extent at which slices are taken off the wall-free point.
 const OFFSET_DECADES: i32 = 15;
 
+/// A family with its table of the unit circle (one scan serves every slice).
+type Tabled<'a> = (&'a AffineFamily, &'a CircleTable);
+
 /// The stable interval's span along the stiffness axis at damping b (lowest end, highest end,
 /// middle of the widest interval).
-fn along_a(fam: &AffineFamily, b: f64) -> Option<(f64, f64, f64)> {
-    span(&crate::boundary::stable_alpha_intervals(fam, b))
+fn along_a(&(fam, table): &Tabled<'_>, b: f64) -> Option<(f64, f64, f64)> {
+    span(&stable_alpha_intervals_tabulated(fam, table, b))
 }
 
 /// The same along the damping axis at stiffness a.
-fn along_b(fam: &AffineFamily, a: f64) -> Option<(f64, f64, f64)> {
+fn along_b(&(fam, table): &Tabled<'_>, a: f64) -> Option<(f64, f64, f64)> {
     let line = WallLine {
         from: AlphaBeta {
             alpha: a,
@@ -75,13 +83,17 @@ fn along_b(fam: &AffineFamily, a: f64) -> Option<(f64, f64, f64)> {
             beta: 1.0,
         },
     };
-    span(&stable_line_intervals(fam, &line))
+    span(&stable_between(
+        fam,
+        &line,
+        &line_crossings_tabulated(fam, table, &line),
+    ))
 }
 
 /// Three slices from the stiffness axis at damping b: it, the damping axis through the middle
 /// of what it found, the stiffness axis again through the middle of that (a region that is a
 /// sliver on the first axis, as an undamped plant's, is wide halfway up).
-fn from_stiffness_axis(fam: &AffineFamily, b: f64) -> Option<BoxF> {
+fn from_stiffness_axis(fam: &Tabled<'_>, b: f64) -> Option<BoxF> {
     let (a0, a1, mid) = along_a(fam, b)?;
     let (b0, b1, bmid) = along_b(fam, mid)?;
     let (c0, c1, _) = along_a(fam, bmid).unwrap_or((a0, a1, mid));
@@ -89,7 +101,7 @@ fn from_stiffness_axis(fam: &AffineFamily, b: f64) -> Option<BoxF> {
 }
 
 /// The same three slices starting from the damping axis at stiffness a.
-fn from_damping_axis(fam: &AffineFamily, a: f64) -> Option<BoxF> {
+fn from_damping_axis(fam: &Tabled<'_>, a: f64) -> Option<BoxF> {
     let (b0, b1, mid) = along_b(fam, a)?;
     let (a0, a1, amid) = along_a(fam, mid)?;
     let (c0, c1, _) = along_b(fam, amid).unwrap_or((b0, b1, mid));
