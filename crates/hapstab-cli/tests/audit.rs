@@ -227,3 +227,64 @@ fn discretize_of_a_well_conditioned_loop_prints_no_note() {
     let out = hapstab().args(args).output().unwrap();
     assert!(!String::from_utf8_lossy(&out.stdout).contains("ill-conditioned"));
 }
+
+#[test]
+fn a_free_mass_without_wall_stiffness_is_marginal_not_a_failure() {
+    // K = 0 leaves the free mass's root at z = 1 exactly: marginal, whatever the estimator
+    for v in [
+        "--velocity=iir:600,-500,-100/1,-0.4,0.05",
+        "--velocity=lowpass:100",
+    ] {
+        let args = [
+            "check",
+            "--no-arm",
+            v,
+            "--wall-stiffness=0",
+            "--wall-damping=10",
+        ];
+        let out = json(&args);
+        assert_eq!(out["verdict"], "marginal", "{v}: {out}");
+        assert!((num(&out, "spectral_radius") - 1.0).abs() < 1e-12, "{v}");
+    }
+}
+
+#[test]
+fn no_polygon_covers_an_unstable_wall_between_close_branches() {
+    let lp = [
+        "--plant-num=0.000551340607085,0.00831936581947",
+        "--plant-den=0.334778171044,1.02955059894,4.04532782511",
+        "--delay=6",
+        "--period=0.00011424717289",
+    ];
+    let mut args = vec!["boundary"];
+    args.extend(lp);
+    let v = json(&args);
+    let (k, b) = (20_866.99, 606.01);
+    assert_eq!(check(&lp, k, b), "unstable");
+    for poly in v["polygons"].as_array().unwrap() {
+        let pts: Vec<(f64, f64)> = poly
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+            .collect();
+        // every polygon counter-clockwise (positive shoelace area)
+        let n = pts.len();
+        let area: f64 = (0..n)
+            .map(|i| {
+                let (p, q) = (pts[i], pts[(i + 1) % n]);
+                p.0 * q.1 - q.0 * p.1
+            })
+            .sum();
+        assert!(area > 0.0, "a clockwise polygon");
+        // the unstable wall lies in none (even-odd rule)
+        let mut inside = false;
+        for i in 0..n {
+            let (p, q) = (pts[i], pts[(i + 1) % n]);
+            if (p.1 > b) != (q.1 > b) && k < p.0 + (b - p.1) / (q.1 - p.1) * (q.0 - p.0) {
+                inside = !inside;
+            }
+        }
+        assert!(!inside, "the unstable wall is inside a polygon");
+    }
+}

@@ -17,6 +17,7 @@
 use std::f64::consts::PI;
 
 use num_complex::Complex64;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
@@ -324,6 +325,10 @@ pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> 
     crossings_on_scan(fam, line, &ts, &fs)
 }
 
+/// Angles per parallel task of a [`CircleTable`]: a few hundred evaluations outweigh a task's
+/// start.
+const TABLE_BLOCK: usize = 512;
+
 /// The parts (P0, PK, PB) of a family on the θ grid of the crossing scan, computed once for
 /// many lines: [`line_crossings_tabulated`] then finds the same crossings as
 /// [`line_crossings`] (the same values at the same θ) without re-evaluating p on the grid,
@@ -338,7 +343,12 @@ impl CircleTable {
     /// The table of `fam` on its scan grid.
     pub fn new(fam: &AffineFamily) -> Self {
         let thetas = scan_thetas(fam);
-        let parts = thetas.iter().map(|&t| fam.parts_on_circle(t)).collect();
+        // in parallel, in blocks of TABLE_BLOCK angles (each the same value as unblocked)
+        let parts = thetas
+            .par_iter()
+            .with_min_len(TABLE_BLOCK)
+            .map(|&t| fam.parts_on_circle(t))
+            .collect();
         Self { thetas, parts }
     }
 }

@@ -22,6 +22,9 @@ pub const STEP_SAFETY: f64 = 64.0;
 /// a heap allocation would cost as much as the recursion itself).
 const STACK_DEGREE: usize = 63;
 
+/// Degrees up to this use the smaller stack buffers (the paper's loops and most devices).
+const SMALL_DEGREE: usize = 15;
+
 /// The outcome of one run of the recursion.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SchurCohn {
@@ -39,7 +42,12 @@ pub struct SchurCohn {
 /// required to withstand a further relative perturbation `eta` of every coefficient.
 pub fn schur_cohn(c: &[f64], r: f64, eta: f64) -> SchurCohn {
     let n = c.len();
-    if n <= STACK_DEGREE + 1 {
+    // two tiers of stack buffers: zeroing them is a measurable share of a low-degree test
+    if n <= SMALL_DEGREE + 1 {
+        let mut a = [0.0_f64; SMALL_DEGREE + 1];
+        let mut b = [0.0_f64; SMALL_DEGREE + 1];
+        recursion(c, r, eta, &mut a[..n], &mut b[..n])
+    } else if n <= STACK_DEGREE + 1 {
         let mut a = [0.0_f64; STACK_DEGREE + 1];
         let mut b = [0.0_f64; STACK_DEGREE + 1];
         recursion(c, r, eta, &mut a[..n], &mut b[..n])
@@ -80,15 +88,40 @@ pub fn spectral_radius_schur(c: &[f64]) -> f64 {
     hi
 }
 
+/// As [`schur_cohn`] at r = 1 on coefficients the caller no longer needs: the recursion runs
+/// in `c` itself (overwritten), saving the copy on the hot path of a map.
+pub fn schur_cohn_in_place(c: &mut [f64], eta: f64) -> SchurCohn {
+    let n = c.len();
+    if n <= SMALL_DEGREE + 1 {
+        let mut b = [0.0_f64; SMALL_DEGREE + 1];
+        run(c, &mut b[..n], eta)
+    } else if n <= STACK_DEGREE + 1 {
+        let mut b = [0.0_f64; STACK_DEGREE + 1];
+        run(c, &mut b[..n], eta)
+    } else {
+        let mut b = vec![0.0; n];
+        run(c, &mut b, eta)
+    }
+}
+
 /// The recursion on two buffers of c's length (both overwritten).
 fn recursion<'a>(c: &[f64], r: f64, eta: f64, a: &'a mut [f64], b: &'a mut [f64]) -> SchurCohn {
-    let mut scale = 1.0;
-    for (ai, ci) in a.iter_mut().zip(c) {
-        *ai = ci * scale;
-        scale *= r;
+    if r == 1.0 {
+        a.copy_from_slice(c);
+    } else {
+        let mut scale = 1.0;
+        for (ai, ci) in a.iter_mut().zip(c) {
+            *ai = ci * scale;
+            scale *= r;
+        }
     }
+    run(a, b, eta)
+}
+
+/// The steps of the recursion on `a` (the polynomial, overwritten) with scratch `b`.
+fn run<'a>(a: &'a mut [f64], b: &'a mut [f64], eta: f64) -> SchurCohn {
     let (mut a, mut b) = (a, b);
-    let mut n = c.len() - 1;
+    let mut n = a.len() - 1;
     let per_step = n as f64 * f64::EPSILON + eta;
     let mut kappa = 1.0_f64;
     let mut sure = true;

@@ -107,6 +107,8 @@ impl Analysis {
     pub fn of_family(fam: &AffineFamily, a: f64, b: f64) -> Result<Self> {
         let mut c = fam.coefficients(a, b);
         let decision = decide(fam, a, b, &mut c);
+        // the verdict's recursion ran in c
+        fam.coefficients_into(a, b, &mut c);
         let mut estimates = root_estimates(&c)?;
         polish_near_one(fam, a, b, &mut estimates);
         Ok(Self::from_estimates(decision, &estimates))

@@ -25,7 +25,7 @@ use serde::Serialize;
 
 use crate::argument::{Coefficients, OnCircle, Wall, winding};
 use crate::closed_loop::AffineFamily;
-use crate::schur_cohn::schur_cohn;
+use crate::schur_cohn::{schur_cohn, schur_cohn_in_place};
 
 /// Half-width of the marginal band in spectral radius: a wall is marginal when its spectral
 /// radius lies in [1 − MARGINAL_BAND, 1 + MARGINAL_BAND]. 5e-11 is far above the rounding of
@@ -91,10 +91,18 @@ pub fn verdict_of_radius(rho: f64) -> Verdict {
 }
 
 /// The verdict of the wall (a, b) of a loop's family (see the module doc). `coeffs` is a
-/// scratch buffer of length degree + 1 (overwritten with p's coefficients).
+/// scratch buffer of length degree + 1 (overwritten: the recursion runs in it, so it does not
+/// hold p's coefficients afterwards).
 pub fn decide(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Decision {
     fam.coefficients_into(a, b, coeffs);
-    decide_with(coeffs, &Wall { fam, a, b })
+    let n = coeffs.len().saturating_sub(1) as f64;
+    let fast = schur_cohn_in_place(coeffs, n * MARGINAL_BAND);
+    if fast.sure {
+        return sure_verdict(fast.stable);
+    }
+    // the recursion overwrote the coefficients: the band's circles need them again
+    fam.coefficients_into(a, b, coeffs);
+    decide_near_circle(coeffs, &Wall { fam, a, b }, fast.stable)
 }
 
 /// True iff [`decide`] says stable (a marginal wall is not).
@@ -105,7 +113,12 @@ pub fn stable(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> bool {
 /// The verdict of a bare polynomial (ascending coefficients, leading ≠ 0) by the same steps
 /// as [`decide`], with the argument principle on its z-coefficients.
 pub fn decide_coefficients(c: &[f64]) -> Decision {
-    decide_with(c, &Coefficients(c))
+    let n = c.len().saturating_sub(1) as f64;
+    let fast = schur_cohn(c, 1.0, n * MARGINAL_BAND);
+    if fast.sure {
+        return sure_verdict(fast.stable);
+    }
+    decide_near_circle(c, &Coefficients(c), fast.stable)
 }
 
 /// Whether every root of the wall's p(z) lies strictly inside the unit circle, without the
@@ -119,43 +132,46 @@ pub fn inside_unit_circle(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]
     inside_all(coeffs, &Wall { fam, a, b }, 1.0).map(|(inside, _)| inside)
 }
 
-/// Steps 1–4 of the module doc on coefficients `c` of the polynomial `p`.
-fn decide_with(c: &[f64], p: &impl OnCircle) -> Decision {
-    let n = c.len().saturating_sub(1) as f64;
-    let fast = schur_cohn(c, 1.0, n * MARGINAL_BAND);
-    if fast.sure {
-        return schur(if fast.stable {
-            Verdict::Stable
-        } else {
-            Verdict::Unstable
-        });
-    }
+/// Step 1 of the module doc where it is sure: the recursion's verdict.
+fn sure_verdict(stable: bool) -> Decision {
+    schur(if stable {
+        Verdict::Stable
+    } else {
+        Verdict::Unstable
+    })
+}
+
+/// Steps 2–4 of the module doc on coefficients `c` of the polynomial `p`, where the
+/// recursion at r = 1 was not sure over the band (it leaned to `stable`).
+fn decide_near_circle(c: &[f64], p: &impl OnCircle, stable: bool) -> Decision {
+    // Not sure over the band: the circles 1 ∓ band decide, the one the recursion leaned to
+    // first (an unstable-looking wall is mostly settled by the outer circle alone).
     let (inner, outer) = (1.0 - MARGINAL_BAND, 1.0 + MARGINAL_BAND);
-    match inside_all(c, p, inner) {
-        Some((true, basis)) => {
-            return Decision {
-                verdict: Verdict::Stable,
-                basis,
-            };
+    let decision = |verdict: Verdict, basis: Basis| Decision { verdict, basis };
+    if stable {
+        match inside_all(c, p, inner) {
+            Some((true, basis)) => return decision(Verdict::Stable, basis),
+            Some((false, _)) => {}
+            None => return undecided(),
         }
-        Some((false, _)) => {}
-        None => return undecided(),
+        return match inside_all(c, p, outer) {
+            Some((true, basis)) => decision(Verdict::Marginal, basis),
+            Some((false, basis)) => decision(Verdict::Unstable, basis),
+            None => undecided(),
+        };
     }
     match inside_all(c, p, outer) {
-        Some((true, basis)) => Decision {
-            verdict: Verdict::Marginal,
-            basis,
-        },
-        Some((false, basis)) => Decision {
-            verdict: Verdict::Unstable,
-            basis,
-        },
+        Some((false, basis)) => return decision(Verdict::Unstable, basis),
+        Some((true, _)) => {}
+        None => return undecided(),
+    }
+    match inside_all(c, p, inner) {
+        Some((true, basis)) => decision(Verdict::Stable, basis),
+        Some((false, basis)) => decision(Verdict::Marginal, basis),
         None => undecided(),
     }
 }
 
-/// Whether every root lies inside |z| < r, and what decided it: the recursion on c(r·z)
-/// when it is sure, else the argument principle; None when neither can decide.
 fn inside_all(c: &[f64], p: &impl OnCircle, r: f64) -> Option<(bool, Basis)> {
     let s = schur_cohn(c, r, 0.0);
     if s.sure {

@@ -13,6 +13,7 @@
 //! candidate that fails either way is a wrong region, and the caller refuses or retries it.
 
 use super::*;
+use crate::boundary::{CircleTable, stable_alpha_intervals_tabulated};
 
 /// Relative distance of the walls beside K_max that the verdict must call stable (inside) and
 /// not stable (outside): far above the rounding of K_max, far below any margin that matters.
@@ -56,8 +57,8 @@ pub struct ConfirmedMax {
 }
 
 /// The highest finite end of the stable intervals at damping b.
-fn top(fam: &AffineFamily, b: f64) -> Option<f64> {
-    crate::boundary::stable_alpha_intervals(fam, b)
+fn top(fam: &AffineFamily, table: &CircleTable, b: f64) -> Option<f64> {
+    stable_alpha_intervals_tabulated(fam, table, b)
         .iter()
         .map(|iv| iv.hi)
         .filter(|h| h.is_finite())
@@ -70,6 +71,18 @@ fn top(fam: &AffineFamily, b: f64) -> Option<f64> {
 /// the verdict.
 pub fn confirm_max(
     fam: &AffineFamily,
+    cand: AlphaBeta,
+    band: (f64, f64),
+    scale: f64,
+) -> Option<ConfirmedMax> {
+    confirm_max_tabulated(fam, &CircleTable::new(fam), cand, band, scale)
+}
+
+/// [`confirm_max`] with the crossing scans taken from `table`, the [`CircleTable`] of `fam`
+/// (the region keeps one for its slices and its confirmation).
+pub fn confirm_max_tabulated(
+    fam: &AffineFamily,
+    table: &CircleTable,
     cand: AlphaBeta,
     (b_lo, b_hi): (f64, f64),
     scale: f64,
@@ -85,7 +98,7 @@ pub fn confirm_max(
     // lie within the marginal band that `check` reports walls by.
     let mut stable = |a: f64, b: f64| inside_unit_circle(fam, a, b, &mut coeffs) == Some(true);
     let delta = CONFIRM_REL * unit;
-    let exact = top(fam, cand.beta).filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit);
+    let exact = top(fam, table, cand.beta).filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit);
     if let Some(t) = exact {
         if stable(t + delta, cand.beta) {
             return None;
@@ -100,7 +113,7 @@ pub fn confirm_max(
             });
         }
     }
-    if top(fam, cand.beta).is_some_and(|t| t > cand.alpha + AGREE_REL * unit) {
+    if top(fam, table, cand.beta).is_some_and(|t| t > cand.alpha + AGREE_REL * unit) {
         return None;
     }
     if stable(cand.alpha + delta, cand.beta) {
@@ -125,7 +138,7 @@ pub fn confirm_max(
         .flat_map(|k| [1.0, -1.0].map(|s| cand.beta + s * b_unit * 10f64.powi(-k)))
         .filter(|&b| b >= b_lo && b <= b_hi)
         .find_map(|b| {
-            crate::boundary::stable_alpha_intervals(fam, b)
+            stable_alpha_intervals_tabulated(fam, table, b)
                 .iter()
                 .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite() && iv.hi > iv.lo)
                 .flat_map(|iv| (1..=WEDGE_STEPS).map(|j| iv.hi - (iv.hi - iv.lo) * 0.5f64.powi(j)))

@@ -31,8 +31,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::boundary::{
-    AlphaBeta, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta, minus_one_line,
-    plus_one_line,
+    AlphaBeta, CircleTable, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    minus_one_line, plus_one_line,
 };
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
@@ -52,7 +52,7 @@ mod verify;
 
 use arrangement::*;
 use bounds::*;
-pub use confirm::{CONFIRM_REL, ConfirmedMax, SUPREMUM_REL, confirm_max};
+pub use confirm::{CONFIRM_REL, ConfirmedMax, SUPREMUM_REL, confirm_max, confirm_max_tabulated};
 use curve::*;
 use faces::*;
 use geometry::*;
@@ -214,13 +214,17 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
     }
     let budget = Budget::new(MAX_CURVE_POINTS);
     let raw_bounds = Bounds::new(fam)?;
-    let slices = SliceBox::of(fam, raw_bounds.size());
+    let raw_table = CircleTable::new(fam);
+    if let Some(region) = plain_attempt(fam, (&raw_bounds, &raw_table), rel_tol, &budget) {
+        return Ok(region);
+    }
+    let slices = SliceBox::of(fam, &raw_table, raw_bounds.size());
     let stretch = stretch(slices);
     let stretched = stretch.map(|(sx, sy)| fam.stretched(sx, sy));
     let work = stretched.as_ref().unwrap_or(fam);
-    let bounds = match &stretched {
-        Some(f) => Bounds::new(f)?,
-        None => raw_bounds,
+    let (bounds, table) = match &stretched {
+        Some(f) => (Bounds::new(f)?, CircleTable::new(f)),
+        None => (raw_bounds, raw_table),
     };
     let scale = stretch.unwrap_or((1.0, 1.0));
     // The slices' box, three times its size, is where the first attempts look closely and,
@@ -246,7 +250,7 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
             Ok(Attempt::Done(region, checked)) => {
                 window = window.or(checked.wbox);
                 let outcome = match verify(work, &bounds, &region, checked, (attempts, rel_tol)) {
-                    None => confirmed(work, region),
+                    None => confirmed(work, &table, region),
                     Some(z) => Err(z),
                 };
                 match outcome {
@@ -266,7 +270,8 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
         }
     }
     let scan_box = window.or_else(|| bbox(bounds.polygon.iter().map(|(p, _)| *p)));
-    if let Some(region) = scan_box.and_then(|b| scanned_and_checked(work, &bounds, b, rel_tol)) {
+    let scanned = scan_box.and_then(|b| scanned_and_checked(work, &bounds, &table, b, rel_tol));
+    if let Some(region) = scanned {
         return Ok(unstretched_by(region, stretch));
     }
     Err(failure.unwrap_or_else(|| {
@@ -278,6 +283,34 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
                 .into(),
         )
     }))
+}
+
+/// The first, plain attempt (steps 1–6 without slices, stretch or focus), kept when it
+/// verifies, its K_max is confirmed and it is no thinner than [`MAX_UNSTRETCHED_ASPECT`]
+/// either way: the paper's regions and most loops' need nothing more, and the slices that
+/// measure a thin region cost as much again.
+fn plain_attempt(
+    fam: &AffineFamily,
+    (bounds, table): (&Bounds, &CircleTable),
+    rel_tol: f64,
+    budget: &Budget,
+) -> Option<StableRegion> {
+    let Ok(Attempt::Done(region, checked)) =
+        attempt(fam, bounds, (None, None, 0), None, rel_tol, budget)
+    else {
+        return None;
+    };
+    let pts = region
+        .polygons
+        .iter()
+        .flat_map(|p| p.vertices.iter().map(|v| P::of(*v)));
+    let (x0, x1, y0, y1) = bbox(pts)?;
+    let aspect = (y1 - y0) / (x1 - x0);
+    let square = (1.0 / MAX_UNSTRETCHED_ASPECT..=MAX_UNSTRETCHED_ASPECT).contains(&aspect);
+    if !square || verify(fam, bounds, &region, checked, (0, rel_tol)).is_some() {
+        return None;
+    }
+    confirmed(fam, table, region).ok()
 }
 
 /// The region mapped back from a stretched plane (unchanged without a stretch).
@@ -292,6 +325,7 @@ fn unstretched_by(region: StableRegion, stretch: Option<(f64, f64)>) -> StableRe
 fn scanned_and_checked(
     fam: &AffineFamily,
     bounds: &Bounds,
+    table: &CircleTable,
     wbox: BoxF,
     rel_tol: f64,
 ) -> Option<StableRegion> {
@@ -317,7 +351,7 @@ fn scanned_and_checked(
     if verify(fam, bounds, &region, checked, (MAX_ATTEMPTS, rel_tol)).is_some() {
         return None;
     }
-    confirmed(fam, region).ok()
+    confirmed(fam, table, region).ok()
 }
 
 /// Attempts before giving up: each one zooms the coarse sampling onto where the previous
@@ -425,7 +459,11 @@ fn touches_window_cut(g: &Graph, f: &[(usize, bool)]) -> bool {
 /// The region with its K_max confirmed ([`confirm_max`]), or the box around K_max to zoom the
 /// next attempt onto when the exact intervals or the verdict contradict it. An empty region
 /// is returned as it is.
-fn confirmed(fam: &AffineFamily, mut r: StableRegion) -> std::result::Result<StableRegion, BoxF> {
+fn confirmed(
+    fam: &AffineFamily,
+    table: &CircleTable,
+    mut r: StableRegion,
+) -> std::result::Result<StableRegion, BoxF> {
     if r.polygons.is_empty() {
         return Ok(r);
     }
@@ -434,7 +472,7 @@ fn confirmed(fam: &AffineFamily, mut r: StableRegion) -> std::result::Result<Sta
         beta: r.beta_at_alpha_max,
     };
     let size = r.size();
-    match confirm_max(fam, cand, (f64::NEG_INFINITY, f64::INFINITY), size) {
+    match confirm_max_tabulated(fam, table, cand, (f64::NEG_INFINITY, f64::INFINITY), size) {
         Some(c) => {
             r.alpha_max = c.alpha;
             r.beta_at_alpha_max = c.beta;

@@ -30,9 +30,8 @@ impl SliceBox {
     /// When neither axis through the wall-free point finds one (an undamped plant, whose
     /// stable set touches the axes only at its corner), the same slices are taken through
     /// points ±10^{−k} of `size` (the bounds' extent) off it, k = 1..[`OFFSET_DECADES`].
-    pub(super) fn of(fam: &AffineFamily, size: f64) -> Option<Self> {
-        let table = CircleTable::new(fam);
-        let fam = &(fam, &table);
+    pub(super) fn of(fam: &AffineFamily, table: &CircleTable, size: f64) -> Option<Self> {
+        let fam = &(fam, table);
         let offsets = (1..=OFFSET_DECADES).flat_map(|k| {
             let v = size * 10f64.powi(-k);
             [v, -v]
