@@ -174,6 +174,21 @@ impl StableRegion {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// A region whose K_max candidate (α_max, β) is yet to be confirmed ([`confirm_max`]);
+    /// the area is the polygons' own.
+    pub(super) fn unconfirmed(polygons: Vec<Polygon>, (alpha_max, beta): (f64, f64)) -> Self {
+        let area = polygons.iter().map(Polygon::area).sum();
+        Self {
+            polygons,
+            alpha_max,
+            beta_at_alpha_max: beta,
+            alpha_max_attained: false,
+            beta_stable: f64::NAN,
+            alpha_stable: f64::NAN,
+            area,
+        }
+    }
+
     pub(super) fn empty() -> Self {
         Self {
             polygons: Vec::new(),
@@ -436,18 +451,11 @@ fn attempt(
         .iter()
         .map(|(f, _)| refine_face(fam, &graph, f, tol, budget))
         .collect::<Result<Vec<Polygon>>>()?;
-    let area = polygons.iter().map(|p| p.area()).sum();
-    let (alpha_max, beta_at_alpha_max) = alpha_max_of(fam, &polygons);
-    let region = StableRegion {
-        polygons,
-        alpha_max,
-        beta_at_alpha_max,
-        alpha_max_attained: false,
-        beta_stable: f64::NAN,
-        alpha_stable: f64::NAN,
-        area,
-    };
-    Ok(Attempt::Done(region, checked))
+    let max = alpha_max_of(fam, &polygons);
+    Ok(Attempt::Done(
+        StableRegion::unconfirmed(polygons, max),
+        checked,
+    ))
 }
 
 /// True when a face has an edge cut by the window's box (not a z = ±1 line nor the curve): the

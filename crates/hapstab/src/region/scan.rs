@@ -53,18 +53,10 @@ pub(super) fn scanned_region(fam: &AffineFamily, bx: BoxF, tol: f64) -> Option<S
     for pair in start.windows(2) {
         refine_between(&slice, &pair[0], &pair[1], (tol, min_gap), &mut slices)?;
     }
-    let polygons = joined(&slices);
-    let area = polygons.iter().map(Polygon::area).sum();
-    let (alpha_max, beta_at_alpha_max) = scanned_max(fam, &slices);
-    Some(StableRegion {
-        polygons,
-        alpha_max,
-        beta_at_alpha_max,
-        alpha_max_attained: false,
-        beta_stable: f64::NAN,
-        alpha_stable: f64::NAN,
-        area,
-    })
+    Some(StableRegion::unconfirmed(
+        joined(&slices),
+        scanned_max(fam, &slices),
+    ))
 }
 
 /// The largest interval end of the slices, maximized between the neighbours of its slice by
