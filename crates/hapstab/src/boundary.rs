@@ -353,6 +353,29 @@ impl CircleTable {
     }
 }
 
+/// The [`CircleTable`] of a family, built on first use: a region that its plain attempt
+/// resolves and confirms locally never needs it, one measured by slices builds it once.
+#[derive(Debug)]
+pub struct LazyCircleTable<'a> {
+    fam: &'a AffineFamily,
+    cell: std::sync::OnceLock<CircleTable>,
+}
+
+impl<'a> LazyCircleTable<'a> {
+    /// The (not yet built) table of `fam`.
+    pub fn new(fam: &'a AffineFamily) -> Self {
+        Self {
+            fam,
+            cell: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// The table, built now if it was not before.
+    pub fn get(&self) -> &CircleTable {
+        self.cell.get_or_init(|| CircleTable::new(self.fam))
+    }
+}
+
 /// [`line_crossings`] with the scan's values taken from `table`, which must be the
 /// [`CircleTable`] of `fam`.
 pub fn line_crossings_tabulated(

@@ -13,7 +13,7 @@
 //! candidate that fails either way is a wrong region, and the caller refuses or retries it.
 
 use super::*;
-use crate::boundary::{CircleTable, stable_alpha_intervals_tabulated};
+use crate::boundary::{CircleTable, LazyCircleTable, stable_alpha_intervals_tabulated};
 
 /// Relative distance of the walls beside K_max that the verdict must call stable (inside) and
 /// not stable (outside): far above the rounding of K_max, far below any margin that matters.
@@ -56,6 +56,18 @@ pub struct ConfirmedMax {
     pub alpha_stable: f64,
 }
 
+/// K_max attained at b* by the verdict alone: (K_max − δ, b*) stable and (K_max + δ, b*) not,
+/// with the candidate on the boundary curve (a vertex refined on its arc, within the chord
+/// tolerance elsewhere). None when either side disagrees: the exact intervals at b* decide.
+fn attained_locally(
+    stable: &mut impl FnMut(f64, f64) -> bool,
+    cand: AlphaBeta,
+    delta: f64,
+) -> Option<f64> {
+    let b = cand.beta;
+    (stable(cand.alpha - delta, b) && !stable(cand.alpha + delta, b)).then_some(cand.alpha)
+}
+
 /// The highest finite end of the stable intervals at damping b.
 fn top(fam: &AffineFamily, table: &CircleTable, b: f64) -> Option<f64> {
     stable_alpha_intervals_tabulated(fam, table, b)
@@ -75,14 +87,15 @@ pub fn confirm_max(
     band: (f64, f64),
     scale: f64,
 ) -> Option<ConfirmedMax> {
-    confirm_max_tabulated(fam, &CircleTable::new(fam), cand, band, scale)
+    confirm_max_tabulated(fam, &LazyCircleTable::new(fam), cand, band, scale)
 }
 
 /// [`confirm_max`] with the crossing scans taken from `table`, the [`CircleTable`] of `fam`
-/// (the region keeps one for its slices and its confirmation).
+/// (the region keeps one for its slices and its confirmation; it is built only when the
+/// local confirmation below does not settle K_max).
 pub fn confirm_max_tabulated(
     fam: &AffineFamily,
-    table: &CircleTable,
+    table: &LazyCircleTable,
     cand: AlphaBeta,
     (b_lo, b_hi): (f64, f64),
     scale: f64,
@@ -98,6 +111,16 @@ pub fn confirm_max_tabulated(
     // lie within the marginal band that `check` reports walls by.
     let mut stable = |a: f64, b: f64| inside_unit_circle(fam, a, b, &mut coeffs) == Some(true);
     let delta = CONFIRM_REL * unit;
+    if let Some(t) = attained_locally(&mut stable, cand, delta) {
+        return Some(ConfirmedMax {
+            alpha: t,
+            beta: cand.beta,
+            attained: true,
+            beta_stable: cand.beta,
+            alpha_stable: t - delta,
+        });
+    }
+    let table = table.get();
     let exact = top(fam, table, cand.beta).filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit);
     if let Some(t) = exact {
         if stable(t + delta, cand.beta) {

@@ -232,10 +232,14 @@ pub(super) fn box_polygon(x0: f64, x1: f64, y0: f64, y1: f64) -> Convex {
 }
 
 pub(super) fn bbox(points: impl Iterator<Item = P>) -> Option<(f64, f64, f64, f64)> {
-    let mut b: Option<(f64, f64, f64, f64)> = None;
+    let mut points = points;
+    let first = points.next()?;
+    let (mut x0, mut x1, mut y0, mut y1) = (first.x, first.x, first.y, first.y);
     for p in points {
-        let (x0, x1, y0, y1) = b.unwrap_or((p.x, p.x, p.y, p.y));
-        b = Some((x0.min(p.x), x1.max(p.x), y0.min(p.y), y1.max(p.y)));
+        x0 = x0.min(p.x);
+        x1 = x1.max(p.x);
+        y0 = y0.min(p.y);
+        y1 = y1.max(p.y);
     }
-    b
+    Some((x0, x1, y0, y1))
 }

@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::boundary::{
-    AlphaBeta, CircleTable, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    AlphaBeta, LazyCircleTable, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
     minus_one_line, plus_one_line,
 };
 use crate::closed_loop::AffineFamily;
@@ -229,16 +229,16 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
     }
     let budget = Budget::new(MAX_CURVE_POINTS);
     let raw_bounds = Bounds::new(fam)?;
-    let raw_table = CircleTable::new(fam);
+    let raw_table = LazyCircleTable::new(fam);
     if let Some(region) = plain_attempt(fam, (&raw_bounds, &raw_table), rel_tol, &budget) {
         return Ok(region);
     }
-    let slices = SliceBox::of(fam, &raw_table, raw_bounds.size());
+    let slices = SliceBox::of(fam, raw_table.get(), raw_bounds.size());
     let stretch = stretch(slices);
     let stretched = stretch.map(|(sx, sy)| fam.stretched(sx, sy));
     let work = stretched.as_ref().unwrap_or(fam);
     let (bounds, table) = match &stretched {
-        Some(f) => (Bounds::new(f)?, CircleTable::new(f)),
+        Some(f) => (Bounds::new(f)?, LazyCircleTable::new(f)),
         None => (raw_bounds, raw_table),
     };
     let scale = stretch.unwrap_or((1.0, 1.0));
@@ -306,7 +306,7 @@ pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegi
 /// measure a thin region cost as much again.
 fn plain_attempt(
     fam: &AffineFamily,
-    (bounds, table): (&Bounds, &CircleTable),
+    (bounds, table): (&Bounds, &LazyCircleTable),
     rel_tol: f64,
     budget: &Budget,
 ) -> Option<StableRegion> {
@@ -340,7 +340,7 @@ fn unstretched_by(region: StableRegion, stretch: Option<(f64, f64)>) -> StableRe
 fn scanned_and_checked(
     fam: &AffineFamily,
     bounds: &Bounds,
-    table: &CircleTable,
+    table: &LazyCircleTable,
     wbox: BoxF,
     rel_tol: f64,
 ) -> Option<StableRegion> {
@@ -469,7 +469,7 @@ fn touches_window_cut(g: &Graph, f: &[(usize, bool)]) -> bool {
 /// is returned as it is.
 fn confirmed(
     fam: &AffineFamily,
-    table: &CircleTable,
+    table: &LazyCircleTable,
     mut r: StableRegion,
 ) -> std::result::Result<StableRegion, BoxF> {
     if r.polygons.is_empty() {

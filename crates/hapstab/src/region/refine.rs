@@ -35,6 +35,8 @@ pub(super) fn refine_face(
                 poly.vertices.push(g.verts[va].ab());
                 poly.thetas.push(t0);
                 let keep = arc.len().saturating_sub(1);
+                poly.vertices.reserve(keep);
+                poly.thetas.reserve(keep);
                 for (t, p) in arc.into_iter().take(keep) {
                     poly.vertices.push(p.ab());
                     poly.thetas.push(t);

@@ -5,66 +5,106 @@ use super::*;
 
 /// The region's edges bucketed by damping, for point-in-region tests in O(edges/bucket)
 /// instead of O(vertices) (the even-odd rule counts crossings of a ray toward −∞ in a).
-pub(super) struct EdgeIndex {
-    pub(super) y0: f64,
-    pub(super) h: f64,
-    pub(super) buckets: Vec<Vec<(P, P)>>,
+/// The buckets are one array of edge numbers in bucket order (compressed rows): a region of
+/// 10⁴–10⁵ vertices is indexed with three small allocations, where a vector per bucket of
+/// copied edges cost more in fresh memory pages than every point test together.
+pub(super) struct EdgeIndex<'a> {
+    vertices: Vec<&'a [AlphaBeta]>,
+    /// First edge number of each polygon (edge i of polygon j is starts[j] + i).
+    starts: Vec<u32>,
+    y0: f64,
+    h: f64,
+    /// Bucket k holds edges[offsets[k]..offsets[k + 1]].
+    offsets: Vec<u32>,
+    edges: Vec<u32>,
 }
 
-impl EdgeIndex {
-    pub(super) fn new(region: &StableRegion) -> Self {
-        let pts = region
+/// Buckets of an [`EdgeIndex`].
+const EDGE_BUCKETS: usize = 256;
+
+impl<'a> EdgeIndex<'a> {
+    pub(super) fn new(region: &'a StableRegion) -> Self {
+        let vertices: Vec<&[AlphaBeta]> = region
             .polygons
             .iter()
-            .flat_map(|p| p.vertices.iter().map(|v| P::of(*v)));
+            .map(|p| p.vertices.as_slice())
+            .collect();
+        let pts = vertices.iter().flat_map(|v| v.iter().map(|q| P::of(*q)));
         let (_, _, y0, y1) = bbox(pts).unwrap_or((0.0, 0.0, 0.0, 0.0));
-        let nb = 256;
+        let nb = EDGE_BUCKETS;
         let h = ((y1 - y0) / nb as f64).max(f64::MIN_POSITIVE);
-        // (truncation is the floor here: the argument is clamped to be non-negative)
-        let bucket = |y: f64| (((y - y0) / h).max(0.0) as usize).min(nb - 1);
-        let ranges: Vec<Vec<(usize, usize)>> = region
-            .polygons
+        let per = 1.0 / h;
+        // each vertex's bucket, once (truncation is the floor: the argument is non-negative)
+        let buckets: Vec<Vec<u16>> = vertices
             .iter()
-            .map(|poly| {
-                let v = &poly.vertices;
-                (0..v.len())
-                    .map(|i| {
-                        let (a, b) = (v[i].beta, v[(i + 1) % v.len()].beta);
-                        (bucket(a.min(b)), bucket(a.max(b)))
-                    })
+            .map(|v| {
+                v.iter()
+                    .map(|q| (((q.beta - y0) * per).max(0.0) as usize).min(nb - 1) as u16)
                     .collect()
             })
             .collect();
-        let mut counts = vec![0_usize; nb];
-        for &(lo, hi) in ranges.iter().flatten() {
-            for c in &mut counts[lo..=hi] {
-                *c += 1;
-            }
-        }
-        let mut buckets: Vec<Vec<(P, P)>> = counts.iter().map(|&c| Vec::with_capacity(c)).collect();
-        for (poly, rs) in region.polygons.iter().zip(&ranges) {
-            let v = &poly.vertices;
-            for (i, &(lo, hi)) in rs.iter().enumerate() {
-                let e = (P::of(v[i]), P::of(v[(i + 1) % v.len()]));
-                for bucket in &mut buckets[lo..=hi] {
-                    bucket.push(e);
+        let span = |k: &[u16], i: usize| {
+            let (a, b) = (k[i], k[(i + 1) % k.len()]);
+            (a.min(b) as usize, a.max(b) as usize)
+        };
+        let mut starts = Vec::with_capacity(vertices.len());
+        let mut offsets = vec![0_u32; nb + 1];
+        let mut total = 0_u32;
+        for k in &buckets {
+            starts.push(total);
+            total += k.len() as u32;
+            for i in 0..k.len() {
+                let (lo, hi) = span(k, i);
+                for c in &mut offsets[lo + 1..=hi + 1] {
+                    *c += 1;
                 }
             }
         }
-        Self { y0, h, buckets }
+        for k in 0..nb {
+            offsets[k + 1] += offsets[k];
+        }
+        let mut fill = offsets.clone();
+        let mut edges = vec![0_u32; offsets[nb] as usize];
+        for (k, &start) in buckets.iter().zip(&starts) {
+            for i in 0..k.len() {
+                let (lo, hi) = span(k, i);
+                for f in &mut fill[lo..=hi] {
+                    edges[*f as usize] = start + i as u32;
+                    *f += 1;
+                }
+            }
+        }
+        Self {
+            vertices,
+            starts,
+            y0,
+            h,
+            offsets,
+            edges,
+        }
     }
 
     pub(super) fn is_empty(&self) -> bool {
-        self.buckets.iter().all(Vec::is_empty)
+        self.edges.is_empty()
+    }
+
+    /// The end points of edge number e.
+    fn edge(&self, e: u32) -> (P, P) {
+        let j = self.starts.partition_point(|&s| s <= e) - 1;
+        let v = self.vertices[j];
+        let i = (e - self.starts[j]) as usize;
+        (P::of(v[i]), P::of(v[(i + 1) % v.len()]))
     }
 
     pub(super) fn contains(&self, p: P) -> bool {
         let k = ((p.y - self.y0) / self.h).floor();
-        if !(k >= 0.0 && (k as usize) < self.buckets.len()) {
+        if !(k >= 0.0 && (k as usize) < EDGE_BUCKETS) {
             return false;
         }
+        let k = k as usize;
         let mut inside = false;
-        for &(a, b) in &self.buckets[k as usize] {
+        for &e in &self.edges[self.offsets[k] as usize..self.offsets[k + 1] as usize] {
+            let (a, b) = self.edge(e);
             if (a.y > p.y) != (b.y > p.y) {
                 let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
                 if p.x < x {
