@@ -79,49 +79,92 @@ struct CheckOut {
     plot: Vec<std::path::PathBuf>,
 }
 
-/// The wall's stability margins (null when the wall is not stable or a margin is unbounded;
-/// `margin_notes` says which).
+/// The wall's stability margins in the conventions of MATLAB's `allmargin` and
+/// python-control's `stability_margins` (null when the wall is not stable or a margin is
+/// unbounded; `margin_notes` says which).
 #[derive(Serialize)]
 struct MarginsOut {
-    /// Factor on K at the given B that reaches the stability boundary.
+    /// Factor > 1 on K and B together (the loop's gain margin, python-control's `gm`).
     gain_margin: Option<f64>,
-    /// Factor on K and B together.
-    gain_margin_kb: Option<f64>,
-    /// Phase margin in degrees at the gain crossover.
-    phase_margin_deg: Option<f64>,
-    /// Phase crossover frequency, Hz.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Factor < 1 on K and B together that reaches the boundary.
+    gain_margin_lower: Option<f64>,
+    /// Phase crossover (L real, negative) where the gain margin is read, Hz.
     phase_crossover_hz: Option<f64>,
-    /// Extra delay that the loop tolerates, s.
+    /// Factor > 1 on K alone at the given B.
+    stiffness_margin: Option<f64>,
+    /// Factor < 1 on K alone at the given B.
+    stiffness_margin_lower: Option<f64>,
+    /// Frequency of the root pair on the unit circle at K × stiffness margin, Hz.
+    stiffness_crossover_hz: Option<f64>,
+    /// Phase margin in degrees (the smallest in magnitude over the gain crossovers).
+    phase_margin_deg: Option<f64>,
+    /// Gain crossover (|L| = 1) where the phase margin is read, Hz.
+    gain_crossover_hz: Option<f64>,
+    /// Exact extra delay that the loop tolerates, s.
     delay_margin: Option<f64>,
     /// Frequency of the oscillation at the delay margin, Hz.
-    #[serde(skip_serializing_if = "Option::is_none")]
     delay_margin_frequency_hz: Option<f64>,
+    /// min PM/ω_c over the gain crossovers, s (MATLAB's figure for a pure delay).
+    delay_margin_pm_over_wc: Option<f64>,
     /// When the delay scan stopped at its work bound: the extra delay, s, up to which the loop
     /// was shown stable (the delay margin is at least this).
     #[serde(skip_serializing_if = "Option::is_none")]
     delay_margin_at_least: Option<f64>,
-    /// Frequency of the critical root pair on the unit circle at K × gain margin, Hz.
-    critical_frequency_hz: Option<f64>,
+    /// min |1 + L| (python-control's `sm`).
+    stability_margin: Option<f64>,
+    /// Where min |1 + L| is reached, Hz.
+    stability_margin_hz: Option<f64>,
+    /// max |L| over frequency.
+    peak_gain: Option<f64>,
+    /// Where max |L| is reached, Hz.
+    peak_gain_hz: Option<f64>,
+    /// Every gain and phase crossover (kind, frequency, value).
+    crossings: Vec<CrossingOut>,
     /// Why a margin is null.
     margin_notes: Vec<String>,
 }
 
+/// One crossing of the open loop.
+#[derive(Serialize)]
+struct CrossingOut {
+    /// "gain" (|L| = 1; value: phase margin in degrees) or "phase" (L real; value: the factor
+    /// on (K, B) that puts a root on the unit circle there).
+    kind: hapstab::margins::CrossingKind,
+    frequency_hz: f64,
+    value: f64,
+}
+
 impl MarginsOut {
     /// The margins of the wall, or none with the reason when the check's verdict says the wall
-    /// is not stable, or when the verdict and the margins' own test disagree (a wall on the
-    /// boundary to rounding).
+    /// is not stable.
     fn new(rl: &ResolvedLoop, w: Wall, stable: bool) -> Result<Self> {
         let m = margins_beside_verdict(&rl.lp, w, stable)?;
         Ok(MarginsOut {
             gain_margin: m.gain.map(|g| g.factor),
-            gain_margin_kb: m.gain_kb.map(|g| g.factor),
+            gain_margin_lower: m.gain_lower.map(|g| g.factor),
+            phase_crossover_hz: m.gain.map(|g| g.frequency_hz),
+            stiffness_margin: m.stiffness.map(|g| g.factor),
+            stiffness_margin_lower: m.stiffness_lower.map(|g| g.factor),
+            stiffness_crossover_hz: m.stiffness.map(|g| g.frequency_hz),
             phase_margin_deg: m.phase.map(|p| p.degrees),
-            phase_crossover_hz: m.phase.map(|p| p.frequency_hz),
+            gain_crossover_hz: m.phase.map(|p| p.frequency_hz),
             delay_margin: m.delay.map(|d| d.seconds),
             delay_margin_frequency_hz: m.delay.map(|d| d.frequency_hz),
+            delay_margin_pm_over_wc: m.delay_pm_over_wc,
             delay_margin_at_least: m.delay_at_least,
-            critical_frequency_hz: m.critical_frequency_hz,
+            stability_margin: m.stability_margin.map(|s| s.value),
+            stability_margin_hz: m.stability_margin.map(|s| s.frequency_hz),
+            peak_gain: m.peak_gain.map(|p| p.0),
+            peak_gain_hz: m.peak_gain.map(|p| p.1),
+            crossings: m
+                .crossings
+                .iter()
+                .map(|c| CrossingOut {
+                    kind: c.kind,
+                    frequency_hz: c.frequency_hz,
+                    value: c.value,
+                })
+                .collect(),
             margin_notes: m.notes,
         })
     }
@@ -303,32 +346,46 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
         }
     };
     let mut parts: Vec<String> = Vec::new();
-    if let Some(g) = m.gain_margin {
-        let at = m
-            .critical_frequency_hz
-            .map(|f| format!(" (oscillates at {})", hz(f)))
-            .unwrap_or_default();
-        parts.push(format!("gain ×{} on K{at}", sig(g, 6)));
+    let at = |f: Option<f64>| f.map(|f| format!(" (at {})", hz(f))).unwrap_or_default();
+    let both = |up: Option<f64>, down: Option<f64>| match (up, down) {
+        (Some(u), Some(d)) => Some(format!("×{} / ×{}", sig(u, 6), sig(d, 6))),
+        (Some(u), None) => Some(format!("×{}", sig(u, 6))),
+        (None, Some(d)) => Some(format!("×{}", sig(d, 6))),
+        (None, None) => None,
+    };
+    if let Some(g) = both(m.gain_margin, m.gain_margin_lower) {
+        parts.push(format!("gain {g} on (K, B){}", at(m.phase_crossover_hz)));
     }
-    if let Some(g) = m.gain_margin_kb {
-        parts.push(format!("×{} on (K, B)", sig(g, 6)));
+    if let Some(g) = both(m.stiffness_margin, m.stiffness_margin_lower) {
+        parts.push(format!("{g} on K{}", at(m.stiffness_crossover_hz)));
     }
-    if let (Some(p), Some(f)) = (m.phase_margin_deg, m.phase_crossover_hz) {
-        parts.push(format!("phase {}° at {}", sig(p, 6), hz(f)));
+    if let Some(p) = m.phase_margin_deg {
+        parts.push(format!("phase {}°{}", sig(p, 6), at(m.gain_crossover_hz)));
     }
     if let Some(d) = m.delay_margin {
-        let at = m
-            .delay_margin_frequency_hz
-            .map(|f| format!(" (oscillates at {})", hz(f)))
+        let pm = m
+            .delay_margin_pm_over_wc
+            .map(|x| format!(", PM/ω_c {}", secs(x)))
             .unwrap_or_default();
-        parts.push(format!("delay +{}{at}", secs(d)));
+        parts.push(format!(
+            "delay +{}{}{pm}",
+            secs(d),
+            at(m.delay_margin_frequency_hz)
+        ));
     }
     if let Some(d) = m.delay_margin_at_least {
         parts.push(format!("delay > +{}", secs(d)));
     }
+    if let Some(sm) = m.stability_margin {
+        parts.push(format!(
+            "min |1 + L| = {}{}",
+            sig(sm, 6),
+            at(m.stability_margin_hz)
+        ));
+    }
     let mut label = "margins    ";
-    if !parts.is_empty() {
-        println!("{label} {}", parts.join("; "));
+    for part in &parts {
+        println!("{label} {part}");
         label = "           ";
     }
     for n in &m.margin_notes {

@@ -144,15 +144,18 @@ fn check_margins_cross_the_boundary() {
         let v = check(&loop_flags);
         for key in [
             "gain_margin",
-            "gain_margin_kb",
+            "stiffness_margin",
             "phase_margin_deg",
+            "gain_crossover_hz",
+            "phase_crossover_hz",
             "delay_margin",
-            "critical_frequency_hz",
+            "stiffness_crossover_hz",
+            "stability_margin",
         ] {
             assert!(v[key].is_number(), "{key}: {v}");
         }
         let k: f64 = loop_flags[1].parse().unwrap();
-        let gm = f(&v["gain_margin"]);
+        let gm = f(&v["stiffness_margin"]);
         let td = if loop_flags.len() > 6 { 0.0013 } else { 0.0 };
         let dm = f(&v["delay_margin"]);
         for (factor, stable) in [(1.0 - 1e-6, true), (1.0 + 1e-6, false)] {

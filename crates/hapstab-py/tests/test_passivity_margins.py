@@ -190,10 +190,15 @@ def test_margins_equal_the_command_line(hapstab_cli, cases):
         want = run_cli(hapstab_cli, "check", flags, wall)
         got = hs.margins(lp, *wall)
         assert got.stable == want["stable"] == hs.check(lp, *wall).stable
-        for key in ("gain_margin", "gain_margin_kb", "phase_margin_deg", "delay_margin",
-                    "critical_frequency_hz", "phase_crossover_hz", "delay_margin_frequency_hz",
-                    "delay_margin_at_least"):
+        for key in ("gain_margin", "gain_margin_lower", "phase_crossover_hz",
+                    "stiffness_margin", "stiffness_margin_lower", "stiffness_crossover_hz",
+                    "phase_margin_deg", "gain_crossover_hz", "delay_margin",
+                    "delay_margin_frequency_hz", "delay_margin_pm_over_wc",
+                    "delay_margin_at_least", "stability_margin", "stability_margin_hz",
+                    "peak_gain", "peak_gain_hz"):
             assert getattr(got, key) == want.get(key), (flags, wall, key)
+        want_crossings = [(c["kind"], c["frequency_hz"], c["value"]) for c in want["crossings"]]
+        assert got.crossings == want_crossings
         assert got.notes == want["margin_notes"]
         if got.stable:
             seen_stable += 1
@@ -219,26 +224,26 @@ def test_k_times_the_gain_margin_crosses_the_boundary():
     for lp, ws in margin_loops():
         for k, b in ws:
             m = hs.margins(lp, k, b)
-            assert m.stable and m.gain_margin is not None, (k, b, m.notes)
-            g = m.gain_margin
+            assert m.stable and m.stiffness_margin is not None, (k, b, m.notes)
+            g = m.stiffness_margin
             assert hs.check(lp, k * g * (1 - CROSS), b).stable, (k, b, g)
             assert not hs.check(lp, k * g * (1 + CROSS), b).stable, (k, b, g)
-            gkb = m.gain_margin_kb
+            gkb = m.gain_margin
             assert hs.check(lp, k * gkb * (1 - CROSS), b * gkb * (1 - CROSS)).stable
             assert not hs.check(lp, k * gkb * (1 + CROSS), b * gkb * (1 + CROSS)).stable
             n += 1
     assert n == 7
 
 
-def test_the_critical_frequency_is_the_angle_of_the_boundary_root_pair():
+def test_the_stiffness_crossover_is_the_angle_of_the_boundary_root_pair():
     for lp, ws in margin_loops():
         for k, b in ws:
             m = hs.margins(lp, k, b)
-            roots = hs.check(lp, k * m.gain_margin, b).roots
+            roots = hs.check(lp, k * m.stiffness_margin, b).roots
             top = roots[np.argmax(np.abs(roots))]
             assert abs(abs(top) - 1) < 1e-6, (k, b, top)
             f = abs(np.angle(top)) / (2 * math.pi * lp.period)
-            assert abs(f - m.critical_frequency_hz) <= 1e-6 * max(f, 1.0), (f, m)
+            assert abs(f - m.stiffness_crossover_hz) <= 1e-6 * max(f, 1.0), (f, m)
 
 
 def test_adding_the_delay_margin_crosses_the_boundary():

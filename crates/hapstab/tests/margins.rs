@@ -131,45 +131,54 @@ fn cases(n: usize, seed: u64) -> Vec<(Loop, Wall)> {
 
 const EPS: f64 = 1e-6;
 
-/// Acceptance: K × gain margin (±1e-6) crosses the boundary, on K alone and on (K, B)
-/// together, and the critical frequency is the angle of the root pair on the unit circle there.
+/// Asserts that the wall scaled by `factor` (±1e-6) lies on opposite sides of the boundary,
+/// stable toward the wall itself.
+fn crosses(lp: &Loop, (k, b): (f64, f64), factor: f64, scale_b: bool, what: &str) {
+    let at = |f: f64| (k * f, if scale_b { b * f } else { b });
+    let inside = if factor > 1.0 { 1.0 - EPS } else { 1.0 + EPS };
+    let outside = if factor > 1.0 { 1.0 + EPS } else { 1.0 - EPS };
+    let (ki, bi) = at(factor * inside);
+    let (ko, bo) = at(factor * outside);
+    assert!(
+        stable(lp, ki, bi),
+        "{what}: {lp:?} ({k}, {b}) ×{factor} inside"
+    );
+    assert!(
+        !stable(lp, ko, bo),
+        "{what}: {lp:?} ({k}, {b}) ×{factor} outside"
+    );
+}
+
+/// Acceptance: every reported gain margin — on K alone and on (K, B) together, upward and
+/// downward — multiplied by (1 ± 1e-6) lands on opposite sides of the boundary, and the
+/// frequency of the upper stiffness margin is the angle of the root pair on the unit circle
+/// there.
 #[test]
 fn gain_margins_cross_the_boundary() {
     cases(40, 0x6A1A).par_iter().for_each(|(lp, w)| {
         let m = margins(lp, *w).unwrap();
         assert!(m.stable, "{lp:?} {w:?}");
         let g = m
-            .gain
+            .stiffness
             .unwrap_or_else(|| panic!("{lp:?} {w:?}: {:?}", m.notes));
         assert!(g.factor > 1.0);
         let (k, b) = (w.stiffness, w.damping);
-        assert!(
-            stable(lp, k * g.factor * (1.0 - EPS), b),
-            "{lp:?} {w:?} {g:?}"
-        );
-        assert!(
-            !stable(lp, k * g.factor * (1.0 + EPS), b),
-            "{lp:?} {w:?} {g:?}"
-        );
+        crosses(lp, (k, b), g.factor, false, "stiffness");
         let (off, angle) = critical_root(lp, k * g.factor, b);
         assert!(off.abs() < 1e-7, "{lp:?}: root off the circle by {off}");
         assert!((angle - g.theta).abs() < 1e-6, "{angle} vs {}", g.theta);
         let f = angle / (2.0 * PI * lp.period);
-        let fc = m.critical_frequency_hz.unwrap();
         assert!(
-            (f - fc).abs() <= 1e-6 * (1.0 / lp.period),
-            "{f} Hz vs {fc} Hz"
+            (f - g.frequency_hz).abs() <= 1e-6 * (1.0 / lp.period),
+            "{f} Hz vs {} Hz",
+            g.frequency_hz
         );
-        if let Some(gk) = m.gain_kb {
-            let s = gk.factor;
-            assert!(
-                stable(lp, k * s * (1.0 - EPS), b * s * (1.0 - EPS)),
-                "{gk:?}"
-            );
-            assert!(
-                !stable(lp, k * s * (1.0 + EPS), b * s * (1.0 + EPS)),
-                "{gk:?}"
-            );
+        if let Some(lower) = m.stiffness_lower {
+            assert!(lower.factor < 1.0 && lower.factor > 0.0, "{lower:?}");
+            crosses(lp, (k, b), lower.factor, false, "stiffness lower");
+        }
+        for gk in [m.gain, m.gain_lower].into_iter().flatten() {
+            crosses(lp, (k, b), gk.factor, true, "(K, B)");
         }
     });
 }
@@ -268,7 +277,7 @@ fn pure_mass_gain_margin_closed_form() {
         )
         .unwrap();
         let want = 2.0 * beta * (2.0 - beta) / (2.0 + beta) / alpha;
-        let g = m.gain.unwrap();
+        let g = m.stiffness.unwrap();
         assert!(
             (g.factor - want).abs() < 1e-12 * want,
             "{} vs {want}",

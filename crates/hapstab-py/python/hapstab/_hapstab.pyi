@@ -265,21 +265,39 @@ class Passivity:
     passive_region: Optional[PassiveRegion]
 
 class Margins:
-    """Stability margins of a stable wall (None when not stable or unbounded; see notes)."""
+    """Stability margins of a stable wall, named as python-control and MATLAB name them (None
+    when not stable or unbounded; see notes)."""
 
     stable: bool
     gain_margin: Optional[float]
-    """Factor on K at the given B to the stability boundary."""
-    gain_margin_kb: Optional[float]
-    """Factor on K and B together."""
-    phase_margin_deg: Optional[float]
+    """Factor > 1 on K and B together to the stability boundary (python-control's gm)."""
+    gain_margin_lower: Optional[float]
+    """Factor < 1 on K and B together to the boundary."""
     phase_crossover_hz: Optional[float]
+    """Where the gain margin is read (L real, negative), Hz."""
+    stiffness_margin: Optional[float]
+    """Factor > 1 on K alone at the given B."""
+    stiffness_margin_lower: Optional[float]
+    """Factor < 1 on K alone at the given B."""
+    stiffness_crossover_hz: Optional[float]
+    phase_margin_deg: Optional[float]
+    """The smallest in magnitude over the gain crossovers."""
+    gain_crossover_hz: Optional[float]
+    """Where the phase margin is read (|L| = 1), Hz."""
     delay_margin: Optional[float]
-    """Extra delay in s (fractional) to the boundary."""
+    """Exact extra delay in s (fractional) to the boundary."""
     delay_margin_frequency_hz: Optional[float]
+    delay_margin_pm_over_wc: Optional[float]
+    """MATLAB's PM/ω_c, s."""
     delay_margin_at_least: Optional[float]
-    critical_frequency_hz: Optional[float]
-    """Frequency of the root pair on the unit circle at K × gain_margin, Hz."""
+    stability_margin: Optional[float]
+    """min |1 + L| (python-control's sm)."""
+    stability_margin_hz: Optional[float]
+    peak_gain: Optional[float]
+    """max |L| over frequency."""
+    peak_gain_hz: Optional[float]
+    crossings: list[tuple[str, float, float]]
+    """(kind "gain" or "phase", frequency Hz, phase margin deg or gain factor)."""
     notes: list[str]
 
 def check(

@@ -1,0 +1,356 @@
+//! The delay margin: the smallest added delay h ≥ 0 (any fraction of a sample) at which a root
+//! of p(z) reaches the unit circle, exact at any delay.
+//!
+//! A root reaches e^{iθ} at total delay s (samples) iff L_s(e^{iθ}) = −1. A whole sample more
+//! multiplies L by e^{−iθ}, so L_s = L_{λ}·e^{−i⌊s⌋θ} with L_λ the loop at the fraction
+//! λ = s − ⌊s⌋ alone: the condition is |L_λ(θ)| = 1 (θ a gain crossover of the fraction's
+//! loop) and arg L_λ(θ) − ⌊s⌋θ ≡ −π. Seeds are the pure-delay estimates (PM + 2πk)/ω_c at
+//! the gain crossovers of [`FRACTIONS`] + 1 fractions; each is solved exactly by Newton's
+//! method in s (the phase falls by θ per sample; the crossover is followed as λ moves), the
+//! smallest solution is confirmed by the verdict at h·(1 ∓ [`CONFIRM_REL`]) — stable before,
+//! not after — and reported. Where no seed converges and confirms, the certified scan of
+//! [`delay_scan`] decides.
+
+use num_complex::Complex64;
+
+use super::frequency::{GainScan, gain_scan, loop_value};
+use super::{DelayMargin, SAMPLES_PER_DEGREE};
+use crate::boundary::bisect;
+use crate::closed_loop::AffineFamily;
+use crate::error::Result;
+use crate::model::{Delay, Loop};
+use crate::params::{MAX_DELAY, Wall};
+use crate::stability::roots;
+use crate::verdict::{Verdict, decide, stable as verdict_stable};
+
+/// Fractions of a sample whose loops seed the exact solve and bound the loop gain over every
+/// added delay.
+pub const FRACTIONS: usize = 64;
+
+/// The confirmed delay margin puts the wall stable at h·(1 − CONFIRM_REL) and not stable at
+/// h·(1 + CONFIRM_REL).
+pub const CONFIRM_REL: f64 = 1e-6;
+
+/// Seeds this many samples beyond the largest modelled delay are not solved: the loop is
+/// stable up to that delay.
+const BEYOND_MAX: f64 = 2.0;
+
+/// Newton steps of the exact solve.
+const NEWTON_STEPS: usize = 60;
+
+/// The loop gain may not exceed this for the small-gain shortcut: max |L| over every
+/// fraction, on the frequency grid that resolves every mode (see [`super::frequency`]).
+const SMALL_GAIN_LIMIT: f64 = 0.999;
+
+/// What the delay margin's search found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DelayScan {
+    /// The first crossing: the margin.
+    Crossing(DelayMargin),
+    /// max |L| over every frequency and fraction of a sample, below 1: stable for every
+    /// added delay.
+    SmallGain(f64),
+    /// No crossing up to the largest modelled delay.
+    StableUpToMax,
+    /// The scan's work bound was reached after this added delay in seconds, stable so far.
+    AtLeast(f64),
+}
+
+/// The delay margin of a wall on a loop (module doc), with the MATLAB-style figure
+/// min PM/ω_c over the gain crossovers of the loop as it is (seconds; None without a
+/// crossover).
+pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
+    let s0 = lp.delay.in_samples();
+    let base = AffineFamily::of_loop(lp)?;
+    let (a, b) = base.to_units(wall.stiffness, wall.damping);
+    let own = gain_scan(&base, a, b);
+    let pm_over_wc = own
+        .crossovers
+        .iter()
+        .map(|c| positive_phase(c.phase_margin_deg.to_radians()) / c.theta)
+        .reduce(f64::min)
+        .map(|h| h * lp.period);
+    let fractions = fraction_scans(lp, a, b)?;
+    let peak = fractions.iter().map(|(_, g)| g.peak.0).fold(0.0, f64::max);
+    if peak < SMALL_GAIN_LIMIT {
+        return Ok((DelayScan::SmallGain(peak), pm_over_wc));
+    }
+    let verdict_at = |s: f64| -> Result<Verdict> {
+        let f = AffineFamily::of_loop(&lp.with_delay(delay_in_samples(s))?)?;
+        Ok(decide(&f, a, b, &mut f.coefficients(a, b)).verdict)
+    };
+    let seeds = seeds(s0, &fractions);
+    // A root can reach the circle only at a gain crossover of some fraction's loop; when
+    // there is none, or the nearest phase alignment lies samples beyond the largest modelled
+    // delay (the fraction moves a seed by well under a sample), no modelled delay is unstable.
+    if seeds
+        .first()
+        .is_none_or(|s| s.0 > MAX_DELAY as f64 + BEYOND_MAX)
+    {
+        return Ok((DelayScan::StableUpToMax, pm_over_wc));
+    }
+    let mut solutions: Vec<(f64, f64)> = Vec::new();
+    for seed in seeds
+        .into_iter()
+        .filter(|s| s.0 <= MAX_DELAY as f64 + BEYOND_MAX)
+    {
+        if let Some(sol) = solve(lp, (a, b), seed)?
+            && sol.0 > s0
+        {
+            solutions.push(sol);
+        }
+    }
+    solutions.sort_by(|x, y| x.0.total_cmp(&y.0));
+    if let Some(&(s, theta)) = solutions.first() {
+        let h = s - s0;
+        let eps = CONFIRM_REL * h;
+        // before the crossing not unstable, after it not stable: both sides are marginal
+        // only where the whole path lies within the verdict's band of the circle
+        let before = verdict_at(s - eps)?;
+        if s + eps <= MAX_DELAY as f64
+            && before != Verdict::Unstable
+            && verdict_at(s + eps)? != Verdict::Stable
+        {
+            return Ok((
+                DelayScan::Crossing(DelayMargin {
+                    seconds: h * lp.period,
+                    theta,
+                    frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
+                }),
+                pm_over_wc,
+            ));
+        }
+    }
+    Ok((delay_scan(lp, wall)?, pm_over_wc))
+}
+
+/// A phase in (−π, π] moved to (0, 2π]: the extra lag that brings L to −1.
+fn positive_phase(p: f64) -> f64 {
+    if p > 0.0 {
+        p
+    } else {
+        p + 2.0 * std::f64::consts::PI
+    }
+}
+
+/// The gain scans of the loop at fractions j/FRACTIONS of a sample (no whole samples).
+fn fraction_scans(lp: &Loop, a: f64, b: f64) -> Result<Vec<(f64, GainScan)>> {
+    (0..=FRACTIONS)
+        .map(|j| {
+            let fraction = (j as f64 / FRACTIONS as f64).min(1.0 - 1e-12);
+            let fam = AffineFamily::of_loop(&lp.with_delay(Delay {
+                samples: 0,
+                fraction,
+            })?)?;
+            Ok((fraction, gain_scan(&fam, a, b)))
+        })
+        .collect()
+}
+
+/// Seeds (total delay in samples, θ) of the exact solve: at every crossover θ of every
+/// fraction λ's loop, the smallest s ≥ s0 with s ≡ λ + (PM + 2πk)/θ — the whole samples that
+/// a pure delay would need, rounded to the fraction's grid.
+fn seeds(s0: f64, fractions: &[(f64, GainScan)]) -> Vec<(f64, f64)> {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for (lambda, scan) in fractions {
+        for c in &scan.crossovers {
+            let period = two_pi / c.theta;
+            let mut d = lambda + positive_phase(c.phase_margin_deg.to_radians()) / c.theta;
+            if d < s0 {
+                d += ((s0 - d) / period).ceil() * period;
+            }
+            out.push((d, c.theta));
+        }
+    }
+    out.sort_by(|x, y| x.0.total_cmp(&y.0));
+    out.dedup_by(|x, y| (x.0 - y.0).abs() < 1e-3 && (x.1 - y.1).abs() < 1e-3 * y.1);
+    out
+}
+
+/// Newton's method in the total delay s from a seed: the crossover of the fraction's loop
+/// followed from θ, the phase error of L_s there driven to zero. (s, θ) when it converges.
+fn solve(
+    lp: &Loop,
+    (a, b): (f64, f64),
+    (mut s, mut theta): (f64, f64),
+) -> Result<Option<(f64, f64)>> {
+    for _ in 0..NEWTON_STEPS {
+        if !(0.0..=MAX_DELAY as f64).contains(&s) {
+            return Ok(None);
+        }
+        let whole = s.floor();
+        let fam = AffineFamily::of_loop(&lp.with_delay(Delay {
+            samples: 0,
+            fraction: s - whole,
+        })?)?;
+        let Some(t) = crossover_near(&fam, a, b, theta) else {
+            return Ok(None);
+        };
+        theta = t;
+        let l = loop_value(&fam, a, b, theta) * Complex64::from_polar(1.0, -whole * theta);
+        let phi = (-l).arg();
+        let step = phi / theta;
+        s += step;
+        if step.abs() <= 1e-14 * s.max(1.0) {
+            return Ok(Some((s, theta)));
+        }
+    }
+    Ok(None)
+}
+
+/// The gain crossover of `fam` nearest θ0 within a factor of two, by bracketing and bisection.
+fn crossover_near(fam: &AffineFamily, a: f64, b: f64, t0: f64) -> Option<f64> {
+    let pi = std::f64::consts::PI;
+    let g = |t: f64| {
+        let (p0, pk, pb) = fam.parts_on_circle(t);
+        (pk * a + pb * b).norm().ln() - p0.norm().ln()
+    };
+    let g0 = g(t0);
+    if g0 == 0.0 {
+        return Some(t0);
+    }
+    let mut h = 1e-6 * t0;
+    while h < 0.5 * t0 {
+        for t in [t0 - h, t0 + h] {
+            if t > 0.0 && t < pi && (g(t) > 0.0) != (g0 > 0.0) {
+                let (lo, hi) = if t < t0 { (t, t0) } else { (t0, t) };
+                return Some(bisect(lo, hi, g));
+            }
+        }
+        h *= 2.0;
+    }
+    None
+}
+
+/// Safety factor κ of the delay scan's step: the step is 1/κ of the delay the Nyquist curve
+/// needs to reach −1 at the pure-delay rate (see [`delay_margin`]); κ = 4 covers the
+/// fractional hold's aliased terms, which can turn the phase faster than a pure delay near
+/// the Nyquist frequency.
+const DELAY_STEP_SAFETY: f64 = 4.0;
+
+/// Smallest step of the delay scan, in samples: near the crossing the controlled step shrinks
+/// geometrically, so a floor lets the scan step over the crossing; an instability window
+/// narrower than this (1 ns at 1 kHz) could be missed.
+const DELAY_MIN_STEP: f64 = 1e-6;
+
+/// Bisection of the added delay stops at this relative width: far below the margins' 1e-6
+/// acceptance.
+const DELAY_BISECTION_REL: f64 = 1e-13;
+
+/// The delay margin by a certified scan, where the exact solve of [`delay_margin`] did not
+/// converge and confirm: the smallest extra delay Δ (seconds, any fraction of a sample) at
+/// which the loop loses stability, with the frequency of the root pair that crosses.
+///
+/// Method: scan the total delay s (in samples) upward from the loop's own, testing every step
+/// with the Schur–Cohn test on the exact fractional-delay discretization, then bisect the
+/// first stable/unstable pair. **First crossing**: a root can reach the unit circle at e^{jθ}
+/// only where the Nyquist curve 1 + L reaches 0. An added delay h turns L by e^{−jθh}, which
+/// moves 1 + L by at most θh·|L|; so no root reaches the circle while
+/// h < min_θ |1 + L|/(θ|L|) = min_θ |p(e^{jθ})|/(θ·|a·PK + b·PB|) (P0 cancels). Each step is
+/// that bound divided by [`DELAY_STEP_SAFETY`] (the fractional hold's deviation from a pure
+/// phase), at least [`DELAY_MIN_STEP`]; the minimum over θ is taken on the boundary scan's
+/// grid. None when the loop stays stable up to the largest modelled delay ([`MAX_DELAY`]
+/// samples).
+pub fn delay_scan(lp: &Loop, wall: Wall) -> Result<DelayScan> {
+    let s0 = lp.delay.in_samples();
+    let family_at = |s: f64| -> Result<AffineFamily> {
+        AffineFamily::of_loop(&lp.with_delay(delay_in_samples(s))?)
+    };
+    let base = family_at(s0)?;
+    let (a, b) = base.to_units(wall.stiffness, wall.damping);
+    let stable = |f: &AffineFamily| verdict_stable(f, a, b, &mut f.coefficients(a, b));
+    let mut s = s0;
+    let mut fam = base;
+    let mut work = 0.0;
+    loop {
+        work += scan_step_work(&fam);
+        if work > DELAY_SCAN_WORK {
+            return Ok(DelayScan::AtLeast((s - s0) * lp.period));
+        }
+        let h = (robustness(&fam, a, b) / DELAY_STEP_SAFETY).max(DELAY_MIN_STEP);
+        let next = s + h;
+        if next > MAX_DELAY as f64 {
+            return Ok(DelayScan::StableUpToMax);
+        }
+        let fam_next = family_at(next)?;
+        if !stable(&fam_next) {
+            let (lo, hi) = bisect_delay(s, next, |x| Ok(stable(&family_at(x)?)))?;
+            let theta = critical_angle(&family_at(hi)?, a, b)?;
+            let seconds = (0.5 * (lo + hi) - s0) * lp.period;
+            return Ok(DelayScan::Crossing(DelayMargin {
+                seconds,
+                theta,
+                frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
+            }));
+        }
+        s = next;
+        fam = fam_next;
+    }
+}
+
+/// The delay scan's work bound in evaluations of p's coefficients (estimated at about 0.3 s
+/// on one core): past it the scan reports a lower bound instead of running on with p's
+/// growing degree.
+const DELAY_SCAN_WORK: f64 = 3e8;
+
+/// Work of one scan step: the robustness bound's θ grid times p's degree.
+fn scan_step_work(fam: &AffineFamily) -> f64 {
+    let n = (fam.degree() + 1) as f64;
+    SAMPLES_PER_DEGREE as f64 * n * n
+}
+
+/// A total delay of s samples as whole samples and a fraction.
+fn delay_in_samples(s: f64) -> Delay {
+    let d = s.floor();
+    Delay {
+        samples: d as usize,
+        fraction: s - d,
+    }
+}
+
+/// min over θ ∈ (0, π] of |p(e^{jθ})|/(θ·|a·PK + b·PB|): the added delay (in samples) that
+/// the pure-delay bound guarantees safe.
+fn robustness(fam: &AffineFamily, a: f64, b: f64) -> f64 {
+    let m = SAMPLES_PER_DEGREE * (fam.degree() + 1);
+    let pi = std::f64::consts::PI;
+    (1..=m)
+        .map(|i| {
+            let t = pi * i as f64 / m as f64;
+            let (p0, pk, pb) = fam.parts_on_circle(t);
+            let w = pk * a + pb * b;
+            (p0 + w).norm() / (t * w.norm())
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Bisects [lo, hi] (stable at lo, not at hi) down to [`DELAY_BISECTION_REL`].
+fn bisect_delay(
+    mut lo: f64,
+    mut hi: f64,
+    stable: impl Fn(f64) -> Result<bool>,
+) -> Result<(f64, f64)> {
+    while hi - lo > DELAY_BISECTION_REL * hi.max(1.0) {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if stable(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok((lo, hi))
+}
+
+/// The angle of the root closest to the unit circle (the pair that just crossed).
+fn critical_angle(fam: &AffineFamily, a: f64, b: f64) -> Result<f64> {
+    let rs = roots(&fam.coefficients(a, b))?;
+    let z = rs
+        .iter()
+        .min_by(|x, y| (x.norm() - 1.0).abs().total_cmp(&(y.norm() - 1.0).abs()))
+        .copied()
+        .unwrap_or(Complex64::new(1.0, 0.0));
+    Ok(z.arg().abs())
+}

@@ -1,0 +1,213 @@
+//! The loop's frequency response on the unit circle and the frequencies where margins are
+//! read: every gain crossover |L(e^{iθ})| = 1, the peak gain max |L| and the stability
+//! (modulus) margin min |1 + L|, for the open loop L = (a·PK + b·PB)/P0 of eq. 7–9.
+//!
+//! **No crossing lost.** |L| is a ratio of trigonometric polynomials whose features live on
+//! the scale of the distance of the roots of P0 and of W = a·PK + b·PB to the unit circle: a
+//! lightly damped mode at r·e^{iφ} makes a peak of width ≈ 1 − r at θ = φ, a free mass or a
+//! fast sampling (roots crowding z = 1) puts crossovers at θ ≪ 1/n. The grid is therefore
+//! the union of
+//! - a uniform grid of [`UNIFORM_PER_DEGREE`]·(n + 2) angles (n the delay-free degree: a
+//!   whole-sample delay turns the phase of L but leaves |L| unchanged),
+//! - geometric runs toward θ = 0 and θ = π down to [`THETA_FLOOR`] of π,
+//! - geometric runs on both sides of the angle of every root of P0 and of W, from a tenth of
+//!   its distance to the circle outward.
+//!
+//! Every sign change of ln|L| on the grid is a crossover (bisected to rounding), and every
+//! local extremum of the samples is refined by golden section: an extremum that changes sign
+//! inside its cell is a pair of crossovers the samples straddled.
+
+use num_complex::Complex64;
+use serde::Serialize;
+
+use crate::closed_loop::AffineFamily;
+use crate::passivity::golden_max;
+use crate::stability::roots;
+
+/// Uniform samples per delay-free degree (|L| − 1 changes sign at most twice per degree).
+pub const UNIFORM_PER_DEGREE: usize = 64;
+
+/// The geometric runs toward θ = 0 and θ = π end at this fraction of π (a frequency of
+/// 1e-12 of the Nyquist frequency).
+pub const THETA_FLOOR: f64 = 1e-12;
+
+/// Geometric samples per factor of 10 in the runs.
+const PER_DECADE: usize = 12;
+
+/// Refinement of a crossover, an extremum or a minimum stops at this relative width in θ.
+const THETA_REL: f64 = 1e-13;
+
+/// The open loop of one wall at θ: L(e^{iθ}) = (a·PK + b·PB)/P0.
+pub fn loop_value(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> Complex64 {
+    let (p0, pk, pb) = fam.parts_on_circle(theta);
+    (pk * a + pb * b) / p0
+}
+
+/// ln |L(e^{iθ})|, free of the delay's phase.
+fn log_gain(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> f64 {
+    let (p0, pk, pb) = fam.parts_on_circle(theta);
+    (pk * a + pb * b).norm().ln() - p0.norm().ln()
+}
+
+/// The angles θ ∈ (0, π) on which |L| of the wall (a, b) is sampled (module doc), sorted.
+pub fn frequency_grid(fam: &AffineFamily, a: f64, b: f64) -> Vec<f64> {
+    let pi = std::f64::consts::PI;
+    let core = fam.p0_core.len().max(fam.pk.len()).max(fam.pb.len());
+    let m = UNIFORM_PER_DEGREE * (core + 1);
+    let mut ts: Vec<f64> = (1..m).map(|i| pi * i as f64 / m as f64).collect();
+    let decades = (-THETA_FLOOR.log10()) as usize * PER_DECADE;
+    for j in 1..=decades {
+        let t = pi * 10f64.powf(-(j as f64) / PER_DECADE as f64);
+        ts.push(t);
+        ts.push(pi - t);
+    }
+    for (phi, dist) in root_angles(fam, a, b) {
+        let mut h = 0.1 * dist.max(THETA_FLOOR * pi);
+        while h < pi {
+            for t in [phi - h, phi + h] {
+                if t > 0.0 && t < pi {
+                    ts.push(t);
+                }
+            }
+            h *= 10f64.powf(1.0 / PER_DECADE as f64);
+        }
+        if phi > 0.0 && phi < pi {
+            ts.push(phi);
+        }
+    }
+    ts.sort_by(f64::total_cmp);
+    ts.dedup();
+    ts
+}
+
+/// (|arg z|, ||z| − 1|) of every root of P0's core and of W = a·PK + b·PB.
+fn root_angles(fam: &AffineFamily, a: f64, b: f64) -> Vec<(f64, f64)> {
+    let n = fam.pk.len().max(fam.pb.len());
+    let w: Vec<f64> = (0..n)
+        .map(|i| {
+            a * fam.pk.get(i).copied().unwrap_or(0.0) + b * fam.pb.get(i).copied().unwrap_or(0.0)
+        })
+        .collect();
+    [fam.p0_core.as_slice(), trimmed(&w)]
+        .into_iter()
+        .filter(|c| c.len() > 1)
+        .filter_map(|c| roots(c).ok())
+        .flatten()
+        .filter(|z| z.is_finite())
+        .map(|z| (z.arg().abs(), (z.norm() - 1.0).abs()))
+        .collect()
+}
+
+/// The coefficients without trailing (leading-power) zeros.
+fn trimmed(c: &[f64]) -> &[f64] {
+    let n = c.iter().rposition(|&x| x != 0.0).map_or(0, |i| i + 1);
+    &c[..n]
+}
+
+/// A gain crossover: |L(e^{iθ})| = 1.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GainCrossover {
+    /// The angle θ ∈ (0, π).
+    pub theta: f64,
+    /// 180° + arg L there, wrapped to (−180°, 180°]: the phase margin read at it.
+    pub phase_margin_deg: f64,
+}
+
+/// Samples of ln|L| on the grid and what they show.
+pub struct GainScan {
+    /// Every gain crossover, in increasing θ.
+    pub crossovers: Vec<GainCrossover>,
+    /// max |L| over θ ∈ (0, π) and where.
+    pub peak: (f64, f64),
+}
+
+/// Every gain crossover and the peak gain of the wall (a, b) (module doc).
+pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
+    let ts = frequency_grid(fam, a, b);
+    let g = |t: f64| log_gain(fam, a, b, t);
+    let vs: Vec<f64> = ts.iter().map(|&t| g(t)).collect();
+    let mut thetas = Vec::new();
+    let mut peak = (f64::NEG_INFINITY, f64::NAN);
+    for i in 0..ts.len() {
+        if vs[i] > peak.0 {
+            peak = (vs[i], ts[i]);
+        }
+        if i > 0 && (vs[i] > 0.0) != (vs[i - 1] > 0.0) && vs[i].is_finite() && vs[i - 1].is_finite()
+        {
+            thetas.push(crate::boundary::bisect(ts[i - 1], ts[i], g));
+        }
+        if i == 0 || i + 1 == ts.len() {
+            continue;
+        }
+        let (l, c, r) = (vs[i - 1], vs[i], vs[i + 1]);
+        let (lo, hi) = (ts[i - 1], ts[i + 1]);
+        let tol = THETA_REL * hi;
+        if c >= l && c >= r {
+            let (t, v) = golden_max(g, lo, hi, tol);
+            if v > peak.0 {
+                peak = (v, t);
+            }
+            if c <= 0.0 && v > 0.0 {
+                thetas.push(crate::boundary::bisect(lo, t, g));
+                thetas.push(crate::boundary::bisect(t, hi, g));
+            }
+        } else if c <= l && c <= r && c > 0.0 {
+            let (t, v) = golden_max(|x| -g(x), lo, hi, tol);
+            if -v <= 0.0 {
+                thetas.push(crate::boundary::bisect(lo, t, g));
+                thetas.push(crate::boundary::bisect(t, hi, g));
+            }
+        }
+    }
+    thetas.sort_by(f64::total_cmp);
+    thetas.dedup_by(|x, y| (*x - *y).abs() <= 1e-9 * y.abs());
+    let crossovers = thetas
+        .into_iter()
+        .map(|theta| GainCrossover {
+            theta,
+            phase_margin_deg: wrap_degrees(180.0 + loop_value(fam, a, b, theta).arg().to_degrees()),
+        })
+        .collect();
+    GainScan {
+        crossovers,
+        peak: (peak.0.exp(), peak.1),
+    }
+}
+
+/// min over θ ∈ [0, π] of |1 + L(e^{iθ})| = |p(e^{iθ})|/|P0(e^{iθ})|, the distance of the
+/// Nyquist curve to −1 (python-control's `sm`), and the θ where it is reached. The grid is the
+/// frequency grid of the delay-free magnitude refined by the uniform grid of the full degree
+/// (a delay turns L round −1 once per 2π/d).
+pub fn stability_margin(fam: &AffineFamily, a: f64, b: f64) -> (f64, f64) {
+    let pi = std::f64::consts::PI;
+    let f = |t: f64| {
+        let (p0, pk, pb) = fam.parts_on_circle(t);
+        (p0 + pk * a + pb * b).norm() / p0.norm()
+    };
+    let m = UNIFORM_PER_DEGREE * (fam.degree() + 2);
+    let mut ts = frequency_grid(fam, a, b);
+    ts.extend((0..=m).map(|i| pi * i as f64 / m as f64));
+    ts.push(0.0);
+    ts.sort_by(f64::total_cmp);
+    ts.dedup();
+    let vs: Vec<f64> = ts.iter().map(|&t| f(t)).collect();
+    let mut best = (f64::INFINITY, f64::NAN);
+    for i in 0..ts.len() {
+        if vs[i] < best.0 {
+            best = (vs[i], ts[i]);
+        }
+        if i > 0 && i + 1 < ts.len() && vs[i] <= vs[i - 1] && vs[i] <= vs[i + 1] {
+            let (t, v) = golden_max(|x| -f(x), ts[i - 1], ts[i + 1], THETA_REL * ts[i + 1]);
+            if -v < best.0 {
+                best = (-v, t);
+            }
+        }
+    }
+    best
+}
+
+/// An angle in degrees wrapped to (−180°, 180°].
+pub fn wrap_degrees(d: f64) -> f64 {
+    let w = d.rem_euclid(360.0);
+    if w > 180.0 { w - 360.0 } else { w }
+}
