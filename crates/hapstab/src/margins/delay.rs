@@ -35,6 +35,9 @@ pub const CONFIRM_REL: f64 = 1e-6;
 /// stable up to that delay.
 const BEYOND_MAX: f64 = 2.0;
 
+/// Seeds further than this many samples above the best solution so far are not solved.
+const SEED_REACH: f64 = 1.0;
+
 /// Newton steps of the exact solve.
 const NEWTON_STEPS: usize = 60;
 
@@ -89,19 +92,25 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
     {
         return Ok((DelayScan::StableUpToMax, pm_over_wc));
     }
-    let mut solutions: Vec<(f64, f64)> = Vec::new();
+    // Seeds in increasing delay; each solution lies within a sample of its seed (the
+    // fraction changes L far less than a whole turn), so seeds beyond the best solution by
+    // more than SEED_REACH samples cannot improve it.
+    let mut best: Option<(f64, f64)> = None;
     for seed in seeds
         .into_iter()
         .filter(|s| s.0 <= MAX_DELAY as f64 + BEYOND_MAX)
     {
+        if best.is_some_and(|b| seed.0 > b.0 + SEED_REACH) {
+            break;
+        }
         if let Some(sol) = solve(lp, (a, b), seed)?
             && sol.0 > s0
+            && best.is_none_or(|b| sol.0 < b.0)
         {
-            solutions.push(sol);
+            best = Some(sol);
         }
     }
-    solutions.sort_by(|x, y| x.0.total_cmp(&y.0));
-    if let Some(&(s, theta)) = solutions.first() {
+    if let Some((s, theta)) = best {
         let h = s - s0;
         let eps = CONFIRM_REL * h;
         // before the crossing not unstable, after it not stable: both sides are marginal

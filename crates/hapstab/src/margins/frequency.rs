@@ -34,6 +34,9 @@ pub const THETA_FLOOR: f64 = 1e-12;
 /// Geometric samples per factor of 10 in the runs.
 const PER_DECADE: usize = 12;
 
+/// Local extrema of ln|L| within this of 0 (|L| within a factor of two of 1) are refined.
+const REFINE_LOG: f64 = std::f64::consts::LN_2;
+
 /// Refinement of a crossover, an extremum or a minimum stops at this relative width in θ.
 const THETA_REL: f64 = 1e-13;
 
@@ -142,7 +145,11 @@ pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
         let (l, c, r) = (vs[i - 1], vs[i], vs[i + 1]);
         let (lo, hi) = (ts[i - 1], ts[i + 1]);
         let tol = THETA_REL * hi;
-        if c >= l && c >= r {
+        // Extrema within a factor of two of |L| = 1 are refined (the grid samples every
+        // mode's peak within a tenth of its width, so a farther one cannot reach 1); plateaus
+        // of equal samples are not extrema.
+        let strict = c != l || c != r;
+        if strict && c >= l && c >= r && c > -REFINE_LOG {
             let (t, v) = golden_max(g, lo, hi, tol);
             if v > peak.0 {
                 peak = (v, t);
@@ -151,12 +158,19 @@ pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
                 thetas.push(crate::boundary::bisect(lo, t, g));
                 thetas.push(crate::boundary::bisect(t, hi, g));
             }
-        } else if c <= l && c <= r && c > 0.0 {
+        } else if strict && c <= l && c <= r && c > 0.0 && c < REFINE_LOG {
             let (t, v) = golden_max(|x| -g(x), lo, hi, tol);
             if -v <= 0.0 {
                 thetas.push(crate::boundary::bisect(lo, t, g));
                 thetas.push(crate::boundary::bisect(t, hi, g));
             }
+        }
+    }
+    if let Some(i) = (0..ts.len()).max_by(|&i, &j| vs[i].total_cmp(&vs[j])) {
+        let (lo, hi) = (ts[i.saturating_sub(1)], ts[(i + 1).min(ts.len() - 1)]);
+        let (t, v) = golden_max(g, lo, hi, THETA_REL * hi);
+        if v > peak.0 {
+            peak = (v, t);
         }
     }
     thetas.sort_by(f64::total_cmp);
