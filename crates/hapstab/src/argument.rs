@@ -153,7 +153,11 @@ pub fn winding(p: &impl OnCircle, r: f64) -> Winding {
         loop {
             let (g, dg, e) = p.on_circle(r, (theta + h).min(pi));
             let turn = (g / f).arg();
-            if turn.abs() < pi / 3.0 || h < 1e-300 {
+            // The linear model that chose the step must hold at its end: where the terms of
+            // dp/dθ cancel (roots of a cluster near z = 1 on both sides), the phase can whirl a
+            // whole turn inside one step while arg(g/f) reads a small angle.
+            let linear = (g - f - df * h).norm() <= 0.5 * f.norm();
+            if (turn.abs() < pi / 3.0 && linear) || h < 1e-300 {
                 theta = (theta + h).min(pi);
                 phase += turn;
                 margin = margin.min(g.norm() / e.max(f64::MIN_POSITIVE));

@@ -138,3 +138,43 @@ fn radius_map_keeps_the_stable_walls_of_a_slow_lag() {
     let stable = plain.stable.iter().filter(|&&s| s).count();
     assert_eq!(stable, 22, "the referee finds 22 stable walls");
 }
+
+/// A cluster of roots near z = 1 (T = 0.28 ms, slow fourth-order plant, 33.7 Hz low-pass,
+/// 3.195 samples): the terms of dp/dθ cancel at θ = 0, so a step chosen by the linear model
+/// alone jumped over a pair of roots 1.5e-5 inside the circle and the argument principle
+/// counted 7 of 9 roots inside — the verdict said unstable beside a spectral radius of
+/// 0.99998 and a stable K interval containing the wall. The referee: the roots of the loop's
+/// shifted characteristic polynomial p(1 + w) (from `hapstab discretize`) in 50-digit mpmath,
+/// largest modulus 0.999984954125547. Found by the margins property test.
+#[test]
+fn a_cluster_at_z_one_is_counted_inside() {
+    let t = 0.0002813424803293956;
+    let plant = Plant::new(
+        PlantModel::TransferFunction {
+            num: vec![2.0089263684950702],
+            den: vec![
+                1.0,
+                1.6682042740111245,
+                141.4257879463901,
+                71.31772407762533,
+                150.92641270820005,
+            ],
+        },
+        0.0,
+    )
+    .unwrap();
+    let delay = Delay {
+        samples: 3,
+        fraction: 0.19521967832596132,
+    };
+    let v = VelocityEstimator::LowPass {
+        cutoff_hz: 33.703901899231724,
+    };
+    let lp = Loop::new(plant, t, delay, v).unwrap();
+    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let (a, b) = fam.to_units(559.2596969510174 * 4.0, 3.052716531350584 * 4.0);
+    let d = decide(&fam, a, b, &mut fam.coefficients(a, b));
+    assert_eq!(d.verdict, Verdict::Stable, "{d:?}");
+    let rho = Analysis::of_family(&fam, a, b).unwrap().spectral_radius;
+    assert!((rho - 0.999984954125547).abs() < 1e-12, "{rho}");
+}

@@ -1,0 +1,308 @@
+//! Margins on seeded loops of every kind — transfer functions up to order 6, two-mass devices,
+//! every velocity estimator, force lags, whole and fractional delays up to 600 samples, T from
+//! 1e-5 to 1e-1 s — checked against independent evaluations, never against the margins
+//! module's own numbers:
+//! - every gain crossover has |L| = 1 to 1e-9 and every phase crossover L real;
+//! - no crossover that a dense independent grid of |L| finds (uniform in θ and log-spaced down
+//!   to θ = 1e-7, within 1e-4 of zero frequency) is missing;
+//! - every gain and stiffness margin ×(1 ∓ 1e-6), and the delay margin ×(1 ∓ 1e-6), lie on
+//!   opposite sides of the boundary by the verdict (walls whose perturbed verdict is marginal,
+//!   within 5e-11 of the circle, are counted and skipped, as every front end reports them).
+//!
+//! `HAPSTAB_MARGIN_LOOPS=N` sets the number of loops (300 by default, the acceptance size);
+//! `HAPSTAB_MARGIN_DENSE=M` the dense grid (20 000 angles by default; 10⁶ in the long run:
+//! `HAPSTAB_MARGIN_DENSE=1000000 cargo test --release -p hapstab --test margins_property`).
+
+use hapstab::AffineFamily;
+use hapstab::boundary::stable_alpha_intervals;
+use hapstab::margins::{CrossingKind, loop_value, margins};
+use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+use hapstab::params::{Arm, Effective, Wall};
+use hapstab::verdict::{Verdict, decide};
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next_f64()
+    }
+    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
+        10f64.powf(self.range(lo.log10(), hi.log10()))
+    }
+    fn below(&mut self, n: usize) -> usize {
+        ((self.next_f64() * n as f64) as usize).min(n - 1)
+    }
+}
+
+fn env(name: &str, default: usize) -> usize {
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
+/// Descending coefficients of a stable polynomial of the given order with modes between 0.3
+/// and 300 rad/s (complex pairs of damping ratio 0.02–1, real poles).
+fn stable_den(rng: &mut SplitMix, order: usize) -> Vec<f64> {
+    let mut c = vec![1.0];
+    let mut left = order;
+    while left > 0 {
+        let w = rng.log_range(0.3, 300.0);
+        let f: Vec<f64> = if left >= 2 && rng.below(3) > 0 {
+            left -= 2;
+            vec![1.0, 2.0 * rng.log_range(0.02, 1.0) * w, w * w]
+        } else {
+            left -= 1;
+            vec![1.0, w]
+        };
+        let mut n = vec![0.0; c.len() + f.len() - 1];
+        for (i, a) in c.iter().enumerate() {
+            for (j, b) in f.iter().enumerate() {
+                n[i + j] += a * b;
+            }
+        }
+        c = n;
+    }
+    c
+}
+
+fn estimator(rng: &mut SplitMix) -> VelocityEstimator {
+    match rng.below(4) {
+        0 => VelocityEstimator::Backward,
+        1 => VelocityEstimator::LowPass {
+            cutoff_hz: rng.log_range(5.0, 300.0),
+        },
+        2 => VelocityEstimator::Average {
+            samples: 1 + rng.below(10),
+        },
+        _ => VelocityEstimator::Iir {
+            b: vec![500.0, -500.0],
+            a: vec![1.0, -0.5],
+        },
+    }
+}
+
+fn plant(rng: &mut SplitMix, i: usize) -> PlantModel {
+    match i % 3 {
+        0 => {
+            let order = 2 + rng.below(5);
+            let den = stable_den(rng, order);
+            let gain = den[den.len() - 1] * rng.log_range(1e-3, 1.0);
+            PlantModel::TransferFunction {
+                num: vec![gain],
+                den,
+            }
+        }
+        1 => PlantModel::TwoMass(TwoMass {
+            motor_mass: rng.range(0.03, 0.3),
+            motor_damping: rng.range(0.0, 3.0),
+            handle_mass: rng.range(0.01, 0.1),
+            transmission_stiffness: rng.log_range(1e3, 1e6),
+            transmission_damping: rng.range(0.0, 3.0),
+            arm: Arm {
+                mass: rng.range(0.0, 2.0),
+                damping: rng.range(0.0, 6.0),
+                stiffness: rng.range(0.0, 1500.0),
+            },
+        }),
+        _ => PlantModel::MassSpringDamper(
+            Effective::new(
+                rng.range(0.1, 3.0),
+                rng.range(0.0, 10.0),
+                rng.range(0.0, 500.0),
+            )
+            .unwrap(),
+        ),
+    }
+}
+
+fn random_loop(rng: &mut SplitMix, i: usize) -> Option<Loop> {
+    let period = rng.log_range(1e-5, 1e-1);
+    let lag = if i % 4 == 3 {
+        rng.log_range(0.1, 3.0) * period
+    } else {
+        0.0
+    };
+    let samples = match i % 20 {
+        19 => 100 + rng.below(500),
+        15..=18 => 5 + rng.below(60),
+        _ => rng.below(4),
+    };
+    let delay = Delay {
+        samples,
+        fraction: if i % 2 == 1 { rng.range(0.0, 1.0) } else { 0.0 },
+    };
+    Loop::new(
+        Plant::new(plant(rng, i), lag).ok()?,
+        period,
+        delay,
+        estimator(rng),
+    )
+    .ok()
+}
+
+/// A wall inside the stable K interval at a random damping (None when none is stable).
+fn stable_wall(rng: &mut SplitMix, fam: &AffineFamily) -> Option<(f64, f64)> {
+    let (_, beta0) = fam.to_units(0.0, 1.0);
+    let beta = beta0 * rng.range(0.0, 10.0) * if rng.below(4) == 0 { 0.0 } else { 1.0 };
+    let iv = stable_alpha_intervals(fam, beta)
+        .into_iter()
+        .find(|iv| iv.hi.is_finite() && iv.lo.is_finite() && iv.hi > iv.lo)?;
+    Some((iv.lo + (iv.hi - iv.lo) * rng.range(0.05, 0.95), beta))
+}
+
+fn verdict(lp: &Loop, a: f64, b: f64) -> Verdict {
+    let fam = AffineFamily::of_loop(lp).unwrap();
+    decide(&fam, a, b, &mut fam.coefficients(a, b)).verdict
+}
+
+/// Outcome of one side check: agreed, marginal (skipped) — a disagreement panics.
+fn sides(inside: Verdict, outside: Verdict, what: &str) -> bool {
+    if inside == Verdict::Marginal || outside == Verdict::Marginal {
+        return false;
+    }
+    assert_eq!(
+        (inside, outside),
+        (Verdict::Stable, Verdict::Unstable),
+        "{what}"
+    );
+    true
+}
+
+/// The angles of the dense independent grid.
+fn dense(m: usize) -> Vec<f64> {
+    let mut ts: Vec<f64> = (1..m).map(|i| PI * i as f64 / m as f64).collect();
+    let logs = m / 4;
+    ts.extend((0..logs).map(|i| 1e-7 * 10f64.powf(6.0 * i as f64 / logs as f64)));
+    ts.sort_by(f64::total_cmp);
+    ts
+}
+
+#[test]
+fn margins_agree_with_independent_evaluations() {
+    let n = env("HAPSTAB_MARGIN_LOOPS", 300);
+    let grid = dense(env("HAPSTAB_MARGIN_DENSE", 20_000));
+    let mut rng = SplitMix(0x3A261);
+    let mut cases = Vec::new();
+    let mut i = 0;
+    while cases.len() < n {
+        i += 1;
+        let Some(lp) = random_loop(&mut rng, i) else {
+            continue;
+        };
+        let fam = AffineFamily::of_loop(&lp).unwrap();
+        if let Some(w) = stable_wall(&mut rng, &fam) {
+            cases.push((lp, w));
+        }
+    }
+    let counts: Vec<[usize; 3]> = cases
+        .par_iter()
+        .map(|(lp, (a, b))| check_case(lp, (*a, *b), &grid))
+        .collect();
+    let total = counts
+        .iter()
+        .fold([0; 3], |s, c| [s[0] + c[0], s[1] + c[1], s[2] + c[2]]);
+    eprintln!(
+        "margins property: {n} loops, {total:?} (margins checked, marginal, dense crossings)"
+    );
+    assert!(total[0] >= 2 * n, "{total:?}");
+}
+
+/// Checks one wall; returns [side checks agreed, side checks marginal, dense crossings].
+fn check_case(lp: &Loop, (a, b): (f64, f64), grid: &[f64]) -> [usize; 3] {
+    let fam = AffineFamily::of_loop(lp).unwrap();
+    let (k, bb) = fam.to_physical(a, b);
+    let what = format!("{lp:?} K = {k:e}, B = {bb:e}");
+    if verdict(lp, a, b) != Verdict::Stable {
+        return [0; 3];
+    }
+    let m = margins(
+        lp,
+        Wall {
+            stiffness: k,
+            damping: bb,
+        },
+    )
+    .unwrap();
+    assert!(m.stable, "{what}");
+    let mut agreed = [0usize; 3];
+    let mut tally = |ok: bool| agreed[if ok { 0 } else { 1 }] += 1;
+    let l = |t: f64| loop_value(&fam, a, b, t);
+    for c in &m.crossings {
+        match c.kind {
+            CrossingKind::Gain => {
+                let g = l(c.theta).norm();
+                assert!((g - 1.0).abs() < 1e-9, "{what}: |L| = {g} at {c:?}");
+            }
+            CrossingKind::Phase if c.theta > 0.0 && c.theta < PI => {
+                let v = l(c.theta) * c.value;
+                assert!((v + 1.0).norm() < 1e-6, "{what}: t·L = {v} at {c:?}");
+            }
+            CrossingKind::Phase => {}
+        }
+    }
+    for g in [m.gain, m.gain_lower].into_iter().flatten() {
+        let (i, o) = side_factors(g.factor);
+        tally(sides(
+            verdict(lp, a * i, b * i),
+            verdict(lp, a * o, b * o),
+            &what,
+        ));
+    }
+    for g in [m.stiffness, m.stiffness_lower].into_iter().flatten() {
+        let (i, o) = side_factors(g.factor);
+        tally(sides(verdict(lp, a * i, b), verdict(lp, a * o, b), &what));
+    }
+    if let Some(d) = m.delay {
+        let at = |f: f64| {
+            let t = lp.delay_time() + d.seconds * f;
+            lp.with_delay(Delay::from_time(t, lp.period).unwrap())
+                .unwrap()
+        };
+        tally(sides(
+            verdict(&at(1.0 - 1e-6), a, b),
+            verdict(&at(1.0 + 1e-6), a, b),
+            &what,
+        ));
+    }
+    let gains: Vec<f64> = m
+        .crossings
+        .iter()
+        .filter(|c| c.kind == CrossingKind::Gain)
+        .map(|c| c.theta)
+        .collect();
+    let g: Vec<f64> = grid.iter().map(|&t| l(t).norm().ln()).collect();
+    for j in 1..grid.len() {
+        if (g[j] > 0.0) != (g[j - 1] > 0.0) && g[j].abs() > 1e-12 && g[j - 1].abs() > 1e-12 {
+            agreed[2] += 1;
+            let (t0, t1) = (grid[j - 1], grid[j]);
+            let found = gains
+                .iter()
+                .any(|&t| t >= t0 * (1.0 - 1e-9) && t <= t1 * (1.0 + 1e-9));
+            assert!(
+                found,
+                "{what}: crossover in [{t0}, {t1}] missing from {gains:?}"
+            );
+        }
+    }
+    agreed
+}
+
+/// The factors just inside and just outside a margin (toward the wall, away from it).
+fn side_factors(f: f64) -> (f64, f64) {
+    if f > 1.0 {
+        (f * (1.0 - 1e-6), f * (1.0 + 1e-6))
+    } else {
+        (f * (1.0 + 1e-6), f * (1.0 - 1e-6))
+    }
+}
