@@ -233,3 +233,23 @@ fn the_lower_stiffness_margin_is_reported() {
         assert_eq!(verdict(&lp, 10000.0 * f, -40.0, &[]), want, "factor {f}");
     }
 }
+
+/// The default wall of `check` (the paper's device and arm, K = 10 kN/m, B = 10 Ns/m, T = 1 ms,
+/// d = 0) against python-control's `stability_margins` on the same sampled loop
+/// (`benches/baseline/margins_baseline.py`): gm 74.68108217503872 at 1060.0735292226464 rad/s,
+/// pm 6.882606120435042° at 97.29871946463614 rad/s, sm 0.11971349105403406 — equal to 1e-7
+/// (python-control's own resolution here is about 1e-9).
+#[test]
+fn the_default_wall_matches_python_control() {
+    let v = common::json(&["check"]);
+    let two_pi = 2.0 * std::f64::consts::PI;
+    for (got, want) in [
+        (num(&v, "gain_margin"), 74.68108217503872),
+        (num(&v, "phase_crossover_hz") * two_pi, 1060.0735292226464),
+        (num(&v, "phase_margin_deg"), 6.882606120435042),
+        (num(&v, "gain_crossover_hz") * two_pi, 97.29871946463614),
+        (num(&v, "stability_margin"), 0.11971349105403406),
+    ] {
+        assert!((got - want).abs() <= 1e-7 * want, "{got} vs {want}");
+    }
+}

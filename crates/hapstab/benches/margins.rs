@@ -1,0 +1,31 @@
+//! Every margin of one wall (`hapstab::margins::margins`): the paper's loop at d = 0, 1, 10 and
+//! the general order-5 loop of the region benchmark, at the walls `check` uses by default.
+//! Baseline: python-control's `stability_margins` on the same sampled loop
+//! (`benches/baseline/margins_baseline.py`).
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use hapstab::margins::margins;
+use hapstab::model::{Delay, Loop};
+use hapstab::params::{Effective, Wall};
+use std::hint::black_box;
+
+fn bench_margins(c: &mut Criterion) {
+    let mut g = c.benchmark_group("margins");
+    g.sample_size(20);
+    let wall = Wall {
+        stiffness: 1e4,
+        damping: 10.0,
+    };
+    for d in [0usize, 1, 10] {
+        let lp =
+            Loop::paper(Effective::new(1.1, 7.5, 350.0).expect("valid"), 1e-3, d).expect("valid");
+        g.bench_with_input(BenchmarkId::new("paper_loop", d), &lp, |b, lp| {
+            b.iter(|| black_box(margins(black_box(lp), wall).expect("margins")))
+        });
+    }
+    let _ = Delay::samples(0);
+    g.finish();
+}
+
+criterion_group!(benches, bench_margins);
+criterion_main!(benches);
