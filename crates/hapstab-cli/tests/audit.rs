@@ -7,23 +7,10 @@
 //! fixed damping, and from the audit's state-space referee (radius 0.99999217 of the
 //! crowded-roots loop, 40-digit eigenvalues).
 
-use assert_cmd::Command;
+mod common;
+
+use common::{hapstab, json};
 use serde_json::Value;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
-
-/// The JSON a command prints (exit 0 required).
-fn json(args: &[&str]) -> Value {
-    let out = hapstab().args(args).arg("--json").output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 fn num(v: &Value, key: &str) -> f64 {
     v[key]

@@ -5,13 +5,10 @@
 //! `HAPSTAB_MAX_SECONDS` lowers the time budget so that the refusals can be shown on runs
 //! that would take minutes (each must be refused within a second, before any work).
 
+mod common;
+
+use common::hapstab;
 use std::time::{Duration, Instant};
-
-use assert_cmd::Command;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
 
 /// Exit code, stdout and stderr of a command line run with environment `env`, which must end
 /// within `limit`.

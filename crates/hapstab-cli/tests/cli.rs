@@ -1,10 +1,8 @@
 //! Binary tests: verdicts against closed forms, JSON shape, and bad input (exit 2, one line).
 
-use assert_cmd::Command;
+mod common;
 
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
+use common::hapstab;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = hapstab().args(args).arg("--json").output().unwrap();

@@ -2,13 +2,10 @@
 //! NaN: each must now give a right answer or an honest refusal (exit 2, one line), within
 //! bounded time and memory.
 
+mod common;
+
+use common::hapstab;
 use std::time::{Duration, Instant};
-
-use assert_cmd::Command;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
 
 /// Largest resident set of any child process waited for so far, in bytes.
 fn children_max_rss() -> u64 {

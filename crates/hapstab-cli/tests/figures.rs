@@ -2,15 +2,13 @@
 //! and quiet standard error when it is not a terminal. Expected values come from the library
 //! or from closed forms, never from the program's own output.
 
-use assert_cmd::Command;
+mod common;
+
+use common::hapstab;
 use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within};
 use hapstab::model::Loop;
 use hapstab::{AffineFamily, Effective};
 use serde_json::Value;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
 
 /// Runs the binary, asserts success and an empty standard error (not a terminal: no
 /// progress bar), and returns standard output.

@@ -3,22 +3,10 @@
 //! published values (MATLAB's c2d documentation), identities between flag families, the
 //! refusal of contradictory flags and bad input (one line, exit 2).
 
-use assert_cmd::Command;
+mod common;
+
+use common::{hapstab, json};
 use serde_json::Value;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let out = hapstab().args(args).arg("--json").output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 fn text(args: &[&str]) -> String {
     let out = hapstab().args(args).output().unwrap();

@@ -1,13 +1,10 @@
 //! `hapstab map` files: the CSV against `check` at grid points, the NPY read back (by a
 //! reader written from the NumPy format specification) against the CSV, and the heatmap.
 
+mod common;
+
+use common::hapstab;
 use std::path::Path;
-
-use assert_cmd::Command;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
 
 /// The plant and grid of the tests: γ = 0.001, δ = 0.015, d = 2, (α, β) over the stable region
 /// (about half the points stable).

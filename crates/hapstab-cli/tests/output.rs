@@ -4,17 +4,15 @@
 //! round-trip floats; help text without development notes, in one default style; and every
 //! shell example of the README run as written.
 
+mod common;
+
+use common::hapstab;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::Path;
 
-use assert_cmd::Command;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::Value;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
 
 /// Runs the binary in `dir`, asserting success, and returns its standard output.
 fn stdout_in(dir: &Path, args: &[&str]) -> String {

@@ -3,14 +3,12 @@
 //! and separation from a unilateral wall, and bad or hostile input (exit 2, one line on
 //! stderr, nothing written).
 
+mod common;
+
+use common::hapstab;
 use std::path::Path;
 
-use assert_cmd::Command;
 use serde_json::Value;
-
-fn hapstab() -> Command {
-    Command::cargo_bin("hapstab").unwrap()
-}
 
 /// Runs with `--json`, asserting success and an empty stderr (no progress bar).
 fn json(args: &[&str]) -> Value {
