@@ -18,16 +18,9 @@ fn num(v: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
 }
 
-/// Runs `check` with the loop flags after the command name.
+/// `check`'s verdict with the loop flags after the command name.
 fn check(lp: &[&str], k: f64, b: f64) -> String {
-    let mut args = vec!["check"];
-    args.extend(lp);
-    let (ks, bs) = (
-        format!("--wall-stiffness={k:e}"),
-        format!("--wall-damping={b:e}"),
-    );
-    args.extend([ks.as_str(), bs.as_str()]);
-    json(&args)["verdict"].as_str().unwrap().to_string()
+    common::verdict(lp, k, b, &[])
 }
 
 /// `kmax` over every damping: K_max is confirmed by the verdict, stable just below it at a

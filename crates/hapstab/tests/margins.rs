@@ -2,6 +2,9 @@
 //! on the perturbed loop (just inside and just beyond the margin) and against the roots, never
 //! against the margins module itself.
 
+mod common;
+
+use common::SplitMix;
 use hapstab::boundary::stable_alpha_intervals;
 use hapstab::margins::margins;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
@@ -11,25 +14,6 @@ use hapstab::{AffineFamily, schur_stable};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use std::f64::consts::PI;
-
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
-}
 
 /// Schur–Cohn stability of a physical wall on a loop.
 fn stable(lp: &Loop, k: f64, b: f64) -> bool {

@@ -13,6 +13,9 @@
 //! `HAPSTAB_MARGIN_DENSE=M` the dense grid (20 000 angles by default; 10⁶ in the long run:
 //! `HAPSTAB_MARGIN_DENSE=1000000 cargo test --release -p hapstab --test margins_property`).
 
+mod common;
+
+use common::SplitMix;
 use hapstab::AffineFamily;
 use hapstab::boundary::stable_alpha_intervals;
 use hapstab::margins::{CrossingKind, loop_value, margins};
@@ -21,28 +24,6 @@ use hapstab::params::{Arm, Effective, Wall};
 use hapstab::verdict::{Verdict, decide};
 use rayon::prelude::*;
 use std::f64::consts::PI;
-
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        10f64.powf(self.range(lo.log10(), hi.log10()))
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
-}
 
 fn env(name: &str, default: usize) -> usize {
     std::env::var(name)

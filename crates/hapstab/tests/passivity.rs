@@ -3,6 +3,9 @@
 //! formula written here independently, from a time-domain energy balance, or from the
 //! Schur–Cohn test — never from the passivity module itself.
 
+mod common;
+
+use common::SplitMix;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Effective, Wall};
 use hapstab::passivity::{
@@ -13,26 +16,6 @@ use hapstab::{AffineFamily, schur_stable};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use std::f64::consts::PI;
-
-/// SplitMix64: a seeded generator, so the "random" loops are the same on every run.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
-}
 
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)

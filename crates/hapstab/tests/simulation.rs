@@ -2,25 +2,14 @@
 //! from the independent root finder / Schur–Cohn test of `hapstab::stability`, never from
 //! the simulator itself.
 
+mod common;
+
+use common::SplitMix;
 use hapstab::simulation::{
     BoundarySearch, Config, Contact, Effects, Friction, HumanForce, Model, Outcome, StableWhen,
     empirical_boundary, exact_alpha_limit, linear_growth, simulate,
 };
 use hapstab::{Analysis, ClosedLoop, Error, Normalized, PlantParams};
-
-/// SplitMix64: a seeded generator, so the "random" points are the same on every run.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 const M: f64 = 0.1;
 const T: f64 = 1e-3;

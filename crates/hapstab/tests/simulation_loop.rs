@@ -4,6 +4,9 @@
 //! of p(z) (`hapstab::stability::roots` on `AffineFamily::coefficients`), from closed forms
 //! or from independent linear algebra, never from the simulator itself.
 
+mod common;
+
+use common::SplitMix;
 use hapstab::simulation::{
     Config, Contact, Friction, HumanForce, LoopModel, Model, Outcome, SimModel, Simulator, Trace,
     exact_alpha_limit, linear_growth_of, simulate,
@@ -14,32 +17,6 @@ use hapstab::{
     TwoMass, VelocityEstimator, Wall,
 };
 use rayon::prelude::*;
-
-/// SplitMix64: a seeded generator, so the "random" loops are the same on every run.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-
-    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.next_f64()).exp()
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
-}
 
 fn poly_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; a.len() + b.len() - 1];

@@ -4,34 +4,15 @@
 //! reported only once settled. Expected verdicts come from `hapstab::stability` (roots and
 //! Schur–Cohn), never from the simulator.
 
+mod common;
+
+use common::SplitMix;
 use hapstab::simulation::{
     Config, Contact, DEFAULT_MAX_SAMPLES, Effects, Friction, HumanForce, Initial, Model, Outcome,
     RunResult, exact_alpha_limit, simulate,
 };
 use hapstab::{Analysis, Normalized, PlantParams, Verdict};
 use rayon::prelude::*;
-
-/// SplitMix64: a seeded generator, so the "random" settings are the same on every run.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-
-    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.next_f64()).exp()
-    }
-}
 
 /// The CLI's default run: 10 000 samples from x(0) = 1 mm at rest (`hapstab simulate`).
 const DEFAULT_SAMPLES: usize = 10_000;

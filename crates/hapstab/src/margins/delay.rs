@@ -63,10 +63,21 @@ pub enum DelayScan {
 /// min PM/ω_c over the gain crossovers of the loop as it is (seconds; None without a
 /// crossover).
 pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
+    let base = AffineFamily::of_loop(lp)?;
+    let (a, b) = base.to_units(wall.stiffness, wall.damping);
+    delay_margin_with(lp, wall, &gain_scan(&base, a, b))
+}
+
+/// [`delay_margin`] with the gain scan of the loop as it is (its crossovers give PM/ω_c), as
+/// the margins have it already.
+pub fn delay_margin_with(
+    lp: &Loop,
+    wall: Wall,
+    own: &GainScan,
+) -> Result<(DelayScan, Option<f64>)> {
     let s0 = lp.delay.in_samples();
     let base = AffineFamily::of_loop(lp)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
-    let own = gain_scan(&base, a, b);
     let pm_over_wc = own
         .crossovers
         .iter()

@@ -250,7 +250,7 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
         theta: t,
         frequency_hz: hz(t),
     });
-    let (delay, pm_over_wc) = delay_margin(lp, wall)?;
+    let (delay, pm_over_wc) = delay::delay_margin_with(lp, wall, &scan)?;
     out.delay_pm_over_wc = pm_over_wc;
     delay_note(&mut out, delay);
     Ok(out)

@@ -111,32 +111,27 @@ pub fn confirm_max_tabulated(
     // lie within the marginal band that `check` reports walls by.
     let mut stable = |a: f64, b: f64| inside_unit_circle(fam, a, b, &mut coeffs) == Some(true);
     let delta = CONFIRM_REL * unit;
+    let attained = |t: f64| ConfirmedMax {
+        alpha: t,
+        beta: cand.beta,
+        attained: true,
+        beta_stable: cand.beta,
+        alpha_stable: t - delta,
+    };
     if let Some(t) = attained_locally(&mut stable, cand, delta) {
-        return Some(ConfirmedMax {
-            alpha: t,
-            beta: cand.beta,
-            attained: true,
-            beta_stable: cand.beta,
-            alpha_stable: t - delta,
-        });
+        return Some(attained(t));
     }
     let table = table.get();
-    let exact = top(fam, table, cand.beta).filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit);
-    if let Some(t) = exact {
+    let highest = top(fam, table, cand.beta);
+    if let Some(t) = highest.filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit) {
         if stable(t + delta, cand.beta) {
             return None;
         }
         if stable(t - delta, cand.beta) {
-            return Some(ConfirmedMax {
-                alpha: t,
-                beta: cand.beta,
-                attained: true,
-                beta_stable: cand.beta,
-                alpha_stable: t - delta,
-            });
+            return Some(attained(t));
         }
     }
-    if top(fam, table, cand.beta).is_some_and(|t| t > cand.alpha + AGREE_REL * unit) {
+    if highest.is_some_and(|t| t > cand.alpha + AGREE_REL * unit) {
         return None;
     }
     if stable(cand.alpha + delta, cand.beta) {
