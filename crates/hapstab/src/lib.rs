@@ -41,6 +41,7 @@ pub mod model;
 pub mod nyquist;
 pub mod params;
 pub mod passivity;
+pub mod passivity_quantized;
 pub mod plant;
 pub mod poly;
 pub mod polyroots;
