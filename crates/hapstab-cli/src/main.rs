@@ -13,9 +13,6 @@ mod nyquist;
 mod output;
 mod paper;
 mod passivity;
-// The quantized-spring section of `passivity`, to be flattened into `PassivityArgs` by the
-// command's owner; until then only its tests use it.
-#[allow(dead_code)]
 mod passivity_quantized;
 mod plot;
 mod progress;

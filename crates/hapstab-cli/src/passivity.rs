@@ -2,7 +2,11 @@
 //! eq. 28 for the paper's loop, Section VIII), whether the device has it, and the passive
 //! region of the device beside the wall's stability.
 
-use anyhow::Result;
+use anyhow::{Result, bail};
+
+use crate::passivity_quantized::{
+    QuantizationArgs, QuantizedInput, QuantizedOut, quantized_section,
+};
 use clap::Args;
 use hapstab::AffineFamily;
 use hapstab::params::Wall;
@@ -28,6 +32,8 @@ pub struct PassivityArgs {
     lp: LoopArgs,
     #[command(flatten)]
     wall: WallArgs,
+    #[command(flatten)]
+    quantized: QuantizationArgs,
     /// Print one JSON object instead of text (b_required in Ns/m; δ for a normalized plant).
     #[arg(long)]
     json: bool,
@@ -67,6 +73,9 @@ struct PassivityOut {
     stable: bool,
     /// The passive region for the device's damping (null when not applicable).
     passive_region: Option<RegionOut>,
+    /// Abbott & Okamura's quantized-spring conditions (with --quantization and --coulomb).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    quantized: Option<QuantizedOut>,
 }
 
 /// Runs `hapstab passivity`.
@@ -86,12 +95,45 @@ pub fn run(a: &PassivityArgs) -> Result<()> {
         DeviceDamping::Known { damping } => Some(passive_region(&sw, *damping)?),
         DeviceDamping::NotApplicable { .. } => None,
     };
-    let out = output(&rl, &p, stable, region.as_ref());
+    let quantized = quantized(a, &rl, w, &p)?;
+    let mut out = output(&rl, &p, stable, region.as_ref());
+    out.quantized = quantized.as_ref().map(|(o, _)| o.clone());
     if a.json {
         return print_json(&out);
     }
     print_text(&rl, w, &out);
+    for line in quantized.iter().flat_map(|(_, lines)| lines) {
+        println!("quantized   {line}");
+    }
     Ok(())
+}
+
+/// The quantized-spring section, for a physical loop whose device damping is known.
+fn quantized(
+    a: &PassivityArgs,
+    rl: &ResolvedLoop,
+    w: Wall,
+    p: &Passivity,
+) -> Result<Option<(QuantizedOut, Vec<String>)>> {
+    if a.quantized.quantization.is_none() && a.quantized.coulomb.is_none() {
+        return Ok(None);
+    }
+    if rl.normalized {
+        bail!("--quantization and --coulomb need a physical loop (Δ in m, f_c in N)");
+    }
+    let DeviceDamping::Known { damping } = &p.device else {
+        bail!("--quantization and --coulomb need a device damper (not applicable to this plant)");
+    };
+    quantized_section(
+        &a.quantized,
+        QuantizedInput {
+            stiffness: w.stiffness,
+            damping: w.damping,
+            period: rl.lp.period,
+            delay: rl.lp.delay.samples,
+            device_damping: *damping,
+        },
+    )
 }
 
 fn output(
@@ -129,6 +171,7 @@ fn output(
                 .map(|v| [v.stiffness, v.damping])
                 .collect(),
         }),
+        quantized: None,
     }
 }
 

@@ -45,10 +45,10 @@ pub struct QuantizedInput {
 /// The section in the JSON output (`quantized` beside the Colgate–Schenkel fields).
 #[derive(Debug, Clone, Serialize)]
 pub struct QuantizedOut {
-    /// Δ in m.
-    pub quantization: f64,
+    /// Δ in m (not `quantization`: the flattened result names its condition so).
+    pub quantization_step: f64,
     /// f_c in N.
-    pub coulomb: f64,
+    pub coulomb_friction: f64,
     /// Both conditions, the binding one, K_max and the verdict.
     #[serde(flatten)]
     pub result: QuantizedPassivity,
@@ -80,8 +80,8 @@ pub fn quantized_section(
     let lines = text_lines(&result);
     Ok(Some((
         QuantizedOut {
-            quantization,
-            coulomb,
+            quantization_step: quantization,
+            coulomb_friction: coulomb,
             result,
         },
         lines,

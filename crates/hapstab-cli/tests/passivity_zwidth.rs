@@ -310,3 +310,50 @@ fn sweep_delay_time() {
     let s = text(&args(&["sweep", "--param", "mass:0.1:1:4"]));
     assert!(s.contains("K_max stable") && s.contains("kg"), "{s}");
 }
+
+/// `passivity --quantization Δ --coulomb f_c`: Abbott & Okamura's closed forms K ≤ 2b/T and
+/// K ≤ 2f_c/Δ (pure spring, no delay), the smaller binding, the step and the friction echoed.
+#[test]
+fn quantized_spring_closed_forms() {
+    let run = |k: &str| {
+        json(&[
+            "passivity",
+            "--no-arm",
+            "--device-damping",
+            "2",
+            "--wall-stiffness",
+            k,
+            "--wall-damping",
+            "0",
+            "--quantization",
+            "1e-4",
+            "--coulomb",
+            "0.1",
+        ])
+    };
+    let v = run("1500");
+    let q = &v["quantized"];
+    assert_eq!(q["quantization_step"], 1e-4);
+    assert_eq!(q["coulomb_friction"], 0.1);
+    assert_eq!(q["sampling"]["k_bound"], 2.0 * 2.0 / 1e-3);
+    assert_eq!(q["quantization"]["k_bound"], 2.0 * 0.1 / 1e-4);
+    assert_eq!(q["binding"], "quantization");
+    assert_eq!(q["k_max"], 2000.0);
+    assert_eq!(q["verdict"], "passive");
+    assert_eq!(run("2500")["quantized"]["verdict"], "not_passive");
+    let out = hapstab()
+        .args([
+            "passivity",
+            "--alpha",
+            "0.1",
+            "--beta",
+            "0",
+            "--quantization",
+            "1e-4",
+        ])
+        .args(["--coulomb", "0.1"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--quantization"));
+}
