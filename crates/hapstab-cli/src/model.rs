@@ -150,6 +150,14 @@ impl PlantArgs {
         Ok(Effective::combine(device, self.arm())?)
     }
 
+    /// The arm inside the effective plant of eq. (1), when the plant is given as a device and
+    /// an arm (not as --mass/--damping/--stiffness, and not with --no-arm).
+    pub fn operator(&self) -> Option<Arm> {
+        let lumped = self.mass.is_some() || self.damping.is_some() || self.stiffness.is_some();
+        let arm = self.arm();
+        (!lumped && arm != Arm::NONE).then_some(arm)
+    }
+
     /// The arm from the arm flags: the typical arm by default, none with --no-arm.
     pub fn arm(&self) -> Arm {
         let base = if self.no_arm { Arm::NONE } else { Arm::TYPICAL };
@@ -475,8 +483,13 @@ impl LoopArgs {
             // large) that they overflow is refused here, naming the physical parameter
             hapstab::PlantParams::from_physical(eff, period)?;
         }
-        let plant =
+        let mut plant =
             Plant::new(model, self.force_lag.unwrap_or(0.0)).map_err(|e| tf_context(self, e))?;
+        if let (LibPlantModel::MassSpringDamper(_), Some(arm)) =
+            (&plant.model, self.plant.operator())
+        {
+            plant = plant.with_operator(arm)?;
+        }
         let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
         Ok(ResolvedLoop {
             lp: Loop::new(plant, period, self.delay(period)?, velocity)

@@ -61,8 +61,16 @@ struct PassivityOut {
     binding_theta: f64,
     /// The wall's static stiffness K + B·V(1), N/m (must be >= 0).
     dc_stiffness: f64,
-    /// The device's damping b (null when the argument does not apply).
+    /// The device's own damping b_L, the arm's excluded (null when the argument does not
+    /// apply): passivity towards any passive operator.
     device_damping: Option<f64>,
+    /// The paper's eq. (28) read with the effective damping b = b_L + b_H of eq. (1), the arm
+    /// included (null when the plant names no arm): passivity towards this operator only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    effective_damping: Option<f64>,
+    /// The verdict against the effective damping.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    effective_verdict: Option<PassivityVerdict>,
     /// True when b > b_required and the static stiffness is >= 0; null when not applicable.
     meets: Option<bool>,
     verdict: PassivityVerdict,
@@ -153,6 +161,8 @@ fn output(
         binding_theta: p.requirement.theta,
         dc_stiffness: p.dc_stiffness,
         device_damping,
+        effective_damping: p.with_arm.map(|a| a.damping),
+        effective_verdict: p.with_arm.map(|a| a.verdict),
         meets: match p.verdict {
             PassivityVerdict::NotApplicable => None,
             v => Some(v == PassivityVerdict::Passive),
@@ -210,6 +220,14 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
         sig(o.binding_theta, 6)
     );
     println!("passivity   {}", verdict_text(o, what, b_unit, &num));
+    if let (Some(b), Some(v)) = (o.effective_damping, o.effective_verdict) {
+        println!(
+            "with arm    {} by eq. (28) with the arm's damping counted (b = b_L + b_H = {}): \
+             towards this operator only, not any passive operator",
+            verdict_word(v),
+            num(b, b_unit)
+        );
+    }
     let stable = if o.stable { "STABLE" } else { "NOT STABLE" };
     let both = match (o.stable, o.meets) {
         (true, Some(false)) => " (stable but not passive)",
@@ -240,7 +258,12 @@ fn verdict_text(
             o.note.as_deref().unwrap_or("no device damper")
         );
     };
-    let have = format!("device {what} = {}", num(b, b_unit));
+    let own = if o.effective_damping.is_some() {
+        format!("device's own {what}_L")
+    } else {
+        format!("device {what}")
+    };
+    let have = format!("{own} = {}", num(b, b_unit));
     match o.verdict {
         PassivityVerdict::Passive => format!("PASSIVE ({have})"),
         PassivityVerdict::Boundary => format!("ON THE BOUNDARY ({have}, equal to the requirement)"),
@@ -252,5 +275,14 @@ fn verdict_text(
             "NOT PASSIVE ({have}, {} short)",
             num(o.b_required - b, b_unit)
         ),
+    }
+}
+
+fn verdict_word(v: PassivityVerdict) -> &'static str {
+    match v {
+        PassivityVerdict::Passive => "PASSIVE",
+        PassivityVerdict::Boundary => "ON THE BOUNDARY",
+        PassivityVerdict::NotPassive => "NOT PASSIVE",
+        PassivityVerdict::NotApplicable => "NOT APPLICABLE",
     }
 }

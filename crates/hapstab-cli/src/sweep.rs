@@ -22,7 +22,8 @@ pub struct SweepArgs {
     /// of delay-time, period (the delay time is kept), cutoff (with --velocity lowpass:FC),
     /// window (with --velocity average:N), force-lag, mass, damping, stiffness (the effective
     /// m, b, k of eq. 1), motor-mass, motor-damping, handle-mass, transmission-stiffness,
-    /// transmission-damping, arm-mass, arm-damping, arm-stiffness (of a two-mass device).
+    /// transmission-damping, arm-mass, arm-damping, arm-stiffness (the arm holding the device,
+    /// or a two-mass device's arm).
     #[arg(long, value_name = "NAME:START:END:N")]
     param: String,
     /// K_max at this virtual damping B in Ns/m [default: over every B].
@@ -193,20 +194,31 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
         o.input.param.name(),
         o.points.len()
     );
+    let with_arm = o.points.iter().any(|p| p.k_max_passive_with_arm.is_some());
     println!(
-        "  {:>14}  {:>14}  {:>14}  {:>14}",
+        "  {:>14}  {:>14}  {:>14}  {:>14}{}",
         o.input.param.name(),
         "K_max stable",
         "B at K_max",
-        "K_max passive"
+        "K_max passive",
+        if with_arm {
+            format!("  {:>14}", "with arm (28)")
+        } else {
+            String::new()
+        }
     );
     let k = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| eng(v, "N/m", 6));
     for p in &o.points {
         let b = p
             .b_at_k_max
             .map_or_else(|| "—".into(), |v| eng(v, "Ns/m", 6));
+        let arm = if with_arm {
+            format!("  {:>14}", k(p.k_max_passive_with_arm))
+        } else {
+            String::new()
+        };
         println!(
-            "  {:>14}  {:>14}  {:>14}  {:>14}",
+            "  {:>14}  {:>14}  {:>14}  {:>14}{arm}",
             value_text(o.input.param, p.value),
             k(p.k_max),
             b,
@@ -216,6 +228,12 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
             println!("  {:>14}  undecided: {n}", "");
         }
     }
+    if with_arm {
+        println!(
+            "passive     for the device's own damping b_L (any passive operator); \"with arm (28)\": \
+             the paper's eq. (28) with b = b_L + b_H, towards this operator only"
+        );
+    }
     if let Some(s) = &o.plot {
         println!("plot        {} and {}", s.svg.display(), s.png.display());
     }
@@ -224,7 +242,14 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
 fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -> Result<()> {
     let mut w =
         csv::Writer::from_path(path).with_context(|| format!("cannot write {}", path.display()))?;
-    w.write_record([param.name(), "k_max", "b_at_k_max", "k_max_passive", "note"])?;
+    w.write_record([
+        param.name(),
+        "k_max",
+        "b_at_k_max",
+        "k_max_passive",
+        "k_max_passive_with_arm",
+        "note",
+    ])?;
     let cell = csv_opt;
     for p in points {
         w.write_record([
@@ -232,6 +257,7 @@ fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -
             cell(p.k_max),
             cell(p.b_at_k_max),
             cell(p.k_max_passive),
+            cell(p.k_max_passive_with_arm),
             p.note.clone().unwrap_or_default(),
         ])?;
     }
@@ -271,7 +297,14 @@ fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
         f.add(
             Series::dashed(series(|p| p.k_max_passive))
                 .color(palette::GREEN)
-                .label("passive (Colgate–Schenkel)"),
+                .label("passive, device's own b_L (Colgate–Schenkel)"),
+        );
+    }
+    if points.iter().any(|p| p.k_max_passive_with_arm.is_some()) {
+        f.add(
+            Series::dashed(series(|p| p.k_max_passive_with_arm))
+                .color(palette::ORANGE)
+                .label("eq. (28) with the arm's b_H counted (this operator only)"),
         );
     }
     f

@@ -273,7 +273,7 @@ fn print_loop(o: &LoopOut, titled: bool) {
     if let Some(l) = z.linear {
         println!(
             "linear (22) K < (b + B)/(t_d + T/2) = ({} + B)/{}",
-            ns(l.device_damping),
+            ns(l.damping),
             eng(l.effective_delay, "s", 6)
         );
     }
@@ -303,6 +303,14 @@ fn print_passive(z: &ZWidth) {
             println!("passive     not applicable: {reason}");
         }
         (None, _) => {}
+    }
+    if let Some(w) = z.k_max_passive_with_arm {
+        println!(
+            "with arm    K_max = {} at B = {} by eq. (28) with the arm's damping counted \
+             (b = b_L + b_H): towards this operator only",
+            kn(w.stiffness),
+            ns(w.damping)
+        );
     }
 }
 

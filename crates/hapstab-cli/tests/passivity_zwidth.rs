@@ -357,3 +357,88 @@ fn quantized_spring_closed_forms() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--quantization"));
 }
+
+/// Colgate–Schenkel's condition counts the device's own damping b_L (passive towards any
+/// passive operator); the paper's eq. (28) with the arm's damping counted, b = b_L + b_H, is
+/// a second, labelled figure.
+#[test]
+fn passivity_counts_the_devices_own_damping() {
+    let held = [
+        "passivity",
+        "--device-mass",
+        "0.25",
+        "--device-damping",
+        "2",
+        "--period",
+        "0.001",
+        "--delay-time",
+        "0.0004",
+        "--wall-stiffness",
+        "5000",
+        "--wall-damping",
+        "5",
+    ];
+    let v = json(&held);
+    assert_eq!(v["device_damping"], 2.0, "{v}");
+    assert_eq!(v["verdict"], "not_passive", "{v}");
+    assert_eq!(v["effective_damping"], 8.0, "{v}");
+    assert_eq!(v["effective_verdict"], "passive", "{v}");
+    let req = f(&v["b_required"]);
+    assert!(req > 2.0 && req < 8.0, "{v}");
+    let s = text(&held);
+    assert!(s.contains("NOT PASSIVE (device's own b_L = 2 Ns/m"), "{s}");
+    assert!(
+        s.contains("PASSIVE by eq. (28) with the arm's damping counted"),
+        "{s}"
+    );
+    assert!(s.contains("towards this operator only"), "{s}");
+    // the same device without an arm: the same requirement, no second figure
+    let bare = json(&[&held[..], &["--no-arm"]].concat());
+    assert_eq!(bare["b_required"], v["b_required"]);
+    assert!(bare.get("effective_damping").is_none(), "{bare}");
+    // whole-sample closed form: a spring behind one sample needs K(T/2 + T) = 7.5 Ns/m
+    let one = json(&[
+        "passivity",
+        "--device-damping",
+        "2",
+        "--delay",
+        "1",
+        "--wall-stiffness",
+        "5000",
+        "--wall-damping",
+        "0",
+    ]);
+    assert!(rel(f(&one["b_required"]), 7.5) < 1e-12, "{one}");
+    assert_eq!(one["verdict"], "not_passive");
+    assert_eq!(one["effective_verdict"], "passive", "{one}");
+    // plain `passivity`: the PHANToM-like device's b_L = 1.5 Ns/m, not b_L + b_H = 7.5
+    let plain = json(&["passivity"]);
+    assert_eq!(plain["device_damping"], 1.5, "{plain}");
+    assert_eq!(plain["effective_damping"], 7.5, "{plain}");
+}
+
+/// zwidth and sweep: the passive K_max for b_L, and the eq. (28) figure with the arm counted;
+/// the passive region is homogeneous in b, so the two stand in the ratio (b_L + b_H)/b_L.
+#[test]
+fn zwidth_and_sweep_passive_kmax_use_the_devices_own_damping() {
+    let z = json(&["zwidth"]);
+    let zw = &z["loops"][0];
+    // backward difference, d = 0: K_max passive = 2b/T at B = 0 (eq. 28)
+    assert!(
+        rel(f(&zw["passive"]["k_max"]), 2.0 * 1.5 / 1e-3) < 1e-9,
+        "{zw}"
+    );
+    assert!(
+        rel(
+            f(&zw["k_max_passive_with_arm"]["stiffness"]),
+            2.0 * 7.5 / 1e-3
+        ) < 1e-9
+    );
+    // the linear condition (22) is a stability condition: the arm's damping counts
+    assert_eq!(zw["linear"]["damping"], 7.5, "{zw}");
+    let s = json(&["sweep", "--param", "delay-time:0:0.003:4"]);
+    for p in s["points"].as_array().unwrap() {
+        let (own, arm) = (f(&p["k_max_passive"]), f(&p["k_max_passive_with_arm"]));
+        assert!(rel(arm, 5.0 * own) < 1e-9, "{p}");
+    }
+}

@@ -876,3 +876,40 @@ fn robust_range_in_arm_stiffness_is_the_gamma_range_and_kmax_robust() {
         assert_eq!(r.json()["parameter"], name, "{path}");
     }
 }
+
+/// Physical mode, d = 0: the passive triangle is the device's own δ_L = b_L·T/m (passive for
+/// any operator); eq. (28) with the arm's damping counted, δ = (b_L + b_H)·T/m, is the second.
+#[test]
+fn physical_passive_region_counts_the_devices_own_damping() {
+    let s = Server::start(&[]);
+    let lp = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&d=0";
+    let r = s.get(&format!("/api/region?{lp}"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    let (own, eff) = (1.5e-3 / 1.1, 7.5e-3 / 1.1);
+    let v = &j["passive"]["vertices"];
+    assert!(
+        (v[1][0].as_f64().unwrap() - 2.0 * own).abs() < 1e-15,
+        "{}",
+        j["passive"]
+    );
+    let w = &j["passive_with_arm"]["vertices"];
+    assert!(
+        (w[1][0].as_f64().unwrap() - 2.0 * eff).abs() < 1e-15,
+        "{}",
+        j["passive_with_arm"]
+    );
+    // a spring wall α = 3δ_L lies outside the device's own triangle, inside eq. (28)'s
+    let alpha = 3.0 * own;
+    let r = s.get(&format!("/api/point?{lp}&alpha={alpha}&beta=0"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let p = r.json();
+    assert_eq!(p["passive"], false, "{p}");
+    assert_eq!(p["passive_with_arm"], true, "{p}");
+    // without an arm there is one triangle, the device's own
+    let bare = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=0&arm_damping=0&arm_stiffness=0&period=0.001&d=0";
+    let j = s.get(&format!("/api/region?{bare}")).json();
+    assert!(j["passive_with_arm"].is_null(), "{j}");
+    let v = &j["passive"]["vertices"];
+    assert!((v[1][0].as_f64().unwrap() - 2.0 * 1.5e-3 / 0.1).abs() < 1e-15);
+}

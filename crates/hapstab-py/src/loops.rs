@@ -18,6 +18,9 @@ use crate::text::{fmt_list, num};
 #[derive(Clone, PartialEq)]
 pub struct PyMassSpringDamper {
     pub inner: Effective,
+    /// The arm that m, b and k include, when built from a device and an arm: its damping is
+    /// the operator's, not the device's own (passivity counts only the device's).
+    pub operator: Option<Arm>,
 }
 
 #[pymethods]
@@ -27,6 +30,7 @@ impl PyMassSpringDamper {
     fn new(mass: f64, damping: f64, stiffness: f64) -> PyResult<Self> {
         Ok(Self {
             inner: Effective::new(mass, damping, stiffness).py()?,
+            operator: None,
         })
     }
 
@@ -58,7 +62,15 @@ impl PyMassSpringDamper {
             ("damping b", "device_damping + arm_damping"),
             ("stiffness k", "arm_stiffness"),
         ])?;
-        Ok(Self { inner })
+        let operator = (arm != Arm::NONE).then_some(arm);
+        Ok(Self { inner, operator })
+    }
+
+    /// The device's own damping b_L = b − b_H in Ns/m when built from a device and an arm
+    /// (what passivity compares with); b itself otherwise.
+    #[getter]
+    fn device_damping(&self) -> f64 {
+        (self.inner.damping - self.operator.map_or(0.0, |a| a.damping)).max(0.0)
     }
 
     /// Mass m in kg.
@@ -238,20 +250,22 @@ impl PyTransferFunction {
     }
 }
 
-/// The plant model of a Python plant object.
-fn plant_model(plant: &Bound<'_, PyAny>) -> PyResult<PlantModel> {
+/// The plant model of a Python plant object and the arm a mass-spring-damper includes.
+fn plant_model(plant: &Bound<'_, PyAny>) -> PyResult<(PlantModel, Option<Arm>)> {
     if let Ok(p) = plant.cast::<PyMassSpringDamper>() {
-        return Ok(PlantModel::MassSpringDamper(p.get().inner));
+        let p = p.get();
+        return Ok((PlantModel::MassSpringDamper(p.inner), p.operator));
     }
     if let Ok(p) = plant.cast::<PyTwoMass>() {
-        return Ok(PlantModel::TwoMass(p.get().inner));
+        return Ok((PlantModel::TwoMass(p.get().inner), None));
     }
     if let Ok(p) = plant.cast::<PyTransferFunction>() {
         let p = p.get();
-        return Ok(PlantModel::TransferFunction {
+        let model = PlantModel::TransferFunction {
             num: p.num.clone(),
             den: p.den.clone(),
-        });
+        };
+        return Ok((model, None));
     }
     Err(PyTypeError::new_err(format!(
         "plant: expected MassSpringDamper, TwoMass or TransferFunction (got {})",
@@ -260,10 +274,14 @@ fn plant_model(plant: &Bound<'_, PyAny>) -> PyResult<PlantModel> {
 }
 
 /// The Python object of a plant model.
-fn plant_object(py: Python<'_>, model: &PlantModel) -> PyResult<Py<PyAny>> {
-    Ok(match model {
+fn plant_object(py: Python<'_>, plant: &Plant) -> PyResult<Py<PyAny>> {
+    Ok(match &plant.model {
         PlantModel::MassSpringDamper(e) => {
-            Py::new(py, PyMassSpringDamper { inner: *e })?.into_any()
+            let p = PyMassSpringDamper {
+                inner: *e,
+                operator: plant.operator,
+            };
+            Py::new(py, p)?.into_any()
         }
         PlantModel::TwoMass(t) => Py::new(py, PyTwoMass { inner: *t })?.into_any(),
         PlantModel::TransferFunction { num, den } => Py::new(
@@ -323,7 +341,7 @@ impl PyLoop {
         velocity: &str,
         force_lag: f64,
     ) -> PyResult<Self> {
-        let model = plant_model(plant)?;
+        let (model, operator) = plant_model(plant)?;
         hapstab::params::Sampling::new(period, 0).py()?;
         if let PlantModel::MassSpringDamper(e) = &model {
             // γ = kT²/m and δ = bT/m must be finite (Table I): a mass far too small for the
@@ -344,6 +362,10 @@ impl PyLoop {
                 "plant.handle_mass + plant.arm_mass",
             ),
         ])?;
+        let plant = match operator {
+            Some(arm) => plant.with_operator(arm).py()?,
+            None => plant,
+        };
         let velocity: VelocityEstimator = velocity.parse().py()?;
         let delay = delay_of(delay, delay_samples, period)?;
         Ok(Self {
@@ -396,7 +418,7 @@ impl PyLoop {
     /// The plant object.
     #[getter]
     fn plant(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        plant_object(py, &self.lp.plant.model)
+        plant_object(py, &self.lp.plant)
     }
 
     /// Sampling period T in s.

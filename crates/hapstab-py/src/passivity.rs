@@ -7,7 +7,7 @@ use hapstab::model::Loop;
 use hapstab::params::Wall;
 use hapstab::passivity::{
     DeviceDamping, PassiveRegion, Passivity, PassivityVerdict, SampledWall, device_damping,
-    passive_region, passivity_of_device,
+    passive_region, passivity_of_device, passivity_with,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -65,9 +65,16 @@ pub struct PyPassivity {
     pub binding_theta: f64,
     /// The wall's static stiffness K + B·V(1) in N/m (passivity needs it >= 0).
     pub dc_stiffness: f64,
-    /// The device damping b in Ns/m the requirement is compared with; None when the argument
+    /// The device damping b in Ns/m the requirement is compared with: the device's own b_L,
+    /// the arm's excluded (passivity towards any passive operator); None when the argument
     /// does not apply (see note).
     pub device_damping: Option<f64>,
+    /// The paper's eq. (28) read with the effective damping b = b_L + b_H of eq. (1), the arm
+    /// included: passivity towards this operator only. None unless the plant was built from
+    /// a device and an arm (and no device_damping was given).
+    pub effective_damping: Option<f64>,
+    /// The verdict against effective_damping (as verdict), or None.
+    pub effective_verdict: Option<String>,
     /// True when b > b_required and the static stiffness is >= 0; None when not applicable.
     pub meets: Option<bool>,
     /// "passive", "boundary" (b equals the requirement to 1e-12 relative), "not_passive" or
@@ -105,11 +112,11 @@ fn verdict_str(v: PassivityVerdict) -> &'static str {
     }
 }
 
-/// The device damper the condition compares with: the plant's own, or the given b unless the
-/// argument does not hold for the loop at all (an actuator lag: the held force is filtered).
-fn device_of(lp: &PyLoop, given: Option<f64>) -> PyResult<DeviceDamping> {
+/// The device damper that replaces the plant's own: the given b unless the argument does not
+/// hold for the loop at all (an actuator lag: the held force is filtered); None without one.
+fn device_of(lp: &PyLoop, given: Option<f64>) -> PyResult<Option<DeviceDamping>> {
     let own = device_damping(&lp.lp.plant);
-    let Some(b) = given else { return Ok(own) };
+    let Some(b) = given else { return Ok(None) };
     let b = finite("device_damping", b)?;
     if b < 0.0 {
         return Err(bad(
@@ -118,9 +125,9 @@ fn device_of(lp: &PyLoop, given: Option<f64>) -> PyResult<DeviceDamping> {
         ));
     }
     if lp.lp.plant.force_lag > 0.0 {
-        return Ok(own);
+        return Ok(Some(own));
     }
-    Ok(DeviceDamping::Known { damping: b })
+    Ok(Some(DeviceDamping::Known { damping: b }))
 }
 
 fn region_object(py: Python<'_>, r: &PassiveRegion) -> PyResult<PyPassiveRegion> {
@@ -161,6 +168,8 @@ fn passivity_object(
         binding_theta: p.requirement.theta,
         dc_stiffness: p.dc_stiffness,
         device_damping,
+        effective_damping: p.with_arm.map(|a| a.damping),
+        effective_verdict: p.with_arm.map(|a| verdict_str(a.verdict).into()),
         meets: match p.verdict {
             PassivityVerdict::NotApplicable => None,
             v => Some(v == PassivityVerdict::Passive),
@@ -176,10 +185,13 @@ fn passivity_object(
 fn compute(
     lp: &Loop,
     wall: Wall,
-    device: DeviceDamping,
+    device: Option<DeviceDamping>,
 ) -> hapstab::Result<(Passivity, Option<PassiveRegion>)> {
     let sw = SampledWall::new(lp)?;
-    let p = passivity_of_device(&sw, wall, device);
+    let p = match device {
+        Some(d) => passivity_of_device(&sw, wall, d),
+        None => passivity_with(&sw, lp, wall),
+    };
     let region = match &p.device {
         DeviceDamping::Known { damping } => Some(passive_region(&sw, *damping)?),
         DeviceDamping::NotApplicable { .. } => None,
@@ -201,8 +213,11 @@ fn compute(
 /// without cancellation at small ω.
 ///
 /// The wall is K in N/m and B in Ns/m, or α = KT²/m, β = BT/m (as in `check`). The device
-/// damping b is the plant's (b = b_L + b_H of eq. (1), the motor-side damping of a TwoMass, b
-/// of a TransferFunction c/(ms² + bs + k)); device_damping in Ns/m replaces it (not with an
+/// damping b is the device's own (b_L of MassSpringDamper.from_device_and_arm and Loop.paper,
+/// the arm's b_H excluded: passive towards any passive operator; b of a MassSpringDamper
+/// given as m, b, k; the motor-side damping of a TwoMass; b of a TransferFunction
+/// c/(ms² + bs + k)); effective_damping and effective_verdict give the paper's eq. (28) with
+/// b = b_L + b_H, towards this operator only. device_damping in Ns/m replaces b (not with an
 /// actuator lag, where the condition does not apply). Also returns the wall's stability and
 /// the passive region {(K, B): passive for b} as a polygon. The GIL is released while it runs.
 #[pyfunction]

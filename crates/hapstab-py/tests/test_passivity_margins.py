@@ -86,15 +86,32 @@ def test_whole_sample_delay_without_damping():
 def test_device_damping_replaces_the_plants_and_scales_the_passive_region():
     lp = hs.Loop.paper(period=1e-3, delay=1e-3)
     own = hs.passivity(lp, 2e3, 1.0)
-    assert own.device_damping == 7.5  # b = b_L + b_H of eq. (1)
+    assert own.device_damping == 1.5  # the device's own b_L, not b = b_L + b_H of eq. (1)
+    assert own.effective_damping == 7.5
     more = hs.passivity(lp, 2e3, 1.0, device_damping=15.0)
     assert more.b_required == own.b_required and more.stable == own.stable
-    assert more.device_damping == 15.0
+    assert more.device_damping == 15.0 and more.effective_damping is None
     assert more.verdict == ("passive" if 15.0 > own.b_required else "not_passive")
-    # the passive region is homogeneous in b: twice the damping, twice the K_max
-    rel_close(more.passive_region.k_max, 2 * own.passive_region.k_max, 1e-9)
+    # the passive region is homogeneous in b: ten times the damping, ten times the K_max
+    rel_close(more.passive_region.k_max, 10 * own.passive_region.k_max, 1e-9)
     v = own.passive_region.vertices
     assert v.dtype == np.float64 and v.ndim == 2 and v.shape[1] == 2 and len(v) > 3
+
+
+def test_passivity_counts_the_devices_own_damping_not_the_arms():
+    # 0.25 kg, 2 Ns/m device held by the default arm (b_H = 6 Ns/m), T = 1 ms, t_d = 0.4 ms,
+    # K = 5 kN/m, B = 5 Ns/m: the requirement lies between b_L = 2 and b_L + b_H = 8, so the
+    # device alone is not passive and eq. (28) with the arm counted is
+    lp = hs.Loop.paper(device_mass=0.25, device_damping=2.0, period=1e-3, delay=4e-4)
+    p = hs.passivity(lp, 5000.0, 5.0)
+    assert p.device_damping == 2.0 and p.verdict == "not_passive"
+    assert p.effective_damping == 8.0
+    assert 2.0 < p.b_required < 8.0 and p.effective_verdict == "passive"
+    bare = hs.passivity(hs.Loop.paper(device_mass=0.25, device_damping=2.0, arm_mass=0.0,
+                                      arm_damping=0.0, arm_stiffness=0.0,
+                                      period=1e-3, delay=4e-4), 5000.0, 5.0)
+    assert bare.b_required == p.b_required and bare.effective_damping is None
+    assert hs.MassSpringDamper.from_device_and_arm(device_damping=2.0).device_damping == 2.0
 
 
 def test_actuator_lag_is_not_applicable_even_with_a_device_damping():

@@ -31,6 +31,7 @@
 pub mod argument;
 pub mod boundary;
 pub mod closed_loop;
+pub mod delay;
 pub mod error;
 pub mod limits;
 pub mod linear;
@@ -39,6 +40,7 @@ pub mod map;
 pub mod margins;
 pub mod model;
 pub mod nyquist;
+pub mod operator;
 pub mod params;
 pub mod passivity;
 pub mod passivity_quantized;

@@ -10,6 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::delay::Delay;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::params::{Effective, MAX_DELAY, PlantParams};
 
@@ -59,6 +60,10 @@ pub struct Plant {
     pub model: PlantModel,
     /// Actuator time constant τ in s (0 means no lag).
     pub force_lag: f64,
+    /// The human arm that a mass-spring-damper's m, b and k include (eq. 1), when known: its
+    /// damping is the operator's, not the device's own (see [`crate::passivity`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub operator: Option<crate::params::Arm>,
 }
 
 /// The velocity estimate v_k the wall's damper acts on.
@@ -88,79 +93,6 @@ pub enum VelocityEstimator {
     },
 }
 
-/// The delay of the wall force, t_d = (d + λ)·T with whole samples d and a fraction
-/// λ ∈ [0, 1) of a sample (Table I: d = t_d/T, here not necessarily whole).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Delay {
-    /// Whole samples d.
-    pub samples: usize,
-    /// Fraction λ of a sample, in [0, 1).
-    pub fraction: f64,
-}
-
-/// Relative tolerance below which t_d/T is taken as a whole number of samples: ratios are
-/// computed from user-typed decimals (3e-3/1e-3 = 2.9999999999999996), so a few ulps of
-/// rounding must not create a fractional delay of 1 − 4e-16 samples.
-const WHOLE_SAMPLE_TOL: f64 = 1e-12;
-
-impl Delay {
-    /// No delay.
-    pub const NONE: Delay = Delay {
-        samples: 0,
-        fraction: 0.0,
-    };
-
-    /// A whole number of samples (the paper's d).
-    pub fn samples(d: usize) -> Result<Self> {
-        crate::params::check_delay(d)?;
-        Ok(Self {
-            samples: d,
-            fraction: 0.0,
-        })
-    }
-
-    /// From a delay time t_d >= 0 in seconds and the period T: d = ⌊t_d/T⌋, λ = t_d/T − d.
-    pub fn from_time(delay_time: f64, period: f64) -> Result<Self> {
-        non_negative("delay time t_d", delay_time)?;
-        positive("sampling period T", period)?;
-        let ratio = delay_time / period;
-        if !ratio.is_finite() || ratio > MAX_DELAY as f64 {
-            return Err(Error::DelayTooLarge {
-                value: ratio,
-                max: MAX_DELAY,
-            });
-        }
-        let nearest = ratio.round();
-        if (ratio - nearest).abs() <= WHOLE_SAMPLE_TOL * nearest.max(1.0) {
-            return Self::samples(nearest as usize);
-        }
-        let d = ratio.floor();
-        Ok(Self {
-            samples: d as usize,
-            fraction: ratio - d,
-        })
-    }
-
-    /// t_d/T in samples.
-    pub fn in_samples(&self) -> f64 {
-        self.samples as f64 + self.fraction
-    }
-
-    /// Checks d <= [`MAX_DELAY`] and λ ∈ [0, 1).
-    pub fn validated(self) -> Result<Self> {
-        crate::params::check_delay(self.samples)?;
-        finite("delay fraction", self.fraction)?;
-        if !(0.0..1.0).contains(&self.fraction) {
-            return Err(Error::OutOfRange {
-                name: "delay fraction",
-                value: self.fraction,
-                range: "[0, 1)",
-            });
-        }
-        Ok(self)
-    }
-}
-
 /// The loop of Fig. 3, generalized: plant, sampling period, delay and velocity estimator.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Loop {
@@ -184,12 +116,20 @@ impl Plant {
     pub fn new(model: PlantModel, force_lag: f64) -> Result<Self> {
         non_negative("force lag tau", force_lag)?;
         validate_model(&model)?;
-        Ok(Self { model, force_lag })
+        Ok(Self {
+            model,
+            force_lag,
+            operator: None,
+        })
     }
 
     /// The same plant with an actuator lag τ in seconds.
     pub fn with_force_lag(self, tau: f64) -> Result<Self> {
-        Self::new(self.model, tau)
+        Self {
+            force_lag: tau,
+            ..self
+        }
+        .validated()
     }
 
     /// The mass that normalizes the wall (Table I: α = KT²/m, β = BT/m): m of eq. (1) for the
@@ -733,7 +673,7 @@ impl Loop {
                 range: "[1e-7, 1] s",
             });
         }
-        let plant = Plant::new(plant.model, plant.force_lag)?;
+        let plant = plant.validated()?;
         plant.check_time_scale(period)?;
         Ok(Self {
             plant,

@@ -12,7 +12,7 @@ use crate::boundary::stable_alpha_intervals;
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
-use crate::params::Effective;
+use crate::params::{Arm, Effective};
 use crate::passivity::{
     DeviceDamping, SampledWall, device_damping, k_max_passive_at, passive_k_max,
 };
@@ -53,11 +53,12 @@ pub enum SweepParam {
     TransmissionStiffness,
     /// Transmission damping in Ns/m of a two-mass device.
     TransmissionDamping,
-    /// Arm mass m_H in kg (a two-mass device's arm).
+    /// Arm mass m_H in kg (a two-mass device's arm, or the arm of a held device).
     ArmMass,
-    /// Arm damping b_H in Ns/m (a two-mass device's arm).
+    /// Arm damping b_H in Ns/m (a two-mass device's arm, or the arm of a held device).
     ArmDamping,
-    /// Arm stiffness k_H in N/m (a two-mass device's arm; k of the one-mass plant).
+    /// Arm stiffness k_H in N/m (a two-mass device's arm, the arm of a held device; else k of
+    /// the one-mass plant).
     ArmStiffness,
 }
 
@@ -179,7 +180,12 @@ fn whole_window(v: f64) -> Result<usize> {
 /// Sets a plant parameter on the plant model that carries it.
 fn set_plant(p: SweepParam, plant: &Plant, v: f64) -> Result<Plant> {
     let model = match (&plant.model, p) {
-        (PlantModel::MassSpringDamper(e), _) => PlantModel::MassSpringDamper(set_msd(p, e, v)?),
+        (PlantModel::MassSpringDamper(e), _) => {
+            if let Some(arm) = plant.operator {
+                return set_held(p, plant, e, arm, v);
+            }
+            PlantModel::MassSpringDamper(set_msd(p, e, v)?)
+        }
         (PlantModel::TwoMass(t), _) => {
             let mut t = *t;
             match p {
@@ -208,6 +214,30 @@ fn set_plant(p: SweepParam, plant: &Plant, v: f64) -> Result<Plant> {
         }
     };
     Plant::new(model, plant.force_lag)
+}
+
+/// A parameter of a held device (eq. 1 with its operator known): an arm parameter changes
+/// the arm and the effective m, b, k with it; m, b, k change the effective plant around the
+/// same arm.
+fn set_held(p: SweepParam, plant: &Plant, e: &Effective, arm: Arm, v: f64) -> Result<Plant> {
+    let mut arm2 = arm;
+    match p {
+        SweepParam::ArmMass => arm2.mass = v,
+        SweepParam::ArmDamping => arm2.damping = v,
+        SweepParam::ArmStiffness => arm2.stiffness = v,
+        _ => {
+            let e = set_msd(p, e, v)?;
+            return Plant::new(PlantModel::MassSpringDamper(e), plant.force_lag)?
+                .with_operator(arm);
+        }
+    }
+    crate::error::non_negative(p.name(), v)?;
+    let e = Effective::new(
+        e.mass - arm.mass + arm2.mass,
+        e.damping - arm.damping + arm2.damping,
+        e.stiffness - arm.stiffness + arm2.stiffness,
+    )?;
+    Plant::new(PlantModel::MassSpringDamper(e), plant.force_lag)?.with_operator(arm2)
 }
 
 fn set_msd(p: SweepParam, e: &Effective, v: f64) -> Result<Effective> {
@@ -343,9 +373,12 @@ pub struct SweepPoint {
     pub k_max: Option<f64>,
     /// The B in Ns/m where it is reached.
     pub b_at_k_max: Option<f64>,
-    /// Largest passive K in N/m under the same damping constraint (None when passivity does
-    /// not apply or nothing is passive).
+    /// Largest passive K in N/m under the same damping constraint, for the device's own
+    /// damping (None when passivity does not apply or nothing is passive).
     pub k_max_passive: Option<f64>,
+    /// The same by the paper's eq. (28) with the arm's damping counted (b = b_L + b_H): towards
+    /// this operator only; None when the plant names no operator.
+    pub k_max_passive_with_arm: Option<f64>,
     /// Why a value is missing, when the analysis could not decide.
     pub note: Option<String>,
 }
@@ -396,6 +429,7 @@ fn sweep_point(value: f64, lp: &Loop, at: KmaxAt) -> SweepPoint {
         k_max: None,
         b_at_k_max: None,
         k_max_passive: None,
+        k_max_passive_with_arm: None,
         note: None,
     };
     match stable_kmax(lp, at) {
@@ -406,7 +440,13 @@ fn sweep_point(value: f64, lp: &Loop, at: KmaxAt) -> SweepPoint {
         Ok(None) => {}
         Err(e) => p.note = Some(e.to_string()),
     }
-    p.k_max_passive = passive_kmax(lp, at);
+    if let DeviceDamping::Known { damping } = device_damping(&lp.plant) {
+        p.k_max_passive = passive_kmax(lp, at, damping);
+        p.k_max_passive_with_arm = lp
+            .plant
+            .effective_damping()
+            .and_then(|b| passive_kmax(lp, at, b));
+    }
     p
 }
 
@@ -439,13 +479,10 @@ fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
     Ok(best.map(|(a, b)| fam.to_physical(a, b)))
 }
 
-/// The largest passive K under the same damping constraint; the passive region is convex, so
-/// over a band it is the region's maximum if its B lies in the band, else the band's nearer
-/// edge.
-fn passive_kmax(lp: &Loop, at: KmaxAt) -> Option<f64> {
-    let DeviceDamping::Known { damping: b } = device_damping(&lp.plant) else {
-        return None;
-    };
+/// The largest passive K for a device damping b under the same damping constraint; the
+/// passive region is convex, so over a band it is the region's maximum if its B lies in the
+/// band, else the band's nearer edge.
+fn passive_kmax(lp: &Loop, at: KmaxAt, b: f64) -> Option<f64> {
     let sw = SampledWall::new(lp).ok()?;
     let best = || passive_k_max(&sw, b).filter(|w| w.stiffness.is_finite());
     match at {

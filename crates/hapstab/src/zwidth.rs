@@ -17,15 +17,16 @@ use crate::error::Result;
 use crate::model::Loop;
 use crate::params::Wall;
 use crate::passivity::{
-    DeviceDamping, PassiveRegion, SampledWall, device_damping, k_max_passive_at, passive_region,
+    DeviceDamping, PassiveRegion, SampledWall, device_damping, k_max_passive_at, passive_k_max,
+    passive_region,
 };
 use crate::region::{StableRegion, alpha_max_within, stable_region};
 
 /// The linear stability condition (22): K < (b + B)/t_r with t_r = t_d + T/2.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LinearCondition {
-    /// The device damping b in Ns/m.
-    pub device_damping: f64,
+    /// The plant's damping b in Ns/m: eq. (1)'s effective b, the arm's damping included.
+    pub damping: f64,
     /// The effective delay t_r = t_d + T/2 in s (eq. 16).
     pub effective_delay: f64,
 }
@@ -33,7 +34,7 @@ pub struct LinearCondition {
 impl LinearCondition {
     /// The stiffness limit (b + B)/t_r in N/m at a virtual damping B.
     pub fn k_at(&self, damping: f64) -> f64 {
-        (self.device_damping + damping) / self.effective_delay
+        (self.damping + damping) / self.effective_delay
     }
 }
 
@@ -72,6 +73,10 @@ pub struct ZWidth {
     pub k_max_nonnegative_damping: Option<Wall>,
     /// The passive region (None when passivity does not apply, see `device_damping`).
     pub passive: Option<PassiveRegion>,
+    /// The largest passive K and its B by the paper's eq. (28) with the arm's damping counted
+    /// (b = b_L + b_H of eq. 1): towards this operator only, not any passive operator; None
+    /// when the plant names no operator or passivity does not apply.
+    pub k_max_passive_with_arm: Option<Wall>,
     /// Whether every tested point strictly inside the passive region is stable (Section VIII:
     /// passive ⊂ stable where the argument applies); None without a passive region.
     pub passive_inside_stable: Option<bool>,
@@ -101,8 +106,10 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
     };
     let sw = SampledWall::new(lp)?;
     let passive = b_dev.map(|b| passive_region(&sw, b)).transpose()?;
-    let linear = b_dev.map(|b| LinearCondition {
-        device_damping: b,
+    // the linear condition (22) is a stability condition: the arm's damping counts
+    let b_eff = b_dev.map(|b| lp.plant.effective_damping().unwrap_or(b));
+    let linear = b_eff.map(|b| LinearCondition {
+        damping: b,
         effective_delay: lp.delay_time() + 0.5 * lp.period,
     });
     let rows = match dampings {
@@ -129,6 +136,9 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
             )
         }),
         passive_inside_stable: passive.as_ref().map(|p| passive_inside(&fam, &sw, p)),
+        k_max_passive_with_arm: b_dev
+            .and(lp.plant.effective_damping())
+            .and_then(|b| passive_k_max(&sw, b)),
         stable,
         passive,
         linear,

@@ -106,10 +106,13 @@ pub struct LinearOut {
     pub alpha_lower: f64,
 }
 
-/// Colgate's passive region, eq. (28), for d = 0.
+/// Colgate's passive region, eq. (28), for d = 0: δ_L = b_L·T/m of the device's own damping
+/// (passive towards any passive operator), or δ with the arm's damping counted.
 #[derive(Debug, Clone, Serialize)]
 pub struct PassiveOut {
     pub equation: &'static str,
+    /// The δ of the triangle.
+    pub delta: f64,
     /// Triangle (0, −δ), (2δ, 0), (0, δ) as [α, β].
     pub vertices: Vec<[f64; 2]>,
 }
@@ -165,6 +168,9 @@ pub struct RegionOut {
     /// The paper's linear condition (null for other loops).
     pub linear: Option<LinearOut>,
     pub passive: Option<PassiveOut>,
+    /// Eq. (28) with the arm's damping counted (physical units with an arm, d = 0): towards
+    /// this operator only.
+    pub passive_with_arm: Option<PassiveOut>,
     pub robust: Option<RobustOut>,
     pub warnings: Vec<String>,
     pub server_ms: Timing,
@@ -501,6 +507,7 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
         region,
         linear: None,
         passive: None,
+        passive_with_arm: None,
         robust: None,
         warnings: Vec::new(),
         server_ms: Timing {
@@ -546,15 +553,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         alpha_at_beta0: linear_alpha_limit(0.0, delta, spec.d),
         alpha_lower: -spec.plant.gamma,
     });
-    let passive = if spec.d == 0 {
-        let pr = passive_region(delta).map_err(lib_error)?;
-        Some(PassiveOut {
-            equation: "δ > α/2 + |β|, α ≥ 0  (eq. 28, d = 0)",
-            vertices: pr.vertices.iter().map(ab).collect(),
-        })
-    } else {
-        None
-    };
+    let (passive, passive_with_arm) = passive_triangles(spec)?;
     let t1 = Instant::now();
     let robust = match req.robust {
         Some(rr) => {
@@ -593,6 +592,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         region,
         linear,
         passive,
+        passive_with_arm,
         robust,
         warnings,
         server_ms: Timing {
@@ -692,8 +692,10 @@ pub struct PointOut {
     pub roots: Vec<[f64; 2]>,
     /// Linear condition (19), (23) of the paper's loop (null for other loops).
     pub linear: Option<PointLinear>,
-    /// Inside Colgate's passive region (28) (d = 0 only).
+    /// Inside Colgate's passive region for the device's own damping (d = 0 only).
     pub passive: Option<bool>,
+    /// Inside eq. (28) with the arm's damping counted (physical units with an arm, d = 0).
+    pub passive_with_arm: Option<bool>,
     pub server_ms: f64,
 }
 
@@ -738,8 +740,9 @@ pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiErr
             satisfied: lc.satisfied,
         }
     });
-    let passive =
-        (paper && spec.d == 0).then(|| alpha >= 0.0 && n.delta > alpha / 2.0 + beta.abs());
+    let inside = |delta: f64| alpha >= 0.0 && delta > alpha / 2.0 + beta.abs();
+    let passive = (paper && spec.d == 0).then(|| inside(own_delta(spec)));
+    let passive_with_arm = (paper && spec.d == 0 && has_arm_damping(spec)).then(|| inside(n.delta));
     Ok(PointOut {
         params: n,
         lp: spec.general.as_ref().map(|g| g.lp.clone()),
@@ -750,6 +753,7 @@ pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiErr
         roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
         linear,
         passive,
+        passive_with_arm,
         server_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
 }
@@ -926,4 +930,53 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
         },
         server_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
+}
+
+/// δ_L = b_L·T/m of the device's own damping in physical units; δ itself in normalized units
+/// (the plant's damping is then all the device's).
+fn own_delta(spec: &PlantSpec) -> f64 {
+    spec.physical.map_or(spec.plant.delta, |ph| {
+        ph.device_damping * ph.period / ph.mass
+    })
+}
+
+fn has_arm_damping(spec: &PlantSpec) -> bool {
+    spec.physical.is_some_and(|ph| ph.arm_damping > 0.0)
+}
+
+/// Colgate's passive triangles for d = 0: the device's own damping, and eq. (28) with the arm's
+/// damping counted when an arm with damping holds the device.
+fn passive_triangles(
+    spec: &PlantSpec,
+) -> Result<(Option<PassiveOut>, Option<PassiveOut>), ApiError> {
+    if spec.d != 0 {
+        return Ok((None, None));
+    }
+    let triangle = |equation, delta: f64| -> Result<PassiveOut, ApiError> {
+        let pr = passive_region(delta).map_err(lib_error)?;
+        Ok(PassiveOut {
+            equation,
+            delta,
+            vertices: pr.vertices.iter().map(ab).collect(),
+        })
+    };
+    if spec.physical.is_none() {
+        let eq = "δ > α/2 + |β|, α ≥ 0  (eq. 28, d = 0)";
+        return Ok((Some(triangle(eq, spec.plant.delta)?), None));
+    }
+    let own = triangle(
+        "δ_L > α/2 + |β|, α ≥ 0, δ_L = b_L·T/m: the device's own damping, passive towards any \
+         passive operator (Colgate–Schenkel, d = 0)",
+        own_delta(spec),
+    )?;
+    let with_arm = if has_arm_damping(spec) {
+        Some(triangle(
+            "δ > α/2 + |β|, δ = (b_L + b_H)·T/m: eq. (28) with the arm's damping counted, \
+             towards this operator only",
+            spec.plant.delta,
+        )?)
+    } else {
+        None
+    };
+    Ok((Some(own), with_arm))
 }

@@ -165,7 +165,7 @@ pub fn auto_view(out: &RegionOut, pt: Option<&PointOut>) -> [f64; 4] {
             add(v[0], v[1]);
         }
     }
-    if let Some(pa) = &out.passive {
+    for pa in out.passive.iter().chain(&out.passive_with_arm) {
         for v in &pa.vertices {
             add(v[0], v[1]);
         }
@@ -229,6 +229,11 @@ fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
     if let Some(pa) = &out.passive {
         for (i, v) in pa.vertices.iter().enumerate() {
             row("passive", 0, i, v[0], v[1]);
+        }
+    }
+    if let Some(pa) = &out.passive_with_arm {
+        for (i, v) in pa.vertices.iter().enumerate() {
+            row("passive_with_arm", 0, i, v[0], v[1]);
         }
     }
     if let Some(r) = &out.robust {
@@ -390,6 +395,14 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
             d.join(" ")
         );
     }
+    if let Some(pa) = &out.passive_with_arm {
+        let d: Vec<String> = pa.vertices.iter().map(|v| pt_str(v[0], v[1])).collect();
+        let _ = writeln!(
+            s,
+            "<polygon class=\"passive-with-arm\" points=\"{}\" fill=\"none\" stroke=\"#1a6e1a\" stroke-width=\"1.5\" stroke-dasharray=\"4 3\"/>",
+            d.join(" ")
+        );
+    }
     if let Some(l) = &out.linear {
         let (b0, b1) = (view[2], view[3]);
         let _ = writeln!(
@@ -451,7 +464,18 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
         items.push((v, "#111"));
     }
     if out.passive.is_some() {
-        items.push(("Colgate's passive region (28)".into(), "#2ca02c"));
+        let what = if out.physical.is_some() {
+            "passive, device's own b_L (any operator)"
+        } else {
+            "Colgate's passive region (28)"
+        };
+        items.push((what.into(), "#2ca02c"));
+    }
+    if out.passive_with_arm.is_some() {
+        items.push((
+            "eq. (28) with the arm's b_H (this operator)".into(),
+            "#1a6e1a",
+        ));
     }
     if let Some(r) = &out.robust {
         let range = match (r.arm_stiffness_lo, r.arm_stiffness_hi) {

@@ -27,13 +27,17 @@ class MassSpringDamper:
         arm_damping: float = 6.0,
         arm_stiffness: float = 350.0,
     ) -> MassSpringDamper:
-        """m = m_L + m_H, b = b_L + b_H, k = k_H (eq. 1)."""
+        """m = m_L + m_H, b = b_L + b_H, k = k_H (eq. 1); the arm is remembered, so
+        passivity counts only the device's own b_L."""
     @property
     def mass(self) -> float:
         """m in kg."""
     @property
     def damping(self) -> float:
         """b in Ns/m."""
+    @property
+    def device_damping(self) -> float:
+        """The device's own b_L = b − b_H in Ns/m (b when given as m, b, k)."""
     @property
     def stiffness(self) -> float:
         """k in N/m."""
@@ -257,6 +261,10 @@ class Passivity:
     dc_stiffness: float
     """K + B·V(1) in N/m (must be >= 0)."""
     device_damping: Optional[float]
+    """The device's own damping b_L in Ns/m (passive towards any passive operator)."""
+    effective_damping: Optional[float]
+    """b = b_L + b_H of eq. (1), for eq. (28) with the arm counted (this operator only)."""
+    effective_verdict: Optional[Literal["passive", "boundary", "not_passive", "not_applicable"]]
     meets: Optional[bool]
     verdict: Literal["passive", "boundary", "not_passive", "not_applicable"]
     note: Optional[str]
