@@ -92,37 +92,46 @@ fn magnitude_panel(fr: &FrequencyResponse, lx: &[f64], xr: (f64, f64)) -> Figure
     );
     nyquist_line(&mut fig, fr, (bottom, top), true);
     for m in &fr.marks {
-        let x = x_of(m.frequency_hz);
-        match m.kind {
-            CrossingKind::Gain => {
-                fig.add(Series::scatter([(x, 0.0)], Marker::Circle).color(palette::VERMILLION));
+        magnitude_mark(&mut fig, m, xr, top - bottom);
+    }
+    fig
+}
+
+/// One crossing on the magnitude panel: a gain crossover on 0 dB, a phase crossover with
+/// its gain margin as a segment up to 0 dB (a negative factor, L real and positive, as a
+/// hollow marker); the reported margins with their values.
+fn magnitude_mark(fig: &mut Figure, m: &Mark, xr: (f64, f64), span: f64) {
+    let x = x_of(m.frequency_hz);
+    match m.kind {
+        CrossingKind::Gain => {
+            fig.add(Series::scatter([(x, 0.0)], Marker::Circle).color(palette::VERMILLION));
+            if m.primary {
                 let text = format!("  ω_c: {} Hz", crate::output::sig(m.frequency_hz, 4));
-                note(
-                    &mut fig,
-                    (x, 0.06 * (top - bottom)),
-                    text,
-                    palette::VERMILLION,
-                );
+                note(fig, (x, 0.06 * span), text, palette::VERMILLION);
             }
-            CrossingKind::Phase => {
-                fig.add(
-                    Series::line([(x, m.magnitude_db), (x, 0.0)])
-                        .color(palette::GREEN)
-                        .width(3),
-                );
-                fig.add(
-                    Series::scatter([(x, m.magnitude_db)], Marker::Square).color(palette::GREEN),
-                );
+        }
+        CrossingKind::Phase if m.value < 0.0 => {
+            fig.add(
+                Series::scatter([(x, m.magnitude_db)], Marker::Square)
+                    .color(palette::GREEN)
+                    .hollow(),
+            );
+        }
+        CrossingKind::Phase => {
+            let w = if m.primary { 3 } else { 1 };
+            fig.add(
+                Series::line([(x, m.magnitude_db), (x, 0.0)])
+                    .color(palette::GREEN)
+                    .width(w),
+            );
+            fig.add(Series::scatter([(x, m.magnitude_db)], Marker::Square).color(palette::GREEN));
+            if m.primary {
                 let text = gm_text(m);
-                let at = (
-                    left_of(x, &text, xr),
-                    m.magnitude_db - 0.05 * (top - bottom),
-                );
-                note(&mut fig, at, text, palette::GREEN);
+                let at = (left_of(x, &text, xr), m.magnitude_db - 0.05 * span);
+                note(fig, at, text, palette::GREEN);
             }
         }
     }
-    fig
 }
 
 /// "GM ×2.31 (7.27 dB), 85.2 Hz" (a negative factor has no dB).
@@ -173,33 +182,40 @@ fn phase_panel(fr: &FrequencyResponse, lx: &[f64], xr: (f64, f64)) -> Figure {
     }
     nyquist_line(&mut fig, fr, (y0, y1), false);
     for m in &fr.marks {
-        let x = x_of(m.frequency_hz);
-        match m.kind {
-            CrossingKind::Gain => {
-                let base = minus_180_near(m.phase_deg);
-                fig.add(
-                    Series::line([(x, base), (x, m.phase_deg)])
-                        .color(palette::VERMILLION)
-                        .width(3),
-                );
-                fig.add(
-                    Series::scatter([(x, m.phase_deg)], Marker::Circle).color(palette::VERMILLION),
-                );
+        phase_mark(&mut fig, m, xr, y1 - y0);
+    }
+    fig
+}
+
+/// One crossing on the phase panel: a gain crossover with its phase margin as a segment
+/// from the −180° line (the reported one with its value), a phase crossover on the line.
+fn phase_mark(fig: &mut Figure, m: &Mark, xr: (f64, f64), span: f64) {
+    let x = x_of(m.frequency_hz);
+    match m.kind {
+        CrossingKind::Gain => {
+            let base = minus_180_near(m.phase_deg);
+            fig.add(
+                Series::line([(x, base), (x, m.phase_deg)])
+                    .color(palette::VERMILLION)
+                    .width(if m.primary { 3 } else { 1 }),
+            );
+            fig.add(Series::scatter([(x, m.phase_deg)], Marker::Circle).color(palette::VERMILLION));
+            if m.primary {
                 let text = format!(
                     "  PM {}°, {} Hz",
                     crate::output::sig(m.value, 3),
                     crate::output::sig(m.frequency_hz, 4)
                 );
                 // below the −180° line, where the curve of a stable loop is not
-                let at = (left_of(x, &text, xr), m.phase_deg.min(base) - 0.07 * (y1 - y0));
-                note(&mut fig, at, text, palette::VERMILLION);
-            }
-            CrossingKind::Phase => {
-                fig.add(Series::scatter([(x, m.phase_deg)], Marker::Square).color(palette::GREEN));
+                let at = (left_of(x, &text, xr), m.phase_deg.min(base) - 0.07 * span);
+                note(fig, at, text, palette::VERMILLION);
             }
         }
+        CrossingKind::Phase => {
+            let s = Series::scatter([(x, m.phase_deg)], Marker::Square).color(palette::GREEN);
+            fig.add(if m.value < 0.0 { s.hollow() } else { s });
+        }
     }
-    fig
 }
 
 /// The Nyquist plot (module doc).
@@ -277,7 +293,16 @@ fn nyquist_marks(fig: &mut Figure, fr: &FrequencyResponse, r: f64) {
             CrossingKind::Phase => (Marker::Square, palette::GREEN, gm_text(m)),
         };
         fig.add(Series::scatter([at], marker).color(color).size(8));
-        note(fig, (at.0, at.1 - 0.06 * r), text, color);
+        if m.primary {
+            // the phase margin above its point, the gain margin below: apart when both are
+            // near −1
+            let dy = if m.kind == CrossingKind::Gain {
+                0.06
+            } else {
+                -0.06
+            };
+            note(fig, (at.0, at.1 + dy * r), text, color);
+        }
     }
 }
 

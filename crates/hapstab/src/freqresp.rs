@@ -55,6 +55,9 @@ pub struct Mark {
     pub re: f64,
     /// Im L there.
     pub im: f64,
+    /// True at the crossing where the reported margin is read: the gain margin (the factor
+    /// > 1 on (K, B)) or the phase margin (the smallest in magnitude).
+    pub primary: bool,
 }
 
 /// The point of the Nyquist curve closest to −1.
@@ -142,6 +145,10 @@ pub fn frequency_response(
                 phase_deg: on_branch(l.arg().to_degrees(), &thetas, &phase_deg, c.theta),
                 re: l.re,
                 im: l.im,
+                primary: match c.kind {
+                    CrossingKind::Gain => margins.phase.is_some_and(|p| p.theta == c.theta),
+                    CrossingKind::Phase => margins.gain.is_some_and(|g| g.theta == c.theta),
+                },
             }
         })
         .collect();
