@@ -5,8 +5,11 @@ mod boundary;
 mod budget;
 mod check;
 mod discretize;
+mod freq_figures;
+mod freq_plots;
 mod kmax;
 mod linear;
+mod locus;
 mod map;
 mod model;
 mod nyquist;
@@ -51,8 +54,15 @@ enum Command {
     Map(map::MapArgs),
     /// Linear condition (22)/(23) and where its error (24) reaches 2 % and 5 % (Sections VI–VII)
     Linear(linear::LinearArgs),
-    /// Regions up to the Nyquist frequency, robust region, passivity; Remark 4 (Section VIII)
+    /// Regions up to the Nyquist frequency, robust region, passivity; Remark 4 (Section VIII;
+    /// not the Nyquist plot of a wall's open loop, which is `nyquist-plot`)
     Nyquist(nyquist::NyquistArgs),
+    /// Bode plot of the wall's open loop L(e^{jωT}) up to the Nyquist frequency, margins marked
+    Bode(freq_plots::FreqArgs),
+    /// Nyquist plot of the wall's open loop L with −1 and min |1 + L| (not `nyquist`, Section VIII)
+    NyquistPlot(freq_plots::FreqArgs),
+    /// Root locus in K at a given B: the roots of p(z) crossing the unit circle at K_max
+    Locus(locus::LocusArgs),
     /// Device damping a wall needs to be passive (Colgate–Schenkel, eq. 28) and the passive region
     Passivity(passivity::PassivityArgs),
     /// Z-width: stable and passive (K, B) regions of a device, K_max table; compare loops
@@ -89,6 +99,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Ranges(a) => ranges::run(&a),
         Command::Linear(a) => linear::run(&a),
         Command::Nyquist(a) => nyquist::run(&a),
+        Command::Bode(a) => freq_plots::run_bode(&a),
+        Command::NyquistPlot(a) => freq_plots::run_nyquist_plot(&a),
+        Command::Locus(a) => locus::run(&a),
         Command::Paper(a) => paper::run(&a),
     }
 }

@@ -276,6 +276,8 @@ pub struct Figure {
     /// Font scale (1.0: nominal title 34, axis labels 30, ticks and legend 25; plotters
     /// renders text at nominal/1.24 px, so ticks are 20 px).
     pub font_scale: f64,
+    /// The x data are log10 of the quantity: ticks at whole decades, labelled 10^x.
+    pub x_log10: bool,
 }
 
 impl Figure {
@@ -292,7 +294,15 @@ impl Figure {
             legend: Legend::UpperRight,
             size: DEFAULT_SIZE,
             font_scale: 1.0,
+            x_log10: false,
         }
+    }
+
+    /// Marks the x data as log10 of the quantity (a log axis): ticks at whole decades,
+    /// labelled with the quantity (10^x).
+    pub fn x_log10(mut self) -> Self {
+        self.x_log10 = true;
+        self
     }
 
     /// Sets the x-axis label.
@@ -423,7 +433,11 @@ impl Figure {
             builder.caption(&self.title, (FONT, size).into_font());
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
-        let xfmt = tick_formatter(x1 - x0);
+        let linear = tick_formatter(x1 - x0);
+        let xfmt = |v: &f64| match self.x_log10 {
+            true => crate::output::sig(10f64.powf(*v), 3),
+            false => linear(v),
+        };
         let yfmt = tick_formatter(y1 - y0);
         chart
             .configure_mesh()
@@ -431,7 +445,10 @@ impl Figure {
             .y_desc(self.y_label.as_str())
             .axis_desc_style((FONT, px(30.0)))
             .label_style((FONT, px(25.0)))
-            .x_labels(9)
+            .x_labels(match self.x_log10 {
+                true => ((x1 - x0).floor() as usize + 1).clamp(2, 12),
+                false => 9,
+            })
             .y_labels(9)
             .x_label_formatter(&xfmt)
             .y_label_formatter(&yfmt)

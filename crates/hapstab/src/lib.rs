@@ -16,6 +16,8 @@
 //! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
 //! | [`passivity`] | Section VIII, eq. (28), for any loop (Colgate & Schenkel 1997) |
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
+//! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
+//! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
 //! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
 //! | [`sweep`] | K_max against a parameter of the loop |
 //!
@@ -33,8 +35,10 @@ pub mod boundary;
 pub mod closed_loop;
 pub mod delay;
 pub mod error;
+pub mod freqresp;
 pub mod limits;
 pub mod linear;
+pub mod locus;
 pub mod loop_analysis;
 pub mod map;
 pub mod margins;
