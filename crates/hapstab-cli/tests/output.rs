@@ -288,6 +288,27 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
             vec!["exact_alpha_max", "points", "warnings"],
         ),
         (
+            "bode",
+            vec!["bode"],
+            vec![
+                "stable",
+                "gain_margin",
+                "phase_margin_deg",
+                "closest",
+                "curve",
+            ],
+        ),
+        (
+            "nyquist-plot",
+            vec!["nyquist-plot"],
+            vec!["stable", "gain_crossover_hz", "closest", "curve"],
+        ),
+        (
+            "locus",
+            vec!["locus"],
+            vec!["k_max", "crossing", "stiffness", "roots"],
+        ),
+        (
             "paper",
             vec!["paper", "--out", "{dir}/paper"],
             vec!["files", "claims", "seconds"],
