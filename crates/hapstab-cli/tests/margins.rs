@@ -234,6 +234,34 @@ fn the_lower_stiffness_margin_is_reported() {
     }
 }
 
+/// min |1 + L| where the bracket of the grid's sample minimum misses the true minimum, which
+/// lies in the next cell. Expected: the dense independent evaluation of the python-control c2d loop (2·10⁵
+/// angles, the best cells resampled 500-fold), 0.22049758763551017 for the IIR-filtered mass
+/// (θ = 0.60018) and 0.5603467313987809 for the fourth-order plant with 4 samples of delay
+/// (θ = 0.24574); hapstab returned 0.2205949 and 0.5603497, read at grid angles, before.
+#[test]
+fn the_global_minimum_of_one_plus_l_is_found() {
+    let iir = [
+        "--mass=1.9931523014162988",
+        "--damping=4.948057959610891",
+        "--stiffness=292.32713665337724",
+        "--period=0.03573622266613576",
+        "--velocity=iir:14.237458721930132,-14.237458721930132/1.0,-1.1623587017663588,0.6711516968531707",
+    ];
+    let v = check_json(&iir, 232.28600320874466, 2.0644756852718333, &[]);
+    let sm = num(&v, "stability_margin");
+    assert!((sm - 0.22049758763551017).abs() < 1e-11, "{sm}");
+    let tf = [
+        "--plant-num=0.0067188502058943495,0.056500453061890527,0.16103933740164855,0.15497536091275033",
+        "--plant-den=1.0,6.788040256945405,68.16024758042889,255.2944057788163,268.00014556011087",
+        "--period=0.019332551255760156",
+        "--delay=4",
+    ];
+    let v = check_json(&tf, 723.1501491931801, 3.980278449334679, &[]);
+    let sm = num(&v, "stability_margin");
+    assert!((sm - 0.5603467313987809).abs() < 1e-11, "{sm}");
+}
+
 /// The default wall of `check` (the paper's device and arm, K = 10 kN/m, B = 10 Ns/m, T = 1 ms,
 /// d = 0) against python-control's `stability_margins` on the same sampled loop
 /// (`benches/baseline/margins_baseline.py`): gm 74.68108217503872 at 1060.0735292226464 rad/s,

@@ -35,6 +35,7 @@ pub mod boundary;
 pub mod closed_loop;
 pub mod delay;
 pub mod error;
+pub mod extremum;
 pub mod freqresp;
 pub mod limits;
 pub mod linear;

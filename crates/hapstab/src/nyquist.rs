@@ -238,31 +238,9 @@ fn union_extent(ivs: &[Interval]) -> Option<(f64, f64, f64)> {
     Some((lo, hi, len))
 }
 
-/// Golden-section maximization of `f` on [a, b] (to about 1e-12 relative in the argument).
-fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    let mut x1 = b - r * (b - a);
-    let mut x2 = a + r * (b - a);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..80 {
-        if (b - a).abs() <= 1e-12 * (a.abs() + b.abs()).max(1e-300) {
-            break;
-        }
-        if f1 >= f2 {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - r * (b - a);
-            f1 = f(x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + r * (b - a);
-            f2 = f(x2);
-        }
-    }
-    if f1 >= f2 { (x1, f1) } else { (x2, f2) }
+/// Golden-section maximum of f on [a, b] to 1e-12 of the angle: (argmax, max).
+fn golden_max(a: f64, b: f64, f: impl Fn(f64) -> f64) -> (f64, f64) {
+    crate::extremum::golden_max(f, a, b, 1e-12 * (a.abs() + b.abs()).max(1e-300))
 }
 
 /// Bisection between `a` (pred false) and `b` (pred true) to 1e-12 relative; returns the

@@ -14,14 +14,15 @@
 //!   its distance to the circle outward.
 //!
 //! Every sign change of ln|L| on the grid is a crossover (bisected to rounding), and every
-//! local extremum of the samples is refined by golden section: an extremum that changes sign
-//! inside its cell is a pair of crossovers the samples straddled.
+//! local extremum of the samples is refined by golden section, its bracket moved while the
+//! search lands on an end ([`crate::extremum`]): an extremum that changes sign inside its cell
+//! is a pair of crossovers the samples straddled.
 
 use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
-use crate::passivity::golden_max;
+use crate::extremum::{merge_grid, refine_max, sample_maxima};
 use crate::stability::roots;
 
 /// Uniform samples per delay-free degree (|L| − 1 changes sign at most twice per degree).
@@ -78,8 +79,7 @@ pub fn frequency_grid(fam: &AffineFamily, a: f64, b: f64) -> Vec<f64> {
             ts.push(phi);
         }
     }
-    ts.sort_by(f64::total_cmp);
-    ts.dedup();
+    merge_grid(&mut ts);
     ts
 }
 
@@ -139,36 +139,33 @@ pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
         {
             thetas.push(crate::boundary::bisect(ts[i - 1], ts[i], g));
         }
-        if i == 0 || i + 1 == ts.len() {
-            continue;
-        }
-        let (l, c, r) = (vs[i - 1], vs[i], vs[i + 1]);
-        let (lo, hi) = (ts[i - 1], ts[i + 1]);
-        let tol = THETA_REL * hi;
-        // Extrema within a factor of two of |L| = 1 are refined (the grid samples every
-        // mode's peak within a tenth of its width, so a farther one cannot reach 1); plateaus
-        // of equal samples are not extrema.
-        let strict = c != l || c != r;
-        if strict && c >= l && c >= r && c > -REFINE_LOG {
-            let (t, v) = golden_max(g, lo, hi, tol);
+    }
+    // Extrema within a factor of two of |L| = 1 are refined (the grid samples every mode's
+    // peak within a tenth of its width, so a farther one cannot reach 1): a maximum below 1
+    // that rises above it, or a minimum above 1 that dips below, is a pair of crossovers the
+    // samples straddled.
+    let neg: Vec<f64> = vs.iter().map(|v| -v).collect();
+    for i in sample_maxima(&vs) {
+        if vs[i] > -REFINE_LOG {
+            let (t, v) = refine_max(g, &ts, i, THETA_REL);
             if v > peak.0 {
                 peak = (v, t);
             }
-            if c <= 0.0 && v > 0.0 {
-                thetas.push(crate::boundary::bisect(lo, t, g));
-                thetas.push(crate::boundary::bisect(t, hi, g));
+            if vs[i] <= 0.0 && v > 0.0 {
+                thetas.extend(pair_around(&ts, t, |x| g(x) <= 0.0, g));
             }
-        } else if strict && c <= l && c <= r && c > 0.0 && c < REFINE_LOG {
-            let (t, v) = golden_max(|x| -g(x), lo, hi, tol);
+        }
+    }
+    for i in sample_maxima(&neg) {
+        if vs[i] > 0.0 && vs[i] < REFINE_LOG {
+            let (t, v) = refine_max(|x| -g(x), &ts, i, THETA_REL);
             if -v <= 0.0 {
-                thetas.push(crate::boundary::bisect(lo, t, g));
-                thetas.push(crate::boundary::bisect(t, hi, g));
+                thetas.extend(pair_around(&ts, t, |x| g(x) > 0.0, g));
             }
         }
     }
     if let Some(i) = (0..ts.len()).max_by(|&i, &j| vs[i].total_cmp(&vs[j])) {
-        let (lo, hi) = (ts[i.saturating_sub(1)], ts[(i + 1).min(ts.len() - 1)]);
-        let (t, v) = golden_max(g, lo, hi, THETA_REL * hi);
+        let (t, v) = refine_max(g, &ts, i, THETA_REL);
         if v > peak.0 {
             peak = (v, t);
         }
@@ -188,6 +185,25 @@ pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
     }
 }
 
+/// The crossings of g = 0 on both sides of an extremum at t that lies across zero from the
+/// samples of its grid cell: bisected between t and each neighbouring sample on the other
+/// side (`other_side`); a neighbour on t's side leaves that crossing to the sign-change scan.
+fn pair_around(
+    ts: &[f64],
+    t: f64,
+    other_side: impl Fn(f64) -> bool,
+    g: impl Fn(f64) -> f64,
+) -> Vec<f64> {
+    let j = ts.partition_point(|&x| x < t);
+    let lo = ts[j.saturating_sub(1)];
+    let hi = ts[j.min(ts.len() - 1)];
+    [(lo, t), (t, hi)]
+        .into_iter()
+        .filter(|&(x, y)| x < y && other_side(if x == t { y } else { x }))
+        .map(|(x, y)| crate::boundary::bisect(x, y, &g))
+        .collect()
+}
+
 /// min over θ ∈ [0, π] of |1 + L(e^{iθ})| = |p(e^{iθ})|/|P0(e^{iθ})|, the distance of the
 /// Nyquist curve to −1 (python-control's `sm`), and the θ where it is reached. The grid is the
 /// frequency grid of the delay-free magnitude refined by the uniform grid of the full degree
@@ -201,20 +217,18 @@ pub fn stability_margin(fam: &AffineFamily, a: f64, b: f64) -> (f64, f64) {
     let m = UNIFORM_PER_DEGREE * (fam.degree() + 2);
     let mut ts = frequency_grid(fam, a, b);
     ts.extend((0..=m).map(|i| pi * i as f64 / m as f64));
-    ts.push(0.0);
-    ts.sort_by(f64::total_cmp);
-    ts.dedup();
-    let vs: Vec<f64> = ts.iter().map(|&t| f(t)).collect();
+    merge_grid(&mut ts);
+    let neg: Vec<f64> = ts.iter().map(|&t| -f(t)).collect();
     let mut best = (f64::INFINITY, f64::NAN);
-    for i in 0..ts.len() {
-        if vs[i] < best.0 {
-            best = (vs[i], ts[i]);
+    for (i, &v) in neg.iter().enumerate() {
+        if -v < best.0 {
+            best = (-v, ts[i]);
         }
-        if i > 0 && i + 1 < ts.len() && vs[i] <= vs[i - 1] && vs[i] <= vs[i + 1] {
-            let (t, v) = golden_max(|x| -f(x), ts[i - 1], ts[i + 1], THETA_REL * ts[i + 1]);
-            if -v < best.0 {
-                best = (-v, t);
-            }
+    }
+    for i in sample_maxima(&neg) {
+        let (t, v) = refine_max(|x| -f(x), &ts, i, THETA_REL);
+        if -v < best.0 {
+            best = (-v, t);
         }
     }
     best

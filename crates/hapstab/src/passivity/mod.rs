@@ -75,15 +75,13 @@ use crate::error::Result;
 use crate::model::Loop;
 use crate::params::Wall;
 
+pub(crate) use crate::extremum::golden_max;
+
 pub use device::{DeviceDamping, device_damping};
 pub use region::{
     PASSIVE_REL_TOL, PassiveRegion, UNBOUNDED_CLIP, k_max_passive_at, passive_k_max, passive_region,
 };
 pub use requirement::{DampingRequirement, SampledWall};
-
-/// Golden-section iterations at most: the bracket shrinks by 0.618 each, from two grid
-/// cells (at most π/32) to the tolerance in about 35.
-const GOLDEN_ITERATIONS: usize = 64;
 
 /// Relative width of the band |b − b_required| ≤ BOUNDARY_BAND·scale in which a device is
 /// reported as on the passivity boundary rather than passive or not: the requirement is exact
@@ -188,32 +186,4 @@ fn verdict_for(b: f64, required: f64, dc_stiffness: f64) -> PassivityVerdict {
     } else {
         PassivityVerdict::NotPassive
     }
-}
-
-/// Golden-section search for the maximum of f on [lo, hi] down to a bracket of width tol:
-/// (argmax, max).
-pub(crate) fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let mut x1 = hi - r * (hi - lo);
-    let mut x2 = lo + r * (hi - lo);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..GOLDEN_ITERATIONS {
-        if f1 >= f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - r * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + r * (hi - lo);
-            f2 = f(x2);
-        }
-        if hi - lo <= tol {
-            break;
-        }
-    }
-    if f1 >= f2 { (x1, f1) } else { (x2, f2) }
 }

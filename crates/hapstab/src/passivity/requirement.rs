@@ -5,8 +5,8 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use super::golden_max;
 use crate::error::{Error, Result};
+use crate::extremum::{merge_grid, refine_max};
 use crate::model::Loop;
 use crate::params::Wall;
 
@@ -27,7 +27,7 @@ const POLE_OFFSETS: i32 = 16;
 /// the resonance is wider than the uniform grid's resolution anyway.
 const POLE_RADIUS: f64 = 0.5;
 
-/// Width of the final bracket of a frequency maximum, in radians. The function is flat at an
+/// Width of the final bracket of a frequency maximum, relative to its angle. The function is flat at an
 /// interior maximum, so the value there is exact to rounding long before: an error of 1e-9 rad
 /// changes it by about f''·1e-18.
 pub(crate) const THETA_TOL: f64 = 1e-9;
@@ -216,8 +216,7 @@ impl SampledWall {
                 );
             }
         }
-        g.sort_by(f64::total_cmp);
-        g.dedup();
+        merge_grid(&mut g);
         g
     }
 
@@ -244,18 +243,18 @@ impl SampledWall {
             if peak < floor || peak - b <= FLAT * scale {
                 continue;
             }
-            let (t, v) = self.golden(wall, self.grid[i - 1], self.grid[i + 1]);
+            let (t, v) = refine_max(
+                |t| self.required_damping_at(wall, t),
+                &self.grid,
+                i,
+                THETA_TOL,
+            );
             if v > best {
                 best = v;
                 best_t = t;
             }
         }
         (best, best_t)
-    }
-
-    /// Golden-section search for the maximum on [lo, hi].
-    fn golden(&self, wall: Wall, lo: f64, hi: f64) -> (f64, f64) {
-        golden_max(|t| self.required_damping_at(wall, t), lo, hi, THETA_TOL)
     }
 }
 

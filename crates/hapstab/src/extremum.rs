@@ -1,0 +1,133 @@
+//! Extrema of a smooth function of one angle sampled on a grid: the peak gain, the stability
+//! margin min |1 + L|, the passivity requirement's maximum over frequency.
+//!
+//! The three steps every such search shares:
+//! 1. [`merge_grid`] sorts the angles and merges those that agree to rounding (grids built
+//!    from several families — uniform, geometric, around poles — hold the same angle twice,
+//!    one ulp apart, and two samples of the same point in rounding noise fake an extremum
+//!    whose bracket misses the real one);
+//! 2. a local extremum of the samples brackets a stationary point between its neighbours;
+//! 3. [`refine_max`] refines it by golden section ([`golden_max`]) and, when the search lands
+//!    on an end of its bracket (no stationary point inside: the samples were in noise, or two
+//!    extrema shared the cell), moves the bracket one cell that way and searches again, so the
+//!    point returned is a stationary point or an end of the whole interval.
+
+/// Golden-section iterations at most: the bracket shrinks by 0.618 each, from two grid cells
+/// to 1e-13 of the angle in about 60.
+const GOLDEN_ITERATIONS: usize = 80;
+
+/// Angles closer than this (relative) are one point of the grid.
+pub const MERGE_REL: f64 = 1e-12;
+
+/// How many cells [`refine_max`] may move its bracket.
+const MAX_SHIFTS: usize = 16;
+
+/// Golden-section search for the maximum of f on [lo, hi] down to a bracket of width tol:
+/// (argmax, max) (Kiefer 1953; Press et al., *Numerical Recipes* §10.2).
+pub fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> (f64, f64) {
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let mut x1 = hi - r * (hi - lo);
+    let mut x2 = lo + r * (hi - lo);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..GOLDEN_ITERATIONS {
+        if hi - lo <= tol {
+            break;
+        }
+        if f1 >= f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - r * (hi - lo);
+            f1 = f(x1);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + r * (hi - lo);
+            f2 = f(x2);
+        }
+    }
+    if f1 >= f2 { (x1, f1) } else { (x2, f2) }
+}
+
+/// Sorts the angles and merges those within [`MERGE_REL`] (relative) of the previous one.
+pub fn merge_grid(ts: &mut Vec<f64>) {
+    ts.retain(|t| t.is_finite());
+    ts.sort_by(f64::total_cmp);
+    ts.dedup_by(|x, y| (*x - *y).abs() <= MERGE_REL * x.abs().max(y.abs()));
+}
+
+/// The indices of the local maxima of the samples: vs[i] ≥ both neighbours and strictly above
+/// one of them (a plateau of equal samples is no extremum).
+pub fn sample_maxima(vs: &[f64]) -> impl Iterator<Item = usize> + '_ {
+    (1..vs.len().saturating_sub(1)).filter(move |&i| {
+        let (l, c, r) = (vs[i - 1], vs[i], vs[i + 1]);
+        c >= l && c >= r && (c > l || c > r)
+    })
+}
+
+/// The local maximum of f bracketed by the samples ts[i − 1] < ts[i] < ts[i + 1], refined by
+/// golden section to `rel` of the angle; the bracket moves by one cell (at most
+/// [`MAX_SHIFTS`] times) while the search lands on one of its inner ends (module doc).
+/// Returns (argmax, max), never below the sample f(ts[i]).
+pub fn refine_max(f: impl Fn(f64) -> f64, ts: &[f64], i: usize, rel: f64) -> (f64, f64) {
+    let last = ts.len() - 1;
+    let mut i = i.clamp(1, last.max(1) - 1);
+    let mut best = (ts[i], f(ts[i]));
+    for _ in 0..=MAX_SHIFTS {
+        let (lo, hi) = (ts[i - 1], ts[i + 1]);
+        let tol = rel * lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+        let (t, v) = golden_max(&f, lo, hi, tol);
+        if v >= best.1 {
+            best = (t, v);
+        }
+        let near = 4.0 * tol;
+        if t - lo <= near && i > 1 {
+            i -= 1;
+        } else if hi - t <= near && i + 1 < last {
+            i += 1;
+        } else {
+            break;
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn golden_finds_the_vertex_of_a_parabola() {
+        let (t, v) = golden_max(|x| 2.0 - (x - 0.3).powi(2), 0.0, 1.0, 1e-13);
+        assert!((t - 0.3).abs() < 1e-7, "{t}");
+        assert!((v - 2.0).abs() < 1e-14, "{v}");
+    }
+
+    #[test]
+    fn merging_drops_an_angle_repeated_one_ulp_apart() {
+        let a = std::f64::consts::PI / 7.0;
+        let mut ts = vec![0.5, a, f64::from_bits(a.to_bits() + 1), 0.1, 0.5];
+        merge_grid(&mut ts);
+        assert_eq!(ts, vec![0.1, a, 0.5]);
+    }
+
+    #[test]
+    fn a_bracket_that_misses_the_peak_moves_to_it() {
+        // Samples in noise: the sample maximum at index 1 is bracketed by [0, 0.2], the peak of
+        // f lies at 0.33 in the next cell.
+        let f = |x: f64| -(x - 0.33).powi(2);
+        let ts = [0.0, 0.1, 0.2, 0.4, 0.6];
+        let (t, v) = refine_max(f, &ts, 1, 1e-13);
+        assert!((t - 0.33).abs() < 1e-7, "{t}");
+        assert!(v.abs() < 1e-14, "{v}");
+    }
+
+    #[test]
+    fn a_peak_at_the_end_of_the_interval_is_returned_there() {
+        let f = |x: f64| x;
+        let ts = [0.0, 0.1, 0.2, 0.3];
+        let (t, _) = refine_max(f, &ts, 1, 1e-13);
+        assert!((t - 0.3).abs() < 1e-12, "{t}");
+    }
+}
