@@ -13,21 +13,30 @@ import numpy as np
 
 import hapstab as hs
 
-SEED = 2026_1203
+SEED = 7
 REL = 1e-12
 DENSE = 200_000
 mp.mp.dps = 30
 
 
 def iir(rng, period):
-    """A low-passed difference (1 − z⁻¹)/T·g/(1 − 2r cos φ z⁻¹ + r² z⁻²), r up to 0.98."""
-    r, phi = float(rng.uniform(0.5, 0.98)), float(rng.uniform(0.05, 1.2))
+    """A low-passed difference (1 − z⁻¹)/T·g/A(z⁻¹): A a resonance r·e^{±jφ} (r up to 0.995),
+    half the time times a real pole, g = A(1) (unit DC gain), sometimes an extra tap."""
+    r, phi = float(rng.uniform(0.5, 0.995)), float(rng.uniform(0.02, 2.5))
     a = [1.0, -2 * r * math.cos(phi), r * r]
+    if rng.random() < 0.5:
+        a = [float(x) for x in np.convolve(a, [1.0, -float(rng.uniform(0.3, 0.99))])]
     g = sum(a)
     b = [g / period, -g / period]
     if rng.random() < 0.5:
-        b.append(float(rng.uniform(-0.2, 0.2)) * g / period)
+        b.append(float(rng.uniform(-0.3, 0.3)) * g / period)
     return b, a
+
+
+def condition(c, theta):
+    """Σ|c_i| / |Σ c_i e^{−jiθ}|: the relative rounding error of evaluating the filter
+    polynomial c at θ in double precision, in units of the machine epsilon."""
+    return sum(abs(x) for x in c) / abs(np.polyval(c[::-1], np.exp(-1j * theta)))
 
 
 def requirement_mp(theta, k, wb, b, a, period, d, lam):
@@ -89,20 +98,26 @@ def dense_maximum(args):
 
 
 def test_iir_maximum_with_delay_matches_a_dense_mpmath_evaluation():
+    """To 1e-12, or to 8 ulps times the condition number of the filter's evaluation at the
+    binding angle where that is larger (poles within 1e-3 of z = 1: no double-precision
+    evaluation of those coefficients does better). The grid search before the bracket moved
+    missed the peak on 3 of these 400 loops (numbers 82, 180, 300) by up to 1.9e-4."""
     rng = np.random.default_rng(SEED)
     worst = 0.0
-    for n in range(24):
+    for n in range(400):
         period = float(10 ** rng.uniform(-4, -2))
         b, a = iir(rng, period)
-        d = int(rng.integers(1, 12))
+        d = int(rng.integers(1, 30))
         lam = float(rng.uniform(0.05, 0.95)) if n % 3 == 2 else 0.0
         velocity = "iir:" + ",".join(repr(c) for c in b) + "/" + ",".join(repr(c) for c in a)
         lp = hs.Loop(hs.MassSpringDamper(0.4, 2.0, 0.0), period=period, delay=(d + lam) * period, velocity=velocity)
         k = float(rng.uniform(100.0, 1e4))
         wb = float(rng.uniform(-0.3, 1.0)) * k * period * 10
-        got = hs.passivity(lp, k, wb).b_required
+        p = hs.passivity(lp, k, wb)
         want = dense_maximum((k, wb, b, a, period, d, lam))
-        err = abs(got - want) / abs(want)
-        worst = max(worst, err)
-        assert err <= REL, (n, velocity, d, lam, k, wb, got, want, err)
-    print(f"worst relative error {worst:.2e}")
+        err = abs(p.b_required - want) / abs(want)
+        cond = condition(a, p.binding_theta) + condition(b, p.binding_theta) if p.binding_theta > 0 else 1.0
+        tol = max(REL, 8 * np.finfo(float).eps * cond)
+        worst = max(worst, err / tol)
+        assert err <= tol, (n, velocity, d, lam, k, wb, p.b_required, want, err, tol)
+    print(f"worst error / tolerance {worst:.2e}")
