@@ -9,6 +9,8 @@ mod analysis;
 mod budget;
 mod discretize;
 mod errors;
+mod freqresp;
+mod locus;
 mod loops;
 mod map;
 mod margins;
@@ -38,6 +40,9 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<passivity::PyPassivity>()?;
     m.add_class::<passivity::PyPassiveRegion>()?;
     m.add_class::<margins::PyMargins>()?;
+    m.add_class::<freqresp::PyMark>()?;
+    m.add_class::<freqresp::PyFrequencyResponse>()?;
+    m.add_class::<locus::PyRootLocus>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
@@ -46,5 +51,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(passivity::passivity, m)?)?;
     m.add_function(wrap_pyfunction!(margins::margins, m)?)?;
+    m.add_function(wrap_pyfunction!(freqresp::frequency_response, m)?)?;
+    m.add_function(wrap_pyfunction!(locus::root_locus, m)?)?;
     Ok(())
 }

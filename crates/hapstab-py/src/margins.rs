@@ -79,7 +79,8 @@ impl PyMargins {
     }
 }
 
-fn margins_object(m: Margins) -> PyMargins {
+/// The library's margins as the Python object.
+pub(crate) fn margins_object(m: Margins) -> PyMargins {
     PyMargins {
         stable: m.stable,
         gain_margin: m.gain.map(|g| g.factor),

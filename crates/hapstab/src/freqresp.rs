@@ -82,7 +82,7 @@ pub struct FrequencyResponse {
     pub period: f64,
     /// The Nyquist frequency 1/(2T) in Hz.
     pub nyquist_hz: f64,
-    /// Angular frequencies ω in rad/s, increasing for the default grid.
+    /// Angular frequencies ω in rad/s: as given, or the default grid (increasing).
     pub omega: Vec<f64>,
     /// ω/(2π) in Hz.
     pub frequency_hz: Vec<f64>,
@@ -165,7 +165,10 @@ pub fn frequency_response(
     Ok(FrequencyResponse {
         period: t,
         nyquist_hz: 0.5 / t,
-        omega: thetas.iter().map(|th| th / t).collect(),
+        omega: match omega {
+            Some(w) => w.to_vec(),
+            None => thetas.iter().map(|th| th / t).collect(),
+        },
         frequency_hz: thetas.iter().map(|&th| hz(th)).collect(),
         re: values.iter().map(|l| l.re).collect(),
         im: values.iter().map(|l| l.im).collect(),

@@ -28,6 +28,8 @@ and answers from the same Rust engine as the `hapstab` command line:
   generalized to any delay and velocity estimator), the verdict, the passive region.
 - margins: gain (on K, on (K, B)), phase and delay margins of a stable wall and the
   frequency at which it would oscillate.
+- frequency_response: the open loop L(e^{jωT}) with its crossings (the data of a Bode and a
+  Nyquist plot); root_locus: the roots of p(z) as K sweeps at a damping B.
 
 Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad arguments raise
 ValueError naming the keyword argument.
@@ -40,14 +42,17 @@ from ._hapstab import (
     Check,
     Discretization,
     Edge,
+    FrequencyResponse,
     Kmax,
     Loop,
     Margins,
+    Mark,
     MassSpringDamper,
     NumericalError,
     PassiveRegion,
     Passivity,
     Region,
+    RootLocus,
     Simulation,
     StabilityMap,
     TransferFunction,
@@ -55,10 +60,12 @@ from ._hapstab import (
 )
 from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
+from ._hapstab import frequency_response as _frequency_response
 from ._hapstab import kmax as _kmax
 from ._hapstab import margins as _margins
 from ._hapstab import passivity as _passivity
 from ._hapstab import region as _region
+from ._hapstab import root_locus as _root_locus
 from ._hapstab import simulate as _simulate
 from ._hapstab import stability_map as _stability_map
 
@@ -87,10 +94,12 @@ def _named(fn):
 
 check = _named(_check)
 discretize = _named(_discretize)
+frequency_response = _named(_frequency_response)
 kmax = _named(_kmax)
 margins = _named(_margins)
 passivity = _named(_passivity)
 region = _named(_region)
+root_locus = _named(_root_locus)
 simulate = _named(_simulate)
 stability_map = _named(_stability_map)
 
@@ -98,24 +107,29 @@ __all__ = [
     "Check",
     "Discretization",
     "Edge",
+    "FrequencyResponse",
     "Kmax",
     "Loop",
     "Margins",
+    "Mark",
     "MassSpringDamper",
     "NumericalError",
     "PassiveRegion",
     "Passivity",
     "Region",
+    "RootLocus",
     "Simulation",
     "StabilityMap",
     "TransferFunction",
     "TwoMass",
     "check",
     "discretize",
+    "frequency_response",
     "kmax",
     "margins",
     "passivity",
     "region",
+    "root_locus",
     "simulate",
     "stability_map",
 ]

@@ -308,6 +308,56 @@ class Margins:
     """(kind "gain" or "phase", frequency Hz, phase margin deg or gain factor)."""
     notes: list[str]
 
+class Mark:
+    """One crossing of the open loop as the Bode and Nyquist plots mark it."""
+
+    kind: Literal["gain", "phase"]
+    omega: float
+    """rad/s."""
+    frequency_hz: float
+    value: float
+    """Phase margin in degrees (gain crossover) or the factor on (K, B) (phase crossover)."""
+    magnitude_db: float
+    phase_deg: float
+    response: complex
+    """L there."""
+    primary: bool
+    """True where the reported gain or phase margin is read."""
+
+class FrequencyResponse:
+    """The open loop L(e^{jωT}) of a wall on the exact discrete loop, with its crossings."""
+
+    period: float
+    nyquist_hz: float
+    omega: Float64Array
+    """rad/s."""
+    frequency_hz: Float64Array
+    response: Complex128Array
+    """L(e^{jωT})."""
+    magnitude_db: Float64Array
+    phase_deg: Float64Array
+    """Unwrapped along the grid."""
+    marks: list[Mark]
+    """Every gain and phase crossover (none when the wall is not stable)."""
+    closest: Optional[Tuple[float, float, complex]]
+    """(min |1 + L|, frequency Hz, L there)."""
+    margins: Margins
+
+class RootLocus:
+    """The roots of p(z) (eq. 9) as K sweeps at a fixed damping B."""
+
+    wall_damping: float
+    k_max: Optional[float]
+    k_interval: Optional[Tuple[float, float]]
+    k_max_index: Optional[int]
+    """Index of the sample K = K_max in wall_stiffness."""
+    crossing: Optional[complex]
+    """The root closest to the unit circle at K = K_max."""
+    wall_stiffness: Float64Array
+    roots: Complex128Array
+    """Shape (len(wall_stiffness), degree of p), branch-ordered."""
+    spectral_radius: Float64Array
+
 def check(
     loop: Loop,
     wall_stiffness: Optional[float] = None,
@@ -399,3 +449,22 @@ def margins(
 ) -> Margins:
     """Gain (on K, on (K, B)), phase and delay margins of a stable wall on the exact discrete
     loop (Section V), and the critical frequency at the gain-margin boundary."""
+
+def frequency_response(
+    loop: Loop,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: Optional[float] = None,
+    omega: Optional[ArrayLike] = None,
+    *,
+    alpha: Optional[float] = None,
+    beta: Optional[float] = None,
+) -> FrequencyResponse:
+    """The open loop L(e^{jωT}) of the wall at omega (rad/s) or on the grid of `hapstab bode`,
+    with every crossing and the margins."""
+
+def root_locus(
+    loop: Loop,
+    wall_damping: float,
+    wall_stiffness: Optional[ArrayLike] = None,
+) -> RootLocus:
+    """The roots of p(z) at each K (N/m) at damping B (Ns/m), or on `hapstab locus`'s sweep."""
