@@ -71,8 +71,17 @@ pub fn sample_maxima(vs: &[f64]) -> impl Iterator<Item = usize> + '_ {
 /// [`MAX_SHIFTS`] times) while the search lands on one of its inner ends (module doc).
 /// Returns (argmax, max), never below the sample f(ts[i]).
 pub fn refine_max(f: impl Fn(f64) -> f64, ts: &[f64], i: usize, rel: f64) -> (f64, f64) {
+    if ts.len() < 3 {
+        return ts
+            .iter()
+            .map(|&t| (t, f(t)))
+            .fold(
+                (f64::NAN, f64::NEG_INFINITY),
+                |b, x| if x.1 > b.1 { x } else { b },
+            );
+    }
     let last = ts.len() - 1;
-    let mut i = i.clamp(1, last.max(1) - 1);
+    let mut i = i.clamp(1, last - 1);
     let mut best = (ts[i], f(ts[i]));
     for _ in 0..=MAX_SHIFTS {
         let (lo, hi) = (ts[i - 1], ts[i + 1]);
@@ -121,6 +130,11 @@ mod tests {
         let (t, v) = refine_max(f, &ts, 1, 1e-13);
         assert!((t - 0.33).abs() < 1e-7, "{t}");
         assert!(v.abs() < 1e-14, "{v}");
+    }
+
+    #[test]
+    fn a_grid_of_two_angles_gives_the_better_sample() {
+        assert_eq!(refine_max(|x: f64| x, &[0.1, 0.2], 0, 1e-13), (0.2, 0.2));
     }
 
     #[test]
