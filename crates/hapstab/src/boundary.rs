@@ -351,6 +351,14 @@ impl CircleTable {
             .collect();
         Self { thetas, parts }
     }
+
+    /// The table of `fam` built on this thread: for one analysis of a small loop, where the
+    /// parallel tasks' start costs more than the scan.
+    pub fn serial(fam: &AffineFamily) -> Self {
+        let thetas = scan_thetas(fam);
+        let parts = thetas.iter().map(|&t| fam.parts_on_circle(t)).collect();
+        Self { thetas, parts }
+    }
 }
 
 /// The [`CircleTable`] of a family, built on first use: a region that its plain attempt

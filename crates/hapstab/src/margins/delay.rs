@@ -2,30 +2,28 @@
 //! of p(z) reaches the unit circle, exact at any delay.
 //!
 //! A root reaches e^{iθ} at total delay s (samples) iff L_s(e^{iθ}) = −1. A whole sample more
-//! multiplies L by e^{−iθ}, so L_s = L_{λ}·e^{−i⌊s⌋θ} with L_λ the loop at the fraction
-//! λ = s − ⌊s⌋ alone: the condition is |L_λ(θ)| = 1 (θ a gain crossover of the fraction's
-//! loop) and arg L_λ(θ) − ⌊s⌋θ ≡ −π. Seeds are the pure-delay estimates (PM + 2πk)/ω_c at
-//! the gain crossovers of [`FRACTIONS`] + 1 fractions; each is solved exactly by Newton's
-//! method in s (the phase falls by θ per sample; the crossover is followed as λ moves), the
-//! smallest solution is confirmed by the verdict at h·(1 ∓ [`CONFIRM_REL`]) — stable before,
-//! not after — and reported. Where no seed converges and confirms, the certified scan of
-//! [`delay_scan`] decides.
+//! multiplies L by e^{−iθ}, so L_s = L_λ·e^{−iwθ} with w = ⌊s⌋ and L_λ the loop at the
+//! fraction λ = s − w alone: the condition is |L_λ(θ)| = 1 (θ a gain crossover of the
+//! fraction's loop) and arg L_λ(θ) − wθ ≡ −π. Every fraction's loop comes from one table
+//! ([`super::fraction`]), which also bounds |L_λ| over every fraction: below 1 at every
+//! frequency, no added delay destabilizes the wall (small gain). Otherwise the seeds are the
+//! pure-delay estimates λ + (PM + 2πk)/θ at the crossovers of [`super::fraction::FRACTIONS`] fractions; the
+//! seeds of one crossing cluster, so each cluster is solved once, exactly, by Newton's method
+//! in (s, θ) on L_λ(θ)e^{−iwθ} + 1 = 0. The smallest solution is confirmed by the verdict at
+//! h·(1 ∓ [`CONFIRM_REL`]) — stable before, not after — and reported. Where no seed converges
+//! and confirms, the certified scan of [`delay_scan`] decides.
 
 use num_complex::Complex64;
 
-use super::frequency::{GainScan, gain_scan, loop_value};
+use super::fraction::{FractionCrossover, FractionLoop, FractionTable};
+use super::frequency::{GainScan, frequency_grid, gain_scan_on};
 use super::{DelayMargin, SAMPLES_PER_DEGREE};
-use crate::boundary::bisect;
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::{Delay, Loop};
 use crate::params::{MAX_DELAY, Wall};
 use crate::stability::roots;
 use crate::verdict::{Verdict, decide, stable as verdict_stable};
-
-/// Fractions of a sample whose loops seed the exact solve and bound the loop gain over every
-/// added delay.
-pub const FRACTIONS: usize = 64;
 
 /// The confirmed delay margin puts the wall stable at h·(1 − CONFIRM_REL) and not stable at
 /// h·(1 + CONFIRM_REL).
@@ -38,11 +36,24 @@ const BEYOND_MAX: f64 = 2.0;
 /// Seeds further than this many samples above the best solution so far are not solved.
 const SEED_REACH: f64 = 1.0;
 
+/// A seed within this many samples (and [`CLUSTER_THETA_REL`] in θ) of a seed already solved
+/// to a solution belongs to the same crossing.
+const CLUSTER_SAMPLES: f64 = 0.25;
+
+/// Relative width in θ of a cluster of seeds.
+const CLUSTER_THETA_REL: f64 = 0.1;
+
 /// Newton steps of the exact solve.
 const NEWTON_STEPS: usize = 60;
 
-/// The loop gain may not exceed this for the small-gain shortcut: max |L| over every
-/// fraction, on the frequency grid that resolves every mode (see [`super::frequency`]).
+/// Relative step of the θ-derivative's central difference in the exact solve.
+const THETA_DIFF_REL: f64 = 1e-7;
+
+/// At most this many seeds are solved.
+const MAX_SOLVES: usize = 64;
+
+/// The loop gain may not exceed this for the small-gain shortcut: the bound of max |L| over
+/// every frequency and fraction ([`super::fraction`]).
 const SMALL_GAIN_LIMIT: f64 = 0.999;
 
 /// What the delay margin's search found.
@@ -50,8 +61,8 @@ const SMALL_GAIN_LIMIT: f64 = 0.999;
 pub enum DelayScan {
     /// The first crossing: the margin.
     Crossing(DelayMargin),
-    /// max |L| over every frequency and fraction of a sample, below 1: stable for every
-    /// added delay.
+    /// A bound of max |L| over every frequency and fraction of a sample, below 1: stable for
+    /// every added delay.
     SmallGain(f64),
     /// No crossing up to the largest modelled delay.
     StableUpToMax,
@@ -65,15 +76,17 @@ pub enum DelayScan {
 pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
     let base = AffineFamily::of_loop(lp)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
-    delay_margin_with(lp, wall, &gain_scan(&base, a, b))
+    let modes = frequency_grid(&base, a, b);
+    delay_margin_with(lp, wall, &gain_scan_on(&base, a, b, &modes), &modes)
 }
 
-/// [`delay_margin`] with the gain scan of the loop as it is (its crossovers give PM/ω_c), as
-/// the margins have it already.
+/// [`delay_margin`] with the gain scan of the loop as it is (its crossovers give PM/ω_c) and
+/// its [`frequency_grid`], as the margins have them already.
 pub fn delay_margin_with(
     lp: &Loop,
     wall: Wall,
     own: &GainScan,
+    modes: &[f64],
 ) -> Result<(DelayScan, Option<f64>)> {
     let s0 = lp.delay.in_samples();
     let base = AffineFamily::of_loop(lp)?;
@@ -84,16 +97,13 @@ pub fn delay_margin_with(
         .map(|c| positive_phase(c.phase_margin_deg.to_radians()) / c.theta)
         .reduce(f64::min)
         .map(|h| h * lp.period);
-    let fractions = fraction_scans(lp, a, b)?;
-    let peak = fractions.iter().map(|(_, g)| g.peak.0).fold(0.0, f64::max);
+    let fl = FractionLoop::new(lp, a, b, modes)?;
+    let table = FractionTable::new(&fl);
+    let peak = table.peak_bound();
     if peak < SMALL_GAIN_LIMIT {
         return Ok((DelayScan::SmallGain(peak), pm_over_wc));
     }
-    let verdict_at = |s: f64| -> Result<Verdict> {
-        let f = AffineFamily::of_loop(&lp.with_delay(delay_in_samples(s))?)?;
-        Ok(decide(&f, a, b, &mut f.coefficients(a, b)).verdict)
-    };
-    let seeds = seeds(s0, &fractions);
+    let seeds = seeds(s0, &table.crossovers());
     // A root can reach the circle only at a gain crossover of some fraction's loop; when
     // there is none, or the nearest phase alignment lies samples beyond the largest modelled
     // delay (the fraction moves a seed by well under a sample), no modelled delay is unstable.
@@ -103,45 +113,65 @@ pub fn delay_margin_with(
     {
         return Ok((DelayScan::StableUpToMax, pm_over_wc));
     }
-    // Seeds in increasing delay; each solution lies within a sample of its seed (the
-    // fraction changes L far less than a whole turn), so seeds beyond the best solution by
-    // more than SEED_REACH samples cannot improve it.
+    if let Some((s, theta)) = smallest_solution(&fl, s0, seeds)
+        && confirmed(lp, (a, b), s0, s)?
+    {
+        return Ok((
+            DelayScan::Crossing(DelayMargin {
+                seconds: (s - s0) * lp.period,
+                theta,
+                frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
+            }),
+            pm_over_wc,
+        ));
+    }
+    Ok((delay_scan(lp, wall)?, pm_over_wc))
+}
+
+/// The smallest solution s > s0 of the exact solve over the seeds (in increasing delay):
+/// each seed's solution lies within a sample of it (the fraction changes L far less than a
+/// whole turn), so seeds beyond the best solution by more than SEED_REACH samples cannot
+/// improve it; a seed in the cluster of one already solved is skipped.
+fn smallest_solution(fl: &FractionLoop, s0: f64, seeds: Vec<(f64, f64)>) -> Option<(f64, f64)> {
     let mut best: Option<(f64, f64)> = None;
+    let mut solved: Vec<(f64, f64)> = Vec::new();
+    let mut tries = 0;
     for seed in seeds
         .into_iter()
         .filter(|s| s.0 <= MAX_DELAY as f64 + BEYOND_MAX)
     {
-        if best.is_some_and(|b| seed.0 > b.0 + SEED_REACH) {
+        if best.is_some_and(|b| seed.0 > b.0 + SEED_REACH) || tries == MAX_SOLVES {
             break;
         }
-        if let Some(sol) = solve(lp, (a, b), seed)?
-            && sol.0 > s0
-            && best.is_none_or(|b| sol.0 < b.0)
-        {
-            best = Some(sol);
+        let clustered = solved.iter().any(|&(s, t)| {
+            (seed.0 - s).abs() < CLUSTER_SAMPLES && (seed.1 - t).abs() < CLUSTER_THETA_REL * t
+        });
+        if clustered {
+            continue;
+        }
+        tries += 1;
+        if let Some(sol) = solve(fl, seed) {
+            solved.push(seed);
+            if sol.0 > s0 && best.is_none_or(|b| sol.0 < b.0) {
+                best = Some(sol);
+            }
         }
     }
-    if let Some((s, theta)) = best {
-        let h = s - s0;
-        let eps = CONFIRM_REL * h;
-        // before the crossing not unstable, after it not stable: both sides are marginal
-        // only where the whole path lies within the verdict's band of the circle
-        let before = verdict_at(s - eps)?;
-        if s + eps <= MAX_DELAY as f64
-            && before != Verdict::Unstable
-            && verdict_at(s + eps)? != Verdict::Stable
-        {
-            return Ok((
-                DelayScan::Crossing(DelayMargin {
-                    seconds: h * lp.period,
-                    theta,
-                    frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
-                }),
-                pm_over_wc,
-            ));
-        }
-    }
-    Ok((delay_scan(lp, wall)?, pm_over_wc))
+    best
+}
+
+/// The verdict confirms a crossing at total delay s: before it not unstable, after it not
+/// stable (both sides are marginal only where the whole path lies within the verdict's band
+/// of the circle).
+fn confirmed(lp: &Loop, (a, b): (f64, f64), s0: f64, s: f64) -> Result<bool> {
+    let verdict_at = |s: f64| -> Result<Verdict> {
+        let f = AffineFamily::of_loop(&lp.with_delay(delay_in_samples(s))?)?;
+        Ok(decide(&f, a, b, &mut f.coefficients(a, b)).verdict)
+    };
+    let eps = CONFIRM_REL * (s - s0);
+    Ok(s + eps <= MAX_DELAY as f64
+        && verdict_at(s - eps)? != Verdict::Unstable
+        && verdict_at(s + eps)? != Verdict::Stable)
 }
 
 /// A phase in (−π, π] moved to (0, 2π]: the extra lag that brings L to −1.
@@ -153,92 +183,59 @@ fn positive_phase(p: f64) -> f64 {
     }
 }
 
-/// The gain scans of the loop at fractions j/FRACTIONS of a sample (no whole samples).
-fn fraction_scans(lp: &Loop, a: f64, b: f64) -> Result<Vec<(f64, GainScan)>> {
-    (0..=FRACTIONS)
-        .map(|j| {
-            let fraction = (j as f64 / FRACTIONS as f64).min(1.0 - 1e-12);
-            let fam = AffineFamily::of_loop(&lp.with_delay(Delay {
-                samples: 0,
-                fraction,
-            })?)?;
-            Ok((fraction, gain_scan(&fam, a, b)))
-        })
-        .collect()
-}
-
-/// Seeds (total delay in samples, θ) of the exact solve: at every crossover θ of every
-/// fraction λ's loop, the smallest s ≥ s0 with s ≡ λ + (PM + 2πk)/θ — the whole samples that
-/// a pure delay would need, rounded to the fraction's grid.
-fn seeds(s0: f64, fractions: &[(f64, GainScan)]) -> Vec<(f64, f64)> {
+/// Seeds (total delay in samples, θ) of the exact solve, in increasing delay: at every
+/// crossover θ of every fraction λ's loop, the smallest s ≥ s0 with s ≡ λ + (PM + 2πk)/θ —
+/// the whole samples that a pure delay would need.
+fn seeds(s0: f64, crossovers: &[FractionCrossover]) -> Vec<(f64, f64)> {
     let two_pi = 2.0 * std::f64::consts::PI;
-    let mut out: Vec<(f64, f64)> = Vec::new();
-    for (lambda, scan) in fractions {
-        for c in &scan.crossovers {
+    let mut out: Vec<(f64, f64)> = crossovers
+        .iter()
+        .map(|c| {
             let period = two_pi / c.theta;
-            let mut d = lambda + positive_phase(c.phase_margin_deg.to_radians()) / c.theta;
+            let pm = (c.value.arg() + std::f64::consts::PI).rem_euclid(two_pi);
+            let mut d = c.lambda + positive_phase(pm) / c.theta;
             if d < s0 {
                 d += ((s0 - d) / period).ceil() * period;
             }
-            out.push((d, c.theta));
-        }
-    }
+            (d, c.theta)
+        })
+        .collect();
     out.sort_by(|x, y| x.0.total_cmp(&y.0));
-    out.dedup_by(|x, y| (x.0 - y.0).abs() < 1e-3 && (x.1 - y.1).abs() < 1e-3 * y.1);
     out
 }
 
-/// Newton's method in the total delay s from a seed: the crossover of the fraction's loop
-/// followed from θ, the phase error of L_s there driven to zero. (s, θ) when it converges.
-fn solve(
-    lp: &Loop,
-    (a, b): (f64, f64),
-    (mut s, mut theta): (f64, f64),
-) -> Result<Option<(f64, f64)>> {
+/// Newton's method in (s, θ) from a seed on F = L_λ(θ)·e^{−iwθ} + 1 = 0 (w = ⌊s⌋,
+/// λ = s − w): ∂F/∂s from the hold input's λ-derivative, ∂F/∂θ by a central difference.
+/// (s, θ) when it converges.
+fn solve(fl: &FractionLoop, (mut s, mut theta): (f64, f64)) -> Option<(f64, f64)> {
+    let pi = std::f64::consts::PI;
     for _ in 0..NEWTON_STEPS {
-        if !(0.0..=MAX_DELAY as f64).contains(&s) {
-            return Ok(None);
+        if !((0.0..=MAX_DELAY as f64).contains(&s) && theta > 0.0 && theta < pi) {
+            return None;
         }
         let whole = s.floor();
-        let fam = AffineFamily::of_loop(&lp.with_delay(Delay {
-            samples: 0,
-            fraction: s - whole,
-        })?)?;
-        let Some(t) = crossover_near(&fam, a, b, theta) else {
-            return Ok(None);
-        };
-        theta = t;
-        let l = loop_value(&fam, a, b, theta) * Complex64::from_polar(1.0, -whole * theta);
-        let phi = (-l).arg();
-        let step = phi / theta;
-        s += step;
-        if step.abs() <= 1e-14 * s.max(1.0) {
-            return Ok(Some((s, theta)));
+        let hold = fl.hold(s - whole);
+        let f_at =
+            |t: f64| fl.parts(t).loop_at(&hold.g) * Complex64::from_polar(1.0, -whole * t) + 1.0;
+        let parts = fl.parts(theta);
+        let turn = Complex64::from_polar(1.0, -whole * theta);
+        let f = parts.loop_at(&hold.g) * turn + 1.0;
+        let ds = parts.slope_at(&hold.dg) * turn;
+        let h = THETA_DIFF_REL * theta;
+        let dt = (f_at(theta + h) - f_at(theta - h)) / (2.0 * h);
+        let det = ds.re * dt.im - ds.im * dt.re;
+        if det == 0.0 || !det.is_finite() {
+            return None;
         }
-    }
-    Ok(None)
-}
-
-/// The gain crossover of `fam` nearest θ0 within a factor of two, by bracketing and bisection.
-fn crossover_near(fam: &AffineFamily, a: f64, b: f64, t0: f64) -> Option<f64> {
-    let pi = std::f64::consts::PI;
-    let g = |t: f64| {
-        let (p0, pk, pb) = fam.parts_on_circle(t);
-        (pk * a + pb * b).norm().ln() - p0.norm().ln()
-    };
-    let g0 = g(t0);
-    if g0 == 0.0 {
-        return Some(t0);
-    }
-    let mut h = 1e-6 * t0;
-    while h < 0.5 * t0 {
-        for t in [t0 - h, t0 + h] {
-            if t > 0.0 && t < pi && (g(t) > 0.0) != (g0 > 0.0) {
-                let (lo, hi) = if t < t0 { (t, t0) } else { (t0, t) };
-                return Some(bisect(lo, hi, g));
-            }
+        let step_s = -(f.re * dt.im - f.im * dt.re) / det;
+        let step_t = -(ds.re * f.im - ds.im * f.re) / det;
+        let step_s = step_s.clamp(-0.5, 0.5);
+        let step_t = step_t.clamp(-0.5 * theta, 0.5 * theta);
+        s += step_s;
+        theta += step_t;
+        if step_s.abs() <= 1e-14 * s.max(1.0) && step_t.abs() <= 1e-12 * theta {
+            return Some((s, theta));
         }
-        h *= 2.0;
     }
     None
 }
@@ -270,7 +267,7 @@ const DELAY_BISECTION_REL: f64 = 1e-13;
 /// h < min_θ |1 + L|/(θ|L|) = min_θ |p(e^{jθ})|/(θ·|a·PK + b·PB|) (P0 cancels). Each step is
 /// that bound divided by [`DELAY_STEP_SAFETY`] (the fractional hold's deviation from a pure
 /// phase), at least [`DELAY_MIN_STEP`]; the minimum over θ is taken on the boundary scan's
-/// grid. None when the loop stays stable up to the largest modelled delay ([`MAX_DELAY`]
+/// grid and on the loop's mode grid ([`robustness`]). None when the loop stays stable up to the largest modelled delay ([`MAX_DELAY`]
 /// samples).
 pub fn delay_scan(lp: &Loop, wall: Wall) -> Result<DelayScan> {
     let s0 = lp.delay.in_samples();
@@ -280,6 +277,7 @@ pub fn delay_scan(lp: &Loop, wall: Wall) -> Result<DelayScan> {
     let base = family_at(s0)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let stable = |f: &AffineFamily| verdict_stable(f, a, b, &mut f.coefficients(a, b));
+    let modes = frequency_grid(&base, a, b);
     let mut s = s0;
     let mut fam = base;
     let mut work = 0.0;
@@ -288,7 +286,7 @@ pub fn delay_scan(lp: &Loop, wall: Wall) -> Result<DelayScan> {
         if work > DELAY_SCAN_WORK {
             return Ok(DelayScan::AtLeast((s - s0) * lp.period));
         }
-        let h = (robustness(&fam, a, b) / DELAY_STEP_SAFETY).max(DELAY_MIN_STEP);
+        let h = (robustness(&fam, a, b, &modes) / DELAY_STEP_SAFETY).max(DELAY_MIN_STEP);
         let next = s + h;
         if next > MAX_DELAY as f64 {
             return Ok(DelayScan::StableUpToMax);
@@ -330,13 +328,17 @@ fn delay_in_samples(s: f64) -> Delay {
 }
 
 /// min over θ ∈ (0, π] of |p(e^{jθ})|/(θ·|a·PK + b·PB|): the added delay (in samples) that
-/// the pure-delay bound guarantees safe.
-fn robustness(fam: &AffineFamily, a: f64, b: f64) -> f64 {
+/// the pure-delay bound guarantees safe. Taken on a uniform grid of p's degree (the delay
+/// turns L round −1 once per 2π/d) and on `modes`, the frequency grid of the loop's own
+/// modes ([`frequency_grid`]: a fast-sampled loop's crossover lies far below the uniform
+/// grid's first angle).
+fn robustness(fam: &AffineFamily, a: f64, b: f64, modes: &[f64]) -> f64 {
     let m = SAMPLES_PER_DEGREE * (fam.degree() + 1);
     let pi = std::f64::consts::PI;
     (1..=m)
-        .map(|i| {
-            let t = pi * i as f64 / m as f64;
+        .map(|i| pi * i as f64 / m as f64)
+        .chain(modes.iter().copied())
+        .map(|t| {
             let (p0, pk, pb) = fam.parts_on_circle(t);
             let w = pk * a + pb * b;
             (p0 + w).norm() / (t * w.norm())
@@ -364,9 +366,17 @@ fn bisect_delay(
     Ok((lo, hi))
 }
 
-/// The angle of the root closest to the unit circle (the pair that just crossed).
+/// The angle of the root closest to the unit circle (the pair that just crossed), from the
+/// coefficients in w = z − 1 where they are finite (a slow root among many crowding z = 1 is
+/// resolved there, [`AffineFamily::coefficients_shifted`]), else from those in z.
 fn critical_angle(fam: &AffineFamily, a: f64, b: f64) -> Result<f64> {
-    let rs = roots(&fam.coefficients(a, b))?;
+    let shifted = fam
+        .coefficients_shifted(a, b)
+        .filter(|c| c.iter().all(|x| x.is_finite()));
+    let rs: Vec<Complex64> = match shifted {
+        Some(c) => roots(&c)?.into_iter().map(|w| w + 1.0).collect(),
+        None => roots(&fam.coefficients(a, b))?,
+    };
     let z = rs
         .iter()
         .min_by(|x, y| (x.norm() - 1.0).abs().total_cmp(&(y.norm() - 1.0).abs()))

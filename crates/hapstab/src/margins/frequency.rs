@@ -126,7 +126,12 @@ pub struct GainScan {
 
 /// Every gain crossover and the peak gain of the wall (a, b) (module doc).
 pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
-    let ts = frequency_grid(fam, a, b);
+    gain_scan_on(fam, a, b, &frequency_grid(fam, a, b))
+}
+
+/// [`gain_scan`] on the family's [`frequency_grid`] `ts`, computed once by a caller that
+/// needs it for several scans.
+pub fn gain_scan_on(fam: &AffineFamily, a: f64, b: f64, ts: &[f64]) -> GainScan {
     let g = |t: f64| log_gain(fam, a, b, t);
     let vs: Vec<f64> = ts.iter().map(|&t| g(t)).collect();
     let mut thetas = Vec::new();
@@ -147,25 +152,25 @@ pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
     let neg: Vec<f64> = vs.iter().map(|v| -v).collect();
     for i in sample_maxima(&vs) {
         if vs[i] > -REFINE_LOG {
-            let (t, v) = refine_max(g, &ts, i, THETA_REL);
+            let (t, v) = refine_max(g, ts, i, THETA_REL);
             if v > peak.0 {
                 peak = (v, t);
             }
             if vs[i] <= 0.0 && v > 0.0 {
-                thetas.extend(pair_around(&ts, t, |x| g(x) <= 0.0, g));
+                thetas.extend(pair_around(ts, t, |x| g(x) <= 0.0, g));
             }
         }
     }
     for i in sample_maxima(&neg) {
         if vs[i] > 0.0 && vs[i] < REFINE_LOG {
-            let (t, v) = refine_max(|x| -g(x), &ts, i, THETA_REL);
+            let (t, v) = refine_max(|x| -g(x), ts, i, THETA_REL);
             if -v <= 0.0 {
-                thetas.extend(pair_around(&ts, t, |x| g(x) > 0.0, g));
+                thetas.extend(pair_around(ts, t, |x| g(x) > 0.0, g));
             }
         }
     }
     if let Some(i) = (0..ts.len()).max_by(|&i, &j| vs[i].total_cmp(&vs[j])) {
-        let (t, v) = refine_max(g, &ts, i, THETA_REL);
+        let (t, v) = refine_max(g, ts, i, THETA_REL);
         if v > peak.0 {
             peak = (v, t);
         }
@@ -209,13 +214,18 @@ fn pair_around(
 /// frequency grid of the delay-free magnitude refined by the uniform grid of the full degree
 /// (a delay turns L round −1 once per 2π/d).
 pub fn stability_margin(fam: &AffineFamily, a: f64, b: f64) -> (f64, f64) {
+    stability_margin_on(fam, a, b, &frequency_grid(fam, a, b))
+}
+
+/// [`stability_margin`] with the family's [`frequency_grid`] `modes` computed by the caller.
+pub fn stability_margin_on(fam: &AffineFamily, a: f64, b: f64, modes: &[f64]) -> (f64, f64) {
     let pi = std::f64::consts::PI;
     let f = |t: f64| {
         let (p0, pk, pb) = fam.parts_on_circle(t);
         (p0 + pk * a + pb * b).norm() / p0.norm()
     };
     let m = UNIFORM_PER_DEGREE * (fam.degree() + 2);
-    let mut ts = frequency_grid(fam, a, b);
+    let mut ts = modes.to_vec();
     ts.extend((0..=m).map(|i| pi * i as f64 / m as f64));
     merge_grid(&mut ts);
     let neg: Vec<f64> = ts.iter().map(|&t| -f(t)).collect();

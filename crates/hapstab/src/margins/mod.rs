@@ -25,11 +25,14 @@
 //! absent. The stability test is the verdict's own ([`crate::verdict`]).
 
 pub mod delay;
+pub mod fraction;
 pub mod frequency;
 
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_between};
+use crate::boundary::{
+    AlphaBeta, CircleTable, WallLine, line_crossings_tabulated, stable_between,
+};
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::Loop;
@@ -37,7 +40,10 @@ use crate::params::{MAX_DELAY, Wall};
 use crate::verdict::stable as verdict_stable;
 
 pub use delay::{DelayScan, delay_margin, delay_scan};
-pub use frequency::{GainCrossover, gain_scan, loop_value, stability_margin, wrap_degrees};
+pub use frequency::{
+    GainCrossover, frequency_grid, gain_scan, gain_scan_on, loop_value, stability_margin,
+    stability_margin_on, wrap_degrees,
+};
 
 /// θ samples per degree of p for the certified delay scan's robustness bound.
 pub(crate) const SAMPLES_PER_DEGREE: usize = 256;
@@ -188,8 +194,9 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
     let hz = |theta: f64| theta / (2.0 * std::f64::consts::PI * lp.period);
     let mut out = Margins::withheld(true, "");
     out.notes.clear();
-    let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(&fam, &WallLine::ray(p), 1.0, hz));
-    let axis = (a != 0.0).then(|| factors(&fam, &WallLine::stiffness_axis(b), a, hz));
+    let table = CircleTable::serial(&fam);
+    let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(&fam, &table, &WallLine::ray(p), 1.0, hz));
+    let axis = (a != 0.0).then(|| factors(&fam, &table, &WallLine::stiffness_axis(b), a, hz));
     if let Some(r) = &ray {
         (out.gain, out.gain_lower) = (r.upper, r.lower);
         out.crossings = r.crossings.clone();
@@ -211,7 +218,8 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
         out.notes
             .push("no factor on K makes the wall unstable (stiffness margin unbounded)".into());
     }
-    let scan = gain_scan(&fam, a, b);
+    let modes = frequency_grid(&fam, a, b);
+    let scan = gain_scan_on(&fam, a, b, &modes);
     out.peak_gain = scan
         .peak
         .1
@@ -244,13 +252,13 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
             scan.peak.0
         ));
     }
-    let (sm, t) = stability_margin(&fam, a, b);
+    let (sm, t) = stability_margin_on(&fam, a, b, &modes);
     out.stability_margin = sm.is_finite().then(|| StabilityMargin {
         value: sm,
         theta: t,
         frequency_hz: hz(t),
     });
-    let (delay, pm_over_wc) = delay::delay_margin_with(lp, wall, &scan)?;
+    let (delay, pm_over_wc) = delay::delay_margin_with(lp, wall, &scan, &modes)?;
     out.delay_pm_over_wc = pm_over_wc;
     delay_note(&mut out, delay);
     Ok(out)
@@ -288,8 +296,14 @@ struct Factors {
 /// of the exact stable interval containing t0, divided by t0: upward the end away from t = 0,
 /// downward the end toward it when it lies on the same side of 0), and every crossing of the
 /// line as a phase crossover with its factor t/t0.
-fn factors(fam: &AffineFamily, line: &WallLine, t0: f64, hz: impl Fn(f64) -> f64) -> Factors {
-    let crossings = line_crossings(fam, line);
+fn factors(
+    fam: &AffineFamily,
+    table: &CircleTable,
+    line: &WallLine,
+    t0: f64,
+    hz: impl Fn(f64) -> f64,
+) -> Factors {
+    let crossings = line_crossings_tabulated(fam, table, line);
     let ivs = stable_between(fam, line, &crossings);
     let margin = |end: f64| -> Option<GainMargin> {
         let theta = crossings.iter().find(|c| c.t == end)?.theta;

@@ -1,6 +1,8 @@
 //! Helpers shared by the library's integration tests.
 #![allow(dead_code)]
 
+pub mod loops;
+
 /// SplitMix64 (Steele, Lea, Flood 2014): the seeded generator of the property tests.
 pub struct SplitMix(pub u64);
 

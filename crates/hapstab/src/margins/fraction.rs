@@ -1,0 +1,369 @@
+//! The open loop as a function of the fraction λ ∈ [0, 1) of a sample of delay, from one
+//! set of polynomials (the modified z-transform's dependence on λ, [`crate::zoh`]).
+//!
+//! The hold splits the input as Γ0(λ) = Ψ(1 − λ)B and Γ1 = Γ − Γ0 with Γ = Ψ(1)B, so the
+//! plant's numerator at a fractional delay is
+//!
+//! ```text
+//! N_λ(z) = C adj(zI − Φ)(z·Γ0 + Γ1) = C adj(zI − Φ)Γ + (z − 1)·C adj(zI − Φ)Γ0(λ),
+//! ```
+//!
+//! affine in the n-vector g(λ) = Γ0(λ). So is W_λ = a·PK + b·PB, while P0 = z·D·Vd does not
+//! depend on λ. With W_∅ the part at Γ0 = 0 and W_j the part at Γ0 = e_j (the same P0),
+//!
+//! ```text
+//! L_λ(θ) = [W_∅(θ) + Σ_j g_j(λ)·ΔW_j(θ)] / P0(θ),    ΔW_j = W_j − W_∅,
+//! ```
+//!
+//! which is exact at every λ (g(0) = Γ gives the loop without a fraction, one sample later;
+//! g → 0 as λ → 1 gives it two samples later: |L_0| = |L_1|). One evaluation of the n + 2
+//! parts at θ then gives L at every fraction for n multiplications each.
+//!
+//! **A bound over every fraction.** Splitting g(λ) = (1 − λ)Γ + e(λ), the first part is
+//! affine in λ, so its |·| is largest at an end (where it is |L_0|·|P0|), and e(0) = e(1) = 0
+//! with e'' = g'' = A·e^{A(1−λ)}B, so |e_j| ≤ δ_j: the largest |e_j| on the fraction grid
+//! plus h²/8·max |g''_j| for the grid's step h. Hence
+//! max_λ |L_λ(θ)| ≤ [max(|W_∅|, |W_∅ + Σ Γ_j ΔW_j|) + Σ_j δ_j·|ΔW_j|]/|P0|.
+
+use num_complex::Complex64;
+
+use super::frequency::frequency_grid;
+use crate::closed_loop::AffineFamily;
+use crate::error::Result;
+use crate::extremum::{golden_max, merge_grid, refine_max, sample_maxima};
+use crate::model::{Delay, Loop};
+use crate::poly::{self, Mat};
+use crate::zoh::{DiscreteLoop, StateSpace, exp_and_integral};
+
+/// Fractions j/FRACTIONS of a sample (j = 0 … FRACTIONS − 1) on which the crossovers of every
+/// fraction's loop are tabulated, and on which the bound's δ_j is sampled.
+pub const FRACTIONS: usize = 64;
+
+/// Local maxima of ln|L_λ| within this of 0 that stay below it are refined: a pair of
+/// crossovers the grid straddled (the grid samples every mode's peak within a tenth of its
+/// width, so a farther one cannot reach 1).
+const REFINE_LOG: f64 = std::f64::consts::LN_2;
+
+/// Refinement of a maximum stops at this relative width in θ (a seed needs no more).
+const SEED_THETA_REL: f64 = 1e-9;
+
+/// The loop of one wall at every fraction of a sample (module doc), on the frequency grid of
+/// the loop without a fraction and of the loop at half a sample.
+pub struct FractionLoop {
+    /// State matrix A of the continuous plant (normalized time).
+    a_mat: Mat,
+    /// Input vector B.
+    b_vec: Vec<f64>,
+    /// Γ = Ψ(1)B = g(0).
+    gamma: Vec<f64>,
+    /// The family at Γ0 = 0, then one at each Γ0 = e_j (one sample of whole delay: k = 1).
+    families: Vec<AffineFamily>,
+    /// The wall in wall units.
+    wall: (f64, f64),
+    /// The frequency grid of the table.
+    pub grid: Vec<f64>,
+}
+
+/// The n + 2 parts of [`FractionLoop`] at one θ: P0, W_∅ and every ΔW_j.
+#[derive(Debug, Clone)]
+pub struct FractionParts {
+    /// P0(e^{iθ}).
+    pub p0: Complex64,
+    /// W_∅(e^{iθ}).
+    pub base: Complex64,
+    /// ΔW_j(e^{iθ}).
+    pub deltas: Vec<Complex64>,
+}
+
+impl FractionParts {
+    /// L_λ = (W_∅ + Σ g_j ΔW_j)/P0 for the hold input g = g(λ).
+    pub fn loop_at(&self, g: &[f64]) -> Complex64 {
+        let w = self
+            .deltas
+            .iter()
+            .zip(g)
+            .fold(self.base, |acc, (d, &gj)| acc + d * gj);
+        w / self.p0
+    }
+
+    /// Σ g'_j ΔW_j / P0: the λ-derivative of L_λ for g' = dg/dλ.
+    pub fn slope_at(&self, dg: &[f64]) -> Complex64 {
+        let w = self
+            .deltas
+            .iter()
+            .zip(dg)
+            .fold(Complex64::new(0.0, 0.0), |acc, (d, &gj)| acc + d * gj);
+        w / self.p0
+    }
+}
+
+/// The hold input at one fraction: g(λ) = Ψ(1 − λ)B, its λ-derivative −e^{A(1−λ)}B and its
+/// second derivative A·e^{A(1−λ)}B.
+#[derive(Debug, Clone)]
+pub struct HoldInput {
+    /// g(λ).
+    pub g: Vec<f64>,
+    /// dg/dλ.
+    pub dg: Vec<f64>,
+    /// d²g/dλ².
+    pub ddg: Vec<f64>,
+}
+
+impl FractionLoop {
+    /// The fraction loop of a wall (a, b) in wall units on a loop (its whole-sample delay is
+    /// not part of it: the caller turns the phase by e^{−iwθ} for w whole samples); `modes`
+    /// is the [`frequency_grid`] of the loop as it is, joined by that of the loop at half a
+    /// sample.
+    pub fn new(lp: &Loop, a: f64, b: f64, modes: &[f64]) -> Result<Self> {
+        let half = lp.with_delay(Delay {
+            samples: 0,
+            fraction: 0.5,
+        })?;
+        let template = half.discretize()?;
+        let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
+        let (_, psi1) = exp_and_integral(&ss.a, 1.0);
+        let gamma = poly::mat_vec(&psi1, &ss.b);
+        let n = gamma.len();
+        let with_hold = |g0: Vec<f64>| -> AffineFamily {
+            let g1 = gamma.iter().zip(&g0).map(|(x, y)| x - y).collect();
+            AffineFamily::new(&DiscreteLoop {
+                gamma0: g0,
+                gamma1: g1,
+                ..template.clone()
+            })
+        };
+        let mut families = vec![with_hold(vec![0.0; n])];
+        families.extend((0..n).map(|j| {
+            let mut e = vec![0.0; n];
+            e[j] = 1.0;
+            with_hold(e)
+        }));
+        let mut grid = modes.to_vec();
+        grid.extend(frequency_grid(&AffineFamily::new(&template), a, b));
+        merge_grid(&mut grid);
+        Ok(Self {
+            a_mat: ss.a,
+            b_vec: ss.b,
+            gamma,
+            families,
+            wall: (a, b),
+            grid,
+        })
+    }
+
+    /// The parts at θ (module doc).
+    pub fn parts(&self, theta: f64) -> FractionParts {
+        let (a, b) = self.wall;
+        let mut p0 = Complex64::new(0.0, 0.0);
+        let mut ws = self.families.iter().map(|f| {
+            let (q0, pk, pb) = f.parts_on_circle(theta);
+            p0 = q0;
+            pk * a + pb * b
+        });
+        let base = ws.next().unwrap_or_default();
+        let deltas = ws.map(|w| w - base).collect();
+        FractionParts { p0, base, deltas }
+    }
+
+    /// The hold input at the fraction λ ∈ [0, 1] (module doc).
+    pub fn hold(&self, lambda: f64) -> HoldInput {
+        let (e, psi) = exp_and_integral(&self.a_mat, 1.0 - lambda);
+        let g = poly::mat_vec(&psi, &self.b_vec);
+        let u: Vec<f64> = poly::mat_vec(&e, &self.b_vec)
+            .iter()
+            .zip(&self.b_vec)
+            .map(|(x, y)| x + y)
+            .collect();
+        let ddg = poly::mat_vec(&self.a_mat, &u);
+        HoldInput {
+            g,
+            dg: u.iter().map(|x| -x).collect(),
+            ddg,
+        }
+    }
+
+    /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS − 1.
+    pub fn holds(&self) -> Vec<HoldInput> {
+        (0..FRACTIONS)
+            .map(|j| self.hold(j as f64 / FRACTIONS as f64))
+            .collect()
+    }
+
+    /// δ_j of the module doc: a bound of |g_j(λ) − (1 − λ)Γ_j| over λ ∈ [0, 1].
+    pub fn deviation_bound(&self, holds: &[HoldInput]) -> Vec<f64> {
+        let h = 1.0 / FRACTIONS as f64;
+        let last = self.hold(1.0);
+        (0..self.gamma.len())
+            .map(|j| {
+                let (mut dev, mut curv) = (0.0_f64, last.ddg[j].abs());
+                for (i, hi) in holds.iter().enumerate() {
+                    let lambda = i as f64 * h;
+                    dev = dev.max((hi.g[j] - (1.0 - lambda) * self.gamma[j]).abs());
+                    curv = curv.max(hi.ddg[j].abs());
+                }
+                dev + h * h / 8.0 * curv
+            })
+            .collect()
+    }
+
+    /// Bounds (below, above) of |L_λ(θ)| over every fraction from its parts (module doc): the
+    /// affine part's distance to 0 (the nearest point of its segment) and its largest end,
+    /// each moved by the deviation's spread.
+    pub fn gain_bounds(&self, parts: &FractionParts, delta: &[f64]) -> (f64, f64) {
+        let full = parts
+            .deltas
+            .iter()
+            .zip(&self.gamma)
+            .fold(parts.base, |acc, (d, &gj)| acc + d * gj);
+        let spread: f64 = parts
+            .deltas
+            .iter()
+            .zip(delta)
+            .map(|(d, dj)| d.norm() * dj)
+            .sum();
+        let m = parts.p0.norm();
+        let (x, y) = (parts.base, full);
+        let dir = y - x;
+        let t = if dir.norm_sqr() > 0.0 {
+            (-(x.conj() * dir).re / dir.norm_sqr()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let nearest = (x + dir * t).norm();
+        (
+            (nearest - spread).max(0.0) / m,
+            (x.norm().max(y.norm()) + spread) / m,
+        )
+    }
+}
+
+/// The table of a [`FractionLoop`] on its grid, with the bound over every fraction.
+pub struct FractionTable<'a> {
+    fl: &'a FractionLoop,
+    parts: Vec<FractionParts>,
+    /// Bounds (below, above) of |L_λ| over every fraction at every grid angle.
+    pub bounds: Vec<(f64, f64)>,
+    delta: Vec<f64>,
+    holds: Vec<HoldInput>,
+}
+
+/// A crossover |L_λ(θ)| = 1 of one fraction's loop, with L there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FractionCrossover {
+    /// The fraction λ.
+    pub lambda: f64,
+    /// The angle θ.
+    pub theta: f64,
+    /// L_λ(e^{iθ}) (|L| = 1 to the grid's interpolation).
+    pub value: Complex64,
+}
+
+impl<'a> FractionTable<'a> {
+    /// Tabulates the parts and the bound on the grid.
+    pub fn new(fl: &'a FractionLoop) -> Self {
+        let holds = fl.holds();
+        let delta = fl.deviation_bound(&holds);
+        let parts: Vec<FractionParts> = fl.grid.iter().map(|&t| fl.parts(t)).collect();
+        let bounds = parts.iter().map(|p| fl.gain_bounds(p, &delta)).collect();
+        Self {
+            fl,
+            parts,
+            bounds,
+            delta,
+            holds,
+        }
+    }
+
+    /// The largest bound over θ: the grid's largest, and every local maximum within a factor
+    /// of two of 1, refined by golden section ([`crate::extremum`]).
+    pub fn peak_bound(&self) -> f64 {
+        let ts = &self.fl.grid;
+        let f = |t: f64| self.fl.gain_bounds(&self.fl.parts(t), &self.delta).1;
+        let upper: Vec<f64> = self.bounds.iter().map(|b| b.1).collect();
+        let mut peak = upper.iter().copied().fold(0.0, f64::max);
+        let top = (0..ts.len()).max_by(|&i, &j| upper[i].total_cmp(&upper[j]));
+        for i in sample_maxima(&upper).chain(top) {
+            if upper[i] > 0.5 {
+                peak = peak.max(refine_max(f, ts, i, SEED_THETA_REL).1);
+            }
+        }
+        peak
+    }
+
+    /// Every crossover of every fraction j/[`FRACTIONS`]'s loop: sign changes of ln|L_λ| on
+    /// the grid, located by linear interpolation, and the maxima that reach 1 between
+    /// samples. L_λ is evaluated only where the bounds leave |L_λ| − 1 of either sign at some
+    /// fraction, and beside a neighbour whose sign the bounds fix otherwise.
+    pub fn crossovers(&self) -> Vec<FractionCrossover> {
+        let n = self.parts.len();
+        let side: Vec<i8> = self
+            .bounds
+            .iter()
+            .map(|&(lo, hi)| {
+                if lo > 1.0 {
+                    1
+                } else if hi < 1.0 {
+                    -1
+                } else {
+                    0
+                }
+            })
+            .collect();
+        let near: Vec<usize> = (0..n)
+            .filter(|&i| {
+                side[i] == 0
+                    || (i > 0 && side[i - 1] != side[i])
+                    || (i + 1 < n && side[i + 1] != side[i])
+            })
+            .collect();
+        let mut out = Vec::new();
+        for (j, hold) in self.holds.iter().enumerate() {
+            let lambda = j as f64 / FRACTIONS as f64;
+            let ls: Vec<Complex64> = near
+                .iter()
+                .map(|&i| self.parts[i].loop_at(&hold.g))
+                .collect();
+            let vs: Vec<f64> = ls.iter().map(|l| l.norm().ln()).collect();
+            for k in 1..near.len() {
+                let (i0, i1) = (near[k - 1], near[k]);
+                if i1 != i0 + 1 || (vs[k - 1] > 0.0) == (vs[k] > 0.0) {
+                    continue;
+                }
+                let t = vs[k - 1] / (vs[k - 1] - vs[k]);
+                let (t0, t1) = (self.fl.grid[i0], self.fl.grid[i1]);
+                out.push(FractionCrossover {
+                    lambda,
+                    theta: t0 + t * (t1 - t0),
+                    value: ls[k - 1] + (ls[k] - ls[k - 1]) * t,
+                });
+            }
+            out.extend(self.hidden_pairs(lambda, hold, &near, &vs));
+        }
+        out
+    }
+
+    /// Maxima of ln|L_λ| just below 0 at the samples that rise above it between them.
+    fn hidden_pairs(
+        &self,
+        lambda: f64,
+        hold: &HoldInput,
+        near: &[usize],
+        vs: &[f64],
+    ) -> Vec<FractionCrossover> {
+        let ts = &self.fl.grid;
+        let g = |t: f64| self.fl.parts(t).loop_at(&hold.g).norm().ln();
+        sample_maxima(vs)
+            .filter(|&k| vs[k] <= 0.0 && vs[k] > -REFINE_LOG)
+            .filter(|&k| near[k] > 0 && near[k] + 1 < ts.len())
+            .filter_map(|k| {
+                let i = near[k];
+                let (t, v) = golden_max(g, ts[i - 1], ts[i + 1], SEED_THETA_REL * ts[i]);
+                (v > 0.0).then(|| FractionCrossover {
+                    lambda,
+                    theta: t,
+                    value: self.fl.parts(t).loop_at(&hold.g),
+                })
+            })
+            .collect()
+    }
+}
