@@ -352,12 +352,22 @@ impl CircleTable {
         Self { thetas, parts }
     }
 
-    /// The table of `fam` built on this thread: for one analysis of a small loop, where the
-    /// parallel tasks' start costs more than the scan.
-    pub fn serial(fam: &AffineFamily) -> Self {
-        let thetas = scan_thetas(fam);
+    /// The table of `fam` on the given sorted angles in (0, π), built on this thread: one
+    /// analysis's shared grid (the margins'), where a parallel task's start costs more than
+    /// the scan. Its crossings are those of [`line_crossings`] on that grid.
+    pub fn on(fam: &AffineFamily, thetas: Vec<f64>) -> Self {
         let parts = thetas.iter().map(|&t| fam.parts_on_circle(t)).collect();
         Self { thetas, parts }
+    }
+
+    /// The table's angles, increasing.
+    pub fn thetas(&self) -> &[f64] {
+        &self.thetas
+    }
+
+    /// (P0, PK, PB) at each angle.
+    pub fn parts(&self) -> &[(Complex64, Complex64, Complex64)] {
+        &self.parts
     }
 }
 

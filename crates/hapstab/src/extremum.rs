@@ -7,7 +7,8 @@
 //!    one ulp apart, and two samples of the same point in rounding noise fake an extremum
 //!    whose bracket misses the real one);
 //! 2. a local extremum of the samples brackets a stationary point between its neighbours;
-//! 3. [`refine_max`] refines it by golden section ([`golden_max`]) and, when the search lands
+//! 3. [`refine_max`] refines it by Brent's method ([`brent_max`]: parabolic steps, golden
+//!    section where they fail) and, when the search lands
 //!    on an end of its bracket (no stationary point inside: the samples were in noise, or two
 //!    extrema shared the cell), moves the bracket one cell that way and searches again, so the
 //!    point returned is a stationary point or an end of the whole interval.
@@ -15,6 +16,13 @@
 /// Golden-section iterations at most: the bracket shrinks by 0.618 each, from two grid cells
 /// to 1e-13 of the angle in about 60.
 const GOLDEN_ITERATIONS: usize = 80;
+
+/// Brent's method's iterations at most (it needs about 10–20 for a smooth maximum; its
+/// golden-section fallback halves the bracket's width every two).
+const BRENT_ITERATIONS: usize = 100;
+
+/// 1 − 1/φ: the golden-section step of Brent's method.
+const GOLDEN_STEP: f64 = 0.381_966_011_250_105_1;
 
 /// Angles closer than this (relative) are one point of the grid.
 pub const MERGE_REL: f64 = 1e-12;
@@ -50,6 +58,80 @@ pub fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) ->
     if f1 >= f2 { (x1, f1) } else { (x2, f2) }
 }
 
+/// Brent's method for the maximum of f on [lo, hi] down to a bracket of about width tol:
+/// (argmax, max). Parabolic interpolation through the three best points, a golden-section
+/// step where the parabola's vertex falls outside the bracket or the steps stop shrinking
+/// (Brent 1973, *Algorithms for Minimization without Derivatives*, ch. 5, `localmin`; Press
+/// et al., *Numerical Recipes* §10.3).
+pub fn brent_max(f: impl Fn(f64) -> f64, lo: f64, hi: f64, tol: f64) -> (f64, f64) {
+    let g = |x: f64| -f(x);
+    let (mut a, mut b) = (lo, hi);
+    let mut x = a + GOLDEN_STEP * (b - a);
+    let (mut w, mut v) = (x, x);
+    let mut fx = g(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut d, mut e) = (0.0_f64, 0.0_f64);
+    for _ in 0..BRENT_ITERATIONS {
+        let xm = 0.5 * (a + b);
+        let tol1 = 0.25 * tol + f64::EPSILON * x.abs();
+        let tol2 = 2.0 * tol1;
+        if (x - xm).abs() <= tol2 - 0.5 * (b - a) {
+            break;
+        }
+        let mut parabolic = false;
+        if e.abs() > tol1 {
+            let r = (x - w) * (fx - fv);
+            let q0 = (x - v) * (fx - fw);
+            let mut p = (x - v) * q0 - (x - w) * r;
+            let mut q = 2.0 * (q0 - r);
+            if q > 0.0 {
+                p = -p;
+            }
+            q = q.abs();
+            let e_old = e;
+            e = d;
+            if p.abs() < (0.5 * q * e_old).abs() && p > q * (a - x) && p < q * (b - x) {
+                d = p / q;
+                let u = x + d;
+                if u - a < tol2 || b - u < tol2 {
+                    d = tol1.copysign(xm - x);
+                }
+                parabolic = true;
+            }
+        }
+        if !parabolic {
+            e = if x >= xm { a - x } else { b - x };
+            d = GOLDEN_STEP * e;
+        }
+        let u = if d.abs() >= tol1 {
+            x + d
+        } else {
+            x + tol1.copysign(d)
+        };
+        let fu = g(u);
+        if fu <= fx {
+            if u >= x {
+                a = x;
+            } else {
+                b = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
+        }
+    }
+    (x, -fx)
+}
+
 /// Sorts the angles and merges those within [`MERGE_REL`] (relative) of the previous one.
 pub fn merge_grid(ts: &mut Vec<f64>) {
     ts.retain(|t| t.is_finite());
@@ -67,7 +149,7 @@ pub fn sample_maxima(vs: &[f64]) -> impl Iterator<Item = usize> + '_ {
 }
 
 /// The local maximum of f bracketed by the samples ts[i − 1] < ts[i] < ts[i + 1], refined by
-/// golden section to `rel` of the angle; the bracket moves by one cell (at most
+/// Brent's method ([`brent_max`]) to `rel` of the angle; the bracket moves by one cell (at most
 /// [`MAX_SHIFTS`] times) while the search lands on one of its inner ends (module doc).
 /// Returns (argmax, max), never below the sample f(ts[i]).
 pub fn refine_max(f: impl Fn(f64) -> f64, ts: &[f64], i: usize, rel: f64) -> (f64, f64) {
@@ -86,7 +168,7 @@ pub fn refine_max(f: impl Fn(f64) -> f64, ts: &[f64], i: usize, rel: f64) -> (f6
     for _ in 0..=MAX_SHIFTS {
         let (lo, hi) = (ts[i - 1], ts[i + 1]);
         let tol = rel * lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
-        let (t, v) = golden_max(&f, lo, hi, tol);
+        let (t, v) = brent_max(&f, lo, hi, tol);
         if v >= best.1 {
             best = (t, v);
         }
@@ -111,6 +193,18 @@ mod tests {
         let (t, v) = golden_max(|x| 2.0 - (x - 0.3).powi(2), 0.0, 1.0, 1e-13);
         assert!((t - 0.3).abs() < 1e-7, "{t}");
         assert!((v - 2.0).abs() < 1e-14, "{v}");
+    }
+
+    #[test]
+    fn brent_finds_the_vertex_of_a_parabola_and_of_a_quartic() {
+        let (t, v) = brent_max(|x| 2.0 - (x - 0.3).powi(2), 0.0, 1.0, 1e-13);
+        assert!((t - 0.3).abs() < 1e-7, "{t}");
+        assert!((v - 2.0).abs() < 1e-14, "{v}");
+        // a flat (quartic) top and a maximum at the bracket's end
+        let (t, v) = brent_max(|x| 1.0 - (x - 0.7).powi(4), 0.0, 1.0, 1e-13);
+        assert!((t - 0.7).abs() < 1e-3 && (v - 1.0).abs() < 1e-12, "{t} {v}");
+        let (t, _) = brent_max(|x| x, 0.0, 1.0, 1e-13);
+        assert!(1.0 - t < 1e-12, "{t}");
     }
 
     #[test]

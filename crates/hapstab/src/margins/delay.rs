@@ -16,7 +16,7 @@
 use num_complex::Complex64;
 
 use super::fraction::{FractionCrossover, FractionLoop, FractionTable};
-use super::frequency::{GainScan, frequency_grid, gain_scan_on};
+use super::frequency::{GainScan, frequency_grid, gain_scan};
 use super::{DelayMargin, SAMPLES_PER_DEGREE};
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
@@ -77,7 +77,7 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
     let base = AffineFamily::of_loop(lp)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(&base, a, b);
-    delay_margin_with(lp, wall, &gain_scan_on(&base, a, b, &modes), &modes)
+    delay_margin_with(lp, wall, &gain_scan(&base, a, b), &modes)
 }
 
 /// [`delay_margin`] with the gain scan of the loop as it is (its crossovers give PM/ω_c) and

@@ -21,6 +21,7 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
+use crate::boundary::CircleTable;
 use crate::closed_loop::AffineFamily;
 use crate::extremum::{merge_grid, refine_max, sample_maxima};
 use crate::stability::roots;
@@ -126,14 +127,32 @@ pub struct GainScan {
 
 /// Every gain crossover and the peak gain of the wall (a, b) (module doc).
 pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
-    gain_scan_on(fam, a, b, &frequency_grid(fam, a, b))
+    let table = CircleTable::on(fam, frequency_grid(fam, a, b));
+    gain_scan_tabulated(fam, a, b, &table)
 }
 
-/// [`gain_scan`] on the family's [`frequency_grid`] `ts`, computed once by a caller that
-/// needs it for several scans.
-pub fn gain_scan_on(fam: &AffineFamily, a: f64, b: f64, ts: &[f64]) -> GainScan {
+/// The margins' shared grid: the family's [`frequency_grid`] `modes` joined by a uniform grid
+/// of [`UNIFORM_PER_DEGREE`]·(n + 2) angles for p's degree n (a delay turns the phase of L
+/// once per 2π/d, so the phase crossings and min |1 + L| need it), inside (0, π).
+pub fn margin_grid(fam: &AffineFamily, modes: &[f64]) -> Vec<f64> {
+    let m = UNIFORM_PER_DEGREE * (fam.degree() + 2);
+    let pi = std::f64::consts::PI;
+    let mut ts = modes.to_vec();
+    ts.extend((1..m).map(|i| pi * i as f64 / m as f64));
+    merge_grid(&mut ts);
+    ts
+}
+
+/// [`gain_scan`] with the samples taken from a table on a grid that contains the family's
+/// [`frequency_grid`] (the margins' shared [`margin_grid`]).
+pub fn gain_scan_tabulated(fam: &AffineFamily, a: f64, b: f64, table: &CircleTable) -> GainScan {
+    let ts = table.thetas();
     let g = |t: f64| log_gain(fam, a, b, t);
-    let vs: Vec<f64> = ts.iter().map(|&t| g(t)).collect();
+    let vs: Vec<f64> = table
+        .parts()
+        .iter()
+        .map(|&(p0, pk, pb)| (pk * a + pb * b).norm().ln() - p0.norm().ln())
+        .collect();
     let mut thetas = Vec::new();
     let mut peak = (f64::NEG_INFINITY, f64::NAN);
     for i in 0..ts.len() {
@@ -214,21 +233,36 @@ fn pair_around(
 /// frequency grid of the delay-free magnitude refined by the uniform grid of the full degree
 /// (a delay turns L round −1 once per 2π/d).
 pub fn stability_margin(fam: &AffineFamily, a: f64, b: f64) -> (f64, f64) {
-    stability_margin_on(fam, a, b, &frequency_grid(fam, a, b))
+    let table = CircleTable::on(fam, margin_grid(fam, &frequency_grid(fam, a, b)));
+    stability_margin_tabulated(fam, a, b, &table)
 }
 
-/// [`stability_margin`] with the family's [`frequency_grid`] `modes` computed by the caller.
-pub fn stability_margin_on(fam: &AffineFamily, a: f64, b: f64, modes: &[f64]) -> (f64, f64) {
+/// [`stability_margin`] with the samples taken from a table on the [`margin_grid`], and at
+/// θ = 0 and π.
+pub fn stability_margin_tabulated(
+    fam: &AffineFamily,
+    a: f64,
+    b: f64,
+    table: &CircleTable,
+) -> (f64, f64) {
     let pi = std::f64::consts::PI;
     let f = |t: f64| {
         let (p0, pk, pb) = fam.parts_on_circle(t);
         (p0 + pk * a + pb * b).norm() / p0.norm()
     };
-    let m = UNIFORM_PER_DEGREE * (fam.degree() + 2);
-    let mut ts = modes.to_vec();
-    ts.extend((0..=m).map(|i| pi * i as f64 / m as f64));
-    merge_grid(&mut ts);
-    let neg: Vec<f64> = ts.iter().map(|&t| -f(t)).collect();
+    let mut ts = Vec::with_capacity(table.thetas().len() + 2);
+    ts.push(0.0);
+    ts.extend_from_slice(table.thetas());
+    ts.push(pi);
+    let mut neg = Vec::with_capacity(ts.len());
+    neg.push(-f(0.0));
+    neg.extend(
+        table
+            .parts()
+            .iter()
+            .map(|&(p0, pk, pb)| -((p0 + pk * a + pb * b).norm() / p0.norm())),
+    );
+    neg.push(-f(pi));
     let mut best = (f64::INFINITY, f64::NAN);
     for (i, &v) in neg.iter().enumerate() {
         if -v < best.0 {

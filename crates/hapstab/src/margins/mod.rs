@@ -30,9 +30,7 @@ pub mod frequency;
 
 use serde::Serialize;
 
-use crate::boundary::{
-    AlphaBeta, CircleTable, WallLine, line_crossings_tabulated, stable_between,
-};
+use crate::boundary::{AlphaBeta, CircleTable, WallLine, line_crossings_tabulated, stable_between};
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::Loop;
@@ -41,8 +39,8 @@ use crate::verdict::stable as verdict_stable;
 
 pub use delay::{DelayScan, delay_margin, delay_scan};
 pub use frequency::{
-    GainCrossover, frequency_grid, gain_scan, gain_scan_on, loop_value, stability_margin,
-    stability_margin_on, wrap_degrees,
+    GainCrossover, frequency_grid, gain_scan, gain_scan_tabulated, loop_value, margin_grid,
+    stability_margin, stability_margin_tabulated, wrap_degrees,
 };
 
 /// θ samples per degree of p for the certified delay scan's robustness bound.
@@ -194,7 +192,8 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
     let hz = |theta: f64| theta / (2.0 * std::f64::consts::PI * lp.period);
     let mut out = Margins::withheld(true, "");
     out.notes.clear();
-    let table = CircleTable::serial(&fam);
+    let modes = frequency_grid(&fam, a, b);
+    let table = CircleTable::on(&fam, margin_grid(&fam, &modes));
     let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(&fam, &table, &WallLine::ray(p), 1.0, hz));
     let axis = (a != 0.0).then(|| factors(&fam, &table, &WallLine::stiffness_axis(b), a, hz));
     if let Some(r) = &ray {
@@ -218,8 +217,7 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
         out.notes
             .push("no factor on K makes the wall unstable (stiffness margin unbounded)".into());
     }
-    let modes = frequency_grid(&fam, a, b);
-    let scan = gain_scan_on(&fam, a, b, &modes);
+    let scan = gain_scan_tabulated(&fam, a, b, &table);
     out.peak_gain = scan
         .peak
         .1
@@ -252,7 +250,7 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
             scan.peak.0
         ));
     }
-    let (sm, t) = stability_margin_on(&fam, a, b, &modes);
+    let (sm, t) = stability_margin_tabulated(&fam, a, b, &table);
     out.stability_margin = sm.is_finite().then(|| StabilityMargin {
         value: sm,
         theta: t,
