@@ -268,15 +268,24 @@ impl AffineFamily {
     /// w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ (no cancellation), elsewhere from the
     /// z-coefficients; z^k = e^{ikθ} in polar form.
     pub fn parts_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64) {
-        let zk = Complex64::from_polar(1.0, theta * self.k as f64);
+        // z^k without a second sine and cosine where k ≤ 1
+        let power = |z: Complex64| match self.k {
+            0 => Complex64::new(1.0, 0.0),
+            1 => z,
+            k => Complex64::from_polar(1.0, theta * k as f64),
+        };
         match &self.shifted {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
-                let h = (0.5 * theta).sin();
-                let w = Complex64::new(-2.0 * h * h, theta.sin());
-                let [c, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
-                (zk * c, pk, pb)
+                // sin θ = 2 sin(θ/2) cos(θ/2): one sine and cosine for w and z = 1 + w
+                let (h, c) = (0.5 * theta).sin_cos();
+                let w = Complex64::new(-2.0 * h * h, 2.0 * h * c);
+                let [p0, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
+                (power(w + 1.0) * p0, pk, pb)
             }
-            _ => self.parts_with_power(Complex64::from_polar(1.0, theta), zk),
+            _ => {
+                let z = Complex64::from_polar(1.0, theta);
+                self.parts_with_power(z, power(z))
+            }
         }
     }
 

@@ -44,6 +44,14 @@ pub fn trim(mut a: Vec<f64>) -> Vec<f64> {
     a
 }
 
+/// |z| as √(re² + im²) where the square is a normal number (no overflow, no underflow: to
+/// an ulp, and several times faster than `hypot`), else by `hypot`.
+#[inline]
+pub fn modulus(z: Complex64) -> f64 {
+    let s = z.norm_sqr();
+    if s.is_normal() { s.sqrt() } else { z.norm() }
+}
+
 /// Value at a complex point by Horner's rule.
 pub fn eval(c: &[f64], z: Complex64) -> Complex64 {
     c.iter()

@@ -28,11 +28,11 @@
 use num_complex::Complex64;
 
 use super::frequency::frequency_grid;
-use crate::closed_loop::AffineFamily;
+use crate::closed_loop::{AffineFamily, SHIFTED_THETA};
 use crate::error::Result;
 use crate::extremum::{golden_max, merge_grid, refine_max, sample_maxima};
 use crate::model::{Delay, Loop};
-use crate::poly::{self, Mat};
+use crate::poly::{self, Mat, modulus};
 use crate::zoh::{DiscreteLoop, StateSpace, exp_and_integral};
 
 /// Fractions j/FRACTIONS of a sample (j = 0 … FRACTIONS − 1) on which the crossovers of every
@@ -56,10 +56,11 @@ pub struct FractionLoop {
     b_vec: Vec<f64>,
     /// Γ = Ψ(1)B = g(0).
     gamma: Vec<f64>,
-    /// The family at Γ0 = 0, then one at each Γ0 = e_j (one sample of whole delay: k = 1).
-    families: Vec<AffineFamily>,
-    /// The wall in wall units.
-    wall: (f64, f64),
+    /// P0's core and the wall parts W_∅, ΔW_1 … ΔW_n, ascending in z.
+    in_z: Polys,
+    /// The same in w = z − 1, for angles below [`SHIFTED_THETA`] (None for a velocity filter
+    /// without a shifted form).
+    in_w: Option<Polys>,
     /// The frequency grid of the table.
     pub grid: Vec<f64>,
 }
@@ -109,6 +110,49 @@ pub struct HoldInput {
     pub ddg: Vec<f64>,
 }
 
+/// P0's core and the wall parts of a [`FractionLoop`] in one variable (P0 = z·core: the hold
+/// splits into one more sample, k = 1).
+struct Polys {
+    p0_core: Vec<f64>,
+    walls: Vec<Vec<f64>>,
+}
+
+impl Polys {
+    /// a·PK + b·PB of every family, the first as it is and the others less the first; P0's
+    /// core from the first.
+    fn of(families: &[(&[f64], &[f64], &[f64])], (a, b): (f64, f64)) -> Self {
+        let wall = |pk: &[f64], pb: &[f64]| -> Vec<f64> {
+            (0..pk.len().max(pb.len()))
+                .map(|i| {
+                    a * pk.get(i).copied().unwrap_or(0.0) + b * pb.get(i).copied().unwrap_or(0.0)
+                })
+                .collect()
+        };
+        let base = wall(families[0].1, families[0].2);
+        let mut walls = vec![base.clone()];
+        walls.extend(families[1..].iter().map(|f| {
+            let w = wall(f.1, f.2);
+            (0..w.len().max(base.len()))
+                .map(|i| w.get(i).copied().unwrap_or(0.0) - base.get(i).copied().unwrap_or(0.0))
+                .collect()
+        }));
+        Self {
+            p0_core: families[0].0.to_vec(),
+            walls,
+        }
+    }
+
+    /// The parts at x (z or w), with P0 = z·core(x).
+    fn at(&self, x: Complex64, z: Complex64) -> FractionParts {
+        let mut walls = self.walls.iter().map(|c| poly::eval(c, x));
+        FractionParts {
+            p0: z * poly::eval(&self.p0_core, x),
+            base: walls.next().unwrap_or_default(),
+            deltas: walls.collect(),
+        }
+    }
+}
+
 impl FractionLoop {
     /// The fraction loop of a wall (a, b) in wall units on a loop (its whole-sample delay is
     /// not part of it: the caller turns the phase by e^{−iwθ} for w whole samples); `modes`
@@ -138,6 +182,22 @@ impl FractionLoop {
             e[j] = 1.0;
             with_hold(e)
         }));
+        let in_z = Polys::of(
+            &families
+                .iter()
+                .map(|f| (f.p0_core.as_slice(), f.pk.as_slice(), f.pb.as_slice()))
+                .collect::<Vec<_>>(),
+            (a, b),
+        );
+        let shifted: Option<Vec<_>> = families
+            .iter()
+            .map(|f| {
+                f.shifted
+                    .as_ref()
+                    .map(|sh| (sh.p0_core.as_slice(), sh.pk.as_slice(), sh.pb.as_slice()))
+            })
+            .collect();
+        let in_w = shifted.map(|sh| Polys::of(&sh, (a, b)));
         let mut grid = modes.to_vec();
         grid.extend(frequency_grid(&AffineFamily::new(&template), a, b));
         merge_grid(&mut grid);
@@ -145,24 +205,24 @@ impl FractionLoop {
             a_mat: ss.a,
             b_vec: ss.b,
             gamma,
-            families,
-            wall: (a, b),
+            in_z,
+            in_w,
             grid,
         })
     }
 
-    /// The parts at θ (module doc).
+    /// The parts at θ (module doc): in w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ below
+    /// [`SHIFTED_THETA`] (no cancellation near z = 1, as [`AffineFamily::parts_on_circle`]),
+    /// in z above.
     pub fn parts(&self, theta: f64) -> FractionParts {
-        let (a, b) = self.wall;
-        let mut p0 = Complex64::new(0.0, 0.0);
-        let mut ws = self.families.iter().map(|f| {
-            let (q0, pk, pb) = f.parts_on_circle(theta);
-            p0 = q0;
-            pk * a + pb * b
-        });
-        let base = ws.next().unwrap_or_default();
-        let deltas = ws.map(|w| w - base).collect();
-        FractionParts { p0, base, deltas }
+        let z = Complex64::from_polar(1.0, theta);
+        match &self.in_w {
+            Some(w_polys) if theta.abs() < SHIFTED_THETA => {
+                let h = (0.5 * theta).sin();
+                w_polys.at(Complex64::new(-2.0 * h * h, theta.sin()), z)
+            }
+            _ => self.in_z.at(z, z),
+        }
     }
 
     /// The hold input at the fraction λ ∈ [0, 1] (module doc).
@@ -182,20 +242,43 @@ impl FractionLoop {
         }
     }
 
-    /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS − 1.
+    /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS (the last, λ = 1,
+    /// only for the bound), by the exact one-step recursion in τ = 1 − λ with step
+    /// h = 1/FRACTIONS: g(τ + h) = Ψ(h)B + e^{Ah}g(τ), e^{A(τ+h)}B = e^{Ah}e^{Aτ}B.
     pub fn holds(&self) -> Vec<HoldInput> {
-        (0..FRACTIONS)
-            .map(|j| self.hold(j as f64 / FRACTIONS as f64))
-            .collect()
+        let (e, psi) = exp_and_integral(&self.a_mat, 1.0 / FRACTIONS as f64);
+        let step = poly::mat_vec(&psi, &self.b_vec);
+        let n = self.b_vec.len();
+        let advance = |x: &[f64]| -> Vec<f64> {
+            poly::mat_vec(&e, x)
+                .iter()
+                .zip(x)
+                .map(|(ex, x)| ex + x)
+                .collect()
+        };
+        let (mut g, mut u) = (vec![0.0; n], self.b_vec.clone());
+        let mut out = Vec::with_capacity(FRACTIONS + 1);
+        for m in 0..=FRACTIONS {
+            out.push(HoldInput {
+                g: g.clone(),
+                dg: u.iter().map(|x| -x).collect(),
+                ddg: poly::mat_vec(&self.a_mat, &u),
+            });
+            if m < FRACTIONS {
+                g = advance(&g).iter().zip(&step).map(|(x, s)| x + s).collect();
+                u = advance(&u);
+            }
+        }
+        out.reverse();
+        out
     }
 
     /// δ_j of the module doc: a bound of |g_j(λ) − (1 − λ)Γ_j| over λ ∈ [0, 1].
     pub fn deviation_bound(&self, holds: &[HoldInput]) -> Vec<f64> {
         let h = 1.0 / FRACTIONS as f64;
-        let last = self.hold(1.0);
         (0..self.gamma.len())
             .map(|j| {
-                let (mut dev, mut curv) = (0.0_f64, last.ddg[j].abs());
+                let (mut dev, mut curv) = (0.0_f64, 0.0_f64);
                 for (i, hi) in holds.iter().enumerate() {
                     let lambda = i as f64 * h;
                     dev = dev.max((hi.g[j] - (1.0 - lambda) * self.gamma[j]).abs());
@@ -219,9 +302,9 @@ impl FractionLoop {
             .deltas
             .iter()
             .zip(delta)
-            .map(|(d, dj)| d.norm() * dj)
+            .map(|(d, dj)| modulus(*d) * dj)
             .sum();
-        let m = parts.p0.norm();
+        let m = modulus(parts.p0);
         let (x, y) = (parts.base, full);
         let dir = y - x;
         let t = if dir.norm_sqr() > 0.0 {
@@ -229,10 +312,10 @@ impl FractionLoop {
         } else {
             0.0
         };
-        let nearest = (x + dir * t).norm();
+        let nearest = modulus(x + dir * t);
         (
             (nearest - spread).max(0.0) / m,
-            (x.norm().max(y.norm()) + spread) / m,
+            (modulus(x).max(modulus(y)) + spread) / m,
         )
     }
 }
@@ -317,13 +400,13 @@ impl<'a> FractionTable<'a> {
             })
             .collect();
         let mut out = Vec::new();
-        for (j, hold) in self.holds.iter().enumerate() {
+        for (j, hold) in self.holds.iter().take(FRACTIONS).enumerate() {
             let lambda = j as f64 / FRACTIONS as f64;
             let ls: Vec<Complex64> = near
                 .iter()
                 .map(|&i| self.parts[i].loop_at(&hold.g))
                 .collect();
-            let vs: Vec<f64> = ls.iter().map(|l| l.norm().ln()).collect();
+            let vs: Vec<f64> = ls.iter().map(|&l| modulus(l).ln()).collect();
             for k in 1..near.len() {
                 let (i0, i1) = (near[k - 1], near[k]);
                 if i1 != i0 + 1 || (vs[k - 1] > 0.0) == (vs[k] > 0.0) {
@@ -351,7 +434,7 @@ impl<'a> FractionTable<'a> {
         vs: &[f64],
     ) -> Vec<FractionCrossover> {
         let ts = &self.fl.grid;
-        let g = |t: f64| self.fl.parts(t).loop_at(&hold.g).norm().ln();
+        let g = |t: f64| modulus(self.fl.parts(t).loop_at(&hold.g)).ln();
         sample_maxima(vs)
             .filter(|&k| vs[k] <= 0.0 && vs[k] > -REFINE_LOG)
             .filter(|&k| near[k] > 0 && near[k] + 1 < ts.len())

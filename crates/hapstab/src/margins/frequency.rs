@@ -24,6 +24,7 @@ use serde::Serialize;
 use crate::boundary::CircleTable;
 use crate::closed_loop::AffineFamily;
 use crate::extremum::{merge_grid, refine_max, sample_maxima};
+use crate::poly::modulus;
 use crate::stability::roots;
 
 /// Uniform samples per delay-free degree (|L| − 1 changes sign at most twice per degree).
@@ -51,7 +52,12 @@ pub fn loop_value(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> Complex64 {
 /// ln |L(e^{iθ})|, free of the delay's phase.
 fn log_gain(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> f64 {
     let (p0, pk, pb) = fam.parts_on_circle(theta);
-    (pk * a + pb * b).norm().ln() - p0.norm().ln()
+    log_ratio(pk * a + pb * b, p0)
+}
+
+/// ln(|x|/|y|), from the moduli without `hypot` ([`modulus`]).
+fn log_ratio(x: Complex64, y: Complex64) -> f64 {
+    modulus(x).ln() - modulus(y).ln()
 }
 
 /// The angles θ ∈ (0, π) on which |L| of the wall (a, b) is sampled (module doc), sorted.
@@ -151,7 +157,7 @@ pub fn gain_scan_tabulated(fam: &AffineFamily, a: f64, b: f64, table: &CircleTab
     let vs: Vec<f64> = table
         .parts()
         .iter()
-        .map(|&(p0, pk, pb)| (pk * a + pb * b).norm().ln() - p0.norm().ln())
+        .map(|&(p0, pk, pb)| log_ratio(pk * a + pb * b, p0))
         .collect();
     let mut thetas = Vec::new();
     let mut peak = (f64::NEG_INFINITY, f64::NAN);
@@ -248,7 +254,7 @@ pub fn stability_margin_tabulated(
     let pi = std::f64::consts::PI;
     let f = |t: f64| {
         let (p0, pk, pb) = fam.parts_on_circle(t);
-        (p0 + pk * a + pb * b).norm() / p0.norm()
+        modulus(p0 + pk * a + pb * b) / modulus(p0)
     };
     let mut ts = Vec::with_capacity(table.thetas().len() + 2);
     ts.push(0.0);
@@ -260,7 +266,7 @@ pub fn stability_margin_tabulated(
         table
             .parts()
             .iter()
-            .map(|&(p0, pk, pb)| -((p0 + pk * a + pb * b).norm() / p0.norm())),
+            .map(|&(p0, pk, pb)| -(modulus(p0 + pk * a + pb * b) / modulus(p0))),
     );
     neg.push(-f(pi));
     let mut best = (f64::INFINITY, f64::NAN);
