@@ -18,6 +18,8 @@ use std::f64::consts::PI;
 
 use num_complex::Complex64;
 use rayon::prelude::*;
+
+use crate::bracket::sign_change;
 use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
@@ -171,23 +173,6 @@ pub fn dalpha_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
     (df * g - f * dg) / (g * g)
 }
 
-/// Bisection for a sign change of `f` on [a, b] (f(a), f(b) of opposite signs).
-pub(crate) fn bisect(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let fa0 = f(a);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        if (f(m) > 0.0) == (fa0 > 0.0) {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
-    0.5 * (a + b)
-}
-
 /// A line in the wall plane, from + t·dir (t real): the stiffness axis at fixed damping
 /// (from = (0, b), dir = (1, 0)) or the ray through a wall from the origin (from = (0, 0),
 /// dir = the wall), along which gain margins are measured.
@@ -312,10 +297,10 @@ fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
 
 /// All t at which p(z) of the wall from + t·dir has a root on the unit circle, with the
 /// root's angle, sorted by t (D-decomposition along a line, Section V): the z = ±1 lines
-/// and the zeros of Im(Q conj D) on a θ scan. Sign changes between samples are bisected;
-/// where the sign does not change but the slope does, the extremum between is located and,
-/// if it crosses zero, both zeros on either side of it are kept (two crossings closer than
-/// a sample, as a thin region of a lightly damped loop makes them).
+/// and the zeros of Im(Q conj D) on a θ scan. Sign changes between samples are refined by
+/// Brent's method; where the sign does not change but the slope does, the extremum between
+/// is located and, if it crosses zero, both zeros on either side of it are kept (two
+/// crossings closer than a sample, as a thin region of a lightly damped loop makes them).
 pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> {
     let ts = scan_thetas(fam);
     let fs: Vec<f64> = ts
@@ -434,7 +419,11 @@ fn crossings_on_scan(
     for i in 1..ts.len() {
         let (t0, t1, f0, f1) = (ts[i - 1], ts[i], fs[i - 1], fs[i]);
         if f1 == 0.0 || (f0 > 0.0) != (f1 > 0.0) {
-            push(if f1 == 0.0 { t1 } else { bisect(t0, t1, f) });
+            push(if f1 == 0.0 {
+                t1
+            } else {
+                sign_change(t0, t1, f)
+            });
             continue;
         }
         // A local minimum of |f| at sample i: f may dip through zero and back between its
@@ -446,10 +435,10 @@ fn crossings_on_scan(
             if (d0 > 0.0) == (d2 > 0.0) {
                 continue;
             }
-            let te = bisect(t0, t2, df);
+            let te = sign_change(t0, t2, df);
             if (f(te) > 0.0) != (f1 > 0.0) {
-                push(bisect(t0, te, f));
-                push(bisect(te, t2, f));
+                push(sign_change(t0, te, f));
+                push(sign_change(te, t2, f));
             }
         }
     }

@@ -32,6 +32,7 @@
 
 pub mod argument;
 pub mod boundary;
+pub mod bracket;
 pub mod closed_loop;
 pub mod delay;
 pub mod error;

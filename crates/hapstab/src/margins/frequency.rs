@@ -13,7 +13,7 @@
 //! - geometric runs on both sides of the angle of every root of P0 and of W, from a tenth of
 //!   its distance to the circle outward.
 //!
-//! Every sign change of ln|L| on the grid is a crossover (bisected to rounding), and every
+//! Every sign change of ln|L| on the grid is a crossover (refined to rounding by Brent's method, [`crate::bracket`]), and every
 //! local extremum of the samples is refined by golden section, its bracket moved while the
 //! search lands on an end ([`crate::extremum`]): an extremum that changes sign inside its cell
 //! is a pair of crossovers the samples straddled.
@@ -167,7 +167,7 @@ pub fn gain_scan_tabulated(fam: &AffineFamily, a: f64, b: f64, table: &CircleTab
         }
         if i > 0 && (vs[i] > 0.0) != (vs[i - 1] > 0.0) && vs[i].is_finite() && vs[i - 1].is_finite()
         {
-            thetas.push(crate::boundary::bisect(ts[i - 1], ts[i], g));
+            thetas.push(crate::bracket::sign_change(ts[i - 1], ts[i], g));
         }
     }
     // Extrema within a factor of two of |L| = 1 are refined (the grid samples every mode's
@@ -216,7 +216,7 @@ pub fn gain_scan_tabulated(fam: &AffineFamily, a: f64, b: f64, table: &CircleTab
 }
 
 /// The crossings of g = 0 on both sides of an extremum at t that lies across zero from the
-/// samples of its grid cell: bisected between t and each neighbouring sample on the other
+/// samples of its grid cell: refined between t and each neighbouring sample on the other
 /// side (`other_side`); a neighbour on t's side leaves that crossing to the sign-change scan.
 fn pair_around(
     ts: &[f64],
@@ -230,7 +230,7 @@ fn pair_around(
     [(lo, t), (t, hi)]
         .into_iter()
         .filter(|&(x, y)| x < y && other_side(if x == t { y } else { x }))
-        .map(|(x, y)| crate::boundary::bisect(x, y, &g))
+        .map(|(x, y)| crate::bracket::sign_change(x, y, &g))
         .collect()
 }
 

@@ -144,7 +144,7 @@ pub(super) fn arc_end_theta(g: &Graph, v: usize) -> f64 {
 }
 
 /// α_max over the polygons and the β where it is reached. Where the maximum lies inside a
-/// complex-pair arc, da/dθ = 0 is solved by bisection on the analytic derivative.
+/// complex-pair arc, da/dθ = 0 is solved by Brent's method on the analytic derivative.
 pub(super) fn alpha_max_of(fam: &AffineFamily, polys: &[Polygon]) -> (f64, f64) {
     let mut best = (f64::NAN, f64::NAN);
     for poly in polys {
@@ -232,7 +232,7 @@ pub fn alpha_max_within(
 }
 
 /// The maximum of a near vertex i on its arc: where it lies inside a complex-pair arc,
-/// da/dθ = 0 solved by bisection on the analytic derivative.
+/// da/dθ = 0 solved by Brent's method on the analytic derivative.
 pub(super) fn refine_vertex_max(fam: &AffineFamily, poly: &Polygon, imax: usize) -> (f64, f64) {
     let n = poly.vertices.len();
     let mut cand = (poly.vertices[imax].alpha, poly.vertices[imax].beta);
@@ -244,7 +244,7 @@ pub(super) fn refine_vertex_max(fam: &AffineFamily, poly: &Polygon, imax: usize)
         let (a, b) = (t0.min(t1), t0.max(t1));
         let (ga, gb) = (dalpha_dtheta(fam, a), dalpha_dtheta(fam, b));
         if ga.signum() != gb.signum() {
-            let t = crate::boundary::bisect(a, b, |t| dalpha_dtheta(fam, t));
+            let t = crate::bracket::sign_change(a, b, |t| dalpha_dtheta(fam, t));
             if let Some(p) = curve_point(fam, t)
                 && p.alpha >= cand.0
             {
