@@ -15,8 +15,8 @@
 //! L_λ(θ) = [W_∅(θ) + Σ_j g_j(λ)·ΔW_j(θ)] / P0(θ),    ΔW_j = W_j − W_∅,
 //! ```
 //!
-//! which is exact at every λ (g(0) = Γ gives the loop without a fraction, one sample later;
-//! g → 0 as λ → 1 gives it two samples later: |L_0| = |L_1|). One evaluation of the n + 2
+//! which is exact at every λ: L_λ is the loop delayed by λ samples (g(0) = Γ gives it without
+//! delay, g → 0 as λ → 1 one sample later: |L_0| = |L_1|). One evaluation of the n + 2
 //! parts at θ then gives L at every fraction for n multiplications each.
 //!
 //! **A bound over every fraction.** Splitting g(λ) = (1 − λ)Γ + e(λ), the first part is
@@ -448,5 +448,94 @@ impl<'a> FractionTable<'a> {
                 })
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::margins::frequency::loop_value;
+    use crate::model::{Plant, PlantModel, TwoMass, VelocityEstimator};
+    use crate::params::{Arm, Effective};
+
+    /// A two-mass device (order 4) with an actuator lag and a low-pass velocity filter, and
+    /// the paper's loop.
+    fn loops() -> Vec<(Loop, f64, f64)> {
+        let two_mass = PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.1,
+            motor_damping: 0.5,
+            handle_mass: 0.05,
+            transmission_stiffness: 4e4,
+            transmission_damping: 1.0,
+            arm: Arm {
+                mass: 0.5,
+                damping: 2.0,
+                stiffness: 300.0,
+            },
+        });
+        let paper = PlantModel::MassSpringDamper(Effective::new(1.1, 7.5, 350.0).unwrap());
+        [
+            (
+                two_mass,
+                2e-4,
+                VelocityEstimator::LowPass { cutoff_hz: 80.0 },
+            ),
+            (paper, 1e-3, VelocityEstimator::Backward),
+        ]
+        .into_iter()
+        .map(|(p, lag, v)| {
+            let lp = Loop::new(Plant::new(p, lag).unwrap(), 1e-3, Delay::NONE, v).unwrap();
+            let fam = AffineFamily::of_loop(&lp).unwrap();
+            let (a, b) = fam.to_units(2000.0, 3.0);
+            (lp, a, b)
+        })
+        .collect()
+    }
+
+    #[test]
+    fn every_fraction_is_the_loop_discretized_at_that_fraction() {
+        for (lp, a, b) in loops() {
+            let fl = FractionLoop::new(&lp, a, b, &[0.1, 1.0]).unwrap();
+            for lambda in [0.0, 0.125, 0.37, 0.5, 0.93] {
+                // the direct discretization at the fraction (split hold, its own numerator)
+                let direct = AffineFamily::of_loop(
+                    &lp.with_delay(Delay {
+                        samples: 0,
+                        fraction: lambda,
+                    })
+                    .unwrap(),
+                )
+                .unwrap();
+                let hold = fl.hold(lambda);
+                for theta in [1e-4, 0.01, 0.3, 1.0, 2.5, 3.1] {
+                    let want = loop_value(&direct, a, b, theta);
+                    let got = fl.parts(theta).loop_at(&hold.g);
+                    assert!(
+                        (got - want).norm() <= 1e-11 * want.norm(),
+                        "λ = {lambda}, θ = {theta}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_bounds_hold_over_a_fine_fraction_grid() {
+        for (lp, a, b) in loops() {
+            let fl = FractionLoop::new(&lp, a, b, &[0.1, 1.0]).unwrap();
+            let delta = fl.deviation_bound(&fl.holds());
+            let holds: Vec<HoldInput> = (0..=1000).map(|i| fl.hold(i as f64 / 1000.0)).collect();
+            for theta in [1e-3, 0.05, 0.4, 1.3, 2.2, 3.0] {
+                let parts = fl.parts(theta);
+                let (lo, hi) = fl.gain_bounds(&parts, &delta);
+                for h in &holds {
+                    let g = parts.loop_at(&h.g).norm();
+                    assert!(
+                        lo <= g * (1.0 + 1e-12) && g <= hi * (1.0 + 1e-12),
+                        "θ = {theta}: {lo} ≤ {g} ≤ {hi}"
+                    );
+                }
+            }
+        }
     }
 }
