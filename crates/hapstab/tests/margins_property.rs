@@ -18,11 +18,10 @@ mod common;
 use common::SplitMix;
 use common::loops::{random_loop, stable_wall, verdict};
 use hapstab::AffineFamily;
-use hapstab::boundary::stable_alpha_intervals;
 use hapstab::margins::{CrossingKind, loop_value, margins};
-use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
-use hapstab::params::{Arm, Effective, Wall};
-use hapstab::verdict::{Verdict, decide};
+use hapstab::model::{Delay, Loop};
+use hapstab::params::Wall;
+use hapstab::verdict::Verdict;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 

@@ -77,20 +77,20 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
     let base = AffineFamily::of_loop(lp)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(&base, a, b);
-    delay_margin_with(lp, wall, &gain_scan(&base, a, b), &modes)
+    delay_margin_with(lp, wall, (a, b), &gain_scan(&base, a, b), &modes)
 }
 
 /// [`delay_margin`] with the gain scan of the loop as it is (its crossovers give PM/ω_c) and
-/// its [`frequency_grid`], as the margins have them already.
+/// its [`frequency_grid`], as the margins have them already; (a, b) is the wall in the loop's
+/// wall units.
 pub fn delay_margin_with(
     lp: &Loop,
     wall: Wall,
+    (a, b): (f64, f64),
     own: &GainScan,
     modes: &[f64],
 ) -> Result<(DelayScan, Option<f64>)> {
     let s0 = lp.delay.in_samples();
-    let base = AffineFamily::of_loop(lp)?;
-    let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let pm_over_wc = own
         .crossovers
         .iter()

@@ -175,8 +175,10 @@ pub const NOT_STABLE_NOTE: &str = "the wall is not stable: margins are defined f
 pub fn margins(lp: &Loop, wall: Wall) -> Result<Margins> {
     let fam = AffineFamily::of_loop(lp)?;
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
-    let stable = verdict_stable(&fam, a, b, &mut fam.coefficients(a, b));
-    margins_beside_verdict(lp, wall, stable)
+    if !verdict_stable(&fam, a, b, &mut fam.coefficients(a, b)) {
+        return Ok(Margins::withheld(false, NOT_STABLE_NOTE));
+    }
+    margins_of_stable(lp, &fam, wall)
 }
 
 /// The margins reported beside a stability verdict (what `check` and the Python package
@@ -186,16 +188,20 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
     if !stable {
         return Ok(Margins::withheld(false, NOT_STABLE_NOTE));
     }
-    let fam = AffineFamily::of_loop(lp)?;
+    margins_of_stable(lp, &AffineFamily::of_loop(lp)?, wall)
+}
+
+/// Every margin of a wall that the verdict calls stable, on the loop's family.
+fn margins_of_stable(lp: &Loop, fam: &AffineFamily, wall: Wall) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     let p = AlphaBeta { alpha: a, beta: b };
     let hz = |theta: f64| theta / (2.0 * std::f64::consts::PI * lp.period);
     let mut out = Margins::withheld(true, "");
     out.notes.clear();
-    let modes = frequency_grid(&fam, a, b);
-    let table = CircleTable::on(&fam, margin_grid(&fam, &modes));
-    let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(&fam, &table, &WallLine::ray(p), 1.0, hz));
-    let axis = (a != 0.0).then(|| factors(&fam, &table, &WallLine::stiffness_axis(b), a, hz));
+    let modes = frequency_grid(fam, a, b);
+    let table = CircleTable::on(fam, margin_grid(fam, &modes));
+    let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(fam, &table, &WallLine::ray(p), 1.0, hz));
+    let axis = (a != 0.0).then(|| factors(fam, &table, &WallLine::stiffness_axis(b), a, hz));
     if let Some(r) = &ray {
         (out.gain, out.gain_lower) = (r.upper, r.lower);
         out.crossings = r.crossings.clone();
@@ -217,7 +223,7 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
         out.notes
             .push("no factor on K makes the wall unstable (stiffness margin unbounded)".into());
     }
-    let scan = gain_scan_tabulated(&fam, a, b, &table);
+    let scan = gain_scan_tabulated(fam, a, b, &table);
     out.peak_gain = scan
         .peak
         .1
@@ -250,13 +256,13 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
             scan.peak.0
         ));
     }
-    let (sm, t) = stability_margin_tabulated(&fam, a, b, &table);
+    let (sm, t) = stability_margin_tabulated(fam, a, b, &table);
     out.stability_margin = sm.is_finite().then(|| StabilityMargin {
         value: sm,
         theta: t,
         frequency_hz: hz(t),
     });
-    let (delay, pm_over_wc) = delay::delay_margin_with(lp, wall, &scan, &modes)?;
+    let (delay, pm_over_wc) = delay::delay_margin_with(lp, wall, (a, b), &scan, &modes)?;
     out.delay_pm_over_wc = pm_over_wc;
     delay_note(&mut out, delay);
     Ok(out)
