@@ -45,10 +45,10 @@ pub const MARGIN_GRID_PER_DEGREE: f64 = 256.0;
 /// Scans of the whole grid at p's degree: the phase margin and the two gain margins' line
 /// crossings.
 pub const MARGIN_SCANS: f64 = 3.0;
-/// Loops of the delay margin's fraction table per degree of the core: one for the hold part
-/// without the fraction and one per plant state, at most core + 1 (each evaluated on a grid
-/// of the core's degree, [`crate::margins::fraction`]).
-pub const MARGIN_FRACTION_FAMILIES_PER_DEGREE: f64 = 1.0;
+/// Parts of the delay margin's fraction table at each frequency ([`crate::margins::fraction`]):
+/// P0, the hold part without the fraction and one per plant state — at most 15 (a transfer
+/// function of order 12 with an actuator lag), each of the core's degree.
+pub const MARGIN_FRACTION_PARTS: f64 = 15.0;
 /// Core-seconds of the delay margin's scan at most (its work bound).
 pub const DELAY_SCAN_SECONDS: f64 = 0.3;
 /// Point tests of the delay margin's bisection (to 1e-13 of the delay, about 45 halvings).
@@ -419,15 +419,14 @@ pub fn interval_cost(n: usize) -> Cost {
 /// of degree n whose parts without the plant's pure delay have degree `core`: the phase
 /// margin and the two gain margins scan [`MARGIN_GRID_PER_DEGREE`]·(n + 1) frequencies, each
 /// an O(core) evaluation; the delay margin's fraction table evaluates
-/// [`MARGIN_FRACTION_FAMILIES_PER_DEGREE`]·(core + 1) loops on a grid of the core's degree;
+/// [`MARGIN_FRACTION_PARTS`] parts on a grid of the core's degree;
 /// the delay scan (where the exact solve does not confirm) takes about [`DELAY_SCAN_STEPS`] steps and ends at its own work bound,
 /// [`DELAY_SCAN_SECONDS`], and its bisection tests about
 /// [`DELAY_BISECTION_TESTS`] delays with the O(n²) point test.
 pub fn margins_cost(n: usize, core: usize) -> Cost {
     let (nf, cf) = (n as f64 + 1.0, core as f64 + 1.0);
     let grid = MARGIN_GRID_PER_DEGREE * nf * cf * CIRCLE_EVAL_SECONDS;
-    let families = MARGIN_FRACTION_FAMILIES_PER_DEGREE * cf;
-    let gain = MARGIN_GRID_PER_DEGREE * families * cf * cf * CIRCLE_EVAL_SECONDS;
+    let gain = MARGIN_GRID_PER_DEGREE * MARGIN_FRACTION_PARTS * cf * cf * CIRCLE_EVAL_SECONDS;
     let test = POINT_TEST_SECONDS_PER_N2 * nf * nf;
     let scan = (DELAY_SCAN_STEPS * (grid + test)).min(DELAY_SCAN_SECONDS);
     let bisection = DELAY_BISECTION_TESTS * test;
