@@ -376,7 +376,8 @@ impl<'a> FractionTable<'a> {
     /// Every crossover of every fraction j/[`FRACTIONS`]'s loop: sign changes of ln|L_λ| on
     /// the grid, located by linear interpolation, and the maxima that reach 1 between
     /// samples. L_λ is evaluated only where the bounds leave |L_λ| − 1 of either sign at some
-    /// fraction, and beside a neighbour whose sign the bounds fix otherwise.
+    /// fraction, beside a neighbour whose sign the bounds fix otherwise, and around every
+    /// local maximum of the upper bound above 1/2.
     pub fn crossovers(&self) -> Vec<FractionCrossover> {
         let n = self.parts.len();
         let side: Vec<i8> = self
@@ -392,9 +393,17 @@ impl<'a> FractionTable<'a> {
                 }
             })
             .collect();
+        // a local maximum of the upper bound within a factor of two of 1 may hide a pair of
+        // crossovers between its samples: it and its neighbours are evaluated too
+        let upper: Vec<f64> = self.bounds.iter().map(|b| b.1).collect();
+        let mut peak = vec![false; n];
+        for i in sample_maxima(&upper).filter(|&i| upper[i] > 0.5) {
+            peak[i - 1..=i + 1].fill(true);
+        }
         let near: Vec<usize> = (0..n)
             .filter(|&i| {
                 side[i] == 0
+                    || peak[i]
                     || (i > 0 && side[i - 1] != side[i])
                     || (i + 1 < n && side[i + 1] != side[i])
             })
