@@ -1,7 +1,8 @@
 //! The delay margin: the smallest added delay h ≥ 0 (any fraction of a sample) at which a root
 //! of p(z) reaches the unit circle, exact at any delay.
 //!
-//! A root reaches e^{iθ} at total delay s (samples) iff L_s(e^{iθ}) = −1. A whole sample more
+//! A root reaches e^{iθ} at total delay s (samples) iff L_s(e^{iθ}) = −1 (p = P0·(1 + L),
+//! eq. 7–9). A whole sample more
 //! multiplies L by e^{−iθ}, so L_s = L_λ·e^{−iwθ} with w = ⌊s⌋ and L_λ the loop at the
 //! fraction λ = s − w alone: the condition is |L_λ(θ)| = 1 (θ a gain crossover of the
 //! fraction's loop) and arg L_λ(θ) − wθ ≡ −π. Every fraction's loop comes from one table

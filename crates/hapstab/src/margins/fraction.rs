@@ -1,5 +1,6 @@
 //! The open loop as a function of the fraction λ ∈ [0, 1) of a sample of delay, from one
-//! set of polynomials (the modified z-transform's dependence on λ, [`crate::zoh`]).
+//! set of polynomials (the modified z-transform's dependence on λ: the paper's exact ZOH model,
+//! Section III eq. 2–6, with the fractional delay of [`crate::zoh`]; L as in eq. 7–9).
 //!
 //! The hold splits the input as Γ0(λ) = Ψ(1 − λ)B and Γ1 = Γ − Γ0 with Γ = Ψ(1)B, so the
 //! plant's numerator at a fractional delay is
