@@ -398,7 +398,7 @@ impl DiscreteLoop {
 
     /// C adj(wI − E) g in the shifted variable w = z − 1, by det(wI − E + s·gC) − det(wI − E)
     /// = s·C adj(wI − E) g with s balancing s·gC against E.
-    fn numerator_shifted_for(&self, g: &[f64], den: &[f64]) -> Vec<f64> {
+    pub(crate) fn numerator_shifted_for(&self, g: &[f64], den: &[f64]) -> Vec<f64> {
         let gn: f64 = g.iter().map(|x| x.abs()).sum();
         let cn: f64 = self.c.iter().map(|x| x.abs()).sum();
         if gn == 0.0 || cn == 0.0 {

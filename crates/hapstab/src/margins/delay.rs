@@ -115,7 +115,7 @@ pub fn delay_margin_with(
         return Ok((DelayScan::StableUpToMax, pm_over_wc));
     }
     if let Some((s, theta)) = smallest_solution(&fl, s0, seeds)
-        && confirmed(lp, (a, b), s0, s)?
+        && confirmed(&fl, s0, s)
     {
         return Ok((
             DelayScan::Crossing(DelayMargin {
@@ -163,16 +163,18 @@ fn smallest_solution(fl: &FractionLoop, s0: f64, seeds: Vec<(f64, f64)>) -> Opti
 
 /// The verdict confirms a crossing at total delay s: before it not unstable, after it not
 /// stable (both sides are marginal only where the whole path lies within the verdict's band
-/// of the circle).
-fn confirmed(lp: &Loop, (a, b): (f64, f64), s0: f64, s: f64) -> Result<bool> {
-    let verdict_at = |s: f64| -> Result<Verdict> {
-        let f = AffineFamily::of_loop(&lp.with_delay(delay_in_samples(s))?)?;
-        Ok(decide(&f, a, b, &mut f.coefficients(a, b)).verdict)
+/// of the circle). p at each delay comes from the fraction loop's parts
+/// ([`FractionLoop::family_at`]), the exact model at that delay.
+fn confirmed(fl: &FractionLoop, s0: f64, s: f64) -> bool {
+    let verdict_at = |s: f64| -> Verdict {
+        let whole = s.floor();
+        let f = fl.family_at(whole as usize, &fl.hold(s - whole).g);
+        decide(&f, 1.0, 0.0, &mut f.coefficients(1.0, 0.0)).verdict
     };
     let eps = CONFIRM_REL * (s - s0);
-    Ok(s + eps <= MAX_DELAY as f64
-        && verdict_at(s - eps)? != Verdict::Unstable
-        && verdict_at(s + eps)? != Verdict::Stable)
+    s + eps <= MAX_DELAY as f64
+        && verdict_at(s - eps) != Verdict::Unstable
+        && verdict_at(s + eps) != Verdict::Stable
 }
 
 /// A phase in (−π, π] moved to (0, 2π]: the extra lag that brings L to −1.
@@ -216,9 +218,11 @@ fn solve(fl: &FractionLoop, (mut s, mut theta): (f64, f64)) -> Option<(f64, f64)
         }
         let whole = s.floor();
         let hold = fl.hold(s - whole);
-        let f_at =
-            |t: f64| fl.parts(t).loop_at(&hold.g) * Complex64::from_polar(1.0, -whole * t) + 1.0;
-        let parts = fl.parts(theta);
+        let f_at = |t: f64| {
+            fl.parts(t).view().loop_at(&hold.g) * Complex64::from_polar(1.0, -whole * t) + 1.0
+        };
+        let at = fl.parts(theta);
+        let parts = at.view();
         let turn = Complex64::from_polar(1.0, -whole * theta);
         let f = parts.loop_at(&hold.g) * turn + 1.0;
         let ds = parts.slope_at(&hold.dg) * turn;

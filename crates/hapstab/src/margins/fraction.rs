@@ -28,13 +28,13 @@
 
 use num_complex::Complex64;
 
-use super::frequency::frequency_grid;
-use crate::closed_loop::{AffineFamily, SHIFTED_THETA};
+use super::frequency::{UNIFORM_PER_DEGREE, root_grid, trimmed};
+use crate::closed_loop::{AffineFamily, SHIFTED_THETA, ShiftedParts};
 use crate::error::Result;
 use crate::extremum::{golden_max, merge_grid, refine_max, sample_maxima};
 use crate::model::{Delay, Loop};
 use crate::poly::{self, Mat, modulus};
-use crate::zoh::{DiscreteLoop, StateSpace, exp_and_integral};
+use crate::zoh::{DiscreteLoop, StateSpace, WallScale, exp_and_integral};
 
 /// Fractions j/FRACTIONS of a sample (j = 0 … FRACTIONS − 1) on which the crossovers of every
 /// fraction's loop are tabulated, and on which the bound's δ_j is sampled.
@@ -62,40 +62,61 @@ pub struct FractionLoop {
     /// The same in w = z − 1, for angles below [`SHIFTED_THETA`] (None for a velocity filter
     /// without a shifted form).
     in_w: Option<Polys>,
+    /// Wall units of the loop.
+    scale: WallScale,
     /// The frequency grid of the table.
     pub grid: Vec<f64>,
 }
 
-/// The n + 2 parts of [`FractionLoop`] at one θ: P0, W_∅ and every ΔW_j.
-#[derive(Debug, Clone)]
-pub struct FractionParts {
-    /// P0(e^{iθ}).
-    pub p0: Complex64,
-    /// W_∅(e^{iθ}).
-    pub base: Complex64,
-    /// ΔW_j(e^{iθ}).
-    pub deltas: Vec<Complex64>,
-}
+/// The n + 2 parts of [`FractionLoop`] at one θ: [P0, W_∅, ΔW_1 … ΔW_n] (e^{iθ} put in).
+#[derive(Debug, Clone, Copy)]
+pub struct FractionParts<'a>(&'a [Complex64]);
 
-impl FractionParts {
+impl<'a> FractionParts<'a> {
+    /// P0(e^{iθ}).
+    pub fn p0(&self) -> Complex64 {
+        self.0[0]
+    }
+
+    /// W_∅(e^{iθ}).
+    pub fn base(&self) -> Complex64 {
+        self.0[1]
+    }
+
+    /// ΔW_j(e^{iθ}), j = 1 … n.
+    pub fn deltas(&self) -> &'a [Complex64] {
+        &self.0[2..]
+    }
+
     /// L_λ = (W_∅ + Σ g_j ΔW_j)/P0 for the hold input g = g(λ).
     pub fn loop_at(&self, g: &[f64]) -> Complex64 {
         let w = self
-            .deltas
+            .deltas()
             .iter()
             .zip(g)
-            .fold(self.base, |acc, (d, &gj)| acc + d * gj);
-        w / self.p0
+            .fold(self.base(), |acc, (d, &gj)| acc + d * gj);
+        w / self.p0()
     }
 
     /// Σ g'_j ΔW_j / P0: the λ-derivative of L_λ for g' = dg/dλ.
     pub fn slope_at(&self, dg: &[f64]) -> Complex64 {
         let w = self
-            .deltas
+            .deltas()
             .iter()
             .zip(dg)
             .fold(Complex64::new(0.0, 0.0), |acc, (d, &gj)| acc + d * gj);
-        w / self.p0
+        w / self.p0()
+    }
+}
+
+/// The parts at one angle, owned ([`FractionLoop::parts`]).
+#[derive(Debug, Clone)]
+pub struct PartsAt(Vec<Complex64>);
+
+impl PartsAt {
+    /// The parts as [`FractionParts`].
+    pub fn view(&self) -> FractionParts<'_> {
+        FractionParts(&self.0)
     }
 }
 
@@ -115,114 +136,214 @@ pub struct HoldInput {
 /// splits into one more sample, k = 1).
 struct Polys {
     p0_core: Vec<f64>,
+    /// W_∅, then ΔW_1 … ΔW_n.
     walls: Vec<Vec<f64>>,
+    /// The longest of the polynomials.
+    len: usize,
 }
 
 impl Polys {
-    /// a·PK + b·PB of every family, the first as it is and the others less the first; P0's
-    /// core from the first.
-    fn of(families: &[(&[f64], &[f64], &[f64])], (a, b): (f64, f64)) -> Self {
-        let wall = |pk: &[f64], pb: &[f64]| -> Vec<f64> {
-            (0..pk.len().max(pb.len()))
-                .map(|i| {
-                    a * pk.get(i).copied().unwrap_or(0.0) + b * pb.get(i).copied().unwrap_or(0.0)
-                })
-                .collect()
-        };
-        let base = wall(families[0].1, families[0].2);
-        let mut walls = vec![base.clone()];
-        walls.extend(families[1..].iter().map(|f| {
-            let w = wall(f.1, f.2);
-            (0..w.len().max(base.len()))
-                .map(|i| w.get(i).copied().unwrap_or(0.0) - base.get(i).copied().unwrap_or(0.0))
-                .collect()
-        }));
+    /// P0's core, W_∅ and the ΔW_j.
+    fn new(p0_core: Vec<f64>, walls: Vec<Vec<f64>>) -> Self {
+        let len = walls.iter().map(Vec::len).fold(p0_core.len(), usize::max);
         Self {
-            p0_core: families[0].0.to_vec(),
+            p0_core,
             walls,
+            len,
         }
     }
 
-    /// The parts at x (z or w), with P0 = z·core(x).
-    fn at(&self, x: Complex64, z: Complex64) -> FractionParts {
-        let mut walls = self.walls.iter().map(|c| poly::eval(c, x));
-        FractionParts {
-            p0: z * poly::eval(&self.p0_core, x),
-            base: walls.next().unwrap_or_default(),
-            deltas: walls.collect(),
+    /// W_∅ + Σ g_j ΔW_j: the wall part at the hold input g.
+    fn wall_at(&self, g: &[f64]) -> Vec<f64> {
+        let mut w = vec![0.0; self.len];
+        for (c, s) in self.walls.iter().zip(std::iter::once(&1.0).chain(g)) {
+            for (wi, ci) in w.iter_mut().zip(c) {
+                *wi += s * ci;
+            }
+        }
+        w
+    }
+
+    /// The parts at x (z or w) into `out` ([P0, W_∅, ΔW…], P0 = z·core(x)), from the powers
+    /// of x (`powers`, scratch): every polynomial is then one dot product, side by side.
+    fn at_into(
+        &self,
+        x: Complex64,
+        z: Complex64,
+        powers: &mut Vec<Complex64>,
+        out: &mut [Complex64],
+    ) {
+        powers.clear();
+        let mut p = Complex64::new(1.0, 0.0);
+        for _ in 0..self.len {
+            powers.push(p);
+            p *= x;
+        }
+        let dot = |c: &[f64]| {
+            let (re, im) = c
+                .iter()
+                .zip(powers.iter())
+                .fold((0.0, 0.0), |(re, im), (ci, pi)| {
+                    (re + ci * pi.re, im + ci * pi.im)
+                });
+            Complex64::new(re, im)
+        };
+        out[0] = z * dot(&self.p0_core);
+        for (o, c) in out[1..].iter_mut().zip(&self.walls) {
+            *o = dot(c);
         }
     }
+}
+
+/// The step of [`super::frequency::frequency_grid`]'s uniform grid for these polynomials.
+fn uniform_step(polys: &Polys) -> f64 {
+    std::f64::consts::PI / (UNIFORM_PER_DEGREE * (polys.len + 1)) as f64
+}
+
+/// The wall part a·Vd + b·Vn of the velocity estimator (ascending).
+fn wall_filter(vd: &[f64], vn: &[f64], (a, b): (f64, f64)) -> Vec<f64> {
+    poly::add_scaled(&poly::add_scaled(&[], a, vd), b, vn)
 }
 
 impl FractionLoop {
     /// The fraction loop of a wall (a, b) in wall units on a loop (its whole-sample delay is
     /// not part of it: the caller turns the phase by e^{−iwθ} for w whole samples); `modes`
-    /// is the [`frequency_grid`] of the loop as it is, joined by that of the loop at half a
-    /// sample.
+    /// is the [`super::frequency::frequency_grid`] of the loop as it is, joined here by the
+    /// runs around the roots of the wall part at half a sample.
+    ///
+    /// W_∅ and P0 come from the family at g = 0 (exact at z = 1, [`AffineFamily::new`]); the
+    /// ΔW_j = (z − 1)·C adj(zI − Φ)e_j·(a·Vd + b·Vn) from one numerator each (module doc).
     pub fn new(lp: &Loop, a: f64, b: f64, modes: &[f64]) -> Result<Self> {
-        let half = lp.with_delay(Delay {
-            samples: 0,
-            fraction: 0.5,
-        })?;
-        let template = half.discretize()?;
+        let template = lp
+            .with_delay(Delay {
+                samples: 0,
+                fraction: 0.5,
+            })?
+            .discretize()?;
         let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
         let (_, psi1) = exp_and_integral(&ss.a, 1.0);
         let gamma = poly::mat_vec(&psi1, &ss.b);
         let n = gamma.len();
-        let with_hold = |g0: Vec<f64>| -> AffineFamily {
-            let g1 = gamma.iter().zip(&g0).map(|(x, y)| x - y).collect();
-            AffineFamily::new(&DiscreteLoop {
-                gamma0: g0,
-                gamma1: g1,
-                ..template.clone()
-            })
+        let base_loop = DiscreteLoop {
+            gamma0: vec![0.0; n],
+            gamma1: gamma.clone(),
+            ..template
         };
-        let mut families = vec![with_hold(vec![0.0; n])];
-        families.extend((0..n).map(|j| {
-            let mut e = vec![0.0; n];
-            e[j] = 1.0;
-            with_hold(e)
-        }));
-        let in_z = Polys::of(
-            &families
-                .iter()
-                .map(|f| (f.p0_core.as_slice(), f.pk.as_slice(), f.pb.as_slice()))
-                .collect::<Vec<_>>(),
-            (a, b),
-        );
-        let shifted: Option<Vec<_>> = families
-            .iter()
-            .map(|f| {
-                f.shifted
-                    .as_ref()
-                    .map(|sh| (sh.p0_core.as_slice(), sh.pk.as_slice(), sh.pb.as_slice()))
+        let base = AffineFamily::new(&base_loop);
+        let den_w = base_loop.denominator_shifted();
+        let units: Vec<Vec<f64>> = (0..n)
+            .map(|j| {
+                let mut e = vec![0.0; n];
+                e[j] = 1.0;
+                base_loop.numerator_shifted_for(&e, &den_w)
             })
             .collect();
-        let in_w = shifted.map(|sh| Polys::of(&sh, (a, b)));
-        let mut grid = modes.to_vec();
-        grid.extend(frequency_grid(&AffineFamily::new(&template), a, b));
-        merge_grid(&mut grid);
-        Ok(Self {
+        let (vn, vd) = (&base_loop.velocity_num, &base_loop.velocity_den);
+        let in_z = {
+            let filter = poly::mul(&[-1.0, 1.0], &wall_filter(vd, vn, (a, b)));
+            let mut walls = vec![poly::add_scaled(
+                &poly::add_scaled(&[], a, &base.pk),
+                b,
+                &base.pb,
+            )];
+            walls.extend(
+                units
+                    .iter()
+                    .map(|u| poly::mul(&poly::taylor_shift(u, -1.0), &filter)),
+            );
+            Polys::new(base.p0_core.clone(), walls)
+        };
+        let in_w = base.shifted.as_ref().map(|sh| {
+            let (vd_w, vn_w) = (poly::taylor_shift(vd, 1.0), poly::taylor_shift(vn, 1.0));
+            let filter = poly::shift_up(&wall_filter(&vd_w, &vn_w, (a, b)), 1);
+            let mut walls = vec![poly::add_scaled(
+                &poly::add_scaled(&[], a, &sh.pk),
+                b,
+                &sh.pb,
+            )];
+            walls.extend(units.iter().map(|u| poly::mul(u, &filter)));
+            Polys::new(sh.p0_core.clone(), walls)
+        });
+        let mut fl = Self {
             a_mat: ss.a,
             b_vec: ss.b,
             gamma,
             in_z,
             in_w,
-            grid,
-        })
+            scale: base.scale,
+            grid: Vec::new(),
+        };
+        // the wall part at half a sample, in w where there is a shifted form (modes's rule)
+        let g_half = fl.hold(0.5).g;
+        let (half, shift) = match &fl.in_w {
+            Some(w) => (w.wall_at(&g_half), 1.0),
+            None => (fl.in_z.wall_at(&g_half), 0.0),
+        };
+        let mut grid = modes.to_vec();
+        grid.extend(root_grid(&[trimmed(&half)], shift, uniform_step(&fl.in_z)));
+        merge_grid(&mut grid);
+        fl.grid = grid;
+        Ok(fl)
     }
 
-    /// The parts at θ (module doc): in w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ below
-    /// [`SHIFTED_THETA`] (no cancellation near z = 1, as [`AffineFamily::parts_on_circle`]),
-    /// in z above.
-    pub fn parts(&self, theta: f64) -> FractionParts {
+    /// The number of parts at one angle, n + 2.
+    fn width(&self) -> usize {
+        self.gamma.len() + 2
+    }
+
+    /// The parts at θ into `out` (length n + 2; module doc): in w = e^{iθ} − 1 =
+    /// −2 sin²(θ/2) + i sin θ below [`SHIFTED_THETA`] (no cancellation near z = 1, as
+    /// [`AffineFamily::parts_on_circle`]), in z above.
+    fn parts_into(&self, theta: f64, powers: &mut Vec<Complex64>, out: &mut [Complex64]) {
         let z = Complex64::from_polar(1.0, theta);
         match &self.in_w {
             Some(w_polys) if theta.abs() < SHIFTED_THETA => {
                 let h = (0.5 * theta).sin();
-                w_polys.at(Complex64::new(-2.0 * h * h, theta.sin()), z)
+                w_polys.at_into(Complex64::new(-2.0 * h * h, theta.sin()), z, powers, out)
             }
-            _ => self.in_z.at(z, z),
+            _ => self.in_z.at_into(z, z, powers, out),
+        }
+    }
+
+    /// The parts at θ (module doc).
+    pub fn parts(&self, theta: f64) -> PartsAt {
+        let mut out = vec![Complex64::new(0.0, 0.0); self.width()];
+        self.parts_into(theta, &mut Vec::new(), &mut out);
+        PartsAt(out)
+    }
+
+    /// The family of the loop at w whole samples and the fraction whose hold input is g, with
+    /// the wall folded in: p = z^w·P0 + W_λ = P0' + 1·PK' (PB' = 0, wall (1, 0)): the
+    /// characteristic polynomial at that delay for the verdict, from the same parts.
+    pub fn family_at(&self, whole: usize, g: &[f64]) -> AffineFamily {
+        let at_zero = |c: &[f64], i: usize| c.get(i).copied().unwrap_or(0.0);
+        let shifted = self.in_w.as_ref().map(|w| ShiftedParts {
+            p0_core: w.p0_core.clone(),
+            pk: w.wall_at(g),
+            pb: vec![0.0],
+        });
+        let k = whole + 1;
+        let (at_one, slope_at_one) = match &shifted {
+            Some(sh) => (
+                [at_zero(&sh.p0_core, 0), at_zero(&sh.pk, 0), 0.0],
+                [
+                    k as f64 * at_zero(&sh.p0_core, 0) + at_zero(&sh.p0_core, 1),
+                    at_zero(&sh.pk, 1),
+                    0.0,
+                ],
+            ),
+            None => ([f64::NAN; 3], [f64::NAN; 3]),
+        };
+        AffineFamily {
+            p0_core: self.in_z.p0_core.clone(),
+            k,
+            pk: self.in_z.wall_at(g),
+            pb: vec![0.0],
+            at_one,
+            slope_at_one,
+            plus_one: None,
+            scale: self.scale,
+            shifted,
         }
     }
 
@@ -293,20 +414,20 @@ impl FractionLoop {
     /// Bounds (below, above) of |L_λ(θ)| over every fraction from its parts (module doc): the
     /// affine part's distance to 0 (the nearest point of its segment) and its largest end,
     /// each moved by the deviation's spread.
-    pub fn gain_bounds(&self, parts: &FractionParts, delta: &[f64]) -> (f64, f64) {
+    pub fn gain_bounds(&self, parts: FractionParts, delta: &[f64]) -> (f64, f64) {
         let full = parts
-            .deltas
+            .deltas()
             .iter()
             .zip(&self.gamma)
-            .fold(parts.base, |acc, (d, &gj)| acc + d * gj);
+            .fold(parts.base(), |acc, (d, &gj)| acc + d * gj);
         let spread: f64 = parts
-            .deltas
+            .deltas()
             .iter()
             .zip(delta)
             .map(|(d, dj)| modulus(*d) * dj)
             .sum();
-        let m = modulus(parts.p0);
-        let (x, y) = (parts.base, full);
+        let m = modulus(parts.p0());
+        let (x, y) = (parts.base(), full);
         let dir = y - x;
         let t = if dir.norm_sqr() > 0.0 {
             (-(x.conj() * dir).re / dir.norm_sqr()).clamp(0.0, 1.0)
@@ -324,7 +445,8 @@ impl FractionLoop {
 /// The table of a [`FractionLoop`] on its grid, with the bound over every fraction.
 pub struct FractionTable<'a> {
     fl: &'a FractionLoop,
-    parts: Vec<FractionParts>,
+    /// The parts at every grid angle, n + 2 per angle ([`FractionParts`]).
+    values: Vec<Complex64>,
     /// Bounds (below, above) of |L_λ| over every fraction at every grid angle.
     pub bounds: Vec<(f64, f64)>,
     delta: Vec<f64>,
@@ -347,22 +469,36 @@ impl<'a> FractionTable<'a> {
     pub fn new(fl: &'a FractionLoop) -> Self {
         let holds = fl.holds();
         let delta = fl.deviation_bound(&holds);
-        let parts: Vec<FractionParts> = fl.grid.iter().map(|&t| fl.parts(t)).collect();
-        let bounds = parts.iter().map(|p| fl.gain_bounds(p, &delta)).collect();
+        let width = fl.width();
+        let mut values = vec![Complex64::new(0.0, 0.0); width * fl.grid.len()];
+        let mut powers = Vec::new();
+        for (&t, out) in fl.grid.iter().zip(values.chunks_exact_mut(width)) {
+            fl.parts_into(t, &mut powers, out);
+        }
+        let bounds = values
+            .chunks_exact(width)
+            .map(|p| fl.gain_bounds(FractionParts(p), &delta))
+            .collect();
         Self {
             fl,
-            parts,
+            values,
             bounds,
             delta,
             holds,
         }
     }
 
+    /// The parts at the grid's i-th angle.
+    fn at(&self, i: usize) -> FractionParts<'_> {
+        let w = self.fl.width();
+        FractionParts(&self.values[i * w..(i + 1) * w])
+    }
+
     /// The largest bound over θ: the grid's largest, and every local maximum within a factor
     /// of two of 1, refined by golden section ([`crate::extremum`]).
     pub fn peak_bound(&self) -> f64 {
         let ts = &self.fl.grid;
-        let f = |t: f64| self.fl.gain_bounds(&self.fl.parts(t), &self.delta).1;
+        let f = |t: f64| self.fl.gain_bounds(self.fl.parts(t).view(), &self.delta).1;
         let upper: Vec<f64> = self.bounds.iter().map(|b| b.1).collect();
         let mut peak = upper.iter().copied().fold(0.0, f64::max);
         let top = (0..ts.len()).max_by(|&i, &j| upper[i].total_cmp(&upper[j]));
@@ -380,7 +516,7 @@ impl<'a> FractionTable<'a> {
     /// fraction, beside a neighbour whose sign the bounds fix otherwise, and around every
     /// local maximum of the upper bound above 1/2.
     pub fn crossovers(&self) -> Vec<FractionCrossover> {
-        let n = self.parts.len();
+        let n = self.fl.grid.len();
         let side: Vec<i8> = self
             .bounds
             .iter()
@@ -412,10 +548,7 @@ impl<'a> FractionTable<'a> {
         let mut out = Vec::new();
         for (j, hold) in self.holds.iter().take(FRACTIONS).enumerate() {
             let lambda = j as f64 / FRACTIONS as f64;
-            let ls: Vec<Complex64> = near
-                .iter()
-                .map(|&i| self.parts[i].loop_at(&hold.g))
-                .collect();
+            let ls: Vec<Complex64> = near.iter().map(|&i| self.at(i).loop_at(&hold.g)).collect();
             let vs: Vec<f64> = ls.iter().map(|&l| modulus(l).ln()).collect();
             for k in 1..near.len() {
                 let (i0, i1) = (near[k - 1], near[k]);
@@ -444,7 +577,7 @@ impl<'a> FractionTable<'a> {
         vs: &[f64],
     ) -> Vec<FractionCrossover> {
         let ts = &self.fl.grid;
-        let g = |t: f64| modulus(self.fl.parts(t).loop_at(&hold.g)).ln();
+        let g = |t: f64| modulus(self.fl.parts(t).view().loop_at(&hold.g)).ln();
         sample_maxima(vs)
             .filter(|&k| vs[k] <= 0.0 && vs[k] > -REFINE_LOG)
             .filter(|&k| near[k] > 0 && near[k] + 1 < ts.len())
@@ -454,7 +587,7 @@ impl<'a> FractionTable<'a> {
                 (v > 0.0).then(|| FractionCrossover {
                     lambda,
                     theta: t,
-                    value: self.fl.parts(t).loop_at(&hold.g),
+                    value: self.fl.parts(t).view().loop_at(&hold.g),
                 })
             })
             .collect()
@@ -519,7 +652,7 @@ mod tests {
                 let hold = fl.hold(lambda);
                 for theta in [1e-4, 0.01, 0.3, 1.0, 2.5, 3.1] {
                     let want = loop_value(&direct, a, b, theta);
-                    let got = fl.parts(theta).loop_at(&hold.g);
+                    let got = fl.parts(theta).view().loop_at(&hold.g);
                     assert!(
                         (got - want).norm() <= 1e-11 * want.norm(),
                         "λ = {lambda}, θ = {theta}: {got} vs {want}"
@@ -537,9 +670,9 @@ mod tests {
             let holds: Vec<HoldInput> = (0..=1000).map(|i| fl.hold(i as f64 / 1000.0)).collect();
             for theta in [1e-3, 0.05, 0.4, 1.3, 2.2, 3.0] {
                 let parts = fl.parts(theta);
-                let (lo, hi) = fl.gain_bounds(&parts, &delta);
+                let (lo, hi) = fl.gain_bounds(parts.view(), &delta);
                 for h in &holds {
-                    let g = parts.loop_at(&h.g).norm();
+                    let g = parts.view().loop_at(&h.g).norm();
                     assert!(
                         lo <= g * (1.0 + 1e-12) && g <= hi * (1.0 + 1e-12),
                         "θ = {theta}: {lo} ≤ {g} ≤ {hi}"

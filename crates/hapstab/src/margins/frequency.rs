@@ -7,16 +7,21 @@
 //! lightly damped mode at r·e^{iφ} makes a peak of width ≈ 1 − r at θ = φ, a free mass or a
 //! fast sampling (roots crowding z = 1) puts crossovers at θ ≪ 1/n. The grid is therefore
 //! the union of
-//! - a uniform grid of [`UNIFORM_PER_DEGREE`]·(n + 2) angles (n the delay-free degree: a
-//!   whole-sample delay turns the phase of L but leaves |L| unchanged),
-//! - geometric runs toward θ = 0 and θ = π down to [`THETA_FLOOR`] of π,
+//! - a uniform grid of [`UNIFORM_PER_DEGREE`]·(n + 1) angles (n the delay-free degree: a
+//!   whole-sample delay turns the phase of L but leaves |L| unchanged), the scale of the
+//!   roots far from the circle (a trigonometric polynomial of degree n varies on 1/n),
+//! - geometric runs toward θ = 0 and θ = π down to [`THETA_FLOOR`] of π, [`END_PER_DECADE`]
+//!   per decade (there, below every root's scale, |L|² is a smooth function of θ², so a
+//!   crossover is a sign change and an extremum a local extremum of the samples),
 //! - geometric runs on both sides of the angle of every root of P0 and of W, from a tenth of
-//!   its distance to the circle outward.
+//!   its distance to the circle outward, [`PER_DECADE`] per decade, until their step is
+//!   coarser than the uniform grid's (beyond, the root's feature is wider than that grid's
+//!   step).
 //!
-//! Every sign change of ln|L| on the grid is a crossover (refined to rounding by Brent's method, [`crate::bracket`]), and every
-//! local extremum of the samples is refined by golden section, its bracket moved while the
-//! search lands on an end ([`crate::extremum`]): an extremum that changes sign inside its cell
-//! is a pair of crossovers the samples straddled.
+//! Every sign change of ln|L| on the grid is a crossover (refined to rounding by Brent's
+//! method, [`crate::bracket`]), and every local extremum of the samples is refined by golden
+//! section, its bracket moved while the search lands on an end ([`crate::extremum`]): an
+//! extremum that changes sign inside its cell is a pair of crossovers the samples straddled.
 
 use num_complex::Complex64;
 use serde::Serialize;
@@ -27,15 +32,22 @@ use crate::extremum::{merge_grid, refine_max, sample_maxima};
 use crate::poly::modulus;
 use crate::stability::roots;
 
-/// Uniform samples per delay-free degree (|L| − 1 changes sign at most twice per degree).
-pub const UNIFORM_PER_DEGREE: usize = 64;
+/// Uniform samples per degree: |L| − 1 changes sign at most twice per degree, and away from
+/// the roots near the circle (which have their own runs) a trigonometric polynomial of degree
+/// n varies on the scale π/n, which this resolves sixteen times.
+pub const UNIFORM_PER_DEGREE: usize = 16;
 
 /// The geometric runs toward θ = 0 and θ = π end at this fraction of π (a frequency of
 /// 1e-12 of the Nyquist frequency).
 pub const THETA_FLOOR: f64 = 1e-12;
 
-/// Geometric samples per factor of 10 in the runs.
-const PER_DECADE: usize = 12;
+/// Geometric samples per factor of 10 in the runs around roots (a step of 21 % of the
+/// distance from the root's angle: its peak of width 1 − r is sampled about five times).
+pub const PER_DECADE: usize = 12;
+
+/// Geometric samples per factor of 10 in the runs toward θ = 0 and π, where no root's feature
+/// lies (those have their own runs): |L|² is smooth in θ² there.
+pub const END_PER_DECADE: usize = 6;
 
 /// Local extrema of ln|L| within this of 0 (|L| within a factor of two of 1) are refined.
 const REFINE_LOG: f64 = std::f64::consts::LN_2;
@@ -66,50 +78,83 @@ pub fn frequency_grid(fam: &AffineFamily, a: f64, b: f64) -> Vec<f64> {
     let core = fam.p0_core.len().max(fam.pk.len()).max(fam.pb.len());
     let m = UNIFORM_PER_DEGREE * (core + 1);
     let mut ts: Vec<f64> = (1..m).map(|i| pi * i as f64 / m as f64).collect();
-    let decades = (-THETA_FLOOR.log10()) as usize * PER_DECADE;
+    let decades = (-THETA_FLOOR.log10()) as usize * END_PER_DECADE;
     for j in 1..=decades {
-        let t = pi * 10f64.powf(-(j as f64) / PER_DECADE as f64);
+        let t = pi * 10f64.powf(-(j as f64) / END_PER_DECADE as f64);
         ts.push(t);
         ts.push(pi - t);
     }
-    for (phi, dist) in root_angles(fam, a, b) {
+    // the roots from the shifted form where there is one: roots crowding z = 1 (fast
+    // sampling) are placed there to their distance from 1, in z only to ε^{1/m}
+    let (core, pk, pb, shift) = match &fam.shifted {
+        Some(sh) => (&sh.p0_core, &sh.pk, &sh.pb, 1.0),
+        None => (&fam.p0_core, &fam.pk, &fam.pb, 0.0),
+    };
+    let w = wall_poly(pk, pb, a, b);
+    push_root_runs(
+        &mut ts,
+        &[core.as_slice(), trimmed(&w)],
+        shift,
+        pi / m as f64,
+    );
+    merge_grid(&mut ts);
+    ts
+}
+
+/// The geometric runs of [`frequency_grid`] around the roots of the given polynomials alone
+/// (ascending coefficients in x = z − `shift`: 0 for z, 1 for w = z − 1), each run ending where its step exceeds `step` (the uniform
+/// grid's), sorted: what a second wall part on the same P0 (the loop at
+/// another fraction of a sample, [`super::fraction`]) adds to the grid of the first.
+pub fn root_grid(polys: &[&[f64]], shift: f64, step: f64) -> Vec<f64> {
+    let mut ts = Vec::new();
+    push_root_runs(&mut ts, polys, shift, step);
+    merge_grid(&mut ts);
+    ts
+}
+
+/// W = a·PK + b·PB (ascending).
+fn wall_poly(pk: &[f64], pb: &[f64], a: f64, b: f64) -> Vec<f64> {
+    crate::poly::add_scaled(&crate::poly::add_scaled(&[], a, pk), b, pb)
+}
+
+/// Geometric runs on both sides of the angle of every root of the polynomials (module doc),
+/// from a tenth of the root's distance to the circle outward until the run's step exceeds
+/// `step`, and the angle itself; the polynomials are in x = z − `shift`.
+fn push_root_runs(ts: &mut Vec<f64>, polys: &[&[f64]], shift: f64, step: f64) {
+    let pi = std::f64::consts::PI;
+    let ratio = 10f64.powf(1.0 / PER_DECADE as f64);
+    for (phi, dist) in root_angles(polys, shift) {
         let mut h = 0.1 * dist.max(THETA_FLOOR * pi);
-        while h < pi {
+        while h < pi && h * (ratio - 1.0) < step {
             for t in [phi - h, phi + h] {
                 if t > 0.0 && t < pi {
                     ts.push(t);
                 }
             }
-            h *= 10f64.powf(1.0 / PER_DECADE as f64);
+            h *= ratio;
         }
         if phi > 0.0 && phi < pi {
             ts.push(phi);
         }
     }
-    merge_grid(&mut ts);
-    ts
 }
 
-/// (|arg z|, ||z| − 1|) of every root of P0's core and of W = a·PK + b·PB.
-fn root_angles(fam: &AffineFamily, a: f64, b: f64) -> Vec<(f64, f64)> {
-    let n = fam.pk.len().max(fam.pb.len());
-    let w: Vec<f64> = (0..n)
-        .map(|i| {
-            a * fam.pk.get(i).copied().unwrap_or(0.0) + b * fam.pb.get(i).copied().unwrap_or(0.0)
-        })
-        .collect();
-    [fam.p0_core.as_slice(), trimmed(&w)]
-        .into_iter()
+/// (|arg z|, ||z| − 1|) of every root z = x + shift of the polynomials (ascending
+/// coefficients in x).
+fn root_angles(polys: &[&[f64]], shift: f64) -> Vec<(f64, f64)> {
+    polys
+        .iter()
         .filter(|c| c.len() > 1)
         .filter_map(|c| roots(c).ok())
         .flatten()
+        .map(|x| x + shift)
         .filter(|z| z.is_finite())
         .map(|z| (z.arg().abs(), (z.norm() - 1.0).abs()))
         .collect()
 }
 
 /// The coefficients without trailing (leading-power) zeros.
-fn trimmed(c: &[f64]) -> &[f64] {
+pub(crate) fn trimmed(c: &[f64]) -> &[f64] {
     let n = c.iter().rposition(|&x| x != 0.0).map_or(0, |i| i + 1);
     &c[..n]
 }
