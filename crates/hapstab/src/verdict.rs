@@ -94,15 +94,28 @@ pub fn verdict_of_radius(rho: f64) -> Verdict {
 /// scratch buffer of length degree + 1 (overwritten: the recursion runs in it, so it does not
 /// hold p's coefficients afterwards).
 pub fn decide(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Decision {
-    fam.coefficients_into(a, b, coeffs);
-    let n = coeffs.len().saturating_sub(1) as f64;
-    let fast = schur_cohn_in_place(coeffs, n * MARGINAL_BAND);
+    let fast = fast_path(fam, a, b, coeffs);
     if fast.sure {
         return sure_verdict(fast.stable);
     }
     // the recursion overwrote the coefficients: the band's circles need them again
     fam.coefficients_into(a, b, coeffs);
     decide_near_circle(coeffs, &Wall { fam, a, b }, fast.stable)
+}
+
+/// Step 1 of the module doc alone: [`decide`]'s verdict where the Schur–Cohn recursion is
+/// sure over the band, None where [`decide`] would go on to the band's circles. For a caller
+/// free to pick among several walls to test, the ones decided without the argument principle.
+pub fn decide_fast(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Option<Verdict> {
+    let fast = fast_path(fam, a, b, coeffs);
+    fast.sure.then(|| sure_verdict(fast.stable).verdict)
+}
+
+/// The fast path's recursion on the wall's z-coefficients (written into `coeffs`).
+fn fast_path(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> crate::schur_cohn::SchurCohn {
+    fam.coefficients_into(a, b, coeffs);
+    let n = coeffs.len().saturating_sub(1) as f64;
+    schur_cohn_in_place(coeffs, n * MARGINAL_BAND)
 }
 
 /// True iff [`decide`] says stable (a marginal wall is not).

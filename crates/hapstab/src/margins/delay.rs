@@ -24,11 +24,15 @@ use crate::error::Result;
 use crate::model::{Delay, Loop};
 use crate::params::{MAX_DELAY, Wall};
 use crate::stability::roots;
-use crate::verdict::{Verdict, decide, stable as verdict_stable};
+use crate::verdict::{Verdict, decide, decide_fast, stable as verdict_stable};
 
 /// The confirmed delay margin puts the wall stable at h·(1 − CONFIRM_REL) and not stable at
 /// h·(1 + CONFIRM_REL).
 pub const CONFIRM_REL: f64 = 1e-6;
+
+/// The stable side of the confirmation moves back by a factor of 10 at most this many times
+/// (to 1e-3 of the added delay) to a wall the Schur–Cohn step decides surely.
+const CONFIRM_WIDENINGS: i32 = 3;
 
 /// Seeds this many samples beyond the largest modelled delay are not solved: the loop is
 /// stable up to that delay.
@@ -78,31 +82,35 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
     let base = AffineFamily::of_loop(lp)?;
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(&base, a, b);
-    delay_margin_with(lp, wall, (a, b), &gain_scan(&base, a, b), &modes)
+    let pm = pm_over_wc(&gain_scan(&base, a, b), lp.period);
+    Ok((delay_margin_with(lp, wall, (a, b), &modes)?, pm))
 }
 
-/// [`delay_margin`] with the gain scan of the loop as it is (its crossovers give PM/ω_c) and
-/// its [`frequency_grid`], as the margins have them already; (a, b) is the wall in the loop's
-/// wall units.
+/// The MATLAB-style figure min PM/ω_c over the gain crossovers of a gain scan, in seconds
+/// for the period T (None without a crossover): the added delay that would bring L to −1 if
+/// a delay only turned its phase.
+pub fn pm_over_wc(own: &GainScan, period: f64) -> Option<f64> {
+    own.crossovers
+        .iter()
+        .map(|c| positive_phase(c.phase_margin_deg.to_radians()) / c.theta)
+        .reduce(f64::min)
+        .map(|h| h * period)
+}
+
+/// [`delay_margin`] with the loop's [`frequency_grid`] `modes`, as the margins have it
+/// already; (a, b) is the wall in the loop's wall units.
 pub fn delay_margin_with(
     lp: &Loop,
     wall: Wall,
     (a, b): (f64, f64),
-    own: &GainScan,
     modes: &[f64],
-) -> Result<(DelayScan, Option<f64>)> {
+) -> Result<DelayScan> {
     let s0 = lp.delay.in_samples();
-    let pm_over_wc = own
-        .crossovers
-        .iter()
-        .map(|c| positive_phase(c.phase_margin_deg.to_radians()) / c.theta)
-        .reduce(f64::min)
-        .map(|h| h * lp.period);
     let fl = FractionLoop::new(lp, a, b, modes)?;
     let table = FractionTable::new(&fl);
     let peak = table.peak_bound();
     if peak < SMALL_GAIN_LIMIT {
-        return Ok((DelayScan::SmallGain(peak), pm_over_wc));
+        return Ok(DelayScan::SmallGain(peak));
     }
     let seeds = seeds(s0, &table.crossovers());
     // A root can reach the circle only at a gain crossover of some fraction's loop; when
@@ -112,21 +120,18 @@ pub fn delay_margin_with(
         .first()
         .is_none_or(|s| s.0 > MAX_DELAY as f64 + BEYOND_MAX)
     {
-        return Ok((DelayScan::StableUpToMax, pm_over_wc));
+        return Ok(DelayScan::StableUpToMax);
     }
     if let Some((s, theta)) = smallest_solution(&fl, s0, seeds)
         && confirmed(&fl, s0, s)
     {
-        return Ok((
-            DelayScan::Crossing(DelayMargin {
-                seconds: (s - s0) * lp.period,
-                theta,
-                frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
-            }),
-            pm_over_wc,
-        ));
+        return Ok(DelayScan::Crossing(DelayMargin {
+            seconds: (s - s0) * lp.period,
+            theta,
+            frequency_hz: theta / (2.0 * std::f64::consts::PI * lp.period),
+        }));
     }
-    Ok((delay_scan(lp, wall)?, pm_over_wc))
+    delay_scan(lp, wall)
 }
 
 /// The smallest solution s > s0 of the exact solve over the seeds (in increasing delay):
@@ -161,20 +166,35 @@ fn smallest_solution(fl: &FractionLoop, s0: f64, seeds: Vec<(f64, f64)>) -> Opti
     best
 }
 
-/// The verdict confirms a crossing at total delay s: before it not unstable, after it not
-/// stable (both sides are marginal only where the whole path lies within the verdict's band
-/// of the circle). p at each delay comes from the fraction loop's parts
+/// The verdict confirms a crossing at total delay s: after it, at s + ε (ε = CONFIRM_REL of
+/// the added delay), not stable; before it not unstable — at the nearest of s − 10^j·ε,
+/// j = 0 … [`CONFIRM_WIDENINGS`], that the verdict's Schur–Cohn step decides surely
+/// ([`decide_fast`]: a stable root 1e-8 inside the circle is often beyond the recursion's
+/// rounding bound, and the argument principle costs a hundred times more), else by the whole
+/// verdict at s − ε. Both sides are marginal only where the whole path lies within the
+/// verdict's band of the circle. p at each delay comes from the fraction loop's parts
 /// ([`FractionLoop::family_at`]), the exact model at that delay.
 fn confirmed(fl: &FractionLoop, s0: f64, s: f64) -> bool {
-    let verdict_at = |s: f64| -> Verdict {
+    let family = |s: f64| {
         let whole = s.floor();
-        let f = fl.family_at(whole as usize, &fl.hold(s - whole).g);
+        fl.family_at(whole as usize, &fl.hold(s - whole).g)
+    };
+    let verdict_at = |s: f64| -> Verdict {
+        let f = family(s);
         decide(&f, 1.0, 0.0, &mut f.coefficients(1.0, 0.0)).verdict
     };
     let eps = CONFIRM_REL * (s - s0);
-    s + eps <= MAX_DELAY as f64
-        && verdict_at(s - eps) != Verdict::Unstable
-        && verdict_at(s + eps) != Verdict::Stable
+    if s + eps > MAX_DELAY as f64 || verdict_at(s + eps) == Verdict::Stable {
+        return false;
+    }
+    let before = (0..=CONFIRM_WIDENINGS)
+        .map(|j| s - eps * 10f64.powi(j))
+        .filter(|&x| x > s0)
+        .find_map(|x| {
+            let f = family(x);
+            decide_fast(&f, 1.0, 0.0, &mut f.coefficients(1.0, 0.0))
+        });
+    before.unwrap_or_else(|| verdict_at(s - eps)) != Verdict::Unstable
 }
 
 /// A phase in (−π, π] moved to (0, 2π]: the extra lag that brings L to −1.

@@ -40,6 +40,30 @@ use crate::zoh::{DiscreteLoop, StateSpace, WallScale, exp_and_integral};
 /// fraction's loop are tabulated, and on which the bound's δ_j is sampled.
 pub const FRACTIONS: usize = 64;
 
+/// The hold input between tabulated fractions is advanced by a Taylor series where ‖A‖δ is at
+/// most this (20 terms then reach 1e-19 relative); beyond, by the matrix exponential.
+const HOLD_SERIES_NORM: f64 = 0.5;
+
+/// Ψ(δ)x = δ·Σ_k (Aδ)^k x/(k + 1)! for ‖A‖δ ≤ [`HOLD_SERIES_NORM`], summed until a term falls
+/// below an ulp of the sum.
+fn psi_times(a: &Mat, delta: f64, x: &[f64]) -> Vec<f64> {
+    let mut term = x.to_vec();
+    let mut sum = x.to_vec();
+    for k in 1..40 {
+        let f = delta / (k + 1) as f64;
+        term = poly::mat_vec(a, &term).iter().map(|t| t * f).collect();
+        let l1 = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+        let (tn, sn) = (l1(&term), l1(&sum));
+        for (s, t) in sum.iter_mut().zip(&term) {
+            *s += t;
+        }
+        if tn <= 1e-17 * sn {
+            break;
+        }
+    }
+    sum.iter().map(|s| s * delta).collect()
+}
+
 /// Local maxima of ln|L_λ| within this of 0 that stay below it are refined: a pair of
 /// crossovers the grid straddled (the grid samples every mode's peak within a tenth of its
 /// width, so a farther one cannot reach 1).
@@ -64,6 +88,10 @@ pub struct FractionLoop {
     in_w: Option<Polys>,
     /// Wall units of the loop.
     scale: WallScale,
+    /// ‖A‖₁.
+    a_norm: f64,
+    /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS.
+    holds: Vec<HoldInput>,
     /// The frequency grid of the table.
     pub grid: Vec<f64>,
 }
@@ -271,8 +299,12 @@ impl FractionLoop {
             in_z,
             in_w,
             scale: base.scale,
+            a_norm: 0.0,
+            holds: Vec::new(),
             grid: Vec::new(),
         };
+        fl.a_norm = poly::norm1(&fl.a_mat);
+        fl.holds = fl.hold_table();
         // the wall part at half a sample, in w where there is a shifted form (modes's rule)
         let g_half = fl.hold(0.5).g;
         let (half, shift) = match &fl.in_w {
@@ -347,8 +379,30 @@ impl FractionLoop {
         }
     }
 
-    /// The hold input at the fraction λ ∈ [0, 1] (module doc).
+    /// The hold input at the fraction λ ∈ [0, 1] (module doc): from the tabulated fraction
+    /// m/[`FRACTIONS`] just above λ (τ_m = 1 − m/FRACTIONS just below τ = 1 − λ, δ = τ − τ_m)
+    /// by g(τ) = g(τ_m) + Ψ(δ)u_m and u(τ) = u_m + A·Ψ(δ)u_m with u = e^{Aτ}B, Ψ(δ)u_m by
+    /// its Taylor series where ‖A‖δ ≤ [`HOLD_SERIES_NORM`]; else directly.
     pub fn hold(&self, lambda: f64) -> HoldInput {
+        let m = ((lambda * FRACTIONS as f64).ceil().max(0.0) as usize).min(FRACTIONS);
+        let delta = m as f64 / FRACTIONS as f64 - lambda;
+        match self.holds.get(m) {
+            Some(at) if delta >= 0.0 && self.a_norm * delta <= HOLD_SERIES_NORM => {
+                let u0: Vec<f64> = at.dg.iter().map(|x| -x).collect();
+                let v = psi_times(&self.a_mat, delta, &u0);
+                let u: Vec<f64> = u0
+                    .iter()
+                    .zip(poly::mat_vec(&self.a_mat, &v))
+                    .map(|(x, y)| x + y)
+                    .collect();
+                self.hold_input(at.g.iter().zip(&v).map(|(x, y)| x + y).collect(), u)
+            }
+            _ => self.hold_direct(lambda),
+        }
+    }
+
+    /// The hold input at λ from the matrix exponential at τ = 1 − λ.
+    fn hold_direct(&self, lambda: f64) -> HoldInput {
         let (e, psi) = exp_and_integral(&self.a_mat, 1.0 - lambda);
         let g = poly::mat_vec(&psi, &self.b_vec);
         let u: Vec<f64> = poly::mat_vec(&e, &self.b_vec)
@@ -356,18 +410,27 @@ impl FractionLoop {
             .zip(&self.b_vec)
             .map(|(x, y)| x + y)
             .collect();
-        let ddg = poly::mat_vec(&self.a_mat, &u);
+        self.hold_input(g, u)
+    }
+
+    /// The hold input from g and u = e^{Aτ}B: dg = −u, ddg = A·u.
+    fn hold_input(&self, g: Vec<f64>, u: Vec<f64>) -> HoldInput {
         HoldInput {
             g,
+            ddg: poly::mat_vec(&self.a_mat, &u),
             dg: u.iter().map(|x| -x).collect(),
-            ddg,
         }
     }
 
     /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS (the last, λ = 1,
-    /// only for the bound), by the exact one-step recursion in τ = 1 − λ with step
-    /// h = 1/FRACTIONS: g(τ + h) = Ψ(h)B + e^{Ah}g(τ), e^{A(τ+h)}B = e^{Ah}e^{Aτ}B.
-    pub fn holds(&self) -> Vec<HoldInput> {
+    /// only for the bound), tabulated when the loop was built.
+    pub fn holds(&self) -> &[HoldInput] {
+        &self.holds
+    }
+
+    /// The table of [`FractionLoop::holds`] by the exact one-step recursion in τ = 1 − λ
+    /// with step h = 1/FRACTIONS: g(τ + h) = Ψ(h)B + e^{Ah}g(τ), e^{A(τ+h)}B = e^{Ah}e^{Aτ}B.
+    fn hold_table(&self) -> Vec<HoldInput> {
         let (e, psi) = exp_and_integral(&self.a_mat, 1.0 / FRACTIONS as f64);
         let step = poly::mat_vec(&psi, &self.b_vec);
         let n = self.b_vec.len();
@@ -381,11 +444,7 @@ impl FractionLoop {
         let (mut g, mut u) = (vec![0.0; n], self.b_vec.clone());
         let mut out = Vec::with_capacity(FRACTIONS + 1);
         for m in 0..=FRACTIONS {
-            out.push(HoldInput {
-                g: g.clone(),
-                dg: u.iter().map(|x| -x).collect(),
-                ddg: poly::mat_vec(&self.a_mat, &u),
-            });
+            out.push(self.hold_input(g.clone(), u.clone()));
             if m < FRACTIONS {
                 g = advance(&g).iter().zip(&step).map(|(x, s)| x + s).collect();
                 u = advance(&u);
@@ -467,7 +526,7 @@ pub struct FractionCrossover {
 impl<'a> FractionTable<'a> {
     /// Tabulates the parts and the bound on the grid.
     pub fn new(fl: &'a FractionLoop) -> Self {
-        let holds = fl.holds();
+        let holds = fl.holds().to_vec();
         let delta = fl.deviation_bound(&holds);
         let width = fl.width();
         let mut values = vec![Complex64::new(0.0, 0.0); width * fl.grid.len()];
@@ -666,7 +725,7 @@ mod tests {
     fn the_bounds_hold_over_a_fine_fraction_grid() {
         for (lp, a, b) in loops() {
             let fl = FractionLoop::new(&lp, a, b, &[0.1, 1.0]).unwrap();
-            let delta = fl.deviation_bound(&fl.holds());
+            let delta = fl.deviation_bound(fl.holds());
             let holds: Vec<HoldInput> = (0..=1000).map(|i| fl.hold(i as f64 / 1000.0)).collect();
             for theta in [1e-3, 0.05, 0.4, 1.3, 2.2, 3.0] {
                 let parts = fl.parts(theta);

@@ -39,7 +39,7 @@ use crate::verdict::stable as verdict_stable;
 
 pub use delay::{DelayScan, delay_margin, delay_scan};
 pub use frequency::{
-    GainCrossover, frequency_grid, gain_scan, gain_scan_tabulated, loop_value, margin_grid,
+    GainCrossover, GainScan, frequency_grid, gain_scan, gain_scan_tabulated, loop_value, margin_grid,
     stability_margin, stability_margin_tabulated, wrap_degrees,
 };
 
@@ -191,15 +191,34 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
     margins_of_stable(lp, &AffineFamily::of_loop(lp)?, wall)
 }
 
-/// Every margin of a wall that the verdict calls stable, on the loop's family.
+/// Every margin of a wall that the verdict calls stable, on the loop's family: the margins
+/// read on the frequency response and the delay margin, side by side ([`rayon::join`]: they
+/// share only the loop's [`frequency_grid`]).
 fn margins_of_stable(lp: &Loop, fam: &AffineFamily, wall: Wall) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
+    let modes = frequency_grid(fam, a, b);
+    let ((mut out, scan), delay) = rayon::join(
+        || frequency_margins(lp, fam, (a, b), &modes),
+        || delay::delay_margin_with(lp, wall, (a, b), &modes),
+    );
+    out.delay_pm_over_wc = delay::pm_over_wc(&scan, lp.period);
+    delay_note(&mut out, delay?);
+    Ok(out)
+}
+
+/// The margins read on the loop's frequency response (all but the delay margin), with the
+/// gain scan they came from; `modes` is the loop's [`frequency_grid`].
+fn frequency_margins(
+    lp: &Loop,
+    fam: &AffineFamily,
+    (a, b): (f64, f64),
+    modes: &[f64],
+) -> (Margins, GainScan) {
     let p = AlphaBeta { alpha: a, beta: b };
     let hz = |theta: f64| theta / (2.0 * std::f64::consts::PI * lp.period);
     let mut out = Margins::withheld(true, "");
     out.notes.clear();
-    let modes = frequency_grid(fam, a, b);
-    let table = CircleTable::on(fam, margin_grid(fam, &modes));
+    let table = CircleTable::on(fam, margin_grid(fam, modes));
     let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(fam, &table, &WallLine::ray(p), 1.0, hz));
     let axis = (a != 0.0).then(|| factors(fam, &table, &WallLine::stiffness_axis(b), a, hz));
     if let Some(r) = &ray {
@@ -262,10 +281,7 @@ fn margins_of_stable(lp: &Loop, fam: &AffineFamily, wall: Wall) -> Result<Margin
         theta: t,
         frequency_hz: hz(t),
     });
-    let (delay, pm_over_wc) = delay::delay_margin_with(lp, wall, (a, b), &scan, &modes)?;
-    out.delay_pm_over_wc = pm_over_wc;
-    delay_note(&mut out, delay);
-    Ok(out)
+    (out, scan)
 }
 
 /// The delay margin's outcome into the margins and their notes.
