@@ -153,10 +153,11 @@ pub fn winding(p: &impl OnCircle, r: f64) -> Winding {
         loop {
             let (g, dg, e) = p.on_circle(r, (theta + h).min(pi));
             let turn = (g / f).arg();
-            // The linear model that chose the step must hold at its end: where the terms of
-            // dp/dθ cancel (roots of a cluster near z = 1 on both sides), the phase can whirl a
-            // whole turn inside one step while arg(g/f) reads a small angle.
-            let linear = (g - f - df * h).norm() <= 0.5 * f.norm();
+            // The linear model that chose the step must hold at its end and at its middle:
+            // where the terms of dp/dθ cancel (roots of a cluster near z = 1 on both sides),
+            // the phase can whirl a whole turn inside one step while arg(g/f) reads a small
+            // angle and g even lies near the linear model's end.
+            let linear = step_holds(p, r, theta, h, (f, df), g);
             if (turn.abs() < pi / 3.0 && linear) || h < 1e-300 {
                 theta = (theta + h).min(pi);
                 phase += turn;
@@ -180,6 +181,30 @@ pub fn winding(p: &impl OnCircle, r: f64) -> Winding {
     }
 }
 
+/// A step of the winding from θ (value f, θ-derivative df) to θ + h (value g) is accepted
+/// when the linear model holds at both ends of each half (within half of |f| at the end,
+/// a quarter at the middle) and the two halves' turns, each below π/3, add up to the whole
+/// step's: a whole turn hidden in the step shows at the middle.
+fn step_holds(
+    p: &impl OnCircle,
+    r: f64,
+    theta: f64,
+    h: f64,
+    (f, df): (Complex64, Complex64),
+    g: Complex64,
+) -> bool {
+    let pi = std::f64::consts::PI;
+    if (g - f - df * h).norm() > 0.5 * f.norm() {
+        return false;
+    }
+    let (m, _, _) = p.on_circle(r, theta + 0.5 * h);
+    let (first, second) = ((m / f).arg(), (g / m).arg());
+    (m - f - df * (0.5 * h)).norm() <= 0.25 * f.norm()
+        && first.abs() < pi / 3.0
+        && second.abs() < pi / 3.0
+        && (first + second - (g / f).arg()).abs() < 1e-6
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -196,6 +221,27 @@ mod tests {
             assert_eq!(crate::schur_cohn::schur_stable(&c), stable);
             let wc = winding(&Coefficients(&c), 1.0);
             assert_eq!((wc.decided(), wc.inside), (true, w.inside));
+        }
+    }
+
+    #[test]
+    fn a_cluster_on_both_sides_of_z_one_is_not_stepped_over() {
+        // a two-mass device at T = 1e-5: two pairs within 3e-5 and 4e-4 of the circle at
+        // θ = 0.031 and 0.014, whose terms of dp/dθ cancel at θ = 0, and three fast roots
+        let pair = |re: f64, im: f64| [re * re + im * im, -2.0 * re, 1.0];
+        let c = [
+            pair(0.999_486_871_753_8, 0.031_182_097_98),
+            pair(0.999_543_100_543_4, 0.014_423_047_04),
+            pair(-0.032_951_453_18, 0.050_663_724_52),
+        ]
+        .iter()
+        .fold(vec![-0.066_473_263_86, 1.0], |acc, q| {
+            crate::poly::mul(&acc, q)
+        });
+        for r in [1.0, 1.0 - 5e-11, 1.0 + 5e-11] {
+            let w = winding(&Coefficients(&c), r);
+            assert!(w.decided(), "{w:?}");
+            assert_eq!(w.inside, 7, "r = {r}: {w:?}");
         }
     }
 

@@ -112,7 +112,12 @@ pub fn decide_fast(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Op
 }
 
 /// The fast path's recursion on the wall's z-coefficients (written into `coeffs`).
-fn fast_path(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> crate::schur_cohn::SchurCohn {
+fn fast_path(
+    fam: &AffineFamily,
+    a: f64,
+    b: f64,
+    coeffs: &mut [f64],
+) -> crate::schur_cohn::SchurCohn {
     fam.coefficients_into(a, b, coeffs);
     let n = coeffs.len().saturating_sub(1) as f64;
     schur_cohn_in_place(coeffs, n * MARGINAL_BAND)

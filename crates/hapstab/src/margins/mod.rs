@@ -39,8 +39,8 @@ use crate::verdict::stable as verdict_stable;
 
 pub use delay::{DelayScan, delay_margin, delay_scan};
 pub use frequency::{
-    GainCrossover, GainScan, frequency_grid, gain_scan, gain_scan_tabulated, loop_value, margin_grid,
-    stability_margin, stability_margin_tabulated, wrap_degrees,
+    GainCrossover, GainScan, frequency_grid, gain_scan, gain_scan_tabulated, loop_value,
+    margin_grid, stability_margin, stability_margin_tabulated, wrap_degrees,
 };
 
 /// θ samples per degree of p for the certified delay scan's robustness bound.
