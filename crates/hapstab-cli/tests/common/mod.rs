@@ -47,3 +47,41 @@ pub fn verdict(lp: &[&str], k: f64, b: f64, extra: &[&str]) -> String {
         .unwrap()
         .to_string()
 }
+
+// ---------------------------------------------------------------------------------------
+// Shared by the `loop_flags_*` tests.
+// ---------------------------------------------------------------------------------------
+
+/// The text a command prints (exit 0 required).
+pub fn text(args: &[&str]) -> String {
+    let out = hapstab().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// A JSON number (present required).
+pub fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// A JSON array of numbers.
+pub fn floats(v: &Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(f).collect()
+}
+
+/// The wall of the `check` runs: K = 20 kN/m, B = 5 Ns/m.
+pub const WALL: [&str; 4] = ["--wall-stiffness", "20000", "--wall-damping", "5"];
+
+/// `check --json` at [`WALL`] with the loop flags `extra`.
+pub fn check(extra: &[&str]) -> Value {
+    json(&[&["check"][..], &WALL, extra].concat())
+}
+
+/// The spectral radius of a `check` answer.
+pub fn radius(v: &Value) -> f64 {
+    f(&v["spectral_radius"])
+}

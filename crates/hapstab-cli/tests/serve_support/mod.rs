@@ -8,6 +8,9 @@ use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
+use hapstab::region::stable_region;
+use hapstab::{PlantParams, PolyFamily};
+
 /// A running `hapstab serve --port 0`; killed on drop.
 pub struct Server {
     child: Child,
@@ -235,4 +238,36 @@ pub fn proc_status_bytes(pid: u32, field: &str) -> u64 {
 /// Peak resident memory of a process in bytes.
 pub fn peak_rss_bytes(pid: u32) -> u64 {
     proc_status_bytes(pid, "VmHWM")
+}
+
+// ---------------------------------------------------------------------------------------
+// Shared by the `serve_api_*` tests.
+// ---------------------------------------------------------------------------------------
+
+/// The paper's plant of most API tests, as a query.
+pub const PLANT: &str = "gamma=0.001&delta=0.015&d=1";
+
+/// The library's exact stable region of (γ, δ, d).
+pub fn library_region(gamma: f64, delta: f64, d: usize) -> hapstab::region::StableRegion {
+    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()).unwrap()
+}
+
+/// A two-mass device held by the default arm, with an actuator lag, a low-pass velocity and a
+/// fractional delay (t_d = 1.4 T): a loop beyond the paper's.
+pub const TWO_MASS_LOOP: &str = "mode=physical&motor_mass=0.05&handle_mass=0.05&transmission_stiffness=5000&transmission_damping=1&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&delay_time=0.0014&estimator=lowpass%3A150&force_lag=0.0002";
+
+/// The JSON a `hapstab` command prints with `--json` (exit 0 required).
+pub fn hapstab_json(args: &[&str]) -> serde_json::Value {
+    let out = assert_cmd::Command::cargo_bin("hapstab")
+        .unwrap()
+        .args(args)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
 }

@@ -1,0 +1,59 @@
+//! A grid of panels saved as one image.
+
+use std::path::Path;
+
+use anyhow::Result;
+
+use super::save::{Saved, save_both};
+use super::{DEFAULT_SIZE, Figure};
+
+/// A grid of panels saved as one image: `cols` columns, rows as needed, panels in reading
+/// order, each of `panel_size` px, with an optional overall title.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    /// Overall title (may be empty).
+    pub title: String,
+    /// Number of columns (>= 1).
+    pub cols: usize,
+    /// Panels in reading order.
+    pub panels: Vec<Figure>,
+    /// Size of one panel in px.
+    pub panel_size: (u32, u32),
+}
+
+impl Grid {
+    /// An empty grid with `cols` columns of 900×700 px panels.
+    pub fn new(title: impl Into<String>, cols: usize) -> Self {
+        Self {
+            title: title.into(),
+            cols: cols.max(1),
+            panels: Vec::new(),
+            panel_size: DEFAULT_SIZE,
+        }
+    }
+
+    /// Sets the size of one panel in px.
+    pub fn panel_size(mut self, w: u32, h: u32) -> Self {
+        self.panel_size = (w, h);
+        self
+    }
+
+    /// Adds a panel.
+    pub fn push(&mut self, f: Figure) -> &mut Self {
+        self.panels.push(f);
+        self
+    }
+
+    pub(super) fn rows(&self) -> usize {
+        self.panels.len().div_ceil(self.cols).max(1)
+    }
+
+    pub(super) fn title_height(&self) -> u32 {
+        if self.title.is_empty() { 0 } else { 56 }
+    }
+
+    /// Writes `<stem>.svg` and `<stem>.png` (see [`Figure::save`]).
+    pub fn save(&self, stem: impl AsRef<Path>) -> Result<Saved> {
+        save_both(self, stem.as_ref())
+    }
+}

@@ -1,0 +1,58 @@
+//! The computations behind the JSON API, all synchronous and panic-free: request parameters
+//! in, serializable answers out. The handlers in `mod.rs` run them on the blocking pool.
+
+//!
+//! One endpoint per file: `/api/region` in `region` (its request in `region_request`, the
+//! passive triangles it draws in `passive`), `/api/point` in `point` and `/api/simulate` in
+//! `simulation`. The budget check and the plant of an answer, which all share, are here.
+
+use serde::Serialize;
+
+use super::query::{ApiError, PlantSpec, clip};
+use hapstab::limits::{Budget, Cost};
+
+mod passive;
+mod point;
+mod region;
+mod region_request;
+mod simulation;
+
+pub use point::{PointOut, point, point_budget, point_names, wall_point};
+pub use region::{RegionOut, region};
+#[cfg(test)]
+pub use region::{nominal_region_cost, robust_cost};
+pub use region_request::{RegionReq, parse_region, region_names};
+pub use simulation::{parse_simulate, simulate, simulate_names};
+
+/// Refuses a computation whose estimated cost exceeds [`Budget::INTERACTIVE`], with a 400
+/// naming the parameter that drives it.
+pub fn within_budget(cost: Cost, what: &str, name: &str, value: &str) -> Result<(), ApiError> {
+    Budget::INTERACTIVE.check(cost).map_err(|e| {
+        ApiError::param(
+            name,
+            value,
+            format!(
+                "{what} {e}; reduce parameter '{name}' (got {}), see /api/limits",
+                clip(value)
+            ),
+        )
+    })
+}
+
+/// γ, δ, d of an answer.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct PlantOut {
+    pub gamma: f64,
+    pub delta: f64,
+    pub d: usize,
+}
+
+impl From<&PlantSpec> for PlantOut {
+    fn from(s: &PlantSpec) -> Self {
+        Self {
+            gamma: s.plant.gamma,
+            delta: s.plant.delta,
+            d: s.d,
+        }
+    }
+}

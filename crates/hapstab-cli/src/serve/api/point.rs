@@ -1,0 +1,176 @@
+//! `/api/point`: the verdict, roots and spectral radius at one wall, the linear condition and
+//! whether the wall is passive.
+
+use std::time::Instant;
+
+use hapstab::Loop;
+use hapstab::limits::point_cost;
+use hapstab::linear::linear_check;
+use hapstab::loop_analysis;
+use hapstab::params::Normalized;
+use hapstab::stability::Analysis;
+use serde::Serialize;
+
+use super::passive::{has_arm_damping, own_delta};
+use super::within_budget;
+use crate::serve::limits::*;
+use crate::serve::query::{ApiError, Params, PlantSpec, lib_error};
+
+/// α and β of a point; in physical mode optionally given as K (N/m) and B (Ns/m).
+pub fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), ApiError> {
+    let phys_given = p.has("wall_stiffness") || p.has("wall_damping");
+    let norm_given = p.has("alpha") || p.has("beta");
+    if phys_given && norm_given {
+        return Err(ApiError::bad(
+            "give the point either as alpha/beta or as wall_stiffness/wall_damping, not both"
+                .into(),
+        ));
+    }
+    if phys_given {
+        let Some(ph) = spec.physical else {
+            return Err(ApiError::param(
+                "wall_stiffness",
+                p.raw("wall_stiffness").unwrap_or(""),
+                "wall_stiffness/wall_damping need mode=physical".into(),
+            ));
+        };
+        let k = p.num_in(
+            "wall_stiffness",
+            -MAX_WALL * ph.k_per_alpha,
+            MAX_WALL * ph.k_per_alpha,
+            " N/m",
+        )?;
+        let b = p.num_in(
+            "wall_damping",
+            -MAX_WALL * ph.b_per_beta,
+            MAX_WALL * ph.b_per_beta,
+            " Ns/m",
+        )?;
+        return Ok((k / ph.k_per_alpha, b / ph.b_per_beta));
+    }
+    let alpha = p.num_in(
+        "alpha",
+        -MAX_WALL,
+        MAX_WALL,
+        " (normalized stiffness α = KT²/m)",
+    )?;
+    let beta = p.num_in(
+        "beta",
+        -MAX_WALL,
+        MAX_WALL,
+        " (normalized damping β = BT/m)",
+    )?;
+    Ok((alpha, beta))
+}
+
+/// Query names of `/api/point`.
+pub fn point_names() -> Vec<&'static str> {
+    let mut v: Vec<&str> = crate::serve::query::PLANT_PARAMS.to_vec();
+    v.extend(["alpha", "beta", "wall_stiffness", "wall_damping"]);
+    v
+}
+
+/// The physical wall of a point.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct WallOut {
+    /// K in N/m.
+    pub stiffness: f64,
+    /// B in Ns/m.
+    pub damping: f64,
+}
+
+/// The linear condition at a point.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct PointLinear {
+    pub alpha_lower: f64,
+    pub alpha_upper: f64,
+    pub satisfied: bool,
+}
+
+/// Answer of `/api/point`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PointOut {
+    /// (α, β, γ, δ, d); for a loop beyond the paper's the wall in wall units (a, b) with γ
+    /// its static stiffness in wall units and δ = 0 (the loop is under `loop`).
+    pub params: Normalized,
+    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
+    pub lp: Option<Loop>,
+    pub wall: Option<WallOut>,
+    /// stable | marginal | unstable (Schur–Cohn with a 5e-11 marginal band).
+    pub verdict: &'static str,
+    pub stable: bool,
+    /// Largest root modulus of p(z).
+    pub spectral_radius: f64,
+    /// Roots of p(z) as [re, im], largest modulus first.
+    pub roots: Vec<[f64; 2]>,
+    /// Linear condition (19), (23) of the paper's loop (null for other loops).
+    pub linear: Option<PointLinear>,
+    /// Inside Colgate's passive region for the device's own damping (d = 0 only).
+    pub passive: Option<bool>,
+    /// Inside eq. (28) with the arm's damping counted (physical units with an arm, d = 0).
+    pub passive_with_arm: Option<bool>,
+    pub server_ms: f64,
+}
+
+/// Refuses a point whose roots would cost more than one request may.
+pub fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
+    within_budget(
+        point_cost(spec.cost_d()),
+        "the roots at one point",
+        "d",
+        &spec.d.to_string(),
+    )
+}
+
+/// The wall of a point in physical units, if the request is physical.
+pub(super) fn wall_out(spec: &PlantSpec, alpha: f64, beta: f64) -> Option<WallOut> {
+    spec.physical.map(|ph| WallOut {
+        stiffness: alpha * ph.k_per_alpha,
+        damping: beta * ph.b_per_beta,
+    })
+}
+
+/// The point's (α, β, γ, δ, d) (see [`PointOut::params`]).
+pub(super) fn point_params(
+    spec: &PlantSpec,
+    alpha: f64,
+    beta: f64,
+) -> Result<Normalized, ApiError> {
+    Normalized::new(alpha, beta, spec.plant.gamma, spec.plant.delta, spec.d).map_err(lib_error)
+}
+
+/// Computes `/api/point`.
+pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiError> {
+    let t0 = Instant::now();
+    let n = point_params(spec, alpha, beta)?;
+    let a = match &spec.general {
+        Some(g) => loop_analysis::analysis(&g.lp, &g.family, (alpha, beta)),
+        None => Analysis::new(n),
+    }
+    .map_err(lib_error)?;
+    let paper = spec.general.is_none();
+    let linear = paper.then(|| {
+        let lc = linear_check(&n);
+        PointLinear {
+            alpha_lower: lc.alpha_lower,
+            alpha_upper: lc.alpha_upper,
+            satisfied: lc.satisfied,
+        }
+    });
+    let inside = |delta: f64| alpha >= 0.0 && delta > alpha / 2.0 + beta.abs();
+    let passive = (paper && spec.d == 0).then(|| inside(own_delta(spec)));
+    let passive_with_arm = (paper && spec.d == 0 && has_arm_damping(spec)).then(|| inside(n.delta));
+    Ok(PointOut {
+        params: n,
+        lp: spec.general.as_ref().map(|g| g.lp.clone()),
+        wall: wall_out(spec, alpha, beta),
+        verdict: a.verdict.as_str(),
+        stable: a.stable(),
+        spectral_radius: a.spectral_radius,
+        roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
+        linear,
+        passive,
+        passive_with_arm,
+        server_ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
+}

@@ -1,0 +1,190 @@
+//! `/api/simulate`: one time-domain run of the wall with the library's verdict and a
+//! decimated trace.
+
+use std::time::Instant;
+
+use hapstab::Loop;
+use hapstab::limits::{point_cost, simulation_cost};
+use hapstab::params::{Normalized, Wall};
+use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, LoopModel, Model};
+use hapstab::simulation::{RunResult, SimModel};
+use serde::Serialize;
+
+use super::point::{point_names, point_params, wall_out, wall_point};
+use super::within_budget;
+use crate::serve::limits::*;
+use crate::serve::query::{ApiError, Params, PlantSpec, lib_error, plant_spec};
+
+/// Query names of `/api/simulate`.
+pub fn simulate_names() -> Vec<&'static str> {
+    let mut v = point_names();
+    v.extend(["samples", "push", "velocity", "contact"]);
+    v
+}
+
+/// A parsed simulation request.
+#[derive(Debug, Clone)]
+pub struct SimReq {
+    pub spec: PlantSpec,
+    pub alpha: f64,
+    pub beta: f64,
+    pub samples: usize,
+    pub push: f64,
+    pub velocity: f64,
+    pub contact: Contact,
+}
+
+/// Validates a simulation request.
+pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
+    let spec = plant_spec(p)?;
+    let (alpha, beta) = wall_point(p, &spec)?;
+    let samples = match p.opt_count(
+        "samples",
+        MIN_SIM_SAMPLES,
+        MAX_SIM_SAMPLES,
+        " (simulated samples)",
+    )? {
+        Some(n) => n,
+        None => {
+            // about six periods of the wall's oscillation, ω ≈ √(α + γ) per sample
+            let w = (alpha + spec.plant.gamma).max(1e-8).sqrt();
+            ((6.0 * 2.0 * std::f64::consts::PI / w).ceil() as usize).clamp(300, 4000)
+        }
+    };
+    // a run may be extended up to the horizon until its verdict settles: budget for that
+    within_budget(
+        simulation_cost(
+            samples.max(SIM_HORIZON) as f64,
+            spec.cost_d(),
+            samples.min(MAX_TRACE_POINTS) as f64,
+        )
+        .then(point_cost(spec.cost_d())),
+        "the simulation (extended up to its horizon)",
+        "d",
+        &spec.d.to_string(),
+    )?;
+    let push = p.num_or(
+        "push",
+        1.0,
+        -MAX_PUSH,
+        MAX_PUSH,
+        " N (human push into the wall)",
+    )?;
+    let velocity = p.num_or(
+        "velocity",
+        0.01,
+        -MAX_VELOCITY,
+        MAX_VELOCITY,
+        " m/s (approach velocity at the wall surface)",
+    )?;
+    let contact = match p.choice(
+        "contact",
+        &["unilateral", "unilateral_no_pull", "bilateral"],
+        "unilateral",
+    )? {
+        "bilateral" => Contact::Bilateral,
+        "unilateral_no_pull" => Contact::UnilateralNoPull,
+        _ => Contact::Unilateral,
+    };
+    Ok(SimReq {
+        spec,
+        alpha,
+        beta,
+        samples,
+        push,
+        velocity,
+        contact,
+    })
+}
+
+/// A recorded trace, decimated.
+#[derive(Debug, Clone, Serialize)]
+pub struct TraceOut {
+    /// Time in s.
+    pub time: Vec<f64>,
+    /// Position in m (positive into the wall).
+    pub position: Vec<f64>,
+    /// Wall force in N (positive pushes out).
+    pub wall_force: Vec<f64>,
+}
+
+/// Answer of `/api/simulate`: the library's run result (the same verdict as `hapstab
+/// simulate` for the same setting) with a decimated trace of the whole run.
+#[derive(Debug, Clone, Serialize)]
+pub struct SimOut {
+    /// As [`PointOut::params`](super::PointOut::params).
+    pub params: Normalized,
+    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
+    pub lp: Option<Loop>,
+    /// Mass m in kg and period T in s used for units.
+    pub mass: f64,
+    pub period: f64,
+    pub units_note: &'static str,
+    /// unilateral | unilateral_no_pull | bilateral.
+    pub contact_mode: Contact,
+    pub push: f64,
+    pub velocity: f64,
+    /// outcome, reason, judged window, measured growth beside the spectral radius, limit
+    /// cycle, contact events, samples simulated (see `hapstab::simulation::RunResult`).
+    #[serde(flatten)]
+    pub run: RunResult,
+    pub trace: TraceOut,
+    pub server_ms: f64,
+}
+
+/// Runs `/api/simulate`: the device starts at the wall surface x = 0 moving in with
+/// `velocity`, the operator pushes with a constant `push`; unilateral wall by default. The
+/// run is `samples` long, extended like `hapstab simulate` until its verdict settles.
+pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
+    let t0 = Instant::now();
+    let spec = &req.spec;
+    let n = point_params(spec, req.alpha, req.beta)?;
+    let (mass, period, units_note) = match spec.physical {
+        Some(ph) => (ph.mass, ph.period, "physical units of the request"),
+        None => (
+            1.0,
+            1e-3,
+            "normalized mode: shown for m = 1 kg and T = 1 ms (only the shape depends on α, β, γ, δ, d)",
+        ),
+    };
+    let model = match (&spec.general, wall_out(spec, req.alpha, req.beta)) {
+        (Some(g), Some(w)) => {
+            let wall = Wall {
+                stiffness: w.stiffness,
+                damping: w.damping,
+            };
+            SimModel::Loop(LoopModel::new(g.lp.clone(), wall).map_err(lib_error)?)
+        }
+        _ => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
+    };
+    let mut cfg = Config::new(model, req.samples);
+    cfg.effects = Effects {
+        contact: req.contact,
+        ..Effects::LINEAR
+    };
+    cfg.human = HumanForce::Constant(req.push);
+    cfg.initial = Initial {
+        position: 0.0,
+        velocity: req.velocity,
+    };
+    cfg.trace_rows = MAX_TRACE_POINTS;
+    let mut run = hapstab::simulation::simulate(&cfg).map_err(lib_error)?;
+    let trace = run.trace.take().unwrap_or_default();
+    Ok(SimOut {
+        params: n,
+        lp: spec.general.as_ref().map(|g| g.lp.clone()),
+        mass,
+        period,
+        units_note,
+        contact_mode: req.contact,
+        push: req.push,
+        velocity: req.velocity,
+        run,
+        trace: TraceOut {
+            time: trace.time,
+            position: trace.position,
+            wall_force: trace.wall_force,
+        },
+        server_ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
+}

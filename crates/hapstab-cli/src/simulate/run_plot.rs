@@ -1,0 +1,231 @@
+//! The figure of one run: position and wall force over time with the judged window, and a
+//! zoom on the last periods of a limit cycle.
+
+use hapstab::simulation::{Config, Contact, Outcome, RunResult, SimModel, Trace};
+
+use super::run_args::RunSettings;
+use super::run_text::outcome_summary;
+use super::{Units, describe_effects};
+use crate::output::{eng, sig};
+use crate::plot::{Figure, Grid, Legend, Series, palette};
+
+/// Points per plotted curve (min-max decimated).
+const PLOT_BUCKETS: usize = 2_000;
+
+/// A one-line caption of the simulated loop: (α, β, γ, δ, d) for the paper's loop, the wall
+/// and the delay otherwise.
+fn model_caption(m: &SimModel) -> String {
+    match m {
+        SimModel::Paper(m) => {
+            let p = m.params;
+            format!(
+                "α = {}, β = {}, γ = {}, δ = {}, d = {}",
+                sig(p.alpha, 6),
+                sig(p.beta, 6),
+                sig(p.gamma, 6),
+                sig(p.delta, 6),
+                p.d
+            )
+        }
+        SimModel::Loop(l) => format!(
+            "K = {}, B = {}, t_d = {}",
+            eng(l.wall.stiffness, "N/m", 6),
+            eng(l.wall.damping, "Ns/m", 6),
+            eng(l.lp.delay_time(), "s", 6)
+        ),
+    }
+}
+
+/// A unit prefix for values up to `max_abs` in base unit `unit`: (factor, label).
+fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
+    if unit != "m" && unit != "N" {
+        return (1.0, unit.to_string());
+    }
+    let (f, p) = if !(max_abs.is_finite() && max_abs > 0.0) || max_abs >= 1.0 {
+        (1.0, "")
+    } else if max_abs >= 1e-3 {
+        (1e3, "m")
+    } else if max_abs >= 1e-6 {
+        (1e6, "µ")
+    } else {
+        (1e9, "n")
+    };
+    (f, format!("{p}{unit}"))
+}
+
+pub(super) fn trace_plot(
+    tr: &Trace,
+    r: &RunResult,
+    cfg: &Config,
+    s: &RunSettings,
+    units: Units,
+) -> Grid {
+    let verdict = outcome_summary(r, units);
+    let params = model_caption(&cfg.model);
+    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let xw = cfg.effects.wall_position;
+    let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
+    let fu = if units.physical { "N" } else { "" };
+    let (fs, funit) = scaled_unit(max_abs(&tr.wall_force), fu);
+    let series = |v: &[f64], scale: f64, from: f64| -> Vec<(f64, f64)> {
+        let pts: Vec<(f64, f64)> = tr
+            .time
+            .iter()
+            .zip(v)
+            .filter(|(t, _)| **t >= from)
+            .map(|(&t, &y)| (t, y * scale))
+            .collect();
+        crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
+    };
+    let t_end = tr
+        .time
+        .last()
+        .copied()
+        .unwrap_or(1.0)
+        .max(cfg.model.period());
+    let tlabel = format!("time t ({})", units.time());
+    let mut pos = Figure::new(params)
+        .x_label(&tlabel)
+        .y_label(format!("position x ({xunit})"))
+        .x_range(0.0, t_end)
+        .legend(Legend::UpperRight);
+    let (lo, hi) = tr
+        .position
+        .iter()
+        .chain([&xw])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let (j0, j1) = (
+        r.verdict.judged_from_sample as f64 * cfg.model.period(),
+        r.verdict.judged_to_sample as f64 * cfg.model.period(),
+    );
+    if hi > lo {
+        let (lo, hi) = (lo * xs, hi * xs);
+        pos.add(
+            Series::polygon([(j0, lo), (j1, lo), (j1, hi), (j0, hi)])
+                .color(palette::GREY)
+                .alpha(0.15)
+                .no_outline()
+                .label("judged window"),
+        );
+    }
+    pos.add(
+        Series::line(series(&tr.position, xs, 0.0))
+            .color(palette::BLUE)
+            .width(2)
+            .label("position x"),
+    );
+    let wall_line = cfg.effects.contact != Contact::Bilateral || xw != 0.0;
+    if wall_line {
+        pos.add(
+            Series::dashed([(0.0, xw * xs), (t_end, xw * xs)])
+                .color(palette::GREY)
+                .width(2)
+                .label("wall surface x_w"),
+        );
+    }
+    let flabel = if units.physical {
+        format!("wall force F ({funit})")
+    } else {
+        "wall force T²F/m".to_string()
+    };
+    let effects = describe_effects(s, units.force());
+    let effects = effects
+        .strip_prefix("none: ")
+        .unwrap_or(&effects)
+        .to_string();
+    let mut force = Figure::new(effects)
+        .x_label(&tlabel)
+        .y_label(flabel)
+        .x_range(0.0, t_end)
+        .legend(Legend::UpperRight);
+    force.add(
+        Series::line(series(&tr.wall_force, fs, 0.0))
+            .color(palette::VERMILLION)
+            .width(2)
+            .label("wall force F"),
+    );
+    if let Some(fmax) = cfg.effects.saturation {
+        let (hi, lo) = (fmax * fs, -fmax * fs);
+        force.add(
+            Series::dashed([
+                (0.0, hi),
+                (t_end, hi),
+                (f64::NAN, 0.0),
+                (0.0, lo),
+                (t_end, lo),
+            ])
+            .color(palette::GREY)
+            .width(2)
+            .label("saturation ±F_max"),
+        );
+    }
+    if s.human_force != 0.0 {
+        let fh = s.human_force * fs;
+        force.add(
+            Series::dashed([(0.0, fh), (t_end, fh)])
+                .color(palette::GREEN)
+                .width(2)
+                .label("human push F_H"),
+        );
+    }
+    let mut g = Grid::new(format!("Simulation: {verdict}"), 1).panel_size(1000, 520);
+    g.push(pos);
+    g.push(force);
+    // A limit cycle: zoom on its last periods.
+    if r.verdict.outcome == Outcome::LimitCycle && tr.time.len() > 16 {
+        let span = r
+            .verdict
+            .limit_cycle
+            .map(|c| c.frequency_hz)
+            .filter(|f| *f > 0.0)
+            .map_or(t_end / 8.0, |f| 8.0 / f)
+            .min(t_end / 4.0);
+        let from = t_end - span;
+        let tail: Vec<f64> = tr
+            .time
+            .iter()
+            .zip(&tr.position)
+            .filter(|(t, _)| **t >= from)
+            .map(|(_, x)| *x)
+            .collect();
+        let (zs, zunit) = scaled_unit(max_abs(&tail).max(xw.abs()), "m");
+        let mut zoom = Figure::new("Limit cycle: the last periods")
+            .x_label(&tlabel)
+            .y_label(format!("position x ({zunit})"))
+            .x_range(from, t_end)
+            .legend(Legend::UpperRight);
+        zoom.add(
+            Series::line(series(&tr.position, zs, from))
+                .color(palette::BLUE)
+                .width(3)
+                .label("position x"),
+        );
+        if let Some(q) = cfg.effects.quantization {
+            // The encoder levels around the cycle.
+            let (lo, hi) = tail
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            // Thresholds (k + 1/2)·q from just below the cycle to just above it.
+            let (k0, k1) = ((lo / q - 0.5).floor() as i64, (hi / q - 0.5).ceil() as i64);
+            if k1 - k0 <= 40 {
+                let mut levels = Vec::new();
+                for k in k0..=k1 {
+                    let y = (k as f64 + 0.5) * q * zs;
+                    levels.extend([(from, y), (t_end, y), (f64::NAN, 0.0)]);
+                }
+                zoom.add(
+                    Series::dashed(levels)
+                        .color(palette::GREY)
+                        .width(1)
+                        .label("encoder thresholds"),
+                );
+            }
+        }
+        g.push(zoom);
+    }
+    g
+}

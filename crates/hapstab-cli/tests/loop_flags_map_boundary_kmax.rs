@@ -1,0 +1,162 @@
+//! Binary tests of the loop flags (transfer-function plant, two-mass device, actuator lag,
+//! velocity estimators, fractional delay) in `hapstab map`,
+//! `boundary` and `kmax`: closed forms, the paper's loop in physical units, boundary vertices
+//! on the stability boundary, the linear condition.
+
+mod common;
+
+use common::{check, f, floats, hapstab, json, radius};
+
+/// A wall map over (K, B) of a pure mass (m = 0.1 kg, T = 1 ms, d = 0) against the closed
+/// form 0 < α < 2β(2 − β)/(2 + β), α = KT²/m, β = BT/m.
+#[test]
+fn wall_map_of_a_pure_mass_closed_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.csv");
+    hapstab()
+        .args([
+            "map",
+            "--x",
+            "K:-5000:80000:45",
+            "--y",
+            "B:-10:210:35",
+            "--no-arm",
+            "--device-damping",
+            "0",
+            "--out",
+        ])
+        .arg(&out)
+        .assert()
+        .success();
+    let rows: Vec<String> = std::fs::read_to_string(&out)
+        .unwrap()
+        .lines()
+        .map(String::from)
+        .collect();
+    assert_eq!(rows[0], "K,B,stable");
+    assert_eq!(rows.len(), 1 + 45 * 35);
+    let mut stable = 0;
+    for r in &rows[1..] {
+        let v: Vec<f64> = r.split(',').map(|x| x.parse().unwrap()).collect();
+        let (alpha, beta, s) = (v[0] * 1e-6 / 0.1, v[1] * 1e-3 / 0.1, v[2] == 1.0);
+        let hi = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
+        let inside = alpha > 1e-9 && beta > 0.0 && beta < 2.0 && alpha < hi - 1e-9;
+        let outside = alpha < -1e-9 || !(-1e-9..=2.0 + 1e-9).contains(&beta) || alpha > hi + 1e-9;
+        if inside {
+            assert!(s, "({alpha}, {beta})");
+            stable += 1;
+        }
+        if outside {
+            assert!(!s, "({alpha}, {beta})");
+        }
+    }
+    assert!(stable > 100);
+}
+
+#[test]
+fn boundary_and_kmax_of_the_paper_loop_in_physical_units() {
+    // K = α m/T², B = β m/T with m = 0.1 kg, T = 1 ms
+    let b = json(&["boundary", "--no-arm"]);
+    let k = json(&["kmax", "--no-arm"]);
+    let (kmax, bk) = (f(&b["k_max"]), f(&b["b_at_k_max"]));
+    let n = &b["normalized"];
+    assert!((kmax - f(&n["alpha_max"]) * 1e5).abs() < 1e-9 * kmax);
+    assert!((bk - f(&n["beta_at_alpha_max"]) * 100.0).abs() < 1e-9 * bk);
+    assert!((f(&k["k_max"]) - kmax).abs() < 1e-9 * kmax);
+    assert!((f(&b["wall_units"]["stiffness"]) - 1e5).abs() < 1e-9);
+    assert!((f(&b["area"]) - f(&n["area"]) * 1e5 * 100.0).abs() < 1e-9 * f(&b["area"]));
+    assert_eq!(b["input"]["loop"]["plant"]["model"]["mass"], 0.1);
+}
+
+/// The vertices of a general loop's region lie on the stability boundary: ρ = 1 to 1e-9 and
+/// the verdict marginal. Sampled along the arcs, away from the corners where the arc meets
+/// the z = 1 line: there p(z) has a double root at z = 1, whose modulus moves with the
+/// square root of any rounding.
+#[test]
+fn boundary_vertices_of_a_two_mass_loop_are_marginal() {
+    let loop_flags = [
+        "--motor-mass",
+        "0.06",
+        "--handle-mass",
+        "0.04",
+        "--transmission-stiffness",
+        "2e5",
+        "--transmission-damping",
+        "2",
+        "--velocity",
+        "lowpass:200",
+        "--delay-time",
+        "0.0013",
+    ];
+    let b = json(&[&["boundary"][..], &loop_flags].concat());
+    let poly = b["polygons"][0].as_array().unwrap();
+    let corners: Vec<usize> = b["edges"][0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["start"].as_u64().unwrap() as usize)
+        .collect();
+    assert!(poly.len() > 100);
+    let step = poly.len() / 12;
+    for (i, v) in poly.iter().enumerate().skip(step).step_by(step) {
+        if corners.iter().any(|&c| i.abs_diff(c) < 2) {
+            continue;
+        }
+        let (k, bw) = (f(&v[0]).to_string(), f(&v[1]).to_string());
+        let c = json(
+            &[
+                &["check", "--wall-stiffness", &k, "--wall-damping", &bw][..],
+                &loop_flags,
+            ]
+            .concat(),
+        );
+        assert!((radius(&c) - 1.0).abs() < 1e-9, "({k}, {bw}): {c}");
+        assert_eq!(c["verdict"], "marginal", "({k}, {bw})");
+    }
+}
+
+/// The linear condition with a fractional delay: K_max (t_d + T/2)/(b + B) → 1 as
+/// (b + B)T/m → 0.
+#[test]
+fn kmax_with_fractional_delay_meets_the_linear_condition() {
+    for td in ["0.0005", "0.0013", "0.0027"] {
+        let v = json(&[
+            "kmax",
+            "--mass",
+            "10",
+            "--damping",
+            "0.5",
+            "--stiffness",
+            "0",
+            "--delay-time",
+            td,
+            "--wall-damping",
+            "0.5",
+        ]);
+        let t_d: f64 = td.parse().unwrap();
+        let ratio = f(&v["k_max"]) * (t_d + 0.0005) / 1.0;
+        assert!((ratio - 1.0).abs() < 1e-3, "t_d = {td}: {ratio}");
+    }
+}
+
+#[test]
+fn check_gives_the_k_interval_of_every_loop() {
+    let v = check(&["--velocity", "lowpass:100", "--force-lag", "0.0003"]);
+    let iv = floats(&v["k_interval"]);
+    let k = 20000.0;
+    assert_eq!(v["verdict"] == "stable", iv[0] < k && k < iv[1], "{v}");
+    // the upper end is marginal
+    let hi = iv[1].to_string();
+    let c = json(&[
+        "check",
+        "--wall-stiffness",
+        &hi,
+        "--wall-damping",
+        "5",
+        "--velocity",
+        "lowpass:100",
+        "--force-lag",
+        "0.0003",
+    ]);
+    assert!((radius(&c) - 1.0).abs() < 1e-9, "{c}");
+}

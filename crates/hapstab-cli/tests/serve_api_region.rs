@@ -1,0 +1,216 @@
+//! API tests of `hapstab serve` against the real server on an ephemeral loopback port:
+//! `/api/region` gives exactly the library's stable region, in normalized and physical mode,
+//! with the robust region (over γ or the arm's stiffness) and the passive triangles.
+
+mod serve_support;
+
+use hapstab::PlantParams;
+use serve_support::{PLANT, Server, hapstab_json, library_region, raw_number};
+
+#[test]
+fn region_alpha_max_equals_the_library() {
+    let s = Server::start(&[]);
+    for (g, de, d) in [
+        (0.001, 0.015, 0),
+        (0.001, 0.015, 1),
+        (0.0, 0.0, 2),
+        (0.0005, 0.005, 5),
+        (0.001, 0.0, 10),
+        (5.0, 1.0, 3),
+        (0.0, 0.015, 50),
+    ] {
+        let path = format!("/api/region?gamma={g}&delta={de}&d={d}");
+        let r = s.get(&path);
+        assert_eq!(r.status, 200, "{path}: {}", r.body);
+        let lib = library_region(g, de, d);
+        let am = raw_number(&r.body, "\"region\":", "alpha_max");
+        let bm = raw_number(&r.body, "\"region\":", "beta_at_alpha_max");
+        let area = raw_number(&r.body, "\"region\":", "area");
+        assert_eq!(am, lib.alpha_max, "{path}");
+        assert_eq!(bm, lib.beta_at_alpha_max, "{path}");
+        assert_eq!(area, lib.area, "{path}");
+        let j = r.json();
+        assert_eq!(j["params"]["d"], d);
+        let polys = j["region"]["polygons"].as_array().unwrap();
+        assert_eq!(polys.len(), lib.polygons.len(), "{path}");
+        // simplified for drawing, corners kept, never more vertices than the exact polygons
+        let sent = j["region"]["vertices_sent"].as_u64().unwrap() as usize;
+        let exact: usize = lib.polygons.iter().map(|p| p.vertices.len()).sum();
+        assert_eq!(
+            j["region"]["vertices_exact"].as_u64().unwrap() as usize,
+            exact
+        );
+        assert!(
+            sent <= exact && sent >= 3 * lib.polygons.len(),
+            "{sent} of {exact}"
+        );
+        // every drawn vertex lies on the exact boundary: its neighbourhood straddles it
+        // (checked cheaply: the drawn polygon's α extent is the exact one within tolerance)
+        let amax_drawn = polys
+            .iter()
+            .flat_map(|p| p.as_array().unwrap())
+            .map(|v| v[0].as_f64().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(amax_drawn <= lib.alpha_max + 1e-12);
+        assert!(amax_drawn >= lib.alpha_max - 1e-3 * lib.alpha_max.abs().max(1e-9));
+        // overlays
+        let lin = &j["linear"];
+        assert!((lin["slope"].as_f64().unwrap() - 1.0 / (d as f64 + 0.5)).abs() < 1e-15);
+        assert!((lin["alpha_at_beta0"].as_f64().unwrap() - de / (d as f64 + 0.5)).abs() < 1e-15);
+        if d == 0 {
+            let v = &j["passive"]["vertices"];
+            assert_eq!(v[1][0].as_f64().unwrap(), 2.0 * de);
+            assert_eq!(v[2][1].as_f64().unwrap(), de);
+        } else {
+            assert!(j["passive"].is_null());
+        }
+    }
+}
+
+#[test]
+fn physical_mode_matches_the_library() {
+    let s = Server::start(&[]);
+    let path = "/api/region?mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&delay_time=0.002";
+    let r = s.get(path);
+    assert_eq!(r.status, 200, "{}", r.body);
+    let eff = hapstab::Effective::new(1.1, 7.5, 350.0).unwrap();
+    let pp = PlantParams::from_physical(&eff, 0.001).unwrap();
+    let lib = library_region(pp.gamma, pp.delta, 2);
+    assert_eq!(
+        raw_number(&r.body, "\"region\":", "alpha_max"),
+        lib.alpha_max
+    );
+    let j = r.json();
+    assert_eq!(j["params"]["d"], 2);
+    let kpa = j["physical"]["k_per_alpha"].as_f64().unwrap();
+    assert!((kpa - 1.1 / 1e-6).abs() < 1e-6);
+    assert!((j["physical"]["b_per_beta"].as_f64().unwrap() - 1100.0).abs() < 1e-9);
+}
+
+#[test]
+fn robust_region_is_inside_the_nominal_one() {
+    let s = Server::start(&[]);
+    let r = s.get("/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=0&gamma_hi=9.8696");
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    let rob = &j["robust"];
+    assert_eq!(rob["empty"], false);
+    let ram = rob["alpha_max"].as_f64().unwrap();
+    for g in [0.0, 9.8696] {
+        assert!(ram <= library_region(g, 1.0, 0).alpha_max + 1e-9);
+    }
+    // Colgate's passive triangle (0, −1), (2, 0), (0, 1) lies inside the robust region
+    // (Section VIII-A): its tip α = 2δ = 2 at β = 0 is below the robust α_max.
+    assert!(ram > 2.0, "{ram}");
+    assert!(rob["method"].as_str().unwrap().contains("robust_region"));
+}
+
+/// The robust region in physical mode over the arm's stiffness k_H ∈ [lo, hi] N/m: the same
+/// region as the γ range γ = k_H T²/m, and its K_max agrees with `hapstab kmax --robust` on
+/// the same box (mass and damping fixed, stiffness ranged).
+#[test]
+fn robust_range_in_arm_stiffness_is_the_gamma_range_and_kmax_robust() {
+    let s = Server::start(&[]);
+    let phys = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&d=0";
+    let r = s.get(&format!(
+        "/api/region?{phys}&robust=1&arm_stiffness_lo=0&arm_stiffness_hi=350"
+    ));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    let rob = &j["robust"];
+    // m = 1.1 kg, T = 1 ms: γ = k_H T²/m
+    let g_hi = 350.0 * 1e-6 / 1.1;
+    assert_eq!(rob["gamma_lo"].as_f64().unwrap(), 0.0);
+    assert!((rob["gamma_hi"].as_f64().unwrap() - g_hi).abs() <= 1e-15 * g_hi);
+    assert_eq!(rob["arm_stiffness_hi"].as_f64().unwrap(), 350.0);
+    let (gamma, delta) = (
+        j["params"]["gamma"].as_f64().unwrap(),
+        j["params"]["delta"].as_f64().unwrap(),
+    );
+    let norm = s
+        .get(&format!(
+            "/api/region?gamma={}&delta={}&d=0&robust=1&gamma_lo=0&gamma_hi={}",
+            gamma,
+            delta,
+            rob["gamma_hi"].as_f64().unwrap()
+        ))
+        .json();
+    assert_eq!(norm["robust"]["polygon"], rob["polygon"]);
+    let kpa = j["physical"]["k_per_alpha"].as_f64().unwrap();
+    let k_max = rob["alpha_max"].as_f64().unwrap() * kpa;
+    let cli = hapstab_json(&[
+        "kmax",
+        "--robust",
+        "--box-mass",
+        "1.1,1.1",
+        "--box-damping",
+        "7.5:7.5",
+        "--box-stiffness",
+        "0,350",
+    ]);
+    let k_cli = cli["k_max"].as_f64().unwrap();
+    // The explorer's 64 β slices find the peak of a smooth boundary from below; the CLI
+    // refines the slices near it: a relative gap of order (slice spacing)² ≈ 1e-4 at most.
+    assert!(
+        k_max <= k_cli * (1.0 + 1e-12) && k_max >= k_cli * (1.0 - 1e-4),
+        "explorer {k_max} vs kmax --robust {k_cli}"
+    );
+    // γ and k_H ranges together, or k_H in normalized mode: 400 naming the parameter.
+    for (path, name) in [
+        (
+            format!(
+                "/api/region?{phys}&robust=1&arm_stiffness_lo=0&arm_stiffness_hi=350&gamma_lo=0"
+            ),
+            "gamma_lo",
+        ),
+        (
+            format!("/api/region?{PLANT}&robust=1&arm_stiffness_lo=0&arm_stiffness_hi=350"),
+            "arm_stiffness_lo",
+        ),
+        (
+            format!("/api/region?{phys}&robust=1&arm_stiffness_lo=400&arm_stiffness_hi=350"),
+            "arm_stiffness_hi",
+        ),
+    ] {
+        let r = s.get(&path);
+        assert_eq!(r.status, 400, "{path}: {}", r.body);
+        assert_eq!(r.json()["parameter"], name, "{path}");
+    }
+}
+
+/// Physical mode, d = 0: the passive triangle is the device's own δ_L = b_L·T/m (passive for
+/// any operator); eq. (28) with the arm's damping counted, δ = (b_L + b_H)·T/m, is the second.
+#[test]
+fn physical_passive_region_counts_the_devices_own_damping() {
+    let s = Server::start(&[]);
+    let lp = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&d=0";
+    let r = s.get(&format!("/api/region?{lp}"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    let (own, eff) = (1.5e-3 / 1.1, 7.5e-3 / 1.1);
+    let v = &j["passive"]["vertices"];
+    assert!(
+        (v[1][0].as_f64().unwrap() - 2.0 * own).abs() < 1e-15,
+        "{}",
+        j["passive"]
+    );
+    let w = &j["passive_with_arm"]["vertices"];
+    assert!(
+        (w[1][0].as_f64().unwrap() - 2.0 * eff).abs() < 1e-15,
+        "{}",
+        j["passive_with_arm"]
+    );
+    // a spring wall α = 3δ_L lies outside the device's own triangle, inside eq. (28)'s
+    let alpha = 3.0 * own;
+    let r = s.get(&format!("/api/point?{lp}&alpha={alpha}&beta=0"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    let p = r.json();
+    assert_eq!(p["passive"], false, "{p}");
+    assert_eq!(p["passive_with_arm"], true, "{p}");
+    // without an arm there is one triangle, the device's own
+    let bare = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=0&arm_damping=0&arm_stiffness=0&period=0.001&d=0";
+    let j = s.get(&format!("/api/region?{bare}")).json();
+    assert!(j["passive_with_arm"].is_null(), "{j}");
+    let v = &j["passive"]["vertices"];
+    assert!((v[1][0].as_f64().unwrap() - 2.0 * 1.5e-3 / 0.1).abs() < 1e-15);
+}

@@ -1,0 +1,125 @@
+//! API tests of `hapstab serve` against the real server on an ephemeral loopback port:
+//! `/api/simulate` returns a decimated contact trace and the same verdict as `hapstab
+//! simulate` and as the analysis.
+
+mod serve_support;
+
+use serve_support::Server;
+
+#[test]
+fn simulate_returns_a_short_contact_trace() {
+    let s = Server::start(&[]);
+    let r = s.get("/api/simulate?gamma=0.001&delta=0.015&d=0&alpha=0.3&beta=0.5&push=100");
+    assert_eq!(r.status, 200, "{}", r.body);
+    let j = r.json();
+    assert_eq!(j["outcome"], "decaying", "{j}");
+    assert_eq!(j["linear_verdict"], "stable");
+    assert_eq!(j["contact_mode"], "unilateral");
+    assert_eq!(j["linear_window"], true);
+    assert!(j["measured_growth_per_sample"].as_f64().unwrap() < 1.0);
+    let n = j["trace"]["time"].as_array().unwrap().len();
+    assert!((10..=2000).contains(&n), "{n}");
+    assert_eq!(j["trace"]["position"].as_array().unwrap().len(), n);
+    // beyond α_max the bilateral loop grows
+    let r = s.get(
+        "/api/simulate?gamma=0.001&delta=0.015&d=0&alpha=0.75&beta=0.5&contact=bilateral&samples=400",
+    );
+    let j = r.json();
+    assert_eq!(j["linear_verdict"], "unstable");
+    assert_eq!(j["outcome"], "growing");
+    assert!(j["measured_growth_per_sample"].as_f64().unwrap() > 1.0);
+    // long runs are decimated to at most 2000 rows
+    let r = s.get("/api/simulate?gamma=0&delta=0.01&d=1&alpha=0.05&beta=0.2&samples=20000");
+    assert_eq!(r.status, 200, "{}", r.body);
+    assert!(r.json()["trace"]["time"].as_array().unwrap().len() <= 2000);
+}
+
+/// The device of the reproduction in the explorer's physical mode: 0.2 kg, 2 Ns/m, the
+/// default arm (1 kg, 6 Ns/m, 350 N/m), T = 1 ms, d = 1, K = 20 kN/m, B = 5 Ns/m.
+const REPRO_WALL: &str = "mode=physical&device_mass=0.2&device_damping=2&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&d=1&wall_stiffness=20000&wall_damping=5";
+
+/// Reproduction: the selected wall is unstable (spectral radius 1.00702); the simulated
+/// contact (unilateral, push 1 N, 10 mm/s) must not be called decaying beside its growing
+/// trace. It is a bouncing limit cycle whose peak-to-peak amplitude is that of the returned
+/// trace over the judged window; the bilateral contact grows. The same setting gives the same
+/// verdict in `hapstab simulate` (one library function).
+#[test]
+fn simulated_contact_agrees_with_the_analysis_and_with_simulate() {
+    let s = Server::start(&[]);
+    let point = s.get(&format!("/api/point?{REPRO_WALL}")).json();
+    assert_eq!(point["verdict"], "unstable");
+    let j = s.get(&format!("/api/simulate?{REPRO_WALL}")).json();
+    assert_eq!(j["linear_verdict"], "unstable", "{j}");
+    assert_eq!(j["spectral_radius"], point["spectral_radius"]);
+    assert_eq!(j["outcome"], "limit_cycle", "{j}");
+    let lc = &j["limit_cycle"];
+    assert_eq!(lc["bouncing"], true);
+    assert!(
+        j["reason"]
+            .as_str()
+            .unwrap()
+            .contains("contact is lost and regained")
+    );
+    // The trace covers the judged window; its extremes there are the cycle's.
+    let (t, x) = (&j["trace"]["time"], &j["trace"]["position"]);
+    let from = j["judged_from_sample"].as_f64().unwrap() * 1e-3;
+    let tail: Vec<f64> = (0..t.as_array().unwrap().len())
+        .filter(|&i| t[i].as_f64().unwrap() >= from)
+        .map(|i| x[i].as_f64().unwrap())
+        .collect();
+    assert!(tail.len() > 100, "{}", tail.len());
+    let pp = tail.iter().cloned().fold(f64::MIN, f64::max)
+        - tail.iter().cloned().fold(f64::MAX, f64::min);
+    let lpp = lc["peak_to_peak"].as_f64().unwrap();
+    assert!(pp <= lpp * (1.0 + 1e-12) && pp > 0.8 * lpp, "{pp} vs {lpp}");
+    let bil = s
+        .get(&format!("/api/simulate?{REPRO_WALL}&contact=bilateral"))
+        .json();
+    assert_eq!(bil["outcome"], "growing", "{bil}");
+
+    // hapstab simulate with the same setting and run length: the same verdict.
+    let samples = j["requested_samples"].as_u64().unwrap().to_string();
+    let out = assert_cmd::Command::cargo_bin("hapstab")
+        .unwrap()
+        .args([
+            "simulate",
+            "--device-mass",
+            "0.2",
+            "--device-damping",
+            "2",
+            "--delay",
+            "1",
+            "--wall-stiffness",
+            "20000",
+            "--wall-damping",
+            "5",
+            "--unilateral",
+            "--push",
+            "1",
+            "--initial-position",
+            "0",
+            "--initial-velocity",
+            "0.01",
+            "--duration-samples",
+            &samples,
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let cli: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "outcome",
+        "reason",
+        "limit_cycle",
+        "contact",
+        "samples",
+        "judged_from_sample",
+        "measured_growth_per_sample",
+        "spectral_radius",
+        "linear_verdict",
+        "linear_window",
+    ] {
+        assert_eq!(cli[key], j[key], "{key}");
+    }
+}
