@@ -103,12 +103,26 @@ pub fn decide(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Decisio
     decide_near_circle(coeffs, &Wall { fam, a, b }, fast.stable)
 }
 
-/// Step 1 of the module doc alone: [`decide`]'s verdict where the Schur–Cohn recursion is
-/// sure over the band, None where [`decide`] would go on to the band's circles. For a caller
-/// free to pick among several walls to test, the ones decided without the argument principle.
+/// Steps 1–2 of the module doc alone: [`decide`]'s verdict where a Schur–Cohn recursion
+/// (on the z-coefficients, then on the band's circles) is sure, None where [`decide`] would
+/// need the argument principle. For a caller free to pick among several walls to test, the
+/// ones decided without it (a hundred times cheaper).
 pub fn decide_fast(fam: &AffineFamily, a: f64, b: f64, coeffs: &mut [f64]) -> Option<Verdict> {
     let fast = fast_path(fam, a, b, coeffs);
-    fast.sure.then(|| sure_verdict(fast.stable).verdict)
+    if fast.sure {
+        return Some(sure_verdict(fast.stable).verdict);
+    }
+    fam.coefficients_into(a, b, coeffs);
+    let sure_at = |r: f64| {
+        let s = schur_cohn(coeffs, r, 0.0);
+        s.sure.then_some(s.stable)
+    };
+    match (sure_at(1.0 - MARGINAL_BAND), sure_at(1.0 + MARGINAL_BAND)) {
+        (Some(true), _) => Some(Verdict::Stable),
+        (_, Some(false)) => Some(Verdict::Unstable),
+        (Some(false), Some(true)) => Some(Verdict::Marginal),
+        _ => None,
+    }
 }
 
 /// The fast path's recursion on the wall's z-coefficients (written into `coeffs`).

@@ -10,8 +10,10 @@
 //! frequency, no added delay destabilizes the wall (small gain). Otherwise the seeds are the
 //! pure-delay estimates λ + (PM + 2πk)/θ at the crossovers of [`super::fraction::FRACTIONS`] fractions; the
 //! seeds of one crossing cluster, so each cluster is solved once, exactly, by Newton's method
-//! in (s, θ) on L_λ(θ)e^{−iwθ} + 1 = 0. The smallest solution is confirmed by the verdict at
-//! h·(1 ∓ [`CONFIRM_REL`]) — stable before, not after — and reported. Where no seed converges
+//! in (s, θ) on L_λ(θ)e^{−iwθ} + 1 = 0. The smallest solution is confirmed by the verdict
+//! (on p at that delay from the same parts): not stable at h·(1 + [`CONFIRM_REL`]), not
+//! unstable just before, at the nearest wall the Schur–Cohn recursion decides surely — and
+//! reported. Where no seed converges
 //! and confirms, the certified scan of [`delay_scan`] decides.
 
 use num_complex::Complex64;
@@ -25,6 +27,7 @@ use crate::model::{Delay, Loop};
 use crate::params::{MAX_DELAY, Wall};
 use crate::stability::roots;
 use crate::verdict::{Verdict, decide, decide_fast, stable as verdict_stable};
+use crate::zoh::DiscreteLoop;
 
 /// The confirmed delay margin puts the wall stable at h·(1 − CONFIRM_REL) and not stable at
 /// h·(1 + CONFIRM_REL).
@@ -79,11 +82,12 @@ pub enum DelayScan {
 /// min PM/ω_c over the gain crossovers of the loop as it is (seconds; None without a
 /// crossover).
 pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
-    let base = AffineFamily::of_loop(lp)?;
+    let dl = lp.discretize()?;
+    let base = AffineFamily::new(&dl);
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(&base, a, b);
     let pm = pm_over_wc(&gain_scan(&base, a, b), lp.period);
-    Ok((delay_margin_with(lp, wall, (a, b), &modes)?, pm))
+    Ok((delay_margin_with(lp, &dl, wall, (a, b), &modes)?, pm))
 }
 
 /// The MATLAB-style figure min PM/ω_c over the gain crossovers of a gain scan, in seconds
@@ -97,16 +101,17 @@ pub fn pm_over_wc(own: &GainScan, period: f64) -> Option<f64> {
         .map(|h| h * period)
 }
 
-/// [`delay_margin`] with the loop's [`frequency_grid`] `modes`, as the margins have it
-/// already; (a, b) is the wall in the loop's wall units.
+/// [`delay_margin`] with the loop's discretization `dl` and [`frequency_grid`] `modes`, as
+/// the margins have them already; (a, b) is the wall in the loop's wall units.
 pub fn delay_margin_with(
     lp: &Loop,
+    dl: &DiscreteLoop,
     wall: Wall,
     (a, b): (f64, f64),
     modes: &[f64],
 ) -> Result<DelayScan> {
     let s0 = lp.delay.in_samples();
-    let fl = FractionLoop::new(lp, a, b, modes)?;
+    let fl = FractionLoop::new(lp, dl, a, b, modes)?;
     let table = FractionTable::new(&fl);
     let peak = table.peak_bound();
     if peak < SMALL_GAIN_LIMIT {

@@ -234,28 +234,33 @@ fn wall_filter(vd: &[f64], vn: &[f64], (a, b): (f64, f64)) -> Vec<f64> {
 }
 
 impl FractionLoop {
-    /// The fraction loop of a wall (a, b) in wall units on a loop (its whole-sample delay is
-    /// not part of it: the caller turns the phase by e^{−iwθ} for w whole samples); `modes`
+    /// The fraction loop of a wall (a, b) in wall units on a loop and its discretization `dl`
+    /// (its whole-sample delay is not part of it: the caller turns the phase by e^{−iwθ} for
+    /// w whole samples); `modes`
     /// is the [`super::frequency::frequency_grid`] of the loop as it is, joined here by the
     /// runs around the roots of the wall part at half a sample.
     ///
     /// W_∅ and P0 come from the family at g = 0 (exact at z = 1, [`AffineFamily::new`]); the
     /// ΔW_j = (z − 1)·C adj(zI − Φ)e_j·(a·Vd + b·Vn) from one numerator each (module doc).
-    pub fn new(lp: &Loop, a: f64, b: f64, modes: &[f64]) -> Result<Self> {
-        let template = lp
-            .with_delay(Delay {
-                samples: 0,
-                fraction: 0.5,
-            })?
-            .discretize()?;
+    pub fn new(lp: &Loop, dl: &DiscreteLoop, a: f64, b: f64, modes: &[f64]) -> Result<Self> {
         let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
-        let (_, psi1) = exp_and_integral(&ss.a, 1.0);
-        let gamma = poly::mat_vec(&psi1, &ss.b);
+        // Γ = Γ0 + Γ1 = Ψ(1)B at any fraction of the loop's own delay
+        let gamma: Vec<f64> = dl
+            .gamma0
+            .iter()
+            .zip(&dl.gamma1)
+            .map(|(x, y)| x + y)
+            .collect();
         let n = gamma.len();
+        // the loop split at a fraction (k = 1), with the whole input in the later sample
         let base_loop = DiscreteLoop {
             gamma0: vec![0.0; n],
             gamma1: gamma.clone(),
-            ..template
+            delay: Delay {
+                samples: 0,
+                fraction: 0.5,
+            },
+            ..dl.clone()
         };
         let base = AffineFamily::new(&base_loop);
         let den_w = base_loop.denominator_shifted();
@@ -697,7 +702,7 @@ mod tests {
     #[test]
     fn every_fraction_is_the_loop_discretized_at_that_fraction() {
         for (lp, a, b) in loops() {
-            let fl = FractionLoop::new(&lp, a, b, &[0.1, 1.0]).unwrap();
+            let fl = FractionLoop::new(&lp, &lp.discretize().unwrap(), a, b, &[0.1, 1.0]).unwrap();
             for lambda in [0.0, 0.125, 0.37, 0.5, 0.93] {
                 // the direct discretization at the fraction (split hold, its own numerator)
                 let direct = AffineFamily::of_loop(
@@ -724,7 +729,7 @@ mod tests {
     #[test]
     fn the_bounds_hold_over_a_fine_fraction_grid() {
         for (lp, a, b) in loops() {
-            let fl = FractionLoop::new(&lp, a, b, &[0.1, 1.0]).unwrap();
+            let fl = FractionLoop::new(&lp, &lp.discretize().unwrap(), a, b, &[0.1, 1.0]).unwrap();
             let delta = fl.deviation_bound(fl.holds());
             let holds: Vec<HoldInput> = (0..=1000).map(|i| fl.hold(i as f64 / 1000.0)).collect();
             for theta in [1e-3, 0.05, 0.4, 1.3, 2.2, 3.0] {

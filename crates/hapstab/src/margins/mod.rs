@@ -36,6 +36,7 @@ use crate::error::Result;
 use crate::model::Loop;
 use crate::params::{MAX_DELAY, Wall};
 use crate::verdict::stable as verdict_stable;
+use crate::zoh::DiscreteLoop;
 
 pub use delay::{DelayScan, delay_margin, delay_scan};
 pub use frequency::{
@@ -173,12 +174,13 @@ pub const NOT_STABLE_NOTE: &str = "the wall is not stable: margins are defined f
 
 /// Computes every margin of a physical wall on a loop (module doc).
 pub fn margins(lp: &Loop, wall: Wall) -> Result<Margins> {
-    let fam = AffineFamily::of_loop(lp)?;
+    let dl = lp.discretize()?;
+    let fam = AffineFamily::new(&dl);
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     if !verdict_stable(&fam, a, b, &mut fam.coefficients(a, b)) {
         return Ok(Margins::withheld(false, NOT_STABLE_NOTE));
     }
-    margins_of_stable(lp, &fam, wall)
+    margins_of_stable(lp, &dl, &fam, wall)
 }
 
 /// The margins reported beside a stability verdict (what `check` and the Python package
@@ -188,18 +190,24 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
     if !stable {
         return Ok(Margins::withheld(false, NOT_STABLE_NOTE));
     }
-    margins_of_stable(lp, &AffineFamily::of_loop(lp)?, wall)
+    let dl = lp.discretize()?;
+    margins_of_stable(lp, &dl, &AffineFamily::new(&dl), wall)
 }
 
 /// Every margin of a wall that the verdict calls stable, on the loop's family: the margins
 /// read on the frequency response and the delay margin, side by side ([`rayon::join`]: they
 /// share only the loop's [`frequency_grid`]).
-fn margins_of_stable(lp: &Loop, fam: &AffineFamily, wall: Wall) -> Result<Margins> {
+fn margins_of_stable(
+    lp: &Loop,
+    dl: &DiscreteLoop,
+    fam: &AffineFamily,
+    wall: Wall,
+) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(fam, a, b);
     let ((mut out, scan), delay) = rayon::join(
         || frequency_margins(lp, fam, (a, b), &modes),
-        || delay::delay_margin_with(lp, wall, (a, b), &modes),
+        || delay::delay_margin_with(lp, dl, wall, (a, b), &modes),
     );
     out.delay_pm_over_wc = delay::pm_over_wc(&scan, lp.period);
     delay_note(&mut out, delay?);
