@@ -67,9 +67,16 @@ fn log_gain(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> f64 {
     log_ratio(pk * a + pb * b, p0)
 }
 
-/// ln(|x|/|y|), from the moduli without `hypot` ([`modulus`]).
+/// ln(|x|/|y|) with one logarithm, ½·ln(|x|²/|y|²), where the squares and their ratio are
+/// normal numbers; else from the moduli ([`modulus`]).
 fn log_ratio(x: Complex64, y: Complex64) -> f64 {
-    modulus(x).ln() - modulus(y).ln()
+    let (nx, ny) = (x.norm_sqr(), y.norm_sqr());
+    let q = nx / ny;
+    if nx.is_normal() && ny.is_normal() && q.is_normal() {
+        0.5 * q.ln()
+    } else {
+        modulus(x).ln() - modulus(y).ln()
+    }
 }
 
 /// The angles θ ∈ (0, π) on which |L| of the wall (a, b) is sampled (module doc), sorted.

@@ -195,8 +195,9 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
 }
 
 /// Every margin of a wall that the verdict calls stable, on the loop's family: the margins
-/// read on the frequency response and the delay margin, side by side ([`rayon::join`]: they
-/// share only the loop's [`frequency_grid`]).
+/// read on the frequency response, then the delay margin (they share the loop's
+/// [`frequency_grid`]). One thread: a join from outside the thread pool hands the work to a
+/// pool thread and costs more than it saves at this size.
 fn margins_of_stable(
     lp: &Loop,
     dl: &DiscreteLoop,
@@ -205,10 +206,8 @@ fn margins_of_stable(
 ) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(fam, a, b);
-    let ((mut out, scan), delay) = rayon::join(
-        || frequency_margins(lp, fam, (a, b), &modes),
-        || delay::delay_margin_with(lp, dl, wall, (a, b), &modes),
-    );
+    let (mut out, scan) = frequency_margins(lp, fam, (a, b), &modes);
+    let delay = delay::delay_margin_with(lp, dl, wall, (a, b), &modes);
     out.delay_pm_over_wc = delay::pm_over_wc(&scan, lp.period);
     delay_note(&mut out, delay?);
     Ok(out)
