@@ -228,6 +228,27 @@ fn uniform_step(polys: &Polys) -> f64 {
     std::f64::consts::PI / (UNIFORM_PER_DEGREE * (polys.len + 1)) as f64
 }
 
+/// C adj(wI − E)e_j for every j (ascending in w): with det(wI − E) = Σ c_k w^k and
+/// adj(wI − E) = Σ_{k<n} B_k w^k, (wI − E)·adj = det·I gives B_{n−1} = I and
+/// B_{k−1} = E·B_k + c_k·I, so the rows r_k = C·B_k follow from r_{n−1} = C,
+/// r_{k−1} = r_k·E + c_k·C (n³ in all), and N_{e_j} has the coefficients r_k[j].
+fn unit_numerators(e: &Mat, c: &[f64], den_w: &[f64]) -> Vec<Vec<f64>> {
+    let n = c.len();
+    let mut rows = vec![Vec::new(); n];
+    let mut r = c.to_vec();
+    for k in (0..n).rev() {
+        if k + 1 < n {
+            r = (0..n)
+                .map(|j| (0..n).map(|i| r[i] * e[i][j]).sum::<f64>() + den_w[k + 1] * c[j])
+                .collect();
+        }
+        rows[k] = r.clone();
+    }
+    (0..n)
+        .map(|j| rows.iter().map(|r| r[j]).collect())
+        .collect()
+}
+
 /// The wall part a·Vd + b·Vn of the velocity estimator (ascending).
 fn wall_filter(vd: &[f64], vn: &[f64], (a, b): (f64, f64)) -> Vec<f64> {
     poly::add_scaled(&poly::add_scaled(&[], a, vd), b, vn)
@@ -264,13 +285,7 @@ impl FractionLoop {
         };
         let base = AffineFamily::new(&base_loop);
         let den_w = base_loop.denominator_shifted();
-        let units: Vec<Vec<f64>> = (0..n)
-            .map(|j| {
-                let mut e = vec![0.0; n];
-                e[j] = 1.0;
-                base_loop.numerator_shifted_for(&e, &den_w)
-            })
-            .collect();
+        let units = unit_numerators(&base_loop.phi_minus_identity, &base_loop.c, &den_w);
         let (vn, vd) = (&base_loop.velocity_num, &base_loop.velocity_den);
         let in_z = {
             let filter = poly::mul(&[-1.0, 1.0], &wall_filter(vd, vn, (a, b)));
@@ -724,6 +739,49 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_unit_numerators_match_the_determinant_form() {
+        // the loops above and a stiff two-mass device sampled at 10 µs (roots crowding z = 1)
+        let stiff = PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.195,
+            motor_damping: 0.475,
+            handle_mass: 0.0705,
+            transmission_stiffness: 2.09e5,
+            transmission_damping: 2.2,
+            arm: Arm {
+                mass: 0.028,
+                damping: 5.39,
+                stiffness: 530.0,
+            },
+        });
+        let fast = Loop::new(
+            Plant::new(stiff, 3e-4).unwrap(),
+            1.09e-5,
+            Delay::NONE,
+            VelocityEstimator::Average { samples: 2 },
+        )
+        .unwrap();
+        let mut worst = 0.0_f64;
+        for lp in loops().into_iter().map(|l| l.0).chain([fast]) {
+            let dl = lp.discretize().unwrap();
+            let den = dl.denominator_shifted();
+            let units = unit_numerators(&dl.phi_minus_identity, &dl.c, &den);
+            for (j, u) in units.iter().enumerate() {
+                let mut e = vec![0.0; u.len()];
+                e[j] = 1.0;
+                let want = dl.numerator_shifted_for(&e, &den);
+                let scale = want.iter().map(|x| x.abs()).fold(0.0, f64::max);
+                for (k, w) in want.iter().enumerate() {
+                    let got = u.get(k).copied().unwrap_or(0.0);
+                    // each coefficient to 1e-10 of itself, above the determinant form's
+                    // rounding (1e-13 of the largest coefficient)
+                    worst = worst.max((got - w).abs() / (1e-10 * w.abs() + 1e-12 * scale));
+                }
+            }
+        }
+        assert!(worst < 1.0, "worst difference {worst} of its tolerance");
     }
 
     #[test]
