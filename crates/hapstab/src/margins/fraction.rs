@@ -454,21 +454,27 @@ impl FractionLoop {
         let (e, psi) = exp_and_integral(&self.a_mat, 1.0 / FRACTIONS as f64);
         let step = poly::mat_vec(&psi, &self.b_vec);
         let n = self.b_vec.len();
-        let advance = |x: &[f64]| -> Vec<f64> {
-            poly::mat_vec(&e, x)
-                .iter()
-                .zip(x)
-                .map(|(ex, x)| ex + x)
+        // x ← x + E(h)·x + extra, one new vector per step (e is e^{Ah} − I)
+        let advance = |x: &[f64], extra: Option<&[f64]>| -> Vec<f64> {
+            (0..n)
+                .map(|i| {
+                    let ex: f64 = e[i].iter().zip(x).map(|(a, b)| a * b).sum();
+                    x[i] + ex + extra.map_or(0.0, |s| s[i])
+                })
                 .collect()
         };
         let (mut g, mut u) = (vec![0.0; n], self.b_vec.clone());
         let mut out = Vec::with_capacity(FRACTIONS + 1);
         for m in 0..=FRACTIONS {
-            out.push(self.hold_input(g.clone(), u.clone()));
-            if m < FRACTIONS {
-                g = advance(&g).iter().zip(&step).map(|(x, s)| x + s).collect();
-                u = advance(&u);
-            }
+            let (g_next, u_next) = if m < FRACTIONS {
+                (advance(&g, Some(&step)), advance(&u, None))
+            } else {
+                (Vec::new(), Vec::new())
+            };
+            out.push(self.hold_input(
+                std::mem::replace(&mut g, g_next),
+                std::mem::replace(&mut u, u_next),
+            ));
         }
         out.reverse();
         out
