@@ -268,12 +268,11 @@ impl AffineFamily {
     /// w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ (no cancellation), elsewhere from the
     /// z-coefficients; z^k = e^{ikθ} in polar form.
     pub fn parts_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64) {
-        // z^k by repeated squaring, without a second sine and cosine (its rounding, about
-        // log2(k) ulps, is that of the angle kθ in polar form)
+        // z^k without a second sine and cosine where k ≤ 1
         let power = |z: Complex64| match self.k {
             0 => Complex64::new(1.0, 0.0),
             1 => z,
-            k => z.powu(k as u32),
+            k => Complex64::from_polar(1.0, theta * k as f64),
         };
         match &self.shifted {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
