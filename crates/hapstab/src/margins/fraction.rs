@@ -535,7 +535,6 @@ pub struct FractionTable<'a> {
     /// Bounds (below, above) of |L_λ| over every fraction at every grid angle.
     pub bounds: Vec<(f64, f64)>,
     delta: Vec<f64>,
-    holds: Vec<HoldInput>,
 }
 
 /// A crossover |L_λ(θ)| = 1 of one fraction's loop, with L there.
@@ -552,8 +551,7 @@ pub struct FractionCrossover {
 impl<'a> FractionTable<'a> {
     /// Tabulates the parts and the bound on the grid.
     pub fn new(fl: &'a FractionLoop) -> Self {
-        let holds = fl.holds().to_vec();
-        let delta = fl.deviation_bound(&holds);
+        let delta = fl.deviation_bound(fl.holds());
         let width = fl.width();
         let mut values = vec![Complex64::new(0.0, 0.0); width * fl.grid.len()];
         let mut powers = Vec::new();
@@ -569,7 +567,6 @@ impl<'a> FractionTable<'a> {
             values,
             bounds,
             delta,
-            holds,
         }
     }
 
@@ -631,7 +628,7 @@ impl<'a> FractionTable<'a> {
             })
             .collect();
         let mut out = Vec::new();
-        for (j, hold) in self.holds.iter().take(FRACTIONS).enumerate() {
+        for (j, hold) in self.fl.holds().iter().take(FRACTIONS).enumerate() {
             let lambda = j as f64 / FRACTIONS as f64;
             let ls: Vec<Complex64> = near.iter().map(|&i| self.at(i).loop_at(&hold.g)).collect();
             let vs: Vec<f64> = ls.iter().map(|&l| modulus(l).ln()).collect();
