@@ -206,8 +206,10 @@ fn margins_of_stable(
 ) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(fam, a, b);
-    let (mut out, scan) = frequency_margins(lp, fam, (a, b), &modes);
-    let delay = delay::delay_margin_with(lp, dl, wall, (a, b), &modes);
+    let ((mut out, scan), delay) = rayon::join(
+        || frequency_margins(lp, fam, (a, b), &modes),
+        || delay::delay_margin_with(lp, dl, wall, (a, b), &modes),
+    );
     out.delay_pm_over_wc = delay::pm_over_wc(&scan, lp.period);
     delay_note(&mut out, delay?);
     Ok(out)
