@@ -214,7 +214,7 @@ fn polygons(r: &StableRegion, f: impl Fn(f64, f64) -> [f64; 2]) -> Vec<Vec<[f64;
 fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOut {
     let physical = !rl.normalized;
     BoundaryOut {
-        input: LoopInput::new(rl, None),
+        input: rl.input(None),
         physical: physical.then(|| physical_region(fam, r)),
         units: (!physical).then(|| NormalizedRegion {
             alpha_max: r.alpha_max,

@@ -242,7 +242,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         Some(k_interval(&fam, interval_units(&rl, &fam, w)?))
     };
     let mut out = CheckOut {
-        input: LoopInput::new(&rl, Some(w)),
+        input: rl.input(Some(w)),
         stable: analysis.stable(),
         verdict: analysis.verdict.as_str(),
         spectral_radius: analysis.spectral_radius,

@@ -96,7 +96,7 @@ pub fn run(a: &DiscretizeArgs) -> Result<()> {
     let radius = Analysis::of_family(&fam, wa, wb)?.spectral_radius;
     let of_coefficients = Analysis::of_poly(&coeffs).ok().map(|an| an.spectral_radius);
     let out = DiscretizeOut {
-        input: LoopInput::new(&rl, Some(w)),
+        input: rl.input(Some(w)),
         plant: dl.plant_tf_physical().into(),
         velocity: VelocityOut {
             num: descending(&v.num),

@@ -162,7 +162,7 @@ fn json_out<'a>(
 ) -> FreqOut<'a> {
     let m = &fr.margins;
     FreqOut {
-        input: LoopInput::new(rl, Some(w)),
+        input: rl.input(Some(w)),
         stable: m.stable,
         nyquist_hz: fr.nyquist_hz,
         gain_margin: m.gain.map(|g| g.factor),

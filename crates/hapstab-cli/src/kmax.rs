@@ -102,7 +102,7 @@ impl KmaxInput {
         damping_range: Option<[Option<f64>; 2]>,
     ) -> Self {
         KmaxInput {
-            lp: LoopInput::new(rl, None),
+            lp: rl.input(None),
             wall_damping,
             damping_range,
         }

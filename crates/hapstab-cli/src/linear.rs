@@ -99,7 +99,7 @@ pub fn run(a: &LinearArgs) -> Result<()> {
     if a.levels.is_empty() {
         bail!("--levels needs at least one value");
     }
-    let pm = a.plant.resolve()?;
+    let pm = crate::loop_file::paper_plant(&a.plant, "the linear condition (22)")?.resolve()?;
     budget::check(
         validity_points_cost(a.levels.len(), pm.d),
         &format!("the validity points of {} levels", a.levels.len()),

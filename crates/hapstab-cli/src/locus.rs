@@ -111,7 +111,7 @@ pub fn run(a: &LocusArgs) -> Result<()> {
     });
     if a.json {
         return print_json(&LocusOut {
-            input: LoopInput::new(&rl, None),
+            input: rl.input(None),
             wall_damping: b,
             k_max: locus.k_max,
             k_interval: locus.k_interval,

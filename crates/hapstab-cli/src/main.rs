@@ -10,6 +10,7 @@ mod freq_plots;
 mod kmax;
 mod linear;
 mod locus;
+mod loop_file;
 mod map;
 mod model;
 mod nyquist;

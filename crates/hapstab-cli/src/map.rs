@@ -173,7 +173,12 @@ fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values
             "maps over alpha, beta, gamma, delta are of the paper's normalized loop; for a physical loop grid --x K:LO:HI:N --y B:LO:HI:N"
         );
     }
-    let p = &a.lp.plant;
+    let p = &crate::loop_file::paper_plant(&a.lp.plant, "a map over alpha, beta, gamma, delta")?;
+    if p.any_physical() {
+        bail!(
+            "maps over alpha, beta, gamma, delta are of the paper's normalized loop; --loop holds a physical loop: grid --x K:LO:HI:N --y B:LO:HI:N"
+        );
+    }
     let d = crate::model::delay_samples(p.delay.unwrap_or(0.0))?;
     let base = Normalized::new(
         a.alpha.unwrap_or(0.0),
@@ -223,7 +228,7 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
-        input: LoopInput::new(&rl, None),
+        input: rl.input(None),
     })
 }
 

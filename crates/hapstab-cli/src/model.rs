@@ -10,13 +10,7 @@ use serde::Serialize;
 use crate::output::{poly_text, sig};
 use hapstab::spec::excerpt_list;
 
-/// Default sampling period: 1 ms, the paper's upper limit (Section IV).
-pub const DEFAULT_PERIOD: f64 = 1e-3;
-/// Default virtual wall for `check`: K = 10 kN/m, B = 10 Ns/m.
-pub const DEFAULT_WALL: Wall = Wall {
-    stiffness: 10_000.0,
-    damping: 10.0,
-};
+pub use hapstab::loop_spec::{DEFAULT_PERIOD, DEFAULT_WALL};
 
 /// The flags that describe a physical plant or its sampling: none of them may be combined
 /// with the normalized plant (--gamma/--delta).
@@ -82,6 +76,13 @@ pub struct PlantArgs {
     /// (modified z-transform) by the commands that accept the general loop.
     #[arg(long, allow_hyphen_values = true)]
     pub delay_time: Option<f64>,
+    /// A loop saved as JSON: a report's "input" (e.g. `hapstab check --json > my.json`), its
+    /// "loop" object, or a whole report. Flags given beside it change its parts: the arm,
+    /// device or two-mass flags the matching parts of its plant, the other plant flags
+    /// replace the plant; --period, --delay, --velocity, --force-lag and the wall flags
+    /// their own part.
+    #[arg(long = "loop", value_name = "FILE")]
+    pub loop_file: Option<std::path::PathBuf>,
 }
 
 /// The resolved plant: normalized only, or physical with the normalization it implies.
@@ -182,6 +183,9 @@ impl PlantArgs {
 
     /// Resolves the plant in either mode.
     pub fn resolve(&self) -> Result<PlantModel> {
+        if self.loop_file.is_some() {
+            return crate::loop_file::paper_plant(self, "this analysis")?.resolve();
+        }
         if self.normalized_mode() {
             if self.any_physical() {
                 bail!("give either normalized (--gamma/--delta) or physical parameters, not both");
@@ -427,6 +431,9 @@ pub struct LoopArgs {
     #[arg(long, value_name = "SPEC", allow_hyphen_values = true, verbatim_doc_comment,
           value_parser = velocity_estimator, conflicts_with_all = ["gamma", "delta"])]
     pub velocity: Option<VelocityEstimator>,
+    /// The --loop file's delay (whole samples and a fraction), when no delay flag changes it.
+    #[arg(skip)]
+    pub file_delay: Option<Delay>,
 }
 
 /// A loop resolved from the flags.
@@ -436,6 +443,8 @@ pub struct ResolvedLoop {
     pub lp: Loop,
     /// True when the plant was given normalized (--gamma/--delta, or --alpha/--beta alone).
     pub normalized: bool,
+    /// The wall of the --loop file, in the loop's units, when it names one.
+    pub wall: Option<Wall>,
 }
 
 impl LoopArgs {
@@ -448,7 +457,7 @@ impl LoopArgs {
             || self.velocity.is_some()
     }
 
-    fn two_mass_given(&self) -> bool {
+    pub(crate) fn two_mass_given(&self) -> bool {
         self.motor_mass.is_some()
             || self.motor_damping.is_some()
             || self.handle_mass.is_some()
@@ -465,6 +474,19 @@ impl LoopArgs {
     /// Resolves the loop; `normalized_wall` says whether --alpha/--beta were given (alone
     /// they select the normalized paper loop with γ = δ = 0).
     pub fn resolve(&self, normalized_wall: bool) -> Result<ResolvedLoop> {
+        if let Some(path) = &self.plant.loop_file {
+            return crate::loop_file::resolve(self, path, normalized_wall);
+        }
+        self.resolve_over(normalized_wall, None)
+    }
+
+    /// [`LoopArgs::resolve`] with the plant `base` (its model and arm; the lag from the
+    /// flags) in place of the plant flags, when given.
+    pub fn resolve_over(
+        &self,
+        normalized_wall: bool,
+        base: Option<&Plant>,
+    ) -> Result<ResolvedLoop> {
         if self.plant.normalized_mode() || (normalized_wall && !self.any_physical()) {
             let pp = hapstab::PlantParams::new(
                 self.plant.gamma.unwrap_or(0.0),
@@ -474,10 +496,14 @@ impl LoopArgs {
             return Ok(ResolvedLoop {
                 lp: Loop::normalized(pp, d)?,
                 normalized: true,
+                wall: None,
             });
         }
         let period = self.plant.period.unwrap_or(DEFAULT_PERIOD);
-        let model = self.plant_model()?;
+        let model = match base {
+            Some(p) => p.model.clone(),
+            None => self.plant_model()?,
+        };
         if let LibPlantModel::MassSpringDamper(eff) = &model {
             // γ = kT²/m and δ = bT/m must be finite: a mass so small (or a stiffness so
             // large) that they overflow is refused here, naming the physical parameter
@@ -485,9 +511,11 @@ impl LoopArgs {
         }
         let mut plant =
             Plant::new(model, self.force_lag.unwrap_or(0.0)).map_err(|e| tf_context(self, e))?;
-        if let (LibPlantModel::MassSpringDamper(_), Some(arm)) =
-            (&plant.model, self.plant.operator())
-        {
+        let operator = match base {
+            Some(p) => p.operator,
+            None => self.plant.operator(),
+        };
+        if let (LibPlantModel::MassSpringDamper(_), Some(arm)) = (&plant.model, operator) {
             plant = plant.with_operator(arm)?;
         }
         let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
@@ -495,10 +523,14 @@ impl LoopArgs {
             lp: Loop::new(plant, period, self.delay(period)?, velocity)
                 .map_err(|e| self.with_flag(e))?,
             normalized: false,
+            wall: None,
         })
     }
 
     fn delay(&self, period: f64) -> Result<Delay> {
+        if let Some(d) = self.file_delay {
+            return Ok(d);
+        }
         Ok(match self.plant.delay_time {
             Some(t) => Delay::from_time(t, period)?,
             None => Delay::samples(delay_samples(self.plant.delay.unwrap_or(0.0))?)?,
@@ -611,12 +643,29 @@ impl WallArgs {
     pub fn normalized(&self) -> bool {
         self.alpha.is_some() || self.beta.is_some()
     }
+
+    /// The wall flags with the --loop file's wall (if any) where they give none: α and β for
+    /// a normalized loop, else K and B (unless the flags give a normalized wall).
+    pub fn over_file(&self, rl: &ResolvedLoop) -> WallArgs {
+        let mut w = self.clone();
+        if let Some(f) = rl.wall {
+            if rl.normalized {
+                w.alpha.get_or_insert(f.stiffness);
+                w.beta.get_or_insert(f.damping);
+            } else if !self.normalized() {
+                w.wall_stiffness.get_or_insert(f.stiffness);
+                w.wall_damping.get_or_insert(f.damping);
+            }
+        }
+        w
+    }
 }
 
 /// The wall of a resolved loop in the loop's units: K in N/m and B in Ns/m, or (α, β) for a
 /// normalized loop. --alpha/--beta on a physical mass-spring-damper plant convert by
 /// K = α·m/T², B = β·m/T (Table I).
 pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs) -> Result<Wall> {
+    let wall = &wall.over_file(rl);
     if rl.normalized || wall.normalized() {
         let (Some(alpha), Some(beta)) = (wall.alpha, wall.beta) else {
             bail!("a normalized wall needs both --alpha and --beta");
@@ -731,54 +780,12 @@ fn plant_text(m: &LibPlantModel) -> String {
     }
 }
 
-/// The inputs of a command on one loop, echoed in its JSON under `input`.
-#[derive(Debug, Clone, Serialize)]
-#[serde(untagged)]
-pub enum LoopInput {
-    /// A physical loop in SI units and, for commands at one point, its wall.
-    Physical {
-        /// The loop.
-        #[serde(rename = "loop")]
-        lp: Loop,
-        /// t_d in s.
-        delay_time: f64,
-        /// The wall (K in N/m, B in Ns/m).
-        #[serde(skip_serializing_if = "Option::is_none")]
-        wall: Option<Wall>,
-    },
-    /// The paper's loop in normalized units (Table I).
-    Normalized {
-        /// γ.
-        gamma: f64,
-        /// δ.
-        delta: f64,
-        /// d.
-        d: usize,
-        /// α.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        alpha: Option<f64>,
-        /// β.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        beta: Option<f64>,
-    },
-}
+pub use hapstab::loop_spec::LoopInput;
 
-impl LoopInput {
-    /// The input record of a resolved loop and an optional wall in the loop's units.
-    pub fn new(rl: &ResolvedLoop, wall: Option<Wall>) -> Self {
-        match (rl.normalized, rl.lp.paper_view()) {
-            (true, Some(pp)) => LoopInput::Normalized {
-                gamma: pp.gamma,
-                delta: pp.delta,
-                d: rl.lp.delay.samples,
-                alpha: wall.map(|w| w.stiffness),
-                beta: wall.map(|w| w.damping),
-            },
-            _ => LoopInput::Physical {
-                lp: rl.lp.clone(),
-                delay_time: rl.lp.delay_time(),
-                wall,
-            },
-        }
+impl ResolvedLoop {
+    /// The inputs of a command on this loop and an optional wall in the loop's units, echoed
+    /// in its JSON under `input` (the form `--loop` reads back).
+    pub fn input(&self, wall: Option<Wall>) -> LoopInput {
+        LoopInput::new(&self.lp, self.normalized, wall)
     }
 }

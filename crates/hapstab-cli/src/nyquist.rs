@@ -159,9 +159,22 @@ struct NyquistOut {
     passive: Option<PassiveOut>,
 }
 
+/// The plant flags with a --loop file's paper loop filled in, but not the parts that
+/// `nyquist` sweeps or that Remark 4 leaves out (γ, k, the delay of a physical loop).
+fn nyquist_plant(given: &PlantArgs) -> Result<PlantArgs> {
+    let mut p = crate::loop_file::paper_plant(given, "nyquist")?;
+    p.gamma = given.gamma;
+    p.stiffness = given.stiffness;
+    p.arm_stiffness = given.arm_stiffness;
+    if p.any_physical() {
+        p.delay = given.delay;
+    }
+    Ok(p)
+}
+
 /// Runs `hapstab nyquist`.
 pub fn run(a: &NyquistArgs) -> Result<()> {
-    let p = &a.plant;
+    let p = &nyquist_plant(&a.plant)?;
     if p.gamma.is_some() {
         bail!("--gamma: nyquist sweeps γ itself up to γ_N; give the plant's --delta");
     }
@@ -176,7 +189,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
                 "--delay {d}: Remark 4 (physical units) does not depend on the delay; leave it out, or give the normalized plant (--delta) for the regions at that delay"
             );
         }
-        return run_remark4(a);
+        return run_remark4(a, p);
     }
     let delta = p.delta.unwrap_or(0.0);
     let delay = delay_samples(p.delay.unwrap_or(0.0))?;
@@ -299,8 +312,7 @@ fn estimate(a: &NyquistArgs, delta: f64, delay: usize, opts: RobustOptions) -> C
 
 /// Remark 4 for the effective plant of the physical flags: the stiffness that brings it to
 /// the Nyquist frequency (the arm's own stiffness and the delay play no part).
-fn run_remark4(a: &NyquistArgs) -> Result<()> {
-    let p = &a.plant;
+fn run_remark4(a: &NyquistArgs, p: &PlantArgs) -> Result<()> {
     if p.stiffness.is_some() {
         bail!(
             "--stiffness: Remark 4 computes the stiffness that reaches the Nyquist frequency; leave it out"

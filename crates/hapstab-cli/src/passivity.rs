@@ -155,7 +155,7 @@ fn output(
         DeviceDamping::NotApplicable { reason } => (None, Some(reason.clone())),
     };
     PassivityOut {
-        input: LoopInput::new(rl, Some(p.wall)),
+        input: rl.input(Some(p.wall)),
         b_required: p.requirement.b_required,
         binding_frequency_hz: p.requirement.frequency_hz,
         binding_theta: p.requirement.theta,

@@ -157,7 +157,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     };
     let out = SweepOut {
         input: SweepInput {
-            lp: LoopInput::new(&rl, None),
+            lp: rl.input(None),
             param: range.param,
             k_max_at: at,
         },

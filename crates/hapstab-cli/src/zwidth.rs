@@ -155,7 +155,7 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
             bar.inc();
             Ok(LoopOut {
                 label,
-                input: LoopInput::new(&rl, None),
+                input: rl.input(None),
                 zwidth: z,
             })
         })

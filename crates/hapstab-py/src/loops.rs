@@ -9,7 +9,7 @@ use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
-use crate::errors::{Context, bad};
+use crate::errors::{Context, bad, finite};
 use crate::text::{fmt_list, num};
 
 /// The paper's plant 1/(m s² + b s + k) from force (N) to position (m) (eq. 1): the
@@ -412,6 +412,68 @@ impl PyLoop {
         Ok(Self {
             lp: Loop::normalized(pp, d).py_with(&[("delay d", "d")])?,
             normalized: true,
+        })
+    }
+
+    /// A loop saved as JSON (by Loop.save, by the command line's `--json` under "input", or
+    /// by the explorer): the report's "input" object, its "loop" object or a whole report.
+    /// The file's wall, if any, is Loop.load_wall(path).
+    #[staticmethod]
+    fn load(path: std::path::PathBuf) -> PyResult<Self> {
+        let f = hapstab::loop_spec::load(&path).py_with(&[("loop file", "path")])?;
+        Ok(Self {
+            lp: f.lp,
+            normalized: f.normalized,
+        })
+    }
+
+    /// The wall (K, B) a loop file names (α, β for a normalized loop), or None.
+    #[staticmethod]
+    fn load_wall(path: std::path::PathBuf) -> PyResult<Option<(f64, f64)>> {
+        let f = hapstab::loop_spec::load(&path).py_with(&[("loop file", "path")])?;
+        Ok(f.wall.map(|w| (w.stiffness, w.damping)))
+    }
+
+    /// The loop from the text of a loop file (see Loop.load).
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        let f = hapstab::loop_spec::parse(text).py_with(&[("loop file", "text")])?;
+        Ok(Self {
+            lp: f.lp,
+            normalized: f.normalized,
+        })
+    }
+
+    /// The loop (and a wall K in N/m, B in Ns/m, or α, β for a normalized loop) as the JSON
+    /// the command line echoes under "input"; `hapstab check --loop FILE` reads it back.
+    #[pyo3(signature = (wall_stiffness = None, wall_damping = None))]
+    fn to_json(&self, wall_stiffness: Option<f64>, wall_damping: Option<f64>) -> PyResult<String> {
+        let wall = match (wall_stiffness, wall_damping) {
+            (None, None) => None,
+            (Some(k), Some(b)) => Some(hapstab::Wall {
+                stiffness: finite("wall_stiffness", k)?,
+                damping: finite("wall_damping", b)?,
+            }),
+            (None, Some(_)) => return Err(bad("wall_stiffness", "give it with wall_damping")),
+            (Some(_), None) => return Err(bad("wall_damping", "give it with wall_stiffness")),
+        };
+        Ok(hapstab::loop_spec::LoopInput::new(&self.lp, self.normalized, wall).to_json())
+    }
+
+    /// Writes Loop.to_json(wall_stiffness, wall_damping) to `path`.
+    #[pyo3(signature = (path, wall_stiffness = None, wall_damping = None))]
+    fn save(
+        &self,
+        path: std::path::PathBuf,
+        wall_stiffness: Option<f64>,
+        wall_damping: Option<f64>,
+    ) -> PyResult<()> {
+        let text = self.to_json(wall_stiffness, wall_damping)?;
+        std::fs::write(&path, text + "\n").map_err(|e| {
+            pyo3::exceptions::PyOSError::new_err(format!(
+                "path: cannot write '{}': {e}",
+                path.display()
+            ))
         })
     }
 

@@ -42,6 +42,7 @@ pub mod limits;
 pub mod linear;
 pub mod locus;
 pub mod loop_analysis;
+pub mod loop_spec;
 pub mod map;
 pub mod margins;
 pub mod model;

@@ -294,7 +294,7 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         },
         period: model.period(),
         input: SimboundaryInput {
-            lp: LoopInput::new(&rl, None),
+            lp: rl.input(None),
             effects: settings.effects,
             human_force: settings.human_force,
             initial: settings.initial,

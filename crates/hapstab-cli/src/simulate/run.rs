@@ -138,7 +138,7 @@ impl SimLoop {
         let w = resolve_loop_wall(&rl, &fam, wall)?;
         friction_defined(&rl, run)?;
         let model = if rl.lp.paper_view().is_some() {
-            let pm = resolve_point(&lp.plant, wall)?;
+            let pm = resolve_point(&lp.plant, &wall.over_file(&rl))?;
             SimModel::Paper(match &pm.physical {
                 Some(p) => Model::from_physical(p)?,
                 None => Model::unit(pm.normalized)?,
@@ -190,7 +190,7 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
         period,
         normalized: sl.paper().filter(|_| !sl.rl.normalized).map(|m| m.params),
         input: SimInput {
-            lp: LoopInput::new(&sl.rl, Some(sl.wall)),
+            lp: sl.rl.input(Some(sl.wall)),
             effects: settings.effects,
             human_force: settings.human_force,
             initial: settings.initial,

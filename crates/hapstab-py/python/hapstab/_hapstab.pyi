@@ -1,6 +1,7 @@
 """Type stubs of the hapstab extension module (see the package docstring and each function's
 docstring for the equations). Units are SI: K in N/m, B in Ns/m, masses in kg, times in s."""
 
+import os
 from typing import Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -116,6 +117,26 @@ class Loop:
     @staticmethod
     def normalized(gamma: float = 0.0, delta: float = 0.0, d: int = 0) -> Loop:
         """The paper's loop in normalized units (Table I): m = 1 kg, T = 1 s, so K = α, B = β."""
+    @staticmethod
+    def load(path: Union[str, "os.PathLike[str]"]) -> Loop:
+        """A loop saved as JSON: a report's "input", its "loop" object or a whole report."""
+    @staticmethod
+    def load_wall(path: Union[str, "os.PathLike[str]"]) -> Optional[Tuple[float, float]]:
+        """The wall (K, B) a loop file names (α, β for a normalized loop), or None."""
+    @staticmethod
+    def from_json(text: str) -> Loop:
+        """The loop from the text of a loop file."""
+    def to_json(
+        self, wall_stiffness: Optional[float] = None, wall_damping: Optional[float] = None
+    ) -> str:
+        """The loop (and a wall) as the command line echoes it under "input"."""
+    def save(
+        self,
+        path: Union[str, "os.PathLike[str]"],
+        wall_stiffness: Optional[float] = None,
+        wall_damping: Optional[float] = None,
+    ) -> None:
+        """Writes to_json(wall_stiffness, wall_damping) to path."""
     @property
     def plant(self) -> Plant: ...
     @property
