@@ -80,7 +80,7 @@ pub struct PlantArgs {
     /// "loop" object, or a whole report. Flags given beside it change its parts: the arm,
     /// device or two-mass flags the matching parts of its plant, the other plant flags
     /// replace the plant; --period, --delay, --velocity, --force-lag and the wall flags
-    /// their own part.
+    /// their own part (a new --period keeps the file's delay in samples).
     #[arg(long = "loop", value_name = "FILE")]
     pub loop_file: Option<std::path::PathBuf>,
 }
