@@ -228,12 +228,15 @@ fn check_budget(a: &ZwidthArgs, loops: &[(String, ResolvedLoop)]) -> Result<()> 
     crate::budget::check(cost, "the regions of the loops", &drivers)
 }
 
+/// The base loop's label: its --loop file, else its velocity estimator.
 fn label_of(lp: &LoopArgs, spec: Option<&str>) -> String {
-    spec.map(str::to_string).unwrap_or_else(|| {
-        lp.velocity
-            .as_ref()
-            .map_or_else(|| "backward".to_string(), |v| v.to_string())
-    })
+    spec.map(str::to_string)
+        .unwrap_or_else(|| match (&lp.plant.loop_file, &lp.velocity) {
+            (Some(f), None) => format!("--loop {}", f.display()),
+            (_, v) => v
+                .as_ref()
+                .map_or_else(|| "backward".to_string(), |v| v.to_string()),
+        })
 }
 
 fn kn(x: f64) -> String {
