@@ -7,6 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use hapstab::boundary::Interval;
 use hapstab::margins::margins_beside_verdict;
+use hapstab::margins::report::MarginsReport;
 use hapstab::params::Wall;
 use hapstab::{AffineFamily, Normalized};
 use num_complex::Complex64;
@@ -73,101 +74,18 @@ struct CheckOut {
     #[serde(flatten)]
     paper: Option<PaperView>,
     #[serde(flatten)]
-    margins: MarginsOut,
+    margins: MarginsReport,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     plot: Vec<std::path::PathBuf>,
 }
 
-/// The wall's stability margins in the conventions of MATLAB's `allmargin` and
-/// python-control's `stability_margins` (null when the wall is not stable or a margin is
-/// unbounded; `margin_notes` says which).
-#[derive(Serialize)]
-struct MarginsOut {
-    /// Factor > 1 on K and B together (the loop's gain margin, python-control's `gm`).
-    gain_margin: Option<f64>,
-    /// Factor < 1 on K and B together that reaches the boundary.
-    gain_margin_lower: Option<f64>,
-    /// Phase crossover (L real, negative) where the gain margin is read, Hz.
-    phase_crossover_hz: Option<f64>,
-    /// Factor > 1 on K alone at the given B.
-    stiffness_margin: Option<f64>,
-    /// Factor < 1 on K alone at the given B.
-    stiffness_margin_lower: Option<f64>,
-    /// Frequency of the root pair on the unit circle at K × stiffness margin, Hz.
-    stiffness_crossover_hz: Option<f64>,
-    /// Phase margin in degrees (the smallest in magnitude over the gain crossovers).
-    phase_margin_deg: Option<f64>,
-    /// Gain crossover (|L| = 1) where the phase margin is read, Hz.
-    gain_crossover_hz: Option<f64>,
-    /// Exact extra delay that the loop tolerates, s.
-    delay_margin: Option<f64>,
-    /// Frequency of the oscillation at the delay margin, Hz.
-    delay_margin_frequency_hz: Option<f64>,
-    /// min PM/ω_c over the gain crossovers, s (MATLAB's figure for a pure delay).
-    delay_margin_pm_over_wc: Option<f64>,
-    /// When the delay scan stopped at its work bound: the extra delay, s, up to which the loop
-    /// was shown stable (the delay margin is at least this).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    delay_margin_at_least: Option<f64>,
-    /// min |1 + L| (python-control's `sm`).
-    stability_margin: Option<f64>,
-    /// Where min |1 + L| is reached, Hz.
-    stability_margin_hz: Option<f64>,
-    /// max |L| over frequency.
-    peak_gain: Option<f64>,
-    /// Where max |L| is reached, Hz.
-    peak_gain_hz: Option<f64>,
-    /// Every gain and phase crossover (kind, frequency, value).
-    crossings: Vec<CrossingOut>,
-    /// Why a margin is null.
-    margin_notes: Vec<String>,
-}
-
-/// One crossing of the open loop.
-#[derive(Serialize)]
-struct CrossingOut {
-    /// "gain" (|L| = 1; value: phase margin in degrees) or "phase" (L real; value: the factor
-    /// on (K, B) that puts a root on the unit circle there).
-    kind: hapstab::margins::CrossingKind,
-    frequency_hz: f64,
-    value: f64,
-}
-
-impl MarginsOut {
-    /// The margins of the wall, or none with the reason when the check's verdict says the wall
-    /// is not stable.
-    fn new(rl: &ResolvedLoop, w: Wall, stable: bool) -> Result<Self> {
-        let m = margins_beside_verdict(&rl.lp, w, stable)?;
-        Ok(MarginsOut {
-            gain_margin: m.gain.map(|g| g.factor),
-            gain_margin_lower: m.gain_lower.map(|g| g.factor),
-            phase_crossover_hz: m.gain.map(|g| g.frequency_hz),
-            stiffness_margin: m.stiffness.map(|g| g.factor),
-            stiffness_margin_lower: m.stiffness_lower.map(|g| g.factor),
-            stiffness_crossover_hz: m.stiffness.map(|g| g.frequency_hz),
-            phase_margin_deg: m.phase.map(|p| p.degrees),
-            gain_crossover_hz: m.phase.map(|p| p.frequency_hz),
-            delay_margin: m.delay.map(|d| d.seconds),
-            delay_margin_frequency_hz: m.delay.map(|d| d.frequency_hz),
-            delay_margin_pm_over_wc: m.delay_pm_over_wc,
-            delay_margin_at_least: m.delay_at_least,
-            stability_margin: m.stability_margin.map(|s| s.value),
-            stability_margin_hz: m.stability_margin.map(|s| s.frequency_hz),
-            peak_gain: m.peak_gain.map(|p| p.0),
-            peak_gain_hz: m.peak_gain.map(|p| p.1),
-            crossings: m
-                .crossings
-                .iter()
-                .map(|c| CrossingOut {
-                    kind: c.kind,
-                    frequency_hz: c.frequency_hz,
-                    value: c.value,
-                })
-                .collect(),
-            margin_notes: m.notes,
-        })
-    }
+/// The margins of the wall in the report's form, or none with the reason when the check's
+/// verdict says the wall is not stable.
+fn margins_out(rl: &ResolvedLoop, w: Wall, stable: bool) -> Result<MarginsReport> {
+    Ok(MarginsReport::from(&margins_beside_verdict(
+        &rl.lp, w, stable,
+    )?))
 }
 
 /// The stable interval of the wall's stiffness in the loop's units (a, b) at its damping
@@ -249,7 +167,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         roots: analysis.roots.clone(),
         k_interval,
         paper: paper_view(&rl, &fam, w)?,
-        margins: MarginsOut::new(&rl, w, analysis.stable())?,
+        margins: margins_out(&rl, w, analysis.stable())?,
         plot: Vec::new(),
     };
     if let Some(path) = &a.plot {
@@ -330,7 +248,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {
     print_margins(rl, &o.margins);
 }
 
-fn print_margins(rl: &ResolvedLoop, m: &MarginsOut) {
+fn print_margins(rl: &ResolvedLoop, m: &MarginsReport) {
     let hz = |f: f64| {
         if rl.normalized {
             format!("{} cycles/sample", sig(f, 6))

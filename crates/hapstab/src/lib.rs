@@ -28,7 +28,7 @@
 //! assert_eq!(a.verdict, Verdict::Stable);
 //! ```
 
-#![warn(missing_docs)]
+#![deny(missing_docs)]
 
 pub mod argument;
 pub mod boundary;

@@ -698,6 +698,13 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
             format!("parameter '{name}' (got '{}'): {e}", clip(v)),
         )
     })?;
+    // the device held by an arm names its operator: passivity counts the device's own damping
+    let plant = match &plant.model {
+        PlantModel::MassSpringDamper(_) if arm(p)? != Arm::NONE => {
+            plant.with_operator(arm(p)?).map_err(lib_error)?
+        }
+        _ => plant,
+    };
     let delay = general_delay(p, period)?;
     let lp = Loop::new(plant, period, delay, velocity).map_err(lib_error)?;
     let family = AffineFamily::of_loop(&lp).map_err(lib_error)?;
@@ -708,14 +715,14 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
 /// b·b_per_beta) and its static stiffness.
 fn general_plant_spec(lp: Loop, family: AffineFamily) -> PlantSpec {
     let (dev, arm_, eff) = match &lp.plant.model {
-        PlantModel::MassSpringDamper(e) => (
-            Device {
-                mass: e.mass,
-                damping: e.damping,
-            },
-            Arm::NONE,
-            Some(*e),
-        ),
+        PlantModel::MassSpringDamper(e) => {
+            let arm = lp.plant.operator.unwrap_or(Arm::NONE);
+            let device = Device {
+                mass: e.mass - arm.mass,
+                damping: e.damping - arm.damping,
+            };
+            (device, arm, Some(*e))
+        }
         PlantModel::TwoMass(t) => (NO_DEVICE, t.arm, None),
         PlantModel::TransferFunction { .. } => (NO_DEVICE, Arm::NONE, None),
     };

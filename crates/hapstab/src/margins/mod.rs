@@ -27,6 +27,7 @@
 pub mod delay;
 pub mod fraction;
 pub mod frequency;
+pub mod report;
 
 use serde::Serialize;
 

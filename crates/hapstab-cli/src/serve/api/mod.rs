@@ -3,7 +3,7 @@
 
 //!
 //! One endpoint per file: `/api/region` in `region` (its request in `region_request`, the
-//! passive triangles it draws in `passive`), `/api/point` in `point` and `/api/simulate` in
+//! passive triangles it draws in `passive`), `/api/point` in `point` (the clicked wall's margins and passivity in `wall_analyses`) and `/api/simulate` in
 //! `simulation`. The budget check and the plant of an answer, which all share, are here.
 
 use serde::Serialize;
@@ -16,6 +16,7 @@ mod point;
 mod region;
 mod region_request;
 mod simulation;
+mod wall_analyses;
 
 pub use point::{PointOut, point, point_budget, point_names, wall_point};
 pub use region::{RegionOut, region};

@@ -1,5 +1,5 @@
-//! `/api/point`: the verdict, roots and spectral radius at one wall, the linear condition and
-//! whether the wall is passive.
+//! `/api/point`: the verdict, roots and spectral radius at one wall, the linear condition, its
+//! margins and its passivity on any loop.
 
 use std::time::Instant;
 
@@ -11,10 +11,12 @@ use hapstab::params::Normalized;
 use hapstab::stability::Analysis;
 use serde::Serialize;
 
-use super::passive::{has_arm_damping, own_delta};
+use super::wall_analyses::wall_analyses;
 use super::within_budget;
 use crate::serve::limits::*;
 use crate::serve::query::{ApiError, Params, PlantSpec, lib_error};
+use hapstab::margins::report::MarginsReport;
+use hapstab::passivity::{Passivity, PassivityVerdict};
 
 /// α and β of a point; in physical mode optionally given as K (N/m) and B (Ns/m).
 pub fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), ApiError> {
@@ -105,11 +107,27 @@ pub struct PointOut {
     pub roots: Vec<[f64; 2]>,
     /// Linear condition (19), (23) of the paper's loop (null for other loops).
     pub linear: Option<PointLinear>,
-    /// Inside Colgate's passive region for the device's own damping (d = 0 only).
+    /// Passive for the device's own damping (Colgate–Schenkel: towards any passive operator);
+    /// null where the condition does not apply (see `passivity`).
     pub passive: Option<bool>,
-    /// Inside eq. (28) with the arm's damping counted (physical units with an arm, d = 0).
+    /// Passive by eq. (28) with the arm's damping counted (towards this operator only); null
+    /// without an arm.
     pub passive_with_arm: Option<bool>,
+    /// Every margin of the wall, as `hapstab check --json` gives them (withheld with a note
+    /// beside a verdict that is not stable).
+    pub margins: MarginsReport,
+    /// The passivity of the wall, as `hapstab passivity --json` gives it.
+    pub passivity: Passivity,
     pub server_ms: f64,
+}
+
+/// Passive (true), not (false), or the condition does not apply (None).
+fn is_passive(v: PassivityVerdict) -> Option<bool> {
+    match v {
+        PassivityVerdict::Passive => Some(true),
+        PassivityVerdict::Boundary | PassivityVerdict::NotPassive => Some(false),
+        PassivityVerdict::NotApplicable => None,
+    }
 }
 
 /// Refuses a point whose roots would cost more than one request may.
@@ -157,10 +175,12 @@ pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiErr
             satisfied: lc.satisfied,
         }
     });
-    let inside = |delta: f64| alpha >= 0.0 && delta > alpha / 2.0 + beta.abs();
-    let passive = (paper && spec.d == 0).then(|| inside(own_delta(spec)));
-    let passive_with_arm = (paper && spec.d == 0 && has_arm_damping(spec)).then(|| inside(n.delta));
+    let (margins, passivity) = wall_analyses(spec, (alpha, beta), a.stable())?;
     Ok(PointOut {
+        passive: is_passive(passivity.verdict),
+        passive_with_arm: passivity.with_arm.and_then(|w| is_passive(w.verdict)),
+        margins: MarginsReport::from(&margins),
+        passivity,
         params: n,
         lp: spec.general.as_ref().map(|g| g.lp.clone()),
         wall: wall_out(spec, alpha, beta),
@@ -169,8 +189,6 @@ pub fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiErr
         spectral_radius: a.spectral_radius,
         roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
         linear,
-        passive,
-        passive_with_arm,
         server_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
 }
