@@ -23,6 +23,8 @@ pub enum Format {
     Svg,
     Csv,
     Json,
+    /// The loop and the point's wall as a loop file (see [`super::loop_io`]).
+    Loop,
 }
 
 /// A parsed export request.
@@ -40,9 +42,10 @@ pub struct ExportReq {
 /// Validates an export request.
 pub fn parse_export(p: &Params) -> Result<ExportReq, ApiError> {
     let region = parse_region(p)?;
-    let format = match p.choice("format", &["svg", "csv", "json"], "svg")? {
+    let format = match p.choice("format", &["svg", "csv", "json", "loop"], "svg")? {
         "csv" => Format::Csv,
         "json" => Format::Json,
+        "loop" => Format::Loop,
         _ => Format::Svg,
     };
     let point = match (p.has("alpha"), p.has("beta")) {
@@ -105,6 +108,10 @@ struct JsonExport<'a> {
 
 /// The export: content type, file name and body.
 pub fn export(req: &ExportReq) -> Result<(&'static str, String, String), ApiError> {
+    if req.format == Format::Loop {
+        let body = super::loop_io::saved_loop(&req.region.spec, req.point)?;
+        return Ok(("application/json", "hapstab-loop.json".into(), body));
+    }
     let out = region(&req.region)?;
     let pt = match req.point {
         Some((a, b)) => Some(point(&req.region.spec, a, b)?),
@@ -133,7 +140,7 @@ pub fn export(req: &ExportReq) -> Result<(&'static str, String, String), ApiErro
             format!("{stem}.csv"),
             csv(&out, pt.as_ref(), view),
         ),
-        Format::Svg => (
+        Format::Loop | Format::Svg => (
             "image/svg+xml",
             format!("{stem}.svg"),
             svg(&out, pt.as_ref(), view, req.width, req.height),

@@ -29,6 +29,7 @@ mod head;
 mod host;
 mod limits;
 mod listen;
+mod loop_io;
 mod query;
 #[cfg(test)]
 mod query_props;
@@ -198,6 +199,7 @@ fn router(state: AppState) -> Router {
         .route("/api/point", get(api_point))
         .route("/api/simulate", get(api_simulate))
         .route("/api/export", get(api_export))
+        .route("/api/open", get(api_open))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         // innermost first: body limit (413), then the request time limit (503), both with
@@ -393,6 +395,17 @@ async fn api_simulate(State(st): State<AppState>, q: RawQuery) -> Response {
     }
     .await;
     respond(r, |v| json_timed(&v, v.server_ms))
+}
+
+/// `/api/open?file=TEXT`: the page's query for a loop file's text.
+async fn api_open(q: RawQuery) -> Response {
+    let r = params(q, &["file"]).and_then(|p| {
+        let text = p
+            .raw("file")
+            .ok_or_else(|| ApiError::param("file", "", "missing parameter 'file'".into()))?;
+        loop_io::open(text)
+    });
+    respond(r, |v| axum::Json(v).into_response())
 }
 
 async fn api_export(State(st): State<AppState>, q: RawQuery) -> Response {

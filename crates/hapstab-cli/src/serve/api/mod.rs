@@ -16,7 +16,7 @@ mod point;
 mod region;
 mod region_request;
 mod simulation;
-mod wall_analyses;
+pub mod wall_analyses;
 
 pub use point::{PointOut, point, point_budget, point_names, wall_point};
 pub use region::{RegionOut, region};
