@@ -124,21 +124,4 @@ pub fn check_loop(args: &LoopArgs, lp: &Loop, cost: Cost, what: &str) -> Result<
     check(cost, what, &degree_drivers(args, lp))
 }
 
-/// The degree of a loop's p(z) without discretizing it: the plant's order, the actuator lag,
-/// the velocity filter's order and the delay (one more for a fraction of a sample), as
-/// [`hapstab::AffineFamily::degree`] counts them.
-pub fn loop_degree(lp: &Loop) -> usize {
-    let plant = match &lp.plant.model {
-        PlantModel::MassSpringDamper(_) => 2,
-        PlantModel::TwoMass(_) => 4,
-        PlantModel::TransferFunction { den, .. } => den.len().saturating_sub(1),
-    };
-    let lag = usize::from(lp.plant.force_lag > 0.0);
-    let filter = match &lp.velocity {
-        VelocityEstimator::Backward | VelocityEstimator::LowPass { .. } => 1,
-        VelocityEstimator::Average { samples } => *samples,
-        VelocityEstimator::Iir { b, a } => b.len().max(a.len()).saturating_sub(1),
-    };
-    let fraction = usize::from(lp.delay.fraction > 0.0);
-    plant + lag + filter + lp.delay.samples + fraction
-}
+pub use hapstab::limits::loop_degree;

@@ -104,24 +104,7 @@ fn check_budget(
     range: &SweepRange,
     at: KmaxAt,
 ) -> Result<()> {
-    use hapstab::limits::{Cost, interval_cost, passivity_cost, sweep_point_cost};
-    let mut cost = Cost::ZERO;
-    for i in 0..range.n {
-        // a value the loop refuses ends the sweep with its own message before any analysis
-        let Ok(lp) = range.param.apply(base, range.value(i)) else {
-            continue;
-        };
-        let n = crate::budget::loop_degree(&lp);
-        let core = n.saturating_sub(lp.delay.samples);
-        let one = match at {
-            KmaxAt::Damping { .. } => interval_cost(n).then(passivity_cost(n, core)),
-            _ => sweep_point_cost(n, core),
-        };
-        cost = Cost {
-            seconds: cost.seconds + one.seconds,
-            memory: cost.memory.max(one.memory),
-        };
-    }
+    let cost = hapstab::limits::sweep_cost(base, range.param, &range.values(), at);
     crate::budget::check(
         cost,
         &format!("the sweep of {} points", range.n),

@@ -193,30 +193,14 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
 /// regions and the table's intervals; blames --compare or the flag that sets most of the
 /// heaviest loop's degree.
 fn check_budget(a: &ZwidthArgs, loops: &[(String, ResolvedLoop)]) -> Result<()> {
-    use hapstab::limits::{
-        Cost, ZWIDTH_REGIONS, interval_cost, passivity_cost, region_cost_of_degree,
-    };
-    let rows = a.table_damping.as_ref().map_or(8, Vec::len) as f64;
-    let mut cost = Cost::ZERO;
+    let rows = a.table_damping.as_ref().map_or(8, Vec::len);
+    let mut cost = hapstab::limits::Cost::ZERO;
     let mut heaviest = (0, &loops[0].1);
     for (_, rl) in loops {
         let fam = hapstab::AffineFamily::of_loop(&rl.lp)?;
-        let (n, core) = (fam.degree(), hapstab::limits::core_degree(&fam));
-        let region = region_cost_of_degree(n, core);
-        let table = interval_cost(n);
-        let table = Cost {
-            seconds: table.seconds * rows,
-            memory: table.memory,
-        };
-        cost = cost
-            .then(Cost {
-                seconds: region.seconds * ZWIDTH_REGIONS,
-                memory: region.memory,
-            })
-            .then(passivity_cost(n, core))
-            .then(table);
-        if n > heaviest.0 {
-            heaviest = (n, rl);
+        cost = cost.then(hapstab::limits::zwidth_cost(&fam, rows));
+        if fam.degree() > heaviest.0 {
+            heaviest = (fam.degree(), rl);
         }
     }
     let mut drivers = crate::budget::degree_drivers(&a.lp, &heaviest.1.lp);

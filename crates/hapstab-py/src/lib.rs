@@ -16,8 +16,10 @@ mod map;
 mod margins;
 mod passivity;
 mod simulate;
+mod sweep;
 mod text;
 mod wall;
+mod zwidth;
 
 /// Exact stability of haptic virtual walls (Hulin, Preusche and Hirzinger, IROS 2008).
 #[pymodule]
@@ -43,6 +45,8 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<freqresp::PyMark>()?;
     m.add_class::<freqresp::PyFrequencyResponse>()?;
     m.add_class::<locus::PyRootLocus>()?;
+    m.add_class::<sweep::PySweep>()?;
+    m.add_class::<zwidth::PyZWidth>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
@@ -53,5 +57,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(margins::margins, m)?)?;
     m.add_function(wrap_pyfunction!(freqresp::frequency_response, m)?)?;
     m.add_function(wrap_pyfunction!(locus::root_locus, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(zwidth::zwidth, m)?)?;
     Ok(())
 }

@@ -130,7 +130,7 @@ fn device_of(lp: &PyLoop, given: Option<f64>) -> PyResult<Option<DeviceDamping>>
     Ok(Some(DeviceDamping::Known { damping: b }))
 }
 
-fn region_object(py: Python<'_>, r: &PassiveRegion) -> PyResult<PyPassiveRegion> {
+pub(crate) fn region_object(py: Python<'_>, r: &PassiveRegion) -> PyResult<PyPassiveRegion> {
     let flat: Vec<f64> = r
         .vertices
         .iter()

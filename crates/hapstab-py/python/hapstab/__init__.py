@@ -30,6 +30,8 @@ and answers from the same Rust engine as the `hapstab` command line:
   frequency at which it would oscillate.
 - frequency_response: the open loop L(e^{jωT}) with its crossings (the data of a Bode and a
   Nyquist plot); root_locus: the roots of p(z) as K sweeps at a damping B.
+- sweep: K_max (stable and passive) against one parameter of the loop.
+- zwidth: the Z-width, stable and passive regions with K_max against the damping.
 
 Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad arguments raise
 ValueError naming the keyword argument.
@@ -55,8 +57,10 @@ from ._hapstab import (
     RootLocus,
     Simulation,
     StabilityMap,
+    Sweep,
     TransferFunction,
     TwoMass,
+    ZWidth,
 )
 from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
@@ -68,6 +72,8 @@ from ._hapstab import region as _region
 from ._hapstab import root_locus as _root_locus
 from ._hapstab import simulate as _simulate
 from ._hapstab import stability_map as _stability_map
+from ._hapstab import sweep as _sweep
+from ._hapstab import zwidth as _zwidth
 
 _PROCESSING = _re.compile(r"while processing '([^']+)'")
 
@@ -102,6 +108,8 @@ region = _named(_region)
 root_locus = _named(_root_locus)
 simulate = _named(_simulate)
 stability_map = _named(_stability_map)
+sweep = _named(_sweep)
+zwidth = _named(_zwidth)
 
 __all__ = [
     "Check",
@@ -120,8 +128,10 @@ __all__ = [
     "RootLocus",
     "Simulation",
     "StabilityMap",
+    "Sweep",
     "TransferFunction",
     "TwoMass",
+    "ZWidth",
     "check",
     "discretize",
     "frequency_response",
@@ -132,4 +142,6 @@ __all__ = [
     "root_locus",
     "simulate",
     "stability_map",
+    "sweep",
+    "zwidth",
 ]

@@ -379,6 +379,39 @@ class RootLocus:
     """Shape (len(wall_stiffness), degree of p), branch-ordered."""
     spectral_radius: Float64Array
 
+class Sweep:
+    """K_max against one parameter of the loop (NaN where a value is missing; see notes)."""
+
+    param: str
+    unit: str
+    values: Float64Array
+    k_max: Float64Array
+    b_at_k_max: Float64Array
+    k_max_passive: Float64Array
+    k_max_passive_with_arm: Float64Array
+    notes: list[Optional[str]]
+
+class ZWidth:
+    """The Z-width of a loop: stable and passive regions, K_max, the K_max table."""
+
+    stable: list[Float64Array]
+    """Components as (N, 2) arrays of [K in N/m, B in Ns/m]."""
+    stable_area: float
+    k_max: Optional[float]
+    b_at_k_max: Optional[float]
+    k_max_nonnegative_damping: Optional[Tuple[float, float]]
+    device_damping: Optional[float]
+    passive: Optional[PassiveRegion]
+    k_max_passive_with_arm: Optional[Tuple[float, float]]
+    passive_inside_stable: Optional[bool]
+    linear: Optional[Tuple[float, float]]
+    """(b, t_r) of the linear condition K < (b + B)/t_r (22)."""
+    table_damping: Float64Array
+    table_k_max: Float64Array
+    table_k_min: Float64Array
+    table_k_max_passive: Float64Array
+    table_k_linear: Float64Array
+
 def check(
     loop: Loop,
     wall_stiffness: Optional[float] = None,
@@ -489,3 +522,14 @@ def root_locus(
     wall_stiffness: Optional[ArrayLike] = None,
 ) -> RootLocus:
     """The roots of p(z) at each K (N/m) at damping B (Ns/m), or on `hapstab locus`'s sweep."""
+def sweep(
+    loop: Loop,
+    param: str,
+    values: ArrayLike,
+    *,
+    wall_damping: Optional[float] = None,
+    damping_range: Optional[Tuple[float, float]] = None,
+) -> Sweep:
+    """K_max (stable and passive) with `param` ("delay-time", "arm-stiffness", …) at each value."""
+def zwidth(loop: Loop, *, table_damping: Optional[Sequence[float]] = None) -> ZWidth:
+    """The Z-width: the numbers of `hapstab zwidth --json`."""
