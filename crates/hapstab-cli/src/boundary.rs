@@ -115,9 +115,12 @@ struct BoundaryOut {
     plot: Vec<std::path::PathBuf>,
 }
 
-fn kind_name(k: &EdgeKind, paper: bool) -> String {
+/// An edge's kind in words; the z = 1 line of the paper's loop in its units (α = −γ, or
+/// K = −k in physical units).
+fn kind_name(k: &EdgeKind, paper: bool, normalized: bool) -> String {
     match k {
-        EdgeKind::ZPlusOne if paper => "z = 1 line (α = −γ)".into(),
+        EdgeKind::ZPlusOne if paper && normalized => "z = 1 line (α = −γ)".into(),
+        EdgeKind::ZPlusOne if paper => "z = 1 line (K = −k)".into(),
         EdgeKind::ZPlusOne => "z = 1 line".into(),
         EdgeKind::ZMinusOne => "z = −1 line".into(),
         EdgeKind::Complex {
@@ -355,7 +358,10 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
                 let (k, b) = fam.to_physical(v.alpha, v.beta);
                 format!("(K, B) = ({}, {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
             };
-            println!("  from {at}: {}", kind_name(&e.kind, paper.is_some()));
+            println!(
+                "  from {at}: {}",
+                kind_name(&e.kind, paper.is_some(), rl.normalized)
+            );
         }
     }
 }

@@ -514,6 +514,72 @@ pub fn simulation_cost(samples: f64, d: usize, rows: f64) -> Cost {
     }
 }
 
+/// The degree of a loop's p(z) without discretizing it: the plant's order, the actuator lag,
+/// the velocity filter's order and the delay (one more for a fraction of a sample), as
+/// [`crate::AffineFamily::degree`] counts them.
+pub fn loop_degree(lp: &crate::model::Loop) -> usize {
+    use crate::model::{PlantModel, VelocityEstimator};
+    let plant = match &lp.plant.model {
+        PlantModel::MassSpringDamper(_) => 2,
+        PlantModel::TwoMass(_) => 4,
+        PlantModel::TransferFunction { den, .. } => den.len().saturating_sub(1),
+    };
+    let lag = usize::from(lp.plant.force_lag > 0.0);
+    let filter = match &lp.velocity {
+        VelocityEstimator::Backward | VelocityEstimator::LowPass { .. } => 1,
+        VelocityEstimator::Average { samples } => *samples,
+        VelocityEstimator::Iir { b, a } => b.len().max(a.len()).saturating_sub(1),
+    };
+    let fraction = usize::from(lp.delay.fraction > 0.0);
+    plant + lag + filter + lp.delay.samples + fraction
+}
+
+/// A K_max sweep ([`crate::sweep::sweep_param`]): per point a stable region (or one interval
+/// at a given damping) and a passive K_max of the loop at that value, whose cost grows as
+/// the square of its p(z)'s degree; values the loop refuses are left out (the sweep ends
+/// with their message before any analysis).
+pub fn sweep_cost(
+    base: &crate::model::Loop,
+    param: crate::sweep::SweepParam,
+    values: &[f64],
+    at: crate::sweep::KmaxAt,
+) -> Cost {
+    let mut cost = Cost::ZERO;
+    for &v in values {
+        let Ok(lp) = param.apply(base, v) else {
+            continue;
+        };
+        let n = loop_degree(&lp);
+        let core = n.saturating_sub(lp.delay.samples);
+        let one = match at {
+            crate::sweep::KmaxAt::Damping { .. } => interval_cost(n).then(passivity_cost(n, core)),
+            _ => sweep_point_cost(n, core),
+        };
+        cost = Cost {
+            seconds: cost.seconds + one.seconds,
+            memory: cost.memory.max(one.memory),
+        };
+    }
+    cost
+}
+
+/// The Z-width of one loop ([`crate::zwidth::zwidth`]) with a table of `rows` dampings: its
+/// stable and passive regions and the table's intervals.
+pub fn zwidth_cost(fam: &crate::closed_loop::AffineFamily, rows: usize) -> Cost {
+    let (n, core) = (fam.degree(), core_degree(fam));
+    let region = region_cost_of_degree(n, core);
+    let table = interval_cost(n);
+    Cost {
+        seconds: region.seconds * ZWIDTH_REGIONS,
+        memory: region.memory,
+    }
+    .then(passivity_cost(n, core))
+    .then(Cost {
+        seconds: table.seconds * rows as f64,
+        memory: table.memory,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -581,70 +647,4 @@ mod tests {
         assert_eq!(bytes(3.7e9), "3.7 GB");
         assert_eq!(bytes(2048.0), "2.0 kB");
     }
-}
-
-/// The degree of a loop's p(z) without discretizing it: the plant's order, the actuator lag,
-/// the velocity filter's order and the delay (one more for a fraction of a sample), as
-/// [`crate::AffineFamily::degree`] counts them.
-pub fn loop_degree(lp: &crate::model::Loop) -> usize {
-    use crate::model::{PlantModel, VelocityEstimator};
-    let plant = match &lp.plant.model {
-        PlantModel::MassSpringDamper(_) => 2,
-        PlantModel::TwoMass(_) => 4,
-        PlantModel::TransferFunction { den, .. } => den.len().saturating_sub(1),
-    };
-    let lag = usize::from(lp.plant.force_lag > 0.0);
-    let filter = match &lp.velocity {
-        VelocityEstimator::Backward | VelocityEstimator::LowPass { .. } => 1,
-        VelocityEstimator::Average { samples } => *samples,
-        VelocityEstimator::Iir { b, a } => b.len().max(a.len()).saturating_sub(1),
-    };
-    let fraction = usize::from(lp.delay.fraction > 0.0);
-    plant + lag + filter + lp.delay.samples + fraction
-}
-
-/// A K_max sweep ([`crate::sweep::sweep_param`]): per point a stable region (or one interval
-/// at a given damping) and a passive K_max of the loop at that value, whose cost grows as
-/// the square of its p(z)'s degree; values the loop refuses are left out (the sweep ends
-/// with their message before any analysis).
-pub fn sweep_cost(
-    base: &crate::model::Loop,
-    param: crate::sweep::SweepParam,
-    values: &[f64],
-    at: crate::sweep::KmaxAt,
-) -> Cost {
-    let mut cost = Cost::ZERO;
-    for &v in values {
-        let Ok(lp) = param.apply(base, v) else {
-            continue;
-        };
-        let n = loop_degree(&lp);
-        let core = n.saturating_sub(lp.delay.samples);
-        let one = match at {
-            crate::sweep::KmaxAt::Damping { .. } => interval_cost(n).then(passivity_cost(n, core)),
-            _ => sweep_point_cost(n, core),
-        };
-        cost = Cost {
-            seconds: cost.seconds + one.seconds,
-            memory: cost.memory.max(one.memory),
-        };
-    }
-    cost
-}
-
-/// The Z-width of one loop ([`crate::zwidth::zwidth`]) with a table of `rows` dampings: its
-/// stable and passive regions and the table's intervals.
-pub fn zwidth_cost(fam: &crate::closed_loop::AffineFamily, rows: usize) -> Cost {
-    let (n, core) = (fam.degree(), core_degree(fam));
-    let region = region_cost_of_degree(n, core);
-    let table = interval_cost(n);
-    Cost {
-        seconds: region.seconds * ZWIDTH_REGIONS,
-        memory: region.memory,
-    }
-    .then(passivity_cost(n, core))
-    .then(Cost {
-        seconds: table.seconds * rows as f64,
-        memory: table.memory,
-    })
 }

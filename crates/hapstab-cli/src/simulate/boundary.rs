@@ -15,7 +15,7 @@ use hapstab::{AffineFamily, Normalized};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::boundary_plot::boundary_plot;
+use super::boundary_plot::{Plane, boundary_plot};
 use super::boundary_text::print_simboundary;
 use super::run_args::RunSettings;
 use super::{
@@ -275,9 +275,18 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     };
     let saved = match &a.plot {
         Some(stem) => Some(
-            boundary_plot(&region, &points, paper.as_ref(), &settings, units)
-                .save(stem)
-                .with_context(|| format!("--plot {}", stem.display()))?,
+            boundary_plot(
+                &region,
+                &points,
+                paper.as_ref(),
+                Plane {
+                    per_unit: scale.filter(|_| units.physical),
+                },
+                &settings,
+                units,
+            )
+            .save(stem)
+            .with_context(|| format!("--plot {}", stem.display()))?,
         ),
         None => None,
     };

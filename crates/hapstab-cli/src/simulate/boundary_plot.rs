@@ -1,5 +1,6 @@
 //! The figure of a boundary search: the exact linear stable region and the simulated boundary,
-//! with the points the scan could not decide.
+//! with the points the scan could not decide; in K and B for physical input, in α and β (or a
+//! loop's wall units a, b) for normalized input.
 
 use hapstab::Normalized;
 use hapstab::boundary::AlphaBeta;
@@ -10,17 +11,31 @@ use super::{Units, describe_effects};
 use crate::output::sig;
 use crate::plot::{Figure, Legend, Marker, Series, palette};
 
-pub(super) fn boundary_plot(
-    region: &hapstab::region::StableRegion,
-    points: &[EmpiricalPoint],
-    paper: Option<&Normalized>,
-    s: &RunSettings,
-    units: Units,
-) -> Figure {
-    let (title, xl, yl) = match paper {
-        Some(p) => (
+/// The plane of the figure: N/m per unit of α (or a) and Ns/m per unit of β (or b) for a
+/// physical figure, none for a normalized one.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Plane {
+    pub(super) per_unit: Option<(f64, f64)>,
+}
+
+impl Plane {
+    fn at(&self, a: f64, b: f64) -> (f64, f64) {
+        self.per_unit.map_or((a, b), |(k, d)| (a * k, b * d))
+    }
+}
+
+/// Title and axis labels.
+fn labels(paper: Option<&Normalized>, plane: Plane) -> (String, &'static str, &'static str) {
+    let title = "Simulated vs exact linear boundary".to_string();
+    match (paper, plane.per_unit) {
+        (_, Some(_)) => (
+            title,
+            "virtual stiffness K (N/m)",
+            "virtual damping B (Ns/m)",
+        ),
+        (Some(p), None) => (
             format!(
-                "Simulated vs exact linear boundary (γ = {}, δ = {}, d = {})",
+                "{title} (γ = {}, δ = {}, d = {})",
                 sig(p.gamma, 3),
                 sig(p.delta, 3),
                 p.d
@@ -28,84 +43,109 @@ pub(super) fn boundary_plot(
             "virtual stiffness α = KT²/m",
             "virtual damping β = BT/m",
         ),
-        None => (
-            "Simulated vs exact linear boundary".to_string(),
+        (None, None) => (
+            title,
             "wall stiffness a = K/k_u",
             "wall damping b = B/(k_u·T)",
         ),
-    };
+    }
+}
+
+/// The figure of the search (module doc).
+pub(super) fn boundary_plot(
+    region: &hapstab::region::StableRegion,
+    points: &[EmpiricalPoint],
+    paper: Option<&Normalized>,
+    plane: Plane,
+    s: &RunSettings,
+    units: Units,
+) -> Figure {
+    let (title, xl, yl) = labels(paper, plane);
     let mut f = Figure::new(title)
         .x_label(xl)
         .y_label(yl)
         .legend(Legend::UpperRight);
     for (i, poly) in region.polygons.iter().enumerate() {
-        let pts = poly.vertices.iter().map(|v: &AlphaBeta| (v.alpha, v.beta));
+        let pts = poly
+            .vertices
+            .iter()
+            .map(|v: &AlphaBeta| plane.at(v.alpha, v.beta));
         let mut s = Series::polygon(pts).color(palette::BLUE).alpha(0.18);
         if i == 0 {
             s = s.label("exact linear stable region");
         }
         f.add(s);
     }
-    let found: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|p| !p.censored)
-        .filter_map(|p| p.alpha_simulated.map(|a| (a, p.beta)))
-        .collect();
-    let censored: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|p| p.censored)
-        .filter_map(|p| p.alpha_simulated.map(|a| (a, p.beta)))
-        .collect();
-    let none: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|p| p.alpha_simulated.is_none())
-        .filter_map(|p| p.alpha_unstable.map(|a| (a, p.beta)))
-        .collect();
+    add_simulated(&mut f, points, plane, s, units);
+    f
+}
+
+/// The simulated boundary and the points it could not settle.
+fn add_simulated(
+    f: &mut Figure,
+    points: &[EmpiricalPoint],
+    plane: Plane,
+    s: &RunSettings,
+    units: Units,
+) {
+    let pick = |keep: &dyn Fn(&EmpiricalPoint) -> Option<f64>| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .filter_map(|p| keep(p).map(|a| plane.at(a, p.beta)))
+            .collect()
+    };
+    let found = pick(&|p| p.alpha_simulated.filter(|_| !p.censored));
+    let censored = pick(&|p| p.alpha_simulated.filter(|_| p.censored));
+    let none = pick(&|p| p.alpha_unstable.filter(|_| p.alpha_simulated.is_none()));
+    let inconclusive = pick(&|p| p.inconclusive.map(|i| i.alpha));
     let mut curve: Vec<(f64, f64)> = points
         .iter()
         .map(|p| match (p.alpha_simulated, p.censored) {
-            (Some(a), false) => (a, p.beta),
-            _ => (f64::NAN, p.beta),
+            (Some(a), false) => plane.at(a, p.beta),
+            _ => (f64::NAN, plane.at(0.0, p.beta).1),
         })
         .collect();
     curve.sort_by(|a, b| a.1.total_cmp(&b.1));
     f.add(Series::line(curve).color(palette::VERMILLION).width(2));
-    let effects = describe_effects(s, units.force());
-    let label = if effects.starts_with("none") {
-        "simulated (linear)".to_string()
+    let label = if describe_effects(s, units.force()).starts_with("none") {
+        "simulated (linear)"
     } else {
-        "simulated boundary".to_string()
+        "simulated boundary"
     };
     f.add(
         Series::scatter(found, Marker::Circle)
             .color(palette::VERMILLION)
             .label(label),
     );
-    if !censored.is_empty() {
-        f.add(
-            Series::scatter(censored, Marker::Triangle)
-                .color(palette::ORANGE)
-                .label("stable up to scan end"),
-        );
+    let first = if plane.per_unit.is_some() {
+        "unstable at the first scanned K"
+    } else {
+        "unstable at first scan α"
+    };
+    for (pts, marker, color, hollow, text) in [
+        (
+            censored,
+            Marker::Triangle,
+            palette::ORANGE,
+            false,
+            "stable up to scan end",
+        ),
+        (none, Marker::Cross, palette::BLACK, false, first),
+        (
+            inconclusive,
+            Marker::Triangle,
+            palette::GREY,
+            true,
+            "left the wall or undecided: no verdict",
+        ),
+    ] {
+        if pts.is_empty() {
+            continue;
+        }
+        let mut series = Series::scatter(pts, marker).color(color).label(text);
+        if hollow {
+            series = series.hollow();
+        }
+        f.add(series);
     }
-    if !none.is_empty() {
-        f.add(
-            Series::scatter(none, Marker::Cross)
-                .color(palette::BLACK)
-                .label("unstable at first scan α"),
-        );
-    }
-    let inconclusive: Vec<(f64, f64)> = points
-        .iter()
-        .filter_map(|p| p.inconclusive.map(|i| (i.alpha, p.beta)))
-        .collect();
-    if !inconclusive.is_empty() {
-        f.add(
-            Series::scatter(inconclusive, Marker::Triangle)
-                .color(palette::GREY)
-                .hollow()
-                .label("left the wall or undecided: no verdict"),
-        );
-    }
-    f
 }

@@ -1,5 +1,6 @@
-//! The text `hapstab simboundary` prints: the loop, the runs' setting, the exact α_max and
-//! the table of the simulated boundary against the linear one, with notes and warnings.
+//! The text `hapstab simboundary` prints: the loop, the runs' setting, the exact K_max (α_max
+//! in normalized units) and the table of the simulated boundary against the linear one, with
+//! notes and warnings.
 
 use hapstab::simulation::{Outcome, StableWhen};
 
@@ -9,48 +10,128 @@ use super::{Units, describe_effects};
 use crate::model::{ResolvedLoop, describe_loop};
 use crate::output::{eng, sig};
 
-/// The loop of a boundary search: the paper's (γ, δ, d), or the loop in words with its wall
-/// units.
+/// The loop of a boundary search: in physical units the loop in words (and, beyond the
+/// paper's loop, its wall units); in normalized units the paper's (γ, δ, d).
 fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
-    let Some((gamma, delta, d)) = rl
-        .lp
-        .paper_view()
-        .map(|pp| (pp.gamma, pp.delta, rl.lp.delay.samples))
-    else {
-        for line in describe_loop(&rl.lp) {
-            println!("{line}");
-        }
-        if let Some(w) = o.wall_units {
-            println!(
-                "units     a = K/k_u, b = B/(k_u·T) with k_u = {} N/m, k_u·T = {} Ns/m (the α and β columns and flags)",
-                sig(w.stiffness, 6),
-                sig(w.damping, 6)
-            );
-        }
-        return;
-    };
-    println!(
-        "plant       γ = {}, δ = {}, d = {}{}",
-        sig(gamma, 6),
-        sig(delta, 6),
-        d,
-        match o.mass {
-            Some(m) if units.physical => {
-                format!(" (m = {} kg, T = {} ms)", sig(m, 6), sig(o.period * 1e3, 6))
+    match rl.lp.paper_view() {
+        Some(pp) if !units.physical => println!(
+            "plant       γ = {}, δ = {}, d = {}",
+            sig(pp.gamma, 6),
+            sig(pp.delta, 6),
+            rl.lp.delay.samples
+        ),
+        _ => {
+            for line in describe_loop(&rl.lp) {
+                println!("{line}");
             }
-            _ => String::new(),
+            if let Some(w) = o.wall_units {
+                println!(
+                    "units     a = K/k_u, b = B/(k_u·T) with k_u = {} N/m, k_u·T = {} Ns/m (the a and b of --alpha/--beta and the JSON)",
+                    sig(w.stiffness, 6),
+                    sig(w.damping, 6)
+                );
+            }
         }
-    );
+    }
 }
 
-pub(super) fn print_simboundary(
-    o: &SimboundaryOut,
-    rl: &ResolvedLoop,
-    s: &RunSettings,
-    units: Units,
-) {
-    print_boundary_loop(o, rl, units);
-    println!("effects     {}", describe_effects(s, units.force()));
+/// N/m per unit of the wall's normalized stiffness (α for the paper's loop: m/T², Table I;
+/// a for another loop: its wall units), in physical units.
+fn k_per_unit(o: &SimboundaryOut, units: Units) -> Option<f64> {
+    if !units.physical {
+        return None;
+    }
+    o.wall_units
+        .map(|w| w.stiffness)
+        .or(o.mass.map(|m| m / (o.period * o.period)))
+}
+
+/// The exact K_max (α_max) of the linear loop.
+fn print_exact(o: &SimboundaryOut, k_per: Option<f64>) {
+    match k_per {
+        None => println!(
+            "exact       α_max = {} at β = {} (linear stable region, Section V)",
+            sig(o.exact_alpha_max, 6),
+            sig(o.exact_beta_at_alpha_max, 6)
+        ),
+        Some(k) => {
+            let b_per = k * o.period;
+            println!(
+                "exact       K_max = {} at B = {} (linear stable region, Section V)",
+                eng(o.exact_alpha_max * k, "N/m", 6),
+                eng(o.exact_beta_at_alpha_max * b_per, "Ns/m", 6)
+            );
+        }
+    }
+}
+
+/// Why a row's simulated boundary is what it is, in the table's stiffness.
+fn row_note(p: &hapstab::simulation::EmpiricalPoint, k_per: Option<f64>) -> String {
+    let at = |alpha: f64| match k_per {
+        Some(k) => format!("K = {}", eng(alpha * k, "N/m", 4)),
+        None => format!("α = {}", sig(alpha, 6)),
+    };
+    if let Some(i) = p.inconclusive.filter(|i| {
+        p.alpha_unstable.is_none_or(|u| i.alpha < u)
+            && p.alpha_simulated.is_none_or(|s| i.alpha > s)
+    }) {
+        let what = match i.outcome {
+            Outcome::Separated => "left the wall",
+            _ => "undecided",
+        };
+        format!("{what} at {}: no verdict beyond", at(i.alpha))
+    } else if p.alpha_simulated.is_none() {
+        p.alpha_unstable.map_or_else(
+            || "unstable".into(),
+            |u| format!("unstable already at {}", at(u)),
+        )
+    } else if p.censored {
+        format!("stable up to scan end {}", at(p.alpha_max))
+    } else {
+        String::new()
+    }
+}
+
+/// The table of the simulated boundary against the linear one: K and B in physical units,
+/// α and β in normalized units.
+fn print_table(o: &SimboundaryOut, k_per: Option<f64>) {
+    let f = |v: Option<f64>, n| v.map_or_else(|| "-".to_string(), |x| sig(x, n));
+    if k_per.is_some() {
+        println!(
+            "{:>12} {:>16} {:>16} {:>8}  note",
+            "B (Ns/m)", "K linear (N/m)", "K simulated (N/m)", "ratio"
+        );
+    } else {
+        println!(
+            "{:>10} {:>14} {:>14} {:>8}  note",
+            "β", "α linear", "α simulated", "ratio"
+        );
+    }
+    for r in &o.points {
+        let p = &r.point;
+        let note = row_note(p, k_per);
+        if k_per.is_some() {
+            println!(
+                "{:>12} {:>16} {:>16} {:>8}  {note}",
+                f(r.wall_damping, 6),
+                f(r.k_linear, 8),
+                f(r.k_simulated, 8),
+                f(r.ratio, 4)
+            );
+        } else {
+            println!(
+                "{:>10} {:>14} {:>14} {:>8}  {note}",
+                sig(p.beta, 6),
+                f(p.alpha_linear, 8),
+                f(p.alpha_simulated, 8),
+                f(r.ratio, 4)
+            );
+        }
+    }
+}
+
+/// The runs' setting: length, start and what counts as stable.
+fn print_runs(o: &SimboundaryOut) {
     println!(
         "runs        {} samples each (extended up to {} until settled) from x(0) = {}; stable = {}",
         o.input.samples,
@@ -64,84 +145,21 @@ pub(super) fn print_simboundary(
             ),
         }
     );
-    match o.wall_units {
-        None => println!(
-            "exact       α_max = {} at β = {} (linear stable region, Section V)",
-            sig(o.exact_alpha_max, 6),
-            sig(o.exact_beta_at_alpha_max, 6)
-        ),
-        Some(w) => println!(
-            "exact       K_max = {} N/m at B = {} Ns/m (a = {}, b = {}; linear stable region)",
-            sig(o.exact_alpha_max * w.stiffness, 6),
-            sig(o.exact_beta_at_alpha_max * w.damping, 6),
-            sig(o.exact_alpha_max, 6),
-            sig(o.exact_beta_at_alpha_max, 6)
-        ),
-    }
+}
+
+pub(super) fn print_simboundary(
+    o: &SimboundaryOut,
+    rl: &ResolvedLoop,
+    s: &RunSettings,
+    units: Units,
+) {
+    print_boundary_loop(o, rl, units);
+    println!("effects     {}", describe_effects(s, units.force()));
+    print_runs(o);
+    let k_per = k_per_unit(o, units);
+    print_exact(o, k_per);
     println!();
-    let phys = units.physical;
-    let (sa, sb) = if o.wall_units.is_some() {
-        ("a", "b")
-    } else {
-        ("α", "β")
-    };
-    if phys {
-        println!(
-            "{:>10} {:>10} {:>14} {:>14} {:>8} {:>12} {:>12}  note",
-            sb,
-            "B (Ns/m)",
-            format!("{sa} linear"),
-            format!("{sa} simulated"),
-            "ratio",
-            "K lin (N/m)",
-            "K sim (N/m)"
-        );
-    } else {
-        println!(
-            "{:>10} {:>14} {:>14} {:>8}  note",
-            "β", "α linear", "α simulated", "ratio"
-        );
-    }
-    let f = |v: Option<f64>, n| v.map_or_else(|| "-".to_string(), |x| sig(x, n));
-    for r in &o.points {
-        let p = &r.point;
-        let note = if let Some(i) = p.inconclusive.filter(|i| {
-            p.alpha_unstable.is_none_or(|u| i.alpha < u)
-                && p.alpha_simulated.is_none_or(|s| i.alpha > s)
-        }) {
-            let what = match i.outcome {
-                Outcome::Separated => "left the wall",
-                _ => "undecided",
-            };
-            format!("{what} at α = {}: no verdict beyond", sig(i.alpha, 6))
-        } else if p.alpha_simulated.is_none() {
-            format!("unstable already at α = {}", f(p.alpha_unstable, 4))
-        } else if p.censored {
-            format!("stable up to scan end α = {}", sig(p.alpha_max, 4))
-        } else {
-            String::new()
-        };
-        if phys {
-            println!(
-                "{:>10} {:>10} {:>14} {:>14} {:>8} {:>12} {:>12}  {note}",
-                sig(p.beta, 6),
-                f(r.wall_damping, 5),
-                f(p.alpha_linear, 8),
-                f(p.alpha_simulated, 8),
-                f(r.ratio, 4),
-                f(r.k_linear, 6),
-                f(r.k_simulated, 6)
-            );
-        } else {
-            println!(
-                "{:>10} {:>14} {:>14} {:>8}  {note}",
-                sig(p.beta, 6),
-                f(p.alpha_linear, 8),
-                f(p.alpha_simulated, 8),
-                f(r.ratio, 4)
-            );
-        }
-    }
+    print_table(o, k_per);
     println!();
     if s.effects.quantization.is_some()
         && o.input.stable_when == StableWhen::Decaying

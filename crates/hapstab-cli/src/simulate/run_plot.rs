@@ -14,8 +14,19 @@ const PLOT_BUCKETS: usize = 2_000;
 
 /// A one-line caption of the simulated loop: (α, β, γ, δ, d) for the paper's loop, the wall
 /// and the delay otherwise.
-fn model_caption(m: &SimModel) -> String {
+fn model_caption(m: &SimModel, units: Units) -> String {
     match m {
+        SimModel::Paper(m) if units.physical => {
+            let (k, b, mass) = (m.params.alpha, m.params.beta, m.mass);
+            let t = m.period;
+            format!(
+                "K = {}, B = {}, m = {}, d = {}",
+                eng(k * mass / (t * t), "N/m", 6),
+                eng(b * mass / t, "Ns/m", 6),
+                eng(mass, "kg", 6),
+                m.params.d
+            )
+        }
         SimModel::Paper(m) => {
             let p = m.params;
             format!(
@@ -61,7 +72,7 @@ pub(super) fn trace_plot(
     units: Units,
 ) -> Grid {
     let verdict = outcome_summary(r, units);
-    let params = model_caption(&cfg.model);
+    let params = model_caption(&cfg.model, units);
     let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let xw = cfg.effects.wall_position;
     let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");

@@ -55,29 +55,37 @@ pub(super) fn outcome_summary(r: &RunResult, units: Units) -> String {
 
 /// The simulated loop in words: the paper's normalized point, or the loop and its wall.
 fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
-    let Some(n) = &o.normalized else {
+    let normalized = o.normalized.as_ref();
+    if units.physical || normalized.is_none() {
+        // physical input speaks K, B and the loop; the paper's normalized view beside it
         for line in describe_loop(&sl.rl.lp) {
             println!("{line}");
         }
         println!(
-            "wall      K = {} N/m, B = {} Ns/m",
-            sig(sl.wall.stiffness, 6),
-            sig(sl.wall.damping, 6)
+            "wall      K = {}, B = {}",
+            eng(sl.wall.stiffness, "N/m", 6),
+            eng(sl.wall.damping, "Ns/m", 6)
         );
+    }
+    let Some(n) = normalized else {
         return;
     };
     println!(
-        "model       α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
+        "{}α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
+        if units.physical {
+            "normalized  "
+        } else {
+            "model       "
+        },
         sig(n.alpha, 6),
         sig(n.beta, 6),
         sig(n.gamma, 6),
         sig(n.delta, 6),
         n.d,
-        match o.mass {
-            Some(m) if units.physical => {
-                format!(" (m = {} kg, T = {})", sig(m, 6), eng(o.period, "s", 6))
-            }
-            _ => " (normalized: time in samples, forces as T²F/m)".to_string(),
+        if units.physical {
+            ""
+        } else {
+            " (normalized: time in samples, forces as T²F/m)"
         }
     );
 }
