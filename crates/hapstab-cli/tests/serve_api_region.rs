@@ -57,12 +57,38 @@ fn region_alpha_max_equals_the_library() {
         let lin = &j["linear"];
         assert!((lin["slope"].as_f64().unwrap() - 1.0 / (d as f64 + 0.5)).abs() < 1e-15);
         assert!((lin["alpha_at_beta0"].as_f64().unwrap() - de / (d as f64 + 0.5)).abs() < 1e-15);
+        // the passive region: eq. (28)'s triangle (0, −δ), (2δ, 0), (0, δ) at d = 0; the
+        // library's region at any d
+        let v: Vec<[f64; 2]> = j["passive"]["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+            .collect();
+        let a_max = v.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
+        let lp = hapstab::Loop::normalized(hapstab::PlantParams::new(g, de).unwrap(), d).unwrap();
+        let sw = hapstab::passivity::SampledWall::new(&lp).unwrap();
+        let lib_pass = hapstab::passivity::passive_region(&sw, de).unwrap();
+        if lib_pass.vertices.is_empty() {
+            // no damping of its own (δ = 0): nothing is passive
+            assert!(v.is_empty(), "{v:?}");
+            continue;
+        }
+        // drawn chords within the region's tolerance (1e-5 of its size) of the exact K_max
+        assert!(a_max <= lib_pass.k_max * (1.0 + 1e-12), "{a_max}");
+        assert!(
+            a_max >= lib_pass.k_max * (1.0 - 1e-4),
+            "{a_max} vs {}",
+            lib_pass.k_max
+        );
         if d == 0 {
-            let v = &j["passive"]["vertices"];
-            assert_eq!(v[1][0].as_f64().unwrap(), 2.0 * de);
-            assert_eq!(v[2][1].as_f64().unwrap(), de);
-        } else {
-            assert!(j["passive"].is_null());
+            assert!(
+                (a_max - 2.0 * de).abs() <= 1e-12 * de,
+                "{a_max} vs 2δ = {}",
+                2.0 * de
+            );
+            let b_max = v.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+            assert!((b_max - de).abs() <= 1e-12 * de, "{b_max}");
         }
     }
 }
@@ -188,15 +214,22 @@ fn physical_passive_region_counts_the_devices_own_damping() {
     assert_eq!(r.status, 200, "{}", r.body);
     let j = r.json();
     let (own, eff) = (1.5e-3 / 1.1, 7.5e-3 / 1.1);
-    let v = &j["passive"]["vertices"];
+    // the triangles of eq. (28) reach α = 2δ at β = 0
+    let a_max = |v: &serde_json::Value| {
+        v["vertices"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p[0].as_f64().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
     assert!(
-        (v[1][0].as_f64().unwrap() - 2.0 * own).abs() < 1e-15,
+        (a_max(&j["passive"]) - 2.0 * own).abs() < 1e-15,
         "{}",
         j["passive"]
     );
-    let w = &j["passive_with_arm"]["vertices"];
     assert!(
-        (w[1][0].as_f64().unwrap() - 2.0 * eff).abs() < 1e-15,
+        (a_max(&j["passive_with_arm"]) - 2.0 * eff).abs() < 1e-15,
         "{}",
         j["passive_with_arm"]
     );
@@ -211,6 +244,5 @@ fn physical_passive_region_counts_the_devices_own_damping() {
     let bare = "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=0&arm_damping=0&arm_stiffness=0&period=0.001&d=0";
     let j = s.get(&format!("/api/region?{bare}")).json();
     assert!(j["passive_with_arm"].is_null(), "{j}");
-    let v = &j["passive"]["vertices"];
-    assert!((v[1][0].as_f64().unwrap() - 2.0 * 1.5e-3 / 0.1).abs() < 1e-15);
+    assert!((a_max(&j["passive"]) - 2.0 * 1.5e-3 / 0.1).abs() < 1e-15);
 }

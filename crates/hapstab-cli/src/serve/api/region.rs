@@ -1,5 +1,5 @@
 //! `/api/region`: the exact stable region (Section V) simplified for drawing, the linear
-//! condition, the passive triangles and on request the robust region (Section VIII), with
+//! condition, the passive regions and on request the robust region (Section VIII), with
 //! their estimated costs.
 
 use std::time::Instant;
@@ -14,7 +14,7 @@ use hapstab::{Loop, PolyFamily};
 use serde::Serialize;
 
 use super::PlantOut;
-use super::passive::{PassiveOut, passive_triangles};
+use super::passive::{PassiveOut, passive_regions};
 use super::region_request::RegionReq;
 use crate::serve::limits::*;
 use crate::serve::query::{ApiError, GeneralLoop, PhysicalSpec, fmt, lib_error};
@@ -118,8 +118,8 @@ pub struct RegionOut {
     /// The paper's linear condition (null for other loops).
     pub linear: Option<LinearOut>,
     pub passive: Option<PassiveOut>,
-    /// Eq. (28) with the arm's damping counted (physical units with an arm, d = 0): towards
-    /// this operator only.
+    /// Eq. (28) with the arm's damping counted (a device held by an arm): towards this
+    /// operator only.
     pub passive_with_arm: Option<PassiveOut>,
     pub robust: Option<RobustOut>,
     pub warnings: Vec<String>,
@@ -202,11 +202,12 @@ fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
 }
 
 /// `/api/region` for a loop beyond the paper's: the exact region of its family in wall
-/// units; the paper's overlays (linear condition, passive region) do not apply.
+/// units and its passive regions; the paper's linear condition does not apply.
 fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiError> {
     let t0 = Instant::now();
     let r = loop_analysis::region(&g.lp, &g.family).map_err(lib_error)?;
     let region = region_json(&r, req.tol);
+    let (passive, passive_with_arm) = passive_regions(&req.spec)?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     Ok(RegionOut {
         params: PlantOut::from(&req.spec),
@@ -214,8 +215,8 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
         lp: Some(g.lp.clone()),
         region,
         linear: None,
-        passive: None,
-        passive_with_arm: None,
+        passive,
+        passive_with_arm,
         robust: None,
         warnings: Vec::new(),
         server_ms: Timing {
@@ -261,7 +262,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         alpha_at_beta0: linear_alpha_limit(0.0, delta, spec.d),
         alpha_lower: -spec.plant.gamma,
     });
-    let (passive, passive_with_arm) = passive_triangles(spec)?;
+    let (passive, passive_with_arm) = passive_regions(spec)?;
     let t1 = Instant::now();
     let robust = match req.robust {
         Some(rr) => {
