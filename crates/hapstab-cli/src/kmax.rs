@@ -22,7 +22,7 @@ pub struct DampingRange {
 }
 
 /// Parses `LO:HI` in Ns/m: LO finite, HI finite or `inf`, LO ≤ HI.
-fn parse_damping_range(s: &str) -> Result<DampingRange, String> {
+pub fn parse_damping_range(s: &str) -> Result<DampingRange, String> {
     let (lo, hi) = s
         .split_once(':')
         .ok_or_else(|| format!("expected LO:HI in Ns/m, e.g. 0:50 or 0:inf (got '{s}')"))?;

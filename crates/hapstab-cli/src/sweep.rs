@@ -27,12 +27,13 @@ pub struct SweepArgs {
     #[arg(long, value_name = "NAME:START:END:N")]
     param: String,
     /// K_max at this virtual damping B in Ns/m [default: over every B].
-    #[arg(long, allow_hyphen_values = true, conflicts_with = "damping_band")]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "damping_range")]
     wall_damping: Option<f64>,
     /// K_max with the virtual damping B in LO:HI (Ns/m; `inf` allowed), e.g. 0:inf for a
-    /// device that cannot render negative damping.
-    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true)]
-    damping_band: Option<String>,
+    /// device that cannot render negative damping (as `kmax --damping-range`).
+    #[arg(long, value_name = "LO:HI", allow_hyphen_values = true, alias = "damping-band",
+          value_parser = crate::kmax::parse_damping_range)]
+    damping_range: Option<crate::kmax::DampingRange>,
     /// Write the points as CSV.
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
@@ -72,27 +73,10 @@ fn k_max_at(a: &SweepArgs) -> Result<KmaxAt> {
         }
         return Ok(KmaxAt::Damping { damping: b });
     }
-    let Some(band) = &a.damping_band else {
-        return Ok(KmaxAt::Overall);
-    };
-    let parse = |t: &str| -> Result<f64> {
-        let v: f64 = t
-            .trim()
-            .parse()
-            .with_context(|| format!("--damping-band '{band}': '{t}' is not a number"))?;
-        if v.is_nan() {
-            bail!("--damping-band '{band}': '{t}' is not a number");
-        }
-        Ok(v)
-    };
-    let Some((lo, hi)) = band.split_once(':') else {
-        bail!("--damping-band '{band}' must be LO:HI in Ns/m, e.g. 0:inf");
-    };
-    let (lo, hi) = (parse(lo)?, parse(hi)?);
-    if lo > hi {
-        bail!("--damping-band '{band}': LO must not exceed HI");
-    }
-    Ok(KmaxAt::Band { lo, hi })
+    Ok(match a.damping_range {
+        Some(r) => KmaxAt::Band { lo: r.lo, hi: r.hi },
+        None => KmaxAt::Overall,
+    })
 }
 
 /// Refuses a sweep beyond the command-line budget: every point is a stable region (or one

@@ -266,8 +266,8 @@ fn zwidth_and_sweep_refuse_bad_input() {
         &["sampling period", "0"],
     );
     refused(
-        &["sweep", "--param", "mass:0.1:1:3", "--damping-band", "5:1"],
-        &["--damping-band"],
+        &["sweep", "--param", "mass:0.1:1:3", "--damping-range", "5:1"],
+        &["--damping-range", "LO must not exceed HI"],
     );
     refused(
         &["passivity", "--wall-stiffness", "nan"],

@@ -40,14 +40,14 @@ def same(got, want):
 
 
 @pytest.mark.parametrize("case", range(len(LOOPS)))
-@pytest.mark.parametrize("at", [[], ["--wall-damping", "5"], ["--damping-band", "0:inf"]])
+@pytest.mark.parametrize("at", [[], ["--wall-damping", "5"], ["--damping-range", "0:inf"]])
 def test_sweep_equals_the_command_line(hapstab_cli, case, at):
     lp, flags = LOOPS[case]
     want = cli(hapstab_cli, "sweep", *flags, "--param", "arm-stiffness:100:800:4", *at)
     kw = {}
     if at and at[0] == "--wall-damping":
         kw["wall_damping"] = 5.0
-    if at and at[0] == "--damping-band":
+    if at and at[0] == "--damping-range":
         kw["damping_range"] = (0.0, math.inf)
     got = hs.sweep(lp, "arm-stiffness", np.linspace(100, 800, 4), **kw)
     assert got.param == "arm-stiffness" and got.unit == want["unit"]
