@@ -36,6 +36,10 @@ pub struct CheckArgs {
     /// any other name); K (N/m) and B (Ns/m) for a physical loop, α and β normalized.
     #[arg(long, value_name = "FILE")]
     plot: Option<std::path::PathBuf>,
+    /// Exit with status 1 when the wall is not stable (marginal or unstable), for scripts and
+    /// CI; without it the status is 0 whenever the check ran (2 for bad input).
+    #[arg(long)]
+    fail_unstable: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -175,11 +179,17 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         out.plot = wall_plot::save(region, Some(roots), path)?;
     }
     if a.json {
-        return print_json(&out);
+        print_json(&out)?;
+    } else {
+        print_text(&rl, w, &out);
+        if !out.plot.is_empty() {
+            println!("plot        {}", wall_plot::files_text(&out.plot));
+        }
     }
-    print_text(&rl, w, &out);
-    if !out.plot.is_empty() {
-        println!("plot        {}", wall_plot::files_text(&out.plot));
+    if a.fail_unstable && !out.stable {
+        use std::io::Write;
+        let _ = std::io::stdout().flush();
+        std::process::exit(1);
     }
     Ok(())
 }

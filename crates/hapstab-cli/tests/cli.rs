@@ -346,3 +346,27 @@ fn free_mass_without_a_wall_is_marginal() {
         assert!((rho - 1.0).abs() < 1e-10, "d = {d}: ρ = {rho}");
     }
 }
+
+/// `check --fail-unstable` exits 1 for a wall that is not stable and 0 for a stable one (the
+/// paper's pure mass with β = 0.5: α < 0.6 is stable, α = 0.61 is not); without the flag the
+/// status is 0 either way, and bad input stays 2.
+#[test]
+fn check_fail_unstable_sets_the_exit_status() {
+    let status = |args: &[&str]| hapstab().args(args).output().unwrap().status.code();
+    let wall = |a: &'static str| ["check", "--alpha", a, "--beta", "0.5"];
+    let flagged = |a: &'static str| {
+        let mut v = wall(a).to_vec();
+        v.push("--fail-unstable");
+        v
+    };
+    assert_eq!(status(&flagged("0.59")), Some(0));
+    assert_eq!(status(&flagged("0.61")), Some(1));
+    assert_eq!(status(&wall("0.61")), Some(0));
+    let mut json = flagged("0.61");
+    json.push("--json");
+    assert_eq!(status(&json), Some(1));
+    assert_eq!(
+        status(&["check", "--alpha", "x", "--fail-unstable"]),
+        Some(2)
+    );
+}

@@ -217,7 +217,10 @@ fn bad_loop_input_is_one_line_naming_flag_and_value() {
         ),
         (
             &["check", "--plant-num", "1,2,3", "--plant-den", "1,1"],
-            &["--plant-num 1,2,3", "strictly proper"],
+            &[
+                "--plant-num 1,2,3",
+                "strictly proper: numerator degree < denominator degree (got numerator degree 2, denominator degree 1)",
+            ],
         ),
         (
             &["check", "--plant-num", "1,2", "--plant-den", "1,2"],

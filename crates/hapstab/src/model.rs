@@ -423,7 +423,7 @@ fn validate_tf(num: &[f64], den: &[f64]) -> Result<()> {
         return Err(Error::Invalid {
             name: "plant transfer function",
             reason: format!(
-                "must be strictly proper (numerator degree {} < denominator degree {})",
+                "must be strictly proper: numerator degree < denominator degree (got numerator degree {}, denominator degree {})",
                 num.len() - 1,
                 den.len() - 1
             ),
