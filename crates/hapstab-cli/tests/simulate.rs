@@ -287,14 +287,19 @@ fn simboundary_table_csv_plot() {
     assert_eq!(text.lines().count(), 4);
     assert_png(&dir.path().join("b.png"));
     let svg = std::fs::read_to_string(dir.path().join("b.svg")).unwrap();
+    // physical input, physical axes
     for t in [
         "exact linear stable region",
         "simulated boundary",
-        "virtual stiffness α",
-        "virtual damping β",
+        "virtual stiffness K (N/m)",
+        "virtual damping B (Ns/m)",
     ] {
         assert!(svg.contains(t), "SVG lacks {t}");
     }
+    assert!(
+        !svg.contains("virtual stiffness α"),
+        "physical input drawn in α"
+    );
 
     // Text mode, stdout not a terminal: the table, and no progress bar on stderr.
     let out = hapstab()
@@ -322,7 +327,10 @@ fn simboundary_table_csv_plot() {
     );
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(
-        text.contains("α simulated") && text.contains("K sim (N/m)"),
+        text.contains("K simulated (N/m)")
+            && text.contains("B (Ns/m)")
+            && text.contains("exact       K_max = ")
+            && !text.contains("α simulated"),
         "{text}"
     );
     // Nothing was asked to be written, so nothing was.
@@ -633,7 +641,7 @@ fn simboundary_does_not_count_separation_as_stability() {
     let t = text(&args);
     assert!(!t.contains("stable up to scan end"), "{t}");
     assert!(
-        t.contains("left the wall at α") && t.contains("warning"),
+        t.contains("left the wall at K = ") && t.contains("kN/m") && t.contains("warning"),
         "{t}"
     );
     // Pushed, the same scan finds a boundary.
