@@ -50,7 +50,8 @@ pub struct ZWidthRow {
     pub k_min: Option<f64>,
     /// Largest passive K in N/m at this B (None when none is, or passivity does not apply).
     pub k_max_passive: Option<f64>,
-    /// The linear condition's limit (b + B)/t_r in N/m (None without a device damping).
+    /// The linear condition's limit (b + B)/t_r in N/m (None beyond the paper's loop, or
+    /// without a device damping).
     pub k_linear: Option<f64>,
 }
 
@@ -80,7 +81,7 @@ pub struct ZWidth {
     /// Whether every tested point strictly inside the passive region is stable (Section VIII:
     /// passive ⊂ stable where the argument applies); None without a passive region.
     pub passive_inside_stable: Option<bool>,
-    /// The linear condition (22) (None without a device damping).
+    /// The linear condition (22) (None beyond the paper's loop, or without a device damping).
     pub linear: Option<LinearCondition>,
     /// K_max against the virtual damping.
     pub table: Vec<ZWidthRow>,
@@ -106,12 +107,16 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
     };
     let sw = SampledWall::new(lp)?;
     let passive = b_dev.map(|b| passive_region(&sw, b)).transpose()?;
-    // the linear condition (22) is a stability condition: the arm's damping counts
+    // the linear condition (22) is a stability condition: the arm's damping counts; it is
+    // the paper's loop's (backward difference, whole delay, no lag, as
+    // `loop_analysis::linear_k`), not a filtered or lagged loop's
     let b_eff = b_dev.map(|b| lp.plant.effective_damping().unwrap_or(b));
-    let linear = b_eff.map(|b| LinearCondition {
-        damping: b,
-        effective_delay: lp.delay_time() + 0.5 * lp.period,
-    });
+    let linear = b_eff
+        .filter(|_| lp.paper_view().is_some())
+        .map(|b| LinearCondition {
+            damping: b,
+            effective_delay: lp.delay_time() + 0.5 * lp.period,
+        });
     let rows = match dampings {
         Some(d) => d.to_vec(),
         None => default_dampings(&stable),

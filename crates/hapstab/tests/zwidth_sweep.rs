@@ -80,12 +80,20 @@ fn phantom_zwidth() {
 #[test]
 fn filters_shrink_the_stable_region() {
     let base = zwidth(&phantom(VelocityEstimator::Backward, Delay::NONE), None).unwrap();
+    // the paper's loop: (22) with b = 1.5 Ns/m and t_r = T/2
+    let lin = base
+        .linear
+        .expect("the backward difference has the linear condition");
+    assert_eq!((lin.damping, lin.effective_delay), (1.5, T / 2.0));
     for v in [
         VelocityEstimator::LowPass { cutoff_hz: 100.0 },
         VelocityEstimator::Average { samples: 15 },
     ] {
         let z = zwidth(&phantom(v.clone(), Delay::NONE), None).unwrap();
         assert!(z.stable_area < base.stable_area, "{v:?}");
+        // the linear condition (22) is the backward difference's; a filtered loop has none
+        assert!(z.linear.is_none(), "{v:?}");
+        assert!(z.table.iter().all(|r| r.k_linear.is_none()), "{v:?}");
         assert!(
             z.k_max.unwrap().stiffness < base.k_max.unwrap().stiffness,
             "{v:?}"
