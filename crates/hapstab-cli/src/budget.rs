@@ -63,6 +63,7 @@ pub fn degree_drivers(args: &LoopArgs, lp: &Loop) -> Vec<Driver<'static>> {
     let taps = match &lp.velocity {
         VelocityEstimator::Backward | VelocityEstimator::LowPass { .. } => 1.0,
         VelocityEstimator::Average { samples } => *samples as f64,
+        VelocityEstimator::Butterworth { order, .. } => *order as f64 + 1.0,
         VelocityEstimator::Iir { b, a } => b.len().max(a.len()) as f64 - 1.0,
     };
     out.push(Driver {

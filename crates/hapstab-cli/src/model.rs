@@ -425,6 +425,9 @@ pub struct LoopArgs {
     ///   backward                v_k = (y_k − y_{k−1})/T  (the paper's)
     ///   lowpass:FC              v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T,
     ///                           a = exp(−2π·f_c·T), f_c = FC in Hz
+    ///   butterworth:N:FC        the backward difference through a digital Butterworth
+    ///                           low-pass of order N (1–8), cut-off FC Hz (MATLAB's and
+    ///                           scipy's butter(N, FC, fs=1/T))
     ///   average:N               v_k = (y_k − y_{k−N})/(N·T)
     ///   iir:b0,b1,…/a0,a1,…     v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …) · y in m/s,
     ///                           any proper discrete filter on the position (a0 ≠ 0)

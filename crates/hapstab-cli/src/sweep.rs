@@ -19,7 +19,7 @@ pub struct SweepArgs {
     #[command(flatten)]
     lp: LoopArgs,
     /// The swept parameter as NAME:START:END:POINTS, e.g. delay-time:0:0.005:50. NAME is one
-    /// of delay-time, period (the delay time is kept), cutoff (with --velocity lowpass:FC),
+    /// of delay-time, period (the delay time is kept), cutoff (with --velocity lowpass:FC or butterworth:N:FC),
     /// window (with --velocity average:N), force-lag, mass, damping, stiffness (the effective
     /// m, b, k of eq. 1), motor-mass, motor-damping, handle-mass, transmission-stiffness,
     /// transmission-damping, arm-mass, arm-damping, arm-stiffness (the arm holding the device,

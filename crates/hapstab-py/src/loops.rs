@@ -304,6 +304,8 @@ fn plant_object(py: Python<'_>, plant: &Plant) -> PyResult<Py<PyAny>> {
 ///   "backward"             v_k = (y_k − y_{k−1})/T (the paper's)
 ///   "lowpass:FC"           v_k = a·v_{k−1} + (1 − a)(y_k − y_{k−1})/T, a = exp(−2π·f_c·T),
 ///                          f_c = FC in Hz
+///   "butterworth:N:FC"     the backward difference through a digital Butterworth low-pass of
+///                          order N, cut-off FC Hz (scipy's butter(N, FC, fs=1/T))
 ///   "average:N"            v_k = (y_k − y_{k−N})/(N·T)
 ///   "iir:b0,b1,…/a0,a1,…"  v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …)·y in m/s
 /// force_lag: actuator time constant τ in s of 1/(τs + 1) between commanded and applied

@@ -33,6 +33,7 @@
 pub mod argument;
 pub mod boundary;
 pub mod bracket;
+pub mod butterworth;
 pub mod closed_loop;
 pub mod delay;
 pub mod error;

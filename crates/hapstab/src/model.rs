@@ -83,6 +83,15 @@ pub enum VelocityEstimator {
         /// Window N in samples (>= 1).
         samples: usize,
     },
+    /// A digital Butterworth low-pass of the backward difference (MATLAB's and scipy's
+    /// `butter(N, f_c, fs = 1/T)`, bilinear with pre-warping; see [`crate::butterworth`]),
+    /// v = H(z)·(y_k − y_{k−1})/T.
+    Butterworth {
+        /// Order N, 1 ..= 8.
+        order: usize,
+        /// Cut-off f_c in Hz, 0 < f_c < 1/(2T).
+        cutoff_hz: f64,
+    },
     /// Any proper discrete filter applied to the position,
     /// v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …) · y, output in m/s.
     Iir {
@@ -453,6 +462,16 @@ impl VelocityEstimator {
             VelocityEstimator::LowPass { cutoff_hz } => {
                 positive("velocity low-pass cut-off f_c", *cutoff_hz)?;
             }
+            VelocityEstimator::Butterworth { order, cutoff_hz } => {
+                positive("velocity Butterworth cut-off f_c", *cutoff_hz)?;
+                if !(1..=crate::butterworth::MAX_ORDER).contains(order) {
+                    return Err(Error::OutOfRange {
+                        name: "velocity Butterworth order N",
+                        value: *order as f64,
+                        range: "1..=8",
+                    });
+                }
+            }
             VelocityEstimator::Average { samples } => {
                 if *samples == 0 || *samples > MAX_DELAY {
                     return Err(Error::OutOfRange {
@@ -510,6 +529,10 @@ impl VelocityEstimator {
                 den[n] = 1.0;
                 (num, den)
             }
+            VelocityEstimator::Butterworth { order, cutoff_hz } => {
+                let (b, a) = crate::butterworth::velocity_filter(*order, *cutoff_hz, period);
+                VelocityEstimator::Iir { b, a }.per_sample_filter(period)
+            }
             VelocityEstimator::Iir { b, a } => {
                 let len = b.len().max(a.len());
                 let a0 = a[0];
@@ -529,6 +552,22 @@ impl VelocityEstimator {
 }
 
 impl VelocityEstimator {
+    /// Refuses a Butterworth cut-off at or beyond the Nyquist frequency 1/(2T) of the period.
+    pub fn within_nyquist(self, period: f64) -> Result<Self> {
+        if let VelocityEstimator::Butterworth { cutoff_hz, .. } = &self
+            && *cutoff_hz * 2.0 * period >= 1.0
+        {
+            return Err(Error::Invalid {
+                name: "velocity Butterworth cut-off f_c",
+                reason: format!(
+                    "must be below the Nyquist frequency 1/(2T) = {} Hz (got {cutoff_hz} Hz)",
+                    0.5 / period
+                ),
+            });
+        }
+        Ok(self)
+    }
+
     /// The DC gain of [`VelocityEstimator::per_sample_filter`], T·V(1), formed from the
     /// estimator's own parameters: exactly 0 for every differentiator (backward difference,
     /// low-pass, average, and an IIR filter whose numerator sums to zero as typed), where the
@@ -537,6 +576,7 @@ impl VelocityEstimator {
         match self {
             VelocityEstimator::Backward
             | VelocityEstimator::LowPass { .. }
+            | VelocityEstimator::Butterworth { .. }
             | VelocityEstimator::Average { .. } => 0.0,
             VelocityEstimator::Iir { b, a } => {
                 let (sb, sa) = (exact_sum(b), exact_sum(a));
@@ -679,7 +719,7 @@ impl Loop {
             plant,
             period,
             delay: delay.validated()?,
-            velocity: velocity.validated()?,
+            velocity: velocity.validated()?.within_nyquist(period)?,
         })
     }
 

@@ -18,7 +18,8 @@ use crate::error::{Error, Result, finite};
 use crate::model::VelocityEstimator;
 
 /// The accepted forms of a velocity estimator spec, for error messages and help texts.
-pub const VELOCITY_FORMS: &str = "backward, lowpass:FC, average:N or iir:b0,b1,…/a0,a1,…";
+pub const VELOCITY_FORMS: &str =
+    "backward, lowpass:FC, butterworth:N:FC, average:N or iir:b0,b1,…/a0,a1,…";
 
 fn bad_velocity(text: &str, why: &str) -> Error {
     Error::Invalid {
@@ -142,9 +143,18 @@ impl FromStr for VelocityEstimator {
             ("average", Some(n)) => VelocityEstimator::Average {
                 samples: parse_number(text, n, "a whole number of samples")?,
             },
+            ("butterworth", Some(body)) => {
+                let Some((n, fc)) = body.split_once(':') else {
+                    return Err(bad_velocity(text, "needs butterworth:ORDER:FC"));
+                };
+                VelocityEstimator::Butterworth {
+                    order: parse_number(text, n, "a whole filter order")?,
+                    cutoff_hz: parse_number(text, fc, "a cut-off frequency in Hz")?,
+                }
+            }
             ("iir", Some(body)) => return parse_iir(text, body),
             ("backward", Some(_)) => return Err(bad_velocity(text, "takes no parameter")),
-            ("lowpass" | "average" | "iir", None) => {
+            ("lowpass" | "average" | "iir" | "butterworth", None) => {
                 return Err(bad_velocity(text, "needs a parameter after ':'"));
             }
             _ => return Err(bad_velocity(text, "is not a velocity estimator")),
@@ -164,6 +174,9 @@ impl fmt::Display for VelocityEstimator {
             VelocityEstimator::Backward => write!(f, "backward"),
             VelocityEstimator::LowPass { cutoff_hz } => write!(f, "lowpass:{cutoff_hz}"),
             VelocityEstimator::Average { samples } => write!(f, "average:{samples}"),
+            VelocityEstimator::Butterworth { order, cutoff_hz } => {
+                write!(f, "butterworth:{order}:{cutoff_hz}")
+            }
             VelocityEstimator::Iir { b, a } => write!(f, "iir:{}/{}", join(b), join(a)),
         }
     }

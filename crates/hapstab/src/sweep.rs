@@ -142,7 +142,20 @@ impl SweepParam {
                 VelocityEstimator::LowPass { .. } => {
                     out.velocity = VelocityEstimator::LowPass { cutoff_hz: v };
                 }
-                _ => return Err(missing(self, "a low-pass velocity estimator (lowpass:FC)")),
+                VelocityEstimator::Butterworth { order, .. } => {
+                    out.velocity = VelocityEstimator::Butterworth {
+                        order,
+                        cutoff_hz: v,
+                    }
+                    .validated()?
+                    .within_nyquist(out.period)?;
+                }
+                _ => {
+                    return Err(missing(
+                        self,
+                        "a low-pass velocity estimator (lowpass:FC or butterworth:N:FC)",
+                    ));
+                }
             },
             SweepParam::Window => match out.velocity {
                 VelocityEstimator::Average { .. } => {
