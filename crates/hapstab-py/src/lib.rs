@@ -24,6 +24,7 @@ mod zwidth;
 /// Exact stability of haptic virtual walls (Hulin, Preusche and Hirzinger, IROS 2008).
 #[pymodule]
 fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add(
         "NumericalError",
         m.py().get_type::<errors::NumericalError>(),

@@ -462,6 +462,13 @@ impl PyLoop {
         Ok(hapstab::loop_spec::LoopInput::new(&self.lp, self.normalized, wall).to_json())
     }
 
+    /// Pickling (multiprocessing, joblib, dask): the loop's JSON, read back by Loop.from_json to
+    /// the same loop bit for bit.
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<(Py<PyAny>, (String,))> {
+        let f = py.import("hapstab")?.getattr("_loop_from_json")?;
+        Ok((f.unbind(), (self.to_json(None, None)?,)))
+    }
+
     /// Writes Loop.to_json(wall_stiffness, wall_damping) to `path`.
     #[pyo3(signature = (path, wall_stiffness = None, wall_damping = None))]
     fn save(

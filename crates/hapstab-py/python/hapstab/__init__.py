@@ -62,6 +62,7 @@ from ._hapstab import (
     TwoMass,
     ZWidth,
 )
+from ._hapstab import __version__
 from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
 from ._hapstab import frequency_response as _frequency_response
@@ -74,6 +75,11 @@ from ._hapstab import simulate as _simulate
 from ._hapstab import stability_map as _stability_map
 from ._hapstab import sweep as _sweep
 from ._hapstab import zwidth as _zwidth
+
+def _loop_from_json(text):
+    """A pickled Loop back from its JSON (Loop.__reduce__)."""
+    return Loop.from_json(text)
+
 
 _PROCESSING = _re.compile(r"while processing '([^']+)'")
 
@@ -112,6 +118,7 @@ sweep = _named(_sweep)
 zwidth = _named(_zwidth)
 
 __all__ = [
+    "__version__",
     "Check",
     "Discretization",
     "Edge",

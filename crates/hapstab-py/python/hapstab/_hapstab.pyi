@@ -8,6 +8,8 @@ import numpy as np
 import numpy.typing as npt
 
 ArrayLike = npt.ArrayLike
+
+__version__: str
 Float64Array = npt.NDArray[np.float64]
 BoolArray = npt.NDArray[np.bool_]
 Complex128Array = npt.NDArray[np.complex128]
