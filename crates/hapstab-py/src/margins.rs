@@ -3,6 +3,7 @@
 //! `hapstab::margins::margins_beside_verdict`): no margin for a wall that is not stable.
 
 use hapstab::loop_analysis::{analysis, wall_units};
+use hapstab::margins::report::MarginsReport;
 use hapstab::margins::{CrossingKind, Margins, margins_beside_verdict};
 use pyo3::prelude::*;
 
@@ -80,26 +81,29 @@ impl PyMargins {
 }
 
 /// The library's margins as the Python object.
+/// The Python object of the margins: the report every front end gives
+/// ([`MarginsReport`], `hapstab check --json`'s keys), crossings as (kind, Hz, value).
 pub(crate) fn margins_object(m: Margins) -> PyMargins {
+    let r = MarginsReport::from(&m);
     PyMargins {
         stable: m.stable,
-        gain_margin: m.gain.map(|g| g.factor),
-        gain_margin_lower: m.gain_lower.map(|g| g.factor),
-        phase_crossover_hz: m.gain.map(|g| g.frequency_hz),
-        stiffness_margin: m.stiffness.map(|g| g.factor),
-        stiffness_margin_lower: m.stiffness_lower.map(|g| g.factor),
-        stiffness_crossover_hz: m.stiffness.map(|g| g.frequency_hz),
-        phase_margin_deg: m.phase.map(|p| p.degrees),
-        gain_crossover_hz: m.phase.map(|p| p.frequency_hz),
-        delay_margin: m.delay.map(|d| d.seconds),
-        delay_margin_frequency_hz: m.delay.map(|d| d.frequency_hz),
-        delay_margin_pm_over_wc: m.delay_pm_over_wc,
-        delay_margin_at_least: m.delay_at_least,
-        stability_margin: m.stability_margin.map(|s| s.value),
-        stability_margin_hz: m.stability_margin.map(|s| s.frequency_hz),
-        peak_gain: m.peak_gain.map(|p| p.0),
-        peak_gain_hz: m.peak_gain.map(|p| p.1),
-        crossings: m
+        gain_margin: r.gain_margin,
+        gain_margin_lower: r.gain_margin_lower,
+        phase_crossover_hz: r.phase_crossover_hz,
+        stiffness_margin: r.stiffness_margin,
+        stiffness_margin_lower: r.stiffness_margin_lower,
+        stiffness_crossover_hz: r.stiffness_crossover_hz,
+        phase_margin_deg: r.phase_margin_deg,
+        gain_crossover_hz: r.gain_crossover_hz,
+        delay_margin: r.delay_margin,
+        delay_margin_frequency_hz: r.delay_margin_frequency_hz,
+        delay_margin_pm_over_wc: r.delay_margin_pm_over_wc,
+        delay_margin_at_least: r.delay_margin_at_least,
+        stability_margin: r.stability_margin,
+        stability_margin_hz: r.stability_margin_hz,
+        peak_gain: r.peak_gain,
+        peak_gain_hz: r.peak_gain_hz,
+        crossings: r
             .crossings
             .iter()
             .map(|c| {
@@ -110,29 +114,10 @@ pub(crate) fn margins_object(m: Margins) -> PyMargins {
                 (kind.to_string(), c.frequency_hz, c.value)
             })
             .collect(),
-        notes: m.notes,
+        notes: r.margin_notes,
     }
 }
 
-/// Stability margins of the virtual wall on this loop, all on the exact discrete loop
-/// (Section V), so they hold for the sampled system, named as python-control's
-/// `stability_margins` and MATLAB's `allmargin` name them (the open loop is
-/// L = (K·PK + B·PB)/P0, the characteristic equation p(z) = 0 of eq. 9 being 1 + L = 0):
-///
-/// - gain_margin / gain_margin_lower: the factors on (K, B) together that reach the boundary
-///   upward and downward (python-control's `gm` is the first), read at phase_crossover_hz;
-/// - stiffness_margin / stiffness_margin_lower: the same on K alone at the given B;
-/// - phase_margin_deg at gain_crossover_hz (|L| = 1), the smallest in magnitude over every
-///   crossover (no crossover is lost: the frequency grid resolves every mode);
-/// - delay_margin: the exact extra delay in s (any fraction of a sample, discretized exactly)
-///   at which a root reaches the unit circle, and delay_margin_pm_over_wc, MATLAB's PM/ω_c;
-/// - stability_margin: min |1 + L| (python-control's `sm`); peak_gain: max |L|;
-/// - crossings: every gain and phase crossover.
-///
-/// Margins are defined for stable walls: when the wall is not stable (the verdict of `check`)
-/// every margin is None and `notes` says so; an unbounded margin is None with a note too.
-/// The wall is K in N/m and B in Ns/m, or α = KT²/m, β = BT/m (as in `check`). The GIL is
-/// released while the margins are computed.
 #[pyfunction]
 #[pyo3(signature = (r#loop, wall_stiffness = None, wall_damping = None, *, alpha = None,
                     beta = None))]
