@@ -267,10 +267,63 @@ fn plant_model(plant: &Bound<'_, PyAny>) -> PyResult<(PlantModel, Option<Arm>)> 
         };
         return Ok((model, None));
     }
+    if let Some(model) = control_plant(plant)? {
+        return Ok((model, None));
+    }
     Err(PyTypeError::new_err(format!(
-        "plant: expected MassSpringDamper, TwoMass or TransferFunction (got {})",
+        "plant: expected MassSpringDamper, TwoMass, TransferFunction or a python-control \
+         TransferFunction/StateSpace (got {})",
         plant.get_type().name()?
     )))
+}
+
+/// A python-control system as the plant's transfer function: a `TransferFunction`'s num and
+/// den (highest power first, as `control.tf` takes them), a `StateSpace` through
+/// `control.ss2tf`; continuous time (dt = 0) and one input, one output. None for any other
+/// object.
+fn control_plant(plant: &Bound<'_, PyAny>) -> PyResult<Option<PlantModel>> {
+    let module = plant.get_type().module()?.to_string();
+    if !(module == "control" || module.starts_with("control.")) {
+        return Ok(None);
+    }
+    let dt = plant.getattr("dt")?;
+    let continuous = dt.is_none() || dt.extract::<f64>().is_ok_and(|t| t == 0.0);
+    if !continuous {
+        return Err(bad(
+            "plant",
+            format!(
+                "a python-control plant must be continuous-time (dt = 0), got dt = {}                  (hapstab samples the plant itself)",
+                dt.str()?
+            ),
+        ));
+    }
+    let (ni, no): (usize, usize) = (
+        plant.getattr("ninputs")?.extract()?,
+        plant.getattr("noutputs")?.extract()?,
+    );
+    if (ni, no) != (1, 1) {
+        return Err(bad(
+            "plant",
+            format!("a python-control plant must have one input and one output (got {ni} × {no})"),
+        ));
+    }
+    let tf = if plant.hasattr("A")? {
+        plant
+            .py()
+            .import("control")?
+            .getattr("ss2tf")?
+            .call1((plant,))?
+    } else {
+        plant.clone()
+    };
+    let coeffs = |name: &str| -> PyResult<Vec<f64>> {
+        tf.getattr(name)?
+            .get_item(0)?
+            .get_item(0)?
+            .extract::<Vec<f64>>()
+    };
+    let (num, den) = (coeffs("num")?, coeffs("den")?);
+    Ok(Some(PlantModel::TransferFunction { num, den }))
 }
 
 /// The Python object of a plant model.
@@ -297,7 +350,8 @@ fn plant_object(py: Python<'_>, plant: &Plant) -> PyResult<Py<PyAny>> {
 
 /// The loop of Fig. 3, generalized: plant, sampling period, delay, velocity estimator.
 ///
-/// plant: MassSpringDamper, TwoMass or TransferFunction (force in N to position in m).
+/// plant: MassSpringDamper, TwoMass or TransferFunction (force in N to position in m), or a
+/// continuous-time python-control TransferFunction or StateSpace (one input, one output).
 /// period: sampling period T in s. delay: t_d = (d + λ)T in s, a fraction λ of a sample
 /// discretized exactly (modified z-transform); or delay_samples: whole samples d.
 /// velocity: the wall damper's velocity estimator, as the command line's --velocity text:

@@ -88,7 +88,7 @@ class TransferFunction:
     @property
     def den(self) -> Float64Array: ...
 
-Plant = Union[MassSpringDamper, TwoMass, TransferFunction]
+Plant = Union[MassSpringDamper, TwoMass, TransferFunction, "control.TransferFunction", "control.StateSpace"]
 
 class Loop:
     """The loop of Fig. 3: plant, sampling period T, delay t_d = (d + λ)T, velocity estimator
