@@ -2,7 +2,7 @@
 docstring for the equations). Units are SI: K in N/m, B in Ns/m, masses in kg, times in s."""
 
 import os
-from typing import Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -88,7 +88,9 @@ class TransferFunction:
     @property
     def den(self) -> Float64Array: ...
 
-Plant = Union[MassSpringDamper, TwoMass, TransferFunction, "control.TransferFunction", "control.StateSpace"]
+# also a continuous-time python-control TransferFunction or StateSpace (SISO), typed Any here
+# because python-control is not a dependency
+Plant = Union[MassSpringDamper, TwoMass, TransferFunction, Any]
 
 class Loop:
     """The loop of Fig. 3: plant, sampling period T, delay t_d = (d + λ)T, velocity estimator
