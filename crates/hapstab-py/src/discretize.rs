@@ -79,6 +79,26 @@ fn parts(fam: &AffineFamily) -> [Vec<f64>; 3] {
     ]
 }
 
+/// The sampled open loop of a wall K, B (α, β on a normalized loop) in descending powers of
+/// z: L(z) = (K·PK(z) + B·PB(z))/P0(z), formed as p(z) is (p = P0 + K·PK + B·PB, eq. 9), so
+/// that 1 + L = 0 is the closed loop's characteristic equation.
+pub(crate) fn open_loop(lp: &PyLoop, wall: &WallArgs) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    let dl = lp.lp.discretize().py()?;
+    let fam = AffineFamily::new(&dl);
+    let w = wall.resolve(lp, &fam)?;
+    let (a, b) = fam.to_units(w.stiffness, w.damping);
+    let n = fam.degree() + 1;
+    let mut den = vec![0.0; n];
+    den[fam.k..fam.k + fam.p0_core.len()].copy_from_slice(&fam.p0_core);
+    let mut num = vec![0.0; n];
+    for (i, x) in num.iter_mut().enumerate() {
+        let at = |c: &[f64]| c.get(i).copied().unwrap_or(0.0);
+        *x = a * at(&fam.pk) + b * at(&fam.pb);
+    }
+    let desc = |v: Vec<f64>| v.into_iter().rev().collect::<Vec<_>>();
+    Ok((desc(num), desc(den)))
+}
+
 /// The exact discrete loop (Section III, eq. 2–9, generalized): the plant behind a
 /// zero-order hold with its delay t_d = (d + λ)T (modified z-transform, no Padé or Thiran
 /// approximation), the velocity estimator, and the closed loop's characteristic polynomial

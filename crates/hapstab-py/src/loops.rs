@@ -540,6 +540,30 @@ impl PyLoop {
         })
     }
 
+    /// The sampled open loop of a wall (K in N/m, B in Ns/m; alpha, beta on a normalized
+    /// loop) as a python-control discrete TransferFunction with dt = T:
+    /// L(z) = (K·PK(z) + B·PB(z))/P0(z), so that control.feedback(L, 1) has the closed loop's
+    /// poles, the roots of p(z) (eq. 9). Needs python-control.
+    #[pyo3(signature = (wall_stiffness = None, wall_damping = None, *, alpha = None, beta = None))]
+    fn to_control(
+        &self,
+        py: Python<'_>,
+        wall_stiffness: Option<f64>,
+        wall_damping: Option<f64>,
+        alpha: Option<f64>,
+        beta: Option<f64>,
+    ) -> PyResult<Py<PyAny>> {
+        let wall = crate::wall::WallArgs {
+            stiffness: wall_stiffness,
+            damping: wall_damping,
+            alpha,
+            beta,
+        };
+        let (num, den) = crate::discretize::open_loop(self, &wall)?;
+        let tf = py.import("control")?.getattr("tf")?;
+        Ok(tf.call1((num, den, self.lp.period))?.unbind())
+    }
+
     /// The plant object.
     #[getter]
     fn plant(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {

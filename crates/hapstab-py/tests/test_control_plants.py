@@ -3,6 +3,7 @@ the same results as the equivalent `TransferFunction(num, den)`; discrete or MIM
 are refused naming the keyword."""
 
 import control
+import numpy as np
 import pytest
 
 import hapstab as hs
@@ -43,3 +44,20 @@ def test_discrete_and_mimo_systems_are_refused():
     mimo = control.ss([[-1.0]], [[1.0, 1.0]], [[1.0]], [[0.0, 0.0]])
     with pytest.raises(ValueError, match="^plant: .*one input and one output"):
         hs.Loop(mimo)
+
+
+@pytest.mark.parametrize("lp, wall", [
+    (hs.Loop.paper(delay=1e-3), dict(wall_stiffness=2000.0, wall_damping=3.0)),
+    (hs.Loop(control.tf(NUM, DEN), delay=3.7e-4, velocity="butterworth:2:150"),
+     dict(wall_stiffness=300.0, wall_damping=0.5)),
+    (hs.Loop.normalized(gamma=0.001, delta=0.015, d=2), dict(alpha=0.05, beta=0.1)),
+])
+def test_to_control_closes_to_the_roots_of_p(lp, wall):
+    L = lp.to_control(**wall)
+    assert L.dt == lp.period
+    poles = list(control.poles(control.feedback(L, 1)))
+    roots = hs.check(lp, **wall).roots
+    assert len(poles) == len(roots)
+    for r in roots:  # each root matched to its nearest pole, once
+        i = int(np.argmin([abs(p - r) for p in poles]))
+        assert abs(poles.pop(i) - r) <= 1e-9, (r, poles)

@@ -134,6 +134,15 @@ class Loop:
         self, wall_stiffness: Optional[float] = None, wall_damping: Optional[float] = None
     ) -> str:
         """The loop (and a wall) as the command line echoes it under "input"."""
+    def to_control(
+        self,
+        wall_stiffness: Optional[float] = None,
+        wall_damping: Optional[float] = None,
+        *,
+        alpha: Optional[float] = None,
+        beta: Optional[float] = None,
+    ) -> Any:
+        """The sampled open loop (K·PK + B·PB)/P0 as a python-control TransferFunction, dt = T."""
     def save(
         self,
         path: Union[str, "os.PathLike[str]"],
