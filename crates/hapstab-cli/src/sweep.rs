@@ -234,10 +234,15 @@ fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -
 
 /// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter.
 fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
+    // times in ms (delays and periods of a haptic loop are milliseconds)
+    let (xs, unit) = match param.unit() {
+        "s" => (1e3, "ms"),
+        u => (1.0, u),
+    };
     let series = |f: fn(&SweepPoint) -> Option<f64>| -> Vec<(f64, f64)> {
         points
             .iter()
-            .map(|p| (p.value, f(p).unwrap_or(f64::NAN)))
+            .map(|p| (p.value * xs, f(p).unwrap_or(f64::NAN)))
             .collect()
     };
     let title = match at {
@@ -246,8 +251,8 @@ fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
         KmaxAt::Band { lo, hi } => format!("Largest stable stiffness for {lo} ≤ B ≤ {hi} Ns/m"),
     };
     let mut f = Figure::new(title)
-        .x_label(format!("{} [{}]", param.name(), param.unit()))
-        .y_label("K_max [N/m]")
+        .x_label(format!("{} ({unit})", param.name()))
+        .y_label("K_max (N/m)")
         .legend(Legend::UpperRight);
     let stable = series(|p| p.k_max);
     f.add(

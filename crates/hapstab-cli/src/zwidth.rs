@@ -432,8 +432,8 @@ fn pad((k0, k1, b0, b1): Extent) -> Extent {
 
 fn panel(out: &[LoopOut], title: &str, (k0, k1, b0, b1): Extent, legend: Legend) -> Figure {
     let mut f = Figure::new(title)
-        .x_label("virtual stiffness K [N/m]")
-        .y_label("virtual damping B [Ns/m]")
+        .x_label("virtual stiffness K (N/m)")
+        .y_label("virtual damping B (Ns/m)")
         .legend(legend)
         .x_range(k0, k1)
         .y_range(b0, b1);

@@ -115,6 +115,18 @@ fn svg_texts(svg: &str) -> Vec<(f64, f64, String, String)> {
         .collect()
 }
 
+/// The value of a tick label: a number with an optional engineering prefix (150k, 1.2M).
+fn tick_value(label: &str) -> Option<f64> {
+    let (body, scale) = match label.chars().last()? {
+        'k' => (&label[..label.len() - 1], 1e3),
+        'M' => (&label[..label.len() - 1], 1e6),
+        'G' => (&label[..label.len() - 1], 1e9),
+        'T' => (&label[..label.len() - 1], 1e12),
+        _ => (label, 1.0),
+    };
+    body.parse::<f64>().ok().map(|v| v * scale)
+}
+
 /// Least-squares line px = c0 + c1·value through the tick labels, inverted: value at px.
 fn axis_map(ticks: &[(f64, f64)]) -> impl Fn(f64) -> f64 {
     assert!(ticks.len() >= 3, "too few ticks: {ticks:?}");
@@ -134,7 +146,7 @@ fn axis_map(ticks: &[(f64, f64)]) -> impl Fn(f64) -> f64 {
 /// x < `panel_right` px, and the data size of one pixel along each axis.
 fn tag_position(svg: &str, tag: &str, panel_right: f64) -> ((f64, f64), (f64, f64)) {
     let texts = svg_texts(svg);
-    let numeric = |t: &(f64, f64, String, String)| t.3.parse::<f64>().ok();
+    let numeric = |t: &(f64, f64, String, String)| tick_value(&t.3);
     let x_ticks: Vec<(f64, f64)> = texts
         .iter()
         .filter(|t| t.2 == "middle" && t.0 < panel_right)

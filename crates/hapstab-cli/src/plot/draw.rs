@@ -29,12 +29,12 @@ impl Figure {
             builder.caption(&self.title, (FONT, size).into_font());
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
-        let linear = tick_formatter(x1 - x0);
+        let linear = tick_formatter(x0, x1);
         let xfmt = |v: &f64| match self.x_log10 {
             true => crate::output::sig(10f64.powf(*v), 3),
             false => linear(v),
         };
-        let yfmt = tick_formatter(y1 - y0);
+        let yfmt = tick_formatter(y0, y1);
         chart
             .configure_mesh()
             .x_desc(self.x_label.as_str())
@@ -210,21 +210,29 @@ pub(super) fn fit_font(nominal: f64, text: &str, width: u32) -> f64 {
     nominal.min(fit).max(23.0).round()
 }
 
-/// From this magnitude on, tick labels are written as 2.5e5 rather than 250000, so that nine
-/// of them fit side by side in a panel (stiffness axes in N/m reach 10⁶).
-const TICK_SCIENTIFIC_FROM: f64 = 1e5;
+/// From this magnitude of an axis on, its tick labels carry an engineering prefix shared by
+/// every tick (20k, 150k; 1.2M), so that nine fit side by side in a panel (stiffness axes in
+/// N/m reach 10⁶) and no axis mixes 20000 with 1.2e5.
+const TICK_PREFIX_FROM: f64 = 1e4;
 
-/// Tick labels with up to 6 significant digits; values within 1e-9 of the span of zero
-/// print as 0 (no "1e-17" at the origin); large values in short scientific form (2.5e5).
-fn tick_formatter(span: f64) -> impl Fn(&f64) -> String {
+/// Tick labels of an axis from lo to hi: up to 6 significant digits; values within 1e-9 of
+/// the span of zero print as 0 (no "1e-17" at the origin); from [`TICK_PREFIX_FROM`] on, one
+/// engineering prefix (k, M, G, T) for the whole axis.
+fn tick_formatter(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+    let span = hi - lo;
+    let top = lo.abs().max(hi.abs());
+    let (scale, prefix) = match top {
+        t if t >= 1e12 => (1e12, "T"),
+        t if t >= 1e9 => (1e9, "G"),
+        t if t >= 1e6 => (1e6, "M"),
+        t if t >= TICK_PREFIX_FROM => (1e3, "k"),
+        _ => (1.0, ""),
+    };
     move |v: &f64| {
         if v.abs() < 1e-9 * span.abs() {
             "0".to_string()
-        } else if v.abs() >= TICK_SCIENTIFIC_FROM {
-            let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(*v);
-            format!("{rounded:e}")
         } else {
-            crate::output::sig(*v, 6)
+            format!("{}{prefix}", crate::output::sig(*v / scale, 6))
         }
     }
 }

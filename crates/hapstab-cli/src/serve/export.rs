@@ -340,7 +340,7 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
         );
     }
     let (xl, yl) = if out.physical.is_some() {
-        ("virtual stiffness K [N/m]", "virtual damping B [Ns/m]")
+        ("virtual stiffness K (N/m)", "virtual damping B (Ns/m)")
     } else {
         ("α = KT²/m", "β = BT/m")
     };
