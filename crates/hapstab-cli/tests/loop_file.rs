@@ -344,6 +344,13 @@ fn malformed_files_are_refused_in_one_line() {
             "{text}: {err}"
         );
     }
+    // an endless device is refused at the size bound, not read into memory
+    let out = hapstab()
+        .args(["boundary", "--loop", "/dev/zero"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("longer than"));
     let out = hapstab()
         .args(["kmax", "--loop", "/nonexistent/loop.json"])
         .output()

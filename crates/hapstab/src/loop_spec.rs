@@ -178,12 +178,34 @@ impl LoopSpec {
     }
 }
 
+/// Largest loop file read, in bytes: a loop is a few hundred bytes, a whole report with its
+/// region polygons a few megabytes; anything longer (a device such as /dev/zero) is refused
+/// before it fills the memory.
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
 /// Reads a loop file (module doc). Errors name the file and the field.
 pub fn load(path: &Path) -> Result<LoadedLoop> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Invalid {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| Error::Invalid {
         name: "loop file",
         reason: format!("'{}' cannot be read: {e}", path.display()),
-    })?;
+    };
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .map_err(cannot)?
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_string(&mut text)
+        .map_err(cannot)?;
+    if text.len() as u64 > MAX_FILE_BYTES {
+        return Err(Error::Invalid {
+            name: "loop file",
+            reason: format!(
+                "'{}' is longer than {} MB: not a loop file",
+                path.display(),
+                MAX_FILE_BYTES >> 20
+            ),
+        });
+    }
     parse(&text).map_err(|e| {
         let why = match e {
             Error::Invalid {
