@@ -266,25 +266,33 @@ impl AffineFamily {
 
     /// (P0, PK, PB) at z = e^{iθ}, near z = 1 from the shifted form with
     /// w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ (no cancellation), elsewhere from the
-    /// z-coefficients; z^k = e^{ikθ} in polar form.
+    /// z-coefficients; z^k by repeated squaring of that z (relative error about k·ε, as
+    /// the rounding of kθ in a second sine and cosine, at a few multiplications' cost).
     pub fn parts_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64) {
-        // z^k without a second sine and cosine where k ≤ 1
-        let power = |z: Complex64| match self.k {
+        let (z, core, pk, pb) = self.unturned_on_circle(theta);
+        let zk = match self.k {
             0 => Complex64::new(1.0, 0.0),
-            1 => z,
-            k => Complex64::from_polar(1.0, theta * k as f64),
+            k => z.powu(k as u32),
         };
+        (zk * core, pk, pb)
+    }
+
+    /// (z, core, PK, PB) at z = e^{iθ} with P0 = z^k·core: the parts without the delay's
+    /// turn z^k, which leaves every modulus unchanged (|P0| = |core| on the circle). For
+    /// |L| alone ([`Self::parts_on_circle`]'s evaluation).
+    pub fn unturned_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64, Complex64) {
         match &self.shifted {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
                 // sin θ = 2 sin(θ/2) cos(θ/2): one sine and cosine for w and z = 1 + w
                 let (h, c) = (0.5 * theta).sin_cos();
                 let w = Complex64::new(-2.0 * h * h, 2.0 * h * c);
-                let [p0, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
-                (power(w + 1.0) * p0, pk, pb)
+                let [core, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
+                (w + 1.0, core, pk, pb)
             }
             _ => {
                 let z = Complex64::from_polar(1.0, theta);
-                self.parts_with_power(z, power(z))
+                let [core, pk, pb] = poly::eval3(&self.p0_core, &self.pk, &self.pb, z);
+                (z, core, pk, pb)
             }
         }
     }

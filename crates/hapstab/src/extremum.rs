@@ -148,6 +148,39 @@ pub fn sample_maxima(vs: &[f64]) -> impl Iterator<Item = usize> + '_ {
     })
 }
 
+/// How much more than its estimate a local maximum may rise above its sample, in
+/// [`may_exceed`].
+const RISE_SAFETY: f64 = 4.0;
+
+/// Whether the local maximum of the samples at i (ts[i − 1] < ts[i] < ts[i + 1]) may rise
+/// above `best` between its neighbours: the parabola through the three samples estimates the
+/// rise r of the maximum above vs[i], and the maximum is taken to be at most
+/// vs[i] + [`RISE_SAFETY`]·(r + c) with c = vs[i] − min(vs[i − 1], vs[i + 1]), the
+/// samples' contrast. A parabola's maximum lies within its bracket's nearer half, so it rises
+/// at most c above the sample; a V-shaped peak (a root near the unit circle) at most 2r. A
+/// maximum in rounding noise (r and c at an ulp) is thus never refined unless its sample
+/// already ties `best`.
+pub fn may_exceed(ts: &[f64], vs: &[f64], i: usize, best: f64) -> bool {
+    if i == 0 || i + 1 >= vs.len() {
+        return true;
+    }
+    let (t0, t1, t2) = (ts[i - 1], ts[i], ts[i + 1]);
+    let (v0, v1, v2) = (vs[i - 1], vs[i], vs[i + 1]);
+    // divided differences of the interpolating parabola v = v1 + s1·(t − t1) + s2·(t − t1)(t − t0)
+    let d01 = (v1 - v0) / (t1 - t0);
+    let d12 = (v2 - v1) / (t2 - t1);
+    let curv = (d12 - d01) / (t2 - t0);
+    let slope = d01 + curv * (t1 - t0);
+    let rise = if curv < 0.0 {
+        // vertex of the parabola: v1 − slope²/(4·curv)
+        -slope * slope / (4.0 * curv)
+    } else {
+        f64::INFINITY
+    };
+    let contrast = v1 - v0.min(v2);
+    v1 + RISE_SAFETY * (rise + contrast) >= best
+}
+
 /// The local maximum of f bracketed by the samples ts[i − 1] < ts[i] < ts[i + 1], refined by
 /// Brent's method ([`brent_max`]) to `rel` of the angle; the bracket moves by one cell (at most
 /// [`MAX_SHIFTS`] times) while the search lands on one of its inner ends (module doc).
@@ -205,6 +238,26 @@ mod tests {
         assert!((t - 0.7).abs() < 1e-3 && (v - 1.0).abs() < 1e-12, "{t} {v}");
         let (t, _) = brent_max(|x| x, 0.0, 1.0, 1e-13);
         assert!(1.0 - t < 1e-12, "{t}");
+    }
+
+    #[test]
+    fn a_maximum_that_cannot_reach_the_best_is_ruled_out() {
+        // samples of 1 − (t − 0.33)²: the maximum 1 lies 1.1e-3 above the sample at 0.3
+        let f = |t: f64| 1.0 - (t - 0.33).powi(2);
+        let ts = [0.0, 0.1, 0.3, 0.5];
+        let vs: Vec<f64> = ts.iter().map(|&t| f(t)).collect();
+        assert!(may_exceed(&ts, &vs, 2, 1.0 - 1e-12));
+        assert!(may_exceed(&ts, &vs, 2, 1.003));
+        assert!(!may_exceed(&ts, &vs, 2, 1.25));
+        // a V-shaped peak 1 − |t − 0.33|, its vertex midway to the far neighbour
+        let g = |t: f64| 1.0 - (t - 0.33).abs();
+        let ts = [0.3 - 1e-9, 0.3, 0.36];
+        let vs: Vec<f64> = ts.iter().map(|&t| g(t)).collect();
+        assert!(may_exceed(&ts, &vs, 1, 1.0));
+        // samples in rounding noise cannot beat a better value found elsewhere
+        let vs = [0.5, 0.5 + 1e-16, 0.5];
+        assert!(!may_exceed(&[1.0, 2.0, 3.0], &vs, 1, 0.6));
+        assert!(may_exceed(&[1.0, 2.0, 3.0], &vs, 1, 0.5));
     }
 
     #[test]

@@ -28,7 +28,7 @@ use serde::Serialize;
 
 use crate::boundary::CircleTable;
 use crate::closed_loop::AffineFamily;
-use crate::extremum::{merge_grid, refine_max, sample_maxima};
+use crate::extremum::{may_exceed, merge_grid, refine_max, sample_maxima};
 use crate::poly::modulus;
 use crate::stability::roots;
 
@@ -63,8 +63,8 @@ pub fn loop_value(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> Complex64 {
 
 /// ln |L(e^{iθ})|, free of the delay's phase.
 fn log_gain(fam: &AffineFamily, a: f64, b: f64, theta: f64) -> f64 {
-    let (p0, pk, pb) = fam.parts_on_circle(theta);
-    log_ratio(pk * a + pb * b, p0)
+    let (_, core, pk, pb) = fam.unturned_on_circle(theta);
+    log_ratio(pk * a + pb * b, core)
 }
 
 /// ln(|x|/|y|) with one logarithm, ½·ln(|x|²/|y|²), where the squares and their ratio are
@@ -327,10 +327,15 @@ pub fn stability_margin_tabulated(
             best = (-v, ts[i]);
         }
     }
-    for i in sample_maxima(&neg) {
-        let (t, v) = refine_max(|x| -f(x), &ts, i, THETA_REL);
-        if -v < best.0 {
-            best = (-v, t);
+    // the deepest sampled minima first, so that the best so far rules out the rest early
+    let mut minima: Vec<usize> = sample_maxima(&neg).collect();
+    minima.sort_by(|&i, &j| neg[j].total_cmp(&neg[i]));
+    for i in minima {
+        if may_exceed(&ts, &neg, i, -best.0) {
+            let (t, v) = refine_max(|x| -f(x), &ts, i, THETA_REL);
+            if -v < best.0 {
+                best = (-v, t);
+            }
         }
     }
     best
