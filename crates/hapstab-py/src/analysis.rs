@@ -128,7 +128,7 @@ pub fn check(
 }
 
 /// One edge of a region polygon.
-#[pyclass(frozen, get_all, module = "hapstab", name = "Edge")]
+#[pyclass(frozen, get_all, from_py_object, module = "hapstab", name = "Edge")]
 #[derive(Clone)]
 pub struct PyEdge {
     /// Index of the edge's first vertex.

@@ -15,6 +15,7 @@ mod loops;
 mod map;
 mod margins;
 mod passivity;
+mod pickle;
 mod simulate;
 mod sweep;
 mod text;
@@ -60,5 +61,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(locus::root_locus, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(zwidth::zwidth, m)?)?;
+    m.add_function(wrap_pyfunction!(pickle::_rebuild, m)?)?;
+    m.add_function(wrap_pyfunction!(pickle::_result_fields, m)?)?;
     Ok(())
 }

@@ -37,6 +37,7 @@ Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad argu
 ValueError naming the keyword argument.
 """
 
+import copyreg as _copyreg
 import functools as _functools
 import re as _re
 
@@ -63,6 +64,7 @@ from ._hapstab import (
     ZWidth,
 )
 from ._hapstab import __version__
+from ._hapstab import _rebuild, _result_fields
 from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
 from ._hapstab import frequency_response as _frequency_response
@@ -79,6 +81,22 @@ from ._hapstab import zwidth as _zwidth
 def _loop_from_json(text):
     """A pickled Loop back from its JSON (Loop.__reduce__)."""
     return Loop.from_json(text)
+
+
+def _register_pickling():
+    """Every result class pickles as its class name and fields (numpy arrays and nested
+    results pickle themselves), rebuilt by the extension's `_rebuild`."""
+    from . import _hapstab
+
+    for name, fields in _result_fields():
+
+        def reduce(obj, name=name, fields=tuple(fields)):
+            return _rebuild, (name, {f: getattr(obj, f) for f in fields})
+
+        _copyreg.pickle(getattr(_hapstab, name), reduce)
+
+
+_register_pickling()
 
 
 _PROCESSING = _re.compile(r"while processing '([^']+)'")

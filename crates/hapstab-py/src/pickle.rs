@@ -1,0 +1,88 @@
+//! Pickling of the result objects (multiprocessing, joblib and dask send them between
+//! processes): the package registers with `copyreg` a reducer that gives each result as its
+//! class name and its fields (numpy arrays and nested results pickle themselves), and
+//! [`_rebuild`] makes the object again from them. The field lists are the structs' own, so a
+//! field added to a result and not listed here does not compile.
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::analysis::{PyCheck, PyEdge, PyKmax, PyRegion};
+use crate::discretize::PyDiscretization;
+use crate::freqresp::{PyFrequencyResponse, PyMark};
+use crate::locus::PyRootLocus;
+use crate::map::PyStabilityMap;
+use crate::margins::PyMargins;
+use crate::passivity::{PyPassiveRegion, PyPassivity};
+use crate::simulate::PySimulation;
+use crate::sweep::PySweep;
+use crate::zwidth::PyZWidth;
+
+/// The field `name` of a pickled state.
+fn field<'py, T: FromPyObjectOwned<'py>>(state: &Bound<'py, PyDict>, name: &str) -> PyResult<T> {
+    state
+        .get_item(name)?
+        .ok_or_else(|| PyValueError::new_err(format!("state: no field {name:?}")))?
+        .extract()
+        .map_err(Into::into)
+}
+
+/// The result classes with their fields: [`_rebuild`]'s match and [`_result_fields`]'s
+/// table from one list.
+macro_rules! results {
+    ($($name:literal => $ty:ident { $($f:ident),* $(,)? }),* $(,)?) => {
+        /// Makes the result object of class `name` from its pickled fields.
+        #[pyfunction]
+        pub fn _rebuild(py: Python<'_>, name: &str, state: &Bound<'_, PyDict>) -> PyResult<Py<PyAny>> {
+            match name {
+                $($name => Ok(Py::new(py, $ty { $($f: field(state, stringify!($f))?),* })?.into_any()),)*
+                other => Err(PyValueError::new_err(format!("name: no result class {other:?}"))),
+            }
+        }
+
+        /// Every result class's name and fields, for the package's `copyreg` reducers.
+        #[pyfunction]
+        pub fn _result_fields() -> Vec<(&'static str, Vec<&'static str>)> {
+            vec![$(($name, vec![$(stringify!($f)),*])),*]
+        }
+    };
+}
+
+results! {
+    "Check" => PyCheck { stable, verdict, spectral_radius, roots, wall_stiffness, wall_damping,
+        k_interval, alpha, beta, alpha_interval, alpha_linear, k_linear },
+    "Edge" => PyEdge { start, stop, kind, theta_start, theta_end },
+    "Region" => PyRegion { polygons, polygons_normalized, thetas, edges, k_max, b_at_k_max,
+        k_max_attained, b_stable_near_k_max, k_stable_near_k_max, alpha_max, beta_at_alpha_max,
+        area, area_normalized, k_per_alpha, b_per_beta },
+    "Kmax" => PyKmax { k_max, b_at_k_max, k_interval, alpha_max, beta_at_alpha_max, k_linear,
+        k_max_attained, b_stable_near_k_max, k_stable_near_k_max },
+    "Discretization" => PyDiscretization { period, plant_num, plant_den, plant_delay,
+        velocity_num, velocity_den, p0, pk, pb, characteristic, wall_stiffness, wall_damping },
+    "Mark" => PyMark { kind, omega, frequency_hz, value, magnitude_db, phase_deg, response,
+        primary },
+    "FrequencyResponse" => PyFrequencyResponse { period, nyquist_hz, omega, frequency_hz,
+        response, magnitude_db, phase_deg, marks, closest, margins },
+    "RootLocus" => PyRootLocus { wall_damping, k_max, k_interval, k_max_index, crossing,
+        wall_stiffness, roots, spectral_radius },
+    "StabilityMap" => PyStabilityMap { stable, spectral_radius },
+    "Margins" => PyMargins { stable, gain_margin, gain_margin_lower, phase_crossover_hz,
+        stiffness_margin, stiffness_margin_lower, stiffness_crossover_hz, phase_margin_deg,
+        gain_crossover_hz, delay_margin, delay_margin_frequency_hz, delay_margin_pm_over_wc,
+        delay_margin_at_least, stability_margin, stability_margin_hz, peak_gain, peak_gain_hz,
+        crossings, notes },
+    "PassiveRegion" => PyPassiveRegion { k_max, b_at_k_max, area, bounded, vertices },
+    "Passivity" => PyPassivity { wall_stiffness, wall_damping, b_required,
+        binding_frequency_hz, binding_theta, dc_stiffness, device_damping, effective_damping,
+        effective_verdict, meets, verdict, note, stable, passive_region },
+    "Simulation" => PySimulation { time, position, velocity, wall_force, human_force, outcome,
+        reason, linear_window, measured_growth_per_sample, spectral_radius, linear_verdict,
+        limit_cycle, contact, judged_samples, samples, trace_stride, blown_up, final_position,
+        final_velocity },
+    "Sweep" => PySweep { param, unit, values, k_max, b_at_k_max, k_max_passive,
+        k_max_passive_with_arm, notes },
+    "ZWidth" => PyZWidth { stable, stable_area, k_max, b_at_k_max, k_max_nonnegative_damping,
+        device_damping, passive, k_max_passive_with_arm, passive_inside_stable, linear,
+        table_damping, table_k_max, table_k_min, table_k_max_passive, table_k_linear },
+}
