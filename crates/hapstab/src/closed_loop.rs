@@ -266,13 +266,14 @@ impl AffineFamily {
 
     /// (P0, PK, PB) at z = e^{iθ}, near z = 1 from the shifted form with
     /// w = e^{iθ} − 1 = −2 sin²(θ/2) + i sin θ (no cancellation), elsewhere from the
-    /// z-coefficients; z^k by repeated squaring of that z (relative error about k·ε, as
-    /// the rounding of kθ in a second sine and cosine, at a few multiplications' cost).
+    /// z-coefficients; z^k = e^{ikθ} in polar form (not by powers of the rounded z: the
+    /// region's refinement at a free mass, γ = δ = 0, relies on z^k to an ulp of the circle).
     pub fn parts_on_circle(&self, theta: f64) -> (Complex64, Complex64, Complex64) {
         let (z, core, pk, pb) = self.unturned_on_circle(theta);
         let zk = match self.k {
             0 => Complex64::new(1.0, 0.0),
-            k => z.powu(k as u32),
+            1 => z,
+            k => Complex64::from_polar(1.0, theta * k as f64),
         };
         (zk * core, pk, pb)
     }
