@@ -3,7 +3,7 @@
 
 use hapstab::map::{MapKind, wall_map_points, wall_map_values};
 use numpy::{
-    AllowTypeChange, IxDyn, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
+    AllowTypeChange, IntoPyArray, IxDyn, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
     PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
@@ -21,6 +21,14 @@ pub struct PyStabilityMap {
     /// smallest r with every root inside |z| < r, by bisection on the Schur–Cohn test of
     /// p(rz), to about 1e-15 relative); else None.
     pub spectral_radius: Option<Py<PyArrayDyn<f64>>>,
+    /// The wall stiffnesses asked for, N/m (float64 copy): the grid's K axis, or one K per
+    /// wall (`grid`).
+    pub wall_stiffness: Py<PyArrayDyn<f64>>,
+    /// The wall dampings asked for, Ns/m (float64 copy): the grid's B axis, or one B per wall.
+    pub wall_damping: Py<PyArrayDyn<f64>>,
+    /// True when wall_stiffness and wall_damping are the grid's axes (rows B, columns K),
+    /// False when they hold one wall per element.
+    pub grid: bool,
 }
 
 #[pymethods]
@@ -101,16 +109,22 @@ pub fn stability_map<'py>(
             .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("{kw}: {e}")))
     };
     let k = extract(wall_stiffness, "wall_stiffness")?;
-    let b = extract(wall_damping, "wall_damping")?;
+    let b_in = extract(wall_damping, "wall_damping")?;
     let a = in_units(&k, fam.scale.stiffness);
-    let b = in_units(&b, fam.scale.damping);
+    let b = in_units(&b_in, fam.scale.damping);
     let values = if as_grid {
         py.detach(|| wall_map_values(&fam, &a, &b, kind))
     } else {
         py.detach(|| wall_map_points(&fam, &a, &b, kind))
     };
     let values = values.py()?;
+    let copy = |x: &PyArrayLikeDyn<'py, f64, AllowTypeChange>| {
+        x.as_array().to_owned().into_pyarray(py).unbind()
+    };
     Ok(PyStabilityMap {
+        wall_stiffness: copy(&k),
+        wall_damping: copy(&b_in),
+        grid: as_grid,
         stable: shaped(py, values.stable, &shape)?.unbind(),
         spectral_radius: values
             .radius

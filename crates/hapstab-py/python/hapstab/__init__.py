@@ -99,6 +99,25 @@ def _register_pickling():
 _register_pickling()
 
 
+def _register_plots():
+    """Each figure-shaped result draws itself: `result.plot(ax=None)` (hapstab.plotting)."""
+    from . import plotting
+
+    for cls, draw in [
+        (Region, plotting.region),
+        (StabilityMap, plotting.stability_map),
+        (ZWidth, plotting.zwidth),
+        (Sweep, plotting.sweep),
+        (FrequencyResponse, plotting.frequency_response),
+        (RootLocus, plotting.root_locus),
+        (Simulation, plotting.simulation),
+    ]:
+        cls.plot = draw
+
+
+_register_plots()
+
+
 _PROCESSING = _re.compile(r"while processing '([^']+)'")
 
 

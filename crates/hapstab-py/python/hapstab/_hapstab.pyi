@@ -216,6 +216,8 @@ class Region:
     area_normalized: float
     k_per_alpha: float
     b_per_beta: float
+    def plot(self, ax: Any = None) -> Any:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
 class Kmax:
     k_max: Optional[float]
@@ -231,6 +233,11 @@ class Kmax:
 class StabilityMap:
     stable: BoolArray
     spectral_radius: Optional[Float64Array]
+    wall_stiffness: Float64Array
+    wall_damping: Float64Array
+    grid: bool
+    def plot(self, ax: Any = None) -> Any:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
 class Discretization:
     """Coefficient arrays in descending powers of z."""
@@ -268,6 +275,8 @@ class Simulation:
     blown_up: bool
     final_position: float
     final_velocity: float
+    def plot(self, ax: Any = None) -> Any:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
 class PassiveRegion:
     """The walls (K, B) the device renders passively: a convex polygon."""
@@ -376,6 +385,8 @@ class FrequencyResponse:
     closest: Optional[Tuple[float, float, complex]]
     """(min |1 + L|, frequency Hz, L there)."""
     margins: Margins
+    def plot(self, axes: Any = None) -> Tuple[Any, Any]:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the (magnitude, phase) matplotlib Axes."""
 
 class RootLocus:
     """The roots of p(z) (eq. 9) as K sweeps at a fixed damping B."""
@@ -391,6 +402,8 @@ class RootLocus:
     roots: Complex128Array
     """Shape (len(wall_stiffness), degree of p), branch-ordered."""
     spectral_radius: Float64Array
+    def plot(self, ax: Any = None) -> Any:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
 class Sweep:
     """K_max against one parameter of the loop (NaN where a value is missing; see notes)."""
@@ -403,6 +416,8 @@ class Sweep:
     k_max_passive: Float64Array
     k_max_passive_with_arm: Float64Array
     notes: list[Optional[str]]
+    def plot(self, ax: Any = None) -> Any:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
 class ZWidth:
     """The Z-width of a loop: stable and passive regions, K_max, the K_max table."""
@@ -546,3 +561,5 @@ def sweep(
     """K_max (stable and passive) with `param` ("delay-time", "arm-stiffness", …) at each value."""
 def zwidth(loop: Loop, *, table_damping: Optional[Sequence[float]] = None) -> ZWidth:
     """The Z-width: the numbers of `hapstab zwidth --json`."""
+    def plot(self, ax: Any = None) -> Any:
+        """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
