@@ -6,138 +6,171 @@ mod serve_support;
 
 use serve_support::{PLANT, Server, TWO_MASS_LOOP, enc, request};
 
+/// A bad request: (path, parameter the message must name, value the message must show).
+type Case = (&'static str, &'static str, &'static str);
+
+/// Missing parameters and values that are not finite numbers.
+const MISSING_OR_NOT_FINITE: &[Case] = &[
+    // missing
+    ("/api/region?delta=0.015&d=0", "gamma", ""),
+    ("/api/region?gamma=0.001&d=0", "delta", ""),
+    ("/api/region?gamma=0.001&delta=0.015", "'d'", ""),
+    ("/api/point?gamma=0&delta=0&d=0&beta=0.5", "alpha", ""),
+    ("/api/simulate?gamma=0&delta=0&d=0&alpha=0.1", "beta", ""),
+    // NaN and infinities
+    ("/api/region?gamma=NaN&delta=0.015&d=0", "gamma", "NaN"),
+    ("/api/region?gamma=0&delta=nan&d=0", "delta", "nan"),
+    ("/api/region?gamma=inf&delta=0&d=0", "gamma", "inf"),
+    (
+        "/api/point?gamma=0&delta=0&d=0&alpha=NaN&beta=0.5",
+        "alpha",
+        "NaN",
+    ),
+    (
+        "/api/point?gamma=0&delta=0&d=0&alpha=0.1&beta=-infinity",
+        "beta",
+        "-infinity",
+    ),
+    ("/api/region?gamma=0&delta=0&d=NaN", "'d'", "NaN"),
+    // not numbers
+    ("/api/region?gamma=abc&delta=0&d=0", "gamma", "abc"),
+    ("/api/region?gamma=&delta=0&d=0", "gamma", ""),
+];
+
+/// Values out of their ranges.
+const OUT_OF_RANGE: &[Case] = &[
+    // negative
+    ("/api/region?gamma=-1&delta=0.015&d=0", "gamma", "-1"),
+    ("/api/region?gamma=0&delta=-0.5&d=0", "delta", "-0.5"),
+    ("/api/region?gamma=0&delta=0&d=-1", "'d'", "-1"),
+    // huge
+    ("/api/region?gamma=0&delta=0&d=201", "'d'", "201"),
+    ("/api/region?gamma=0&delta=0&d=100000", "'d'", "100000"),
+    ("/api/region?gamma=0&delta=0&d=1e300", "'d'", "1e300"),
+    (
+        "/api/point?gamma=0&delta=0&d=5000&alpha=0.1&beta=0.1",
+        "'d'",
+        "5000",
+    ),
+    ("/api/region?gamma=1e9&delta=0&d=0", "gamma", "1e9"),
+    (
+        "/api/point?gamma=0&delta=0&d=0&alpha=1e300&beta=0.5",
+        "alpha",
+        "1e300",
+    ),
+    // fractional delay
+    ("/api/region?gamma=0&delta=0&d=1.5", "'d'", "1.5"),
+];
+
+/// Unknown and repeated names, oversized grids and sizes.
+const NAMES_GRIDS_AND_SIZES: &[Case] = &[
+    // unknown and duplicate names
+    ("/api/region?gamma=0&delta=0&d=0&gama=1", "gama", "1"),
+    ("/api/region?gamma=0&gamma=1&delta=0&d=0", "gamma", "1"),
+    // oversized grids and sizes
+    (
+        "/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=100000",
+        "gamma_samples",
+        "100000",
+    ),
+    (
+        "/api/region?gamma=0&delta=1&d=20&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=64&beta_samples=256",
+        "gamma_samples",
+        "64",
+    ),
+    (
+        "/api/region?gamma=0&delta=1&d=60&robust=1&gamma_lo=0&gamma_hi=9",
+        "'d'",
+        "60",
+    ),
+    (
+        "/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=5&gamma_hi=1",
+        "gamma_hi",
+        "1",
+    ),
+    (
+        "/api/region?gamma=0&delta=1&d=0&gamma_lo=0",
+        "gamma_lo",
+        "0",
+    ),
+    ("/api/region?gamma=0&delta=0&d=0&tol=5", "tol", "5"),
+    (
+        "/api/simulate?gamma=0&delta=0&d=0&alpha=0.1&beta=0.5&samples=10000000",
+        "samples",
+        "10000000",
+    ),
+    (
+        "/api/simulate?gamma=0&delta=0&d=0&alpha=0.1&beta=0.5&contact=sticky",
+        "contact",
+        "sticky",
+    ),
+    (
+        "/api/export?gamma=0&delta=0&d=0&format=pdf",
+        "format",
+        "pdf",
+    ),
+    (
+        "/api/export?gamma=0&delta=0&d=0&view=1,0,0,1",
+        "view",
+        "1,0,0,1",
+    ),
+    (
+        "/api/export?gamma=0&delta=0&d=0&width=100000",
+        "width",
+        "100000",
+    ),
+];
+
+/// The physical mode's parameters, an unknown mode, and a physical parameter in normalized
+/// mode.
+const MODES: &[Case] = &[
+    (
+        "/api/region?mode=physical&device_mass=0&device_damping=1&arm_mass=0&arm_damping=1&arm_stiffness=0&period=0.001&d=0",
+        "device_mass",
+        "0",
+    ),
+    (
+        "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=-1&arm_stiffness=0&period=0.001&d=0",
+        "arm_damping",
+        "-1",
+    ),
+    (
+        "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=1&arm_stiffness=0&period=0&d=0",
+        "period",
+        "0",
+    ),
+    (
+        "/api/region?mode=hybrid&gamma=0&delta=0&d=0",
+        "mode",
+        "hybrid",
+    ),
+    (
+        "/api/region?gamma=0&delta=0&d=0&period=0.001",
+        "period",
+        "0.001",
+    ),
+];
+
 #[test]
 fn bad_input_is_400_with_a_json_error_naming_parameter_and_value() {
     let s = Server::start(&[]);
-    // (path, parameter the message must name, value the message must show)
-    let cases: &[(&str, &str, &str)] = &[
-        // missing
-        ("/api/region?delta=0.015&d=0", "gamma", ""),
-        ("/api/region?gamma=0.001&d=0", "delta", ""),
-        ("/api/region?gamma=0.001&delta=0.015", "'d'", ""),
-        ("/api/point?gamma=0&delta=0&d=0&beta=0.5", "alpha", ""),
-        ("/api/simulate?gamma=0&delta=0&d=0&alpha=0.1", "beta", ""),
-        // NaN and infinities
-        ("/api/region?gamma=NaN&delta=0.015&d=0", "gamma", "NaN"),
-        ("/api/region?gamma=0&delta=nan&d=0", "delta", "nan"),
-        ("/api/region?gamma=inf&delta=0&d=0", "gamma", "inf"),
-        (
-            "/api/point?gamma=0&delta=0&d=0&alpha=NaN&beta=0.5",
-            "alpha",
-            "NaN",
-        ),
-        (
-            "/api/point?gamma=0&delta=0&d=0&alpha=0.1&beta=-infinity",
-            "beta",
-            "-infinity",
-        ),
-        ("/api/region?gamma=0&delta=0&d=NaN", "'d'", "NaN"),
-        // not numbers
-        ("/api/region?gamma=abc&delta=0&d=0", "gamma", "abc"),
-        ("/api/region?gamma=&delta=0&d=0", "gamma", ""),
-        // negative
-        ("/api/region?gamma=-1&delta=0.015&d=0", "gamma", "-1"),
-        ("/api/region?gamma=0&delta=-0.5&d=0", "delta", "-0.5"),
-        ("/api/region?gamma=0&delta=0&d=-1", "'d'", "-1"),
-        // huge
-        ("/api/region?gamma=0&delta=0&d=201", "'d'", "201"),
-        ("/api/region?gamma=0&delta=0&d=100000", "'d'", "100000"),
-        ("/api/region?gamma=0&delta=0&d=1e300", "'d'", "1e300"),
-        (
-            "/api/point?gamma=0&delta=0&d=5000&alpha=0.1&beta=0.1",
-            "'d'",
-            "5000",
-        ),
-        ("/api/region?gamma=1e9&delta=0&d=0", "gamma", "1e9"),
-        (
-            "/api/point?gamma=0&delta=0&d=0&alpha=1e300&beta=0.5",
-            "alpha",
-            "1e300",
-        ),
-        // fractional delay
-        ("/api/region?gamma=0&delta=0&d=1.5", "'d'", "1.5"),
-        // unknown and duplicate names
-        ("/api/region?gamma=0&delta=0&d=0&gama=1", "gama", "1"),
-        ("/api/region?gamma=0&gamma=1&delta=0&d=0", "gamma", "1"),
-        // oversized grids and sizes
-        (
-            "/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=100000",
-            "gamma_samples",
-            "100000",
-        ),
-        (
-            "/api/region?gamma=0&delta=1&d=20&robust=1&gamma_lo=0&gamma_hi=9&gamma_samples=64&beta_samples=256",
-            "gamma_samples",
-            "64",
-        ),
-        (
-            "/api/region?gamma=0&delta=1&d=60&robust=1&gamma_lo=0&gamma_hi=9",
-            "'d'",
-            "60",
-        ),
-        (
-            "/api/region?gamma=0&delta=1&d=0&robust=1&gamma_lo=5&gamma_hi=1",
-            "gamma_hi",
-            "1",
-        ),
-        (
-            "/api/region?gamma=0&delta=1&d=0&gamma_lo=0",
-            "gamma_lo",
-            "0",
-        ),
-        ("/api/region?gamma=0&delta=0&d=0&tol=5", "tol", "5"),
-        (
-            "/api/simulate?gamma=0&delta=0&d=0&alpha=0.1&beta=0.5&samples=10000000",
-            "samples",
-            "10000000",
-        ),
-        (
-            "/api/simulate?gamma=0&delta=0&d=0&alpha=0.1&beta=0.5&contact=sticky",
-            "contact",
-            "sticky",
-        ),
-        (
-            "/api/export?gamma=0&delta=0&d=0&format=pdf",
-            "format",
-            "pdf",
-        ),
-        (
-            "/api/export?gamma=0&delta=0&d=0&view=1,0,0,1",
-            "view",
-            "1,0,0,1",
-        ),
-        (
-            "/api/export?gamma=0&delta=0&d=0&width=100000",
-            "width",
-            "100000",
-        ),
-        // physical mode
-        (
-            "/api/region?mode=physical&device_mass=0&device_damping=1&arm_mass=0&arm_damping=1&arm_stiffness=0&period=0.001&d=0",
-            "device_mass",
-            "0",
-        ),
-        (
-            "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=-1&arm_stiffness=0&period=0.001&d=0",
-            "arm_damping",
-            "-1",
-        ),
-        (
-            "/api/region?mode=physical&device_mass=0.1&device_damping=1&arm_mass=1&arm_damping=1&arm_stiffness=0&period=0&d=0",
-            "period",
-            "0",
-        ),
-        (
-            "/api/region?mode=hybrid&gamma=0&delta=0&d=0",
-            "mode",
-            "hybrid",
-        ),
-        (
-            "/api/region?gamma=0&delta=0&d=0&period=0.001",
-            "period",
-            "0.001",
-        ),
-    ];
+    for cases in [
+        MISSING_OR_NOT_FINITE,
+        OUT_OF_RANGE,
+        NAMES_GRIDS_AND_SIZES,
+        MODES,
+    ] {
+        assert_400_naming_parameter_and_value(&s, cases);
+    }
+    // a malformed query string is a 400 too, and the server is still alive afterwards
+    let r = s.get("/api/region?gamma=%ZZ&delta=0&d=0");
+    assert_eq!(r.status, 400, "{}", r.body);
+    assert!(r.json()["error"].is_string());
+    assert_eq!(s.get(&format!("/api/region?{PLANT}")).status, 200);
+}
+
+/// Each case is a 400 with a JSON error whose message names the parameter and shows the value.
+fn assert_400_naming_parameter_and_value(s: &Server, cases: &[Case]) {
     for (path, name, value) in cases {
         let r = s.get(path);
         assert_eq!(r.status, 400, "{path}: {}", r.body);
@@ -157,11 +190,6 @@ fn bad_input_is_400_with_a_json_error_naming_parameter_and_value() {
             "{path}: '{msg}' does not show the value {value}"
         );
     }
-    // a malformed query string is a 400 too, and the server is still alive afterwards
-    let r = s.get("/api/region?gamma=%ZZ&delta=0&d=0");
-    assert_eq!(r.status, 400, "{}", r.body);
-    assert!(r.json()["error"].is_string());
-    assert_eq!(s.get(&format!("/api/region?{PLANT}")).status, 200);
 }
 
 #[test]

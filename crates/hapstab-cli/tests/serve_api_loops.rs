@@ -55,10 +55,24 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
     let j = r.json();
     assert!(j["linear"].is_null() && j["passive"].is_null(), "{j}");
     assert_eq!(j["loop"]["velocity"]["kind"], "low_pass");
+    assert_vertices_are_on_the_boundary(&s, &j);
+    // A wall inside: half way to α_max, in N/m and Ns/m.
     let (kpa, bpb) = (
         j["physical"]["k_per_alpha"].as_f64().unwrap(),
         j["physical"]["b_per_beta"].as_f64().unwrap(),
     );
+    let (k, b) = (
+        0.5 * j["region"]["alpha_max"].as_f64().unwrap() * kpa,
+        0.5 * j["region"]["beta_at_alpha_max"].as_f64().unwrap() * bpb,
+    );
+    let (ks, bs) = (k.to_string(), b.to_string());
+    assert_point_is_checks(&s, &ks, &bs);
+    assert_simulation_is_simulates(&s, &ks, &bs);
+}
+
+/// The region's vertices, given back as walls, have a root on the unit circle and the
+/// verdict and radius of `hapstab::loop_analysis::analysis`.
+fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
     let poly = j["region"]["polygons"][0].as_array().unwrap();
     assert!(poly.len() > 10, "{j}");
     // Vertices on the z = 1 line a = −γ are double roots at z = 1 amid the plant's cluster
@@ -87,12 +101,10 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
             "vertex ({a}, {b})"
         );
     }
-    // A wall inside: the explorer's point is check's.
-    let (k, b) = (
-        0.5 * j["region"]["alpha_max"].as_f64().unwrap() * kpa,
-        0.5 * j["region"]["beta_at_alpha_max"].as_f64().unwrap() * bpb,
-    );
-    let (ks, bs) = (k.to_string(), b.to_string());
+}
+
+/// The explorer's point at the wall (K, B) = (`ks`, `bs`) is `hapstab check`'s.
+fn assert_point_is_checks(s: &Server, ks: &str, bs: &str) {
     let p = s
         .get(&format!(
             "/api/point?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"
@@ -100,7 +112,7 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
         .json();
     let mut args = vec!["check"];
     args.extend(TWO_MASS_FLAGS);
-    args.extend(["--wall-stiffness", &ks, "--wall-damping", &bs]);
+    args.extend(["--wall-stiffness", ks, "--wall-damping", bs]);
     let check = hapstab_json(&args);
     assert_eq!(p["verdict"], check["verdict"]);
     let (r1, r2) = (
@@ -109,7 +121,10 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
     );
     assert!((r1 - r2).abs() <= 1e-12, "{r1} vs {r2}");
     assert!(p["linear"].is_null());
-    // The simulated contact: the explorer's run is hapstab simulate's.
+}
+
+/// The explorer's simulated contact with the wall (`ks`, `bs`) is `hapstab simulate`'s.
+fn assert_simulation_is_simulates(s: &Server, ks: &str, bs: &str) {
     let sim = s
         .get(&format!(
             "/api/simulate?{TWO_MASS_LOOP}&wall_stiffness={ks}&wall_damping={bs}"
@@ -120,9 +135,9 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
     args.extend(TWO_MASS_FLAGS);
     args.extend([
         "--wall-stiffness",
-        &ks,
+        ks,
         "--wall-damping",
-        &bs,
+        bs,
         "--unilateral",
         "--push",
         "1",

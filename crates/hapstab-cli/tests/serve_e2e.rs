@@ -123,6 +123,7 @@ async fn settled(c: &Client) -> R<(String, f64, f64, f64, usize)> {
     ))
 }
 
+/// The first phase (module doc): the δ slider, α_max, a clicked wall, labels and details.
 async fn drive(c: &Client, base: &str, shot: &Path) -> R<()> {
     c.set_window_size(1500, 1050).await.ok();
     c.goto(&format!(
@@ -136,27 +137,7 @@ async fn drive(c: &Client, base: &str, shot: &Path) -> R<()> {
     assert_eq!((g0, de0, d0), (0.001, 0.005, 1), "parameters from the URL");
     assert!(path0.len() > 100, "a region is drawn: {path0}");
     assert_eq!(am0, library_alpha_max(g0, de0, d0), "initial α_max");
-
-    // Move the δ slider: a mouse click on the track, then three arrow keys.
-    let slider = c.find(Locator::Id("delta-slider")).await?;
-    slider.click().await?;
-    for _ in 0..3 {
-        slider.send_keys(&Key::Right).await?;
-    }
-    let delta_input = c.find(Locator::Id("delta")).await?;
-    let (path1, am1, g1, de1, d1) = wait_for(20, "the redrawn region", || async {
-        let typed: f64 = delta_input
-            .prop("value")
-            .await?
-            .unwrap_or_default()
-            .parse()
-            .unwrap_or(f64::NAN);
-        Ok(match settled(c).await {
-            Ok(s) if s.3 != de0 && s.3 == typed => Some(s),
-            _ => None,
-        })
-    })
-    .await?;
+    let (path1, am1, g1, de1, d1) = move_delta_slider(c, de0).await?;
     assert_eq!((g1, d1), (g0, d0));
     assert!(de1 > de0, "the slider moved δ from {de0} to {de1}");
     assert_ne!(path1, path0, "the drawn region changed");
@@ -166,57 +147,14 @@ async fn drive(c: &Client, base: &str, shot: &Path) -> R<()> {
         "α_max on the page equals the library's for δ = {de1}"
     );
     assert_ne!(am1, am0);
-    // the number shown to the user (10 significant digits)
-    let shown: f64 = c
-        .find(Locator::Id("amax-value"))
-        .await?
-        .text()
-        .await?
-        .trim()
-        .parse()?;
-    assert!(
-        (shown - lib).abs() <= 1e-9 * lib.abs(),
-        "shown α_max {shown} vs library {lib}"
-    );
-    // the URL holds the new parameters
-    let url = c.current_url().await?;
-    assert!(
-        url.query()
-            .unwrap_or("")
-            .contains(&format!("delta={}", serve_support::enc(&de1.to_string()))),
-        "{url}"
-    );
-
+    assert_shown_alpha_max_and_url(c, lib, de1).await?;
     // Click the middle of the plot: verdict, roots in the unit circle, simulated contact.
-    c.find(Locator::Id("plot")).await?.click().await?;
-    let verdict = wait_for(20, "the point verdict", || async {
-        let v = c.find(Locator::Id("verdict")).await?.text().await?;
-        let sim = c.find_all(Locator::Id("sim-path")).await?;
-        Ok(
-            (["stable", "unstable", "marginal"].contains(&v.as_str()) && !sim.is_empty())
-                .then_some(v),
-        )
-    })
-    .await?;
-    let pt = c
-        .execute("return window.hapstabExplorer.state.point;", vec![])
-        .await?;
-    let (a, b) = (
-        pt[0].as_f64().ok_or("alpha")?,
-        pt[1].as_f64().ok_or("beta")?,
-    );
+    let (verdict, a, b) = click_plot_for_verdict(c, "the point verdict").await?;
     let lib = Analysis::new(Normalized::new(a, b, g1, de1, d1)?)?;
     assert_eq!(verdict, lib.verdict.as_str(), "verdict at ({a}, {b})");
     // The simulated contact never contradicts the analysis: no decay beside an unstable
     // wall; its judged window is shaded.
-    let outcome = c.find(Locator::Id("sim-outcome")).await?.text().await?;
-    assert!(!outcome.is_empty(), "an outcome is shown");
-    if verdict == "unstable" {
-        assert!(
-            !outcome.starts_with("decaying"),
-            "{outcome} beside {verdict}"
-        );
-    }
+    assert_outcome_agrees(c, &verdict).await?;
     assert_eq!(c.find_all(Locator::Id("sim-judged")).await?.len(), 1);
     let roots = c.find_all(Locator::Css("#roots circle.root")).await?;
     assert_eq!(roots.len(), d1 + 3, "p(z) has degree d + 3");
@@ -234,6 +172,90 @@ async fn drive(c: &Client, base: &str, shot: &Path) -> R<()> {
         library_alpha_max(g1, de1, d1),
         shot.display()
     );
+    Ok(())
+}
+
+/// Moves the δ slider (a mouse click on the track, then three arrow keys) and waits for the
+/// region redrawn away from δ = `de0` at the δ typed in the field.
+async fn move_delta_slider(c: &Client, de0: f64) -> R<(String, f64, f64, f64, usize)> {
+    let slider = c.find(Locator::Id("delta-slider")).await?;
+    slider.click().await?;
+    for _ in 0..3 {
+        slider.send_keys(&Key::Right).await?;
+    }
+    let delta_input = c.find(Locator::Id("delta")).await?;
+    wait_for(20, "the redrawn region", || async {
+        let typed: f64 = delta_input
+            .prop("value")
+            .await?
+            .unwrap_or_default()
+            .parse()
+            .unwrap_or(f64::NAN);
+        Ok(match settled(c).await {
+            Ok(s) if s.3 != de0 && s.3 == typed => Some(s),
+            _ => None,
+        })
+    })
+    .await
+}
+
+/// The α_max shown to the user (10 significant digits) is the library's `lib`, and the URL
+/// holds the new δ.
+async fn assert_shown_alpha_max_and_url(c: &Client, lib: f64, delta: f64) -> R<()> {
+    let shown: f64 = c
+        .find(Locator::Id("amax-value"))
+        .await?
+        .text()
+        .await?
+        .trim()
+        .parse()?;
+    assert!(
+        (shown - lib).abs() <= 1e-9 * lib.abs(),
+        "shown α_max {shown} vs library {lib}"
+    );
+    let url = c.current_url().await?;
+    assert!(
+        url.query()
+            .unwrap_or("")
+            .contains(&format!("delta={}", serve_support::enc(&delta.to_string()))),
+        "{url}"
+    );
+    Ok(())
+}
+
+/// Clicks the middle of the plot and waits for the point's verdict and simulated contact:
+/// (verdict, α, β) of the clicked point.
+async fn click_plot_for_verdict(c: &Client, what: &str) -> R<(String, f64, f64)> {
+    c.find(Locator::Id("plot")).await?.click().await?;
+    let verdict = wait_for(20, what, || async {
+        let v = c.find(Locator::Id("verdict")).await?.text().await?;
+        let sim = c.find_all(Locator::Id("sim-path")).await?;
+        Ok(
+            (["stable", "unstable", "marginal"].contains(&v.as_str()) && !sim.is_empty())
+                .then_some(v),
+        )
+    })
+    .await?;
+    let pt = c
+        .execute("return window.hapstabExplorer.state.point;", vec![])
+        .await?;
+    let (a, b) = (
+        pt[0].as_f64().ok_or("alpha")?,
+        pt[1].as_f64().ok_or("beta")?,
+    );
+    Ok((verdict, a, b))
+}
+
+/// The simulated contact's outcome is shown and is no decay beside an unstable wall.
+async fn assert_outcome_agrees(c: &Client, verdict: &str) -> R<()> {
+    let outcome = c.find(Locator::Id("sim-outcome")).await?.text().await?;
+    assert!(!outcome.is_empty(), "an outcome is shown");
+    if verdict == "unstable" {
+        assert!(
+            !outcome.starts_with("decaying"),
+            "{outcome} beside {verdict}"
+        );
+    }
     Ok(())
 }
 
@@ -307,7 +329,15 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
     );
     let label = c.find(Locator::Id("xlabel")).await?.text().await?;
     assert!(label.contains("K [N/m]"), "{label}");
-    // The area in the K–B plane: the α–β area times m/T² · m/T.
+    assert_area_in_k_b(c, pp).await?;
+    switch_to_normalized(c, pp, s.1).await?;
+    robust_over_arm_stiffness(c, base).await?;
+    std::fs::write(shot, c.screenshot().await?)?;
+    Ok(())
+}
+
+/// The area shown in the K–B plane: the α–β area of the default plant times m/T² · m/T.
+async fn assert_area_in_k_b(c: &Client, pp: PlantParams) -> R<()> {
     let area = c.find(Locator::Id("area")).await?.text().await?;
     let fam = PolyFamily::new(pp, 0)?;
     let lib = stable_region(&fam)?;
@@ -316,8 +346,12 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
     let want = lib.area * (m / 1e-6) * (m / 1e-3);
     assert!((kb - want).abs() <= 1e-5 * want, "{area} vs {want}");
     assert!(area.contains("N²·s/m²"), "{area}");
-    // One click to normalized mode: the same loop in (α, β) (γ = kT²/m, δ = bT/m), so the
-    // same α_max; its URL keeps the mode.
+    Ok(())
+}
+
+/// One click to normalized mode: the same loop in (α, β) (γ = kT²/m, δ = bT/m), so the same
+/// α_max `am`; its URL keeps the mode when reloaded.
+async fn switch_to_normalized(c: &Client, pp: PlantParams, am: f64) -> R<()> {
     c.find(Locator::Id("mode-normalized"))
         .await?
         .click()
@@ -332,7 +366,7 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
         (pp.gamma, pp.delta, 0),
         "the plant carried over"
     );
-    assert_eq!(n.1, s.1, "the same region in normalized units");
+    assert_eq!(n.1, am, "the same region in normalized units");
     let gamma = c.find(Locator::Id("gamma")).await?.prop("value").await?;
     assert_eq!(gamma.as_deref().map(str::parse::<f64>), Some(Ok(pp.gamma)));
     let url = c.current_url().await?;
@@ -352,7 +386,11 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
             .await?
     );
     assert_eq!(again.1, n.1);
-    // The robust region in physical mode: over k_H in N/m.
+    Ok(())
+}
+
+/// The robust region in physical mode: over k_H in N/m, kept in the URL.
+async fn robust_over_arm_stiffness(c: &Client, base: &str) -> R<()> {
     c.goto(&format!("{base}/")).await?;
     wait_for(20, "the default region", || async {
         Ok(settled(c).await.ok())
@@ -386,7 +424,6 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
         url.query().unwrap_or("").contains("arm_stiffness_hi=350"),
         "{url}"
     );
-    std::fs::write(shot, c.screenshot().await?)?;
     Ok(())
 }
 
@@ -570,27 +607,7 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
         loop_alpha_max(&two_mass_loop("lowpass:150"))?,
         "α_max of the loop"
     );
-    let kind = c
-        .find(Locator::Id("plant_kind"))
-        .await?
-        .prop("value")
-        .await?;
-    assert_eq!(kind.as_deref(), Some("two_mass"));
-    assert!(
-        c.find(Locator::Id("motor_mass"))
-            .await?
-            .is_displayed()
-            .await?
-    );
-    // The robust region (over the paper's γ) is not offered for this loop, and says why.
-    assert!(
-        !c.find(Locator::Id("show-robust"))
-            .await?
-            .is_enabled()
-            .await?
-    );
-    let note = c.find(Locator::Id("robust-note")).await?.text().await?;
-    assert!(note.contains("the paper's loop"), "{note}");
+    assert_two_mass_form(c).await?;
     // Type another estimator: the region is redrawn for it.
     let est = c.find(Locator::Id("estimator")).await?;
     est.clear().await?;
@@ -614,32 +631,12 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
             .contains("estimator=lowpass%3A60")
     );
     // Click a wall: the loop's verdict, every root of its p(z), a simulated contact.
-    c.find(Locator::Id("plot")).await?.click().await?;
-    let verdict = wait_for(20, "the loop's point verdict", || async {
-        let v = c.find(Locator::Id("verdict")).await?.text().await?;
-        let sim = c.find_all(Locator::Id("sim-path")).await?;
-        Ok(
-            (["stable", "unstable", "marginal"].contains(&v.as_str()) && !sim.is_empty())
-                .then_some(v),
-        )
-    })
-    .await?;
-    let pt = c
-        .execute("return window.hapstabExplorer.state.point;", vec![])
-        .await?;
-    let (a, b) = (pt[0].as_f64().ok_or("a")?, pt[1].as_f64().ok_or("b")?);
+    let (verdict, a, b) = click_plot_for_verdict(c, "the loop's point verdict").await?;
     let an = loop_analysis::analysis(&lp, &fam, (a, b))?;
     assert_eq!(verdict, an.verdict.as_str(), "verdict at ({a}, {b})");
     let roots = c.find_all(Locator::Css("#roots circle.root")).await?;
     assert_eq!(roots.len(), fam.degree(), "every root of the loop's p(z)");
-    let outcome = c.find(Locator::Id("sim-outcome")).await?.text().await?;
-    assert!(!outcome.is_empty(), "an outcome is shown");
-    if verdict == "unstable" {
-        assert!(
-            !outcome.starts_with("decaying"),
-            "{outcome} beside {verdict}"
-        );
-    }
+    assert_outcome_agrees(c, &verdict).await?;
     let png = c.screenshot().await?;
     std::fs::write(shot, &png)?;
     println!(
@@ -649,11 +646,36 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     Ok(())
 }
 
-#[test]
-fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
-    let chromium = tool("HAPSTAB_CHROMIUM", "/usr/bin/chromium");
-    let driver = tool("HAPSTAB_CHROMEDRIVER", "/usr/bin/chromedriver");
-    for p in [&chromium, &driver] {
+/// The form shows the two-mass device, and the robust region (over the paper's γ) is not
+/// offered for this loop, saying why.
+async fn assert_two_mass_form(c: &Client) -> R<()> {
+    let kind = c
+        .find(Locator::Id("plant_kind"))
+        .await?
+        .prop("value")
+        .await?;
+    assert_eq!(kind.as_deref(), Some("two_mass"));
+    assert!(
+        c.find(Locator::Id("motor_mass"))
+            .await?
+            .is_displayed()
+            .await?
+    );
+    assert!(
+        !c.find(Locator::Id("show-robust"))
+            .await?
+            .is_enabled()
+            .await?
+    );
+    let note = c.find(Locator::Id("robust-note")).await?.text().await?;
+    assert!(note.contains("the paper's loop"), "{note}");
+    Ok(())
+}
+
+/// Chromium and chromedriver are installed; when not, the test is skipped (false), or fails
+/// under HAPSTAB_E2E_REQUIRED=1.
+fn browser_found(chromium: &Path, driver: &Path) -> bool {
+    for p in [chromium, driver] {
         if !p.exists() {
             let msg = format!(
                 "{} not found (install Debian's chromium and chromium-driver, as .ci/run does)",
@@ -664,15 +686,18 @@ fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
                 panic!("serve_e2e: {msg}");
             }
             eprintln!("SKIPPED serve_e2e: {msg}");
-            return;
+            return false;
         }
     }
-    let server = Server::start(&[]);
+    true
+}
+
+/// Starts chromedriver on a free port, logging to `log_dir`, and waits until it answers.
+fn start_chromedriver(driver: &Path, log_dir: &Path) -> (Guard, u16) {
     let port = free_port();
-    let log_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let log = std::fs::File::create(log_dir.join("serve_e2e_chromedriver.log")).expect("log");
-    let _driver = Guard(
-        Command::new(&driver)
+    let guard = Guard(
+        Command::new(driver)
             .arg(format!("--port={port}"))
             .stdout(Stdio::from(log.try_clone().expect("log")))
             .stderr(Stdio::from(log))
@@ -689,7 +714,14 @@ fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
         );
         std::thread::sleep(Duration::from_millis(100));
     }
-    let profile = tempfile::tempdir().expect("profile dir");
+    (guard, port)
+}
+
+/// The WebDriver capabilities of a headless Chromium with its own profile directory.
+fn chromium_capabilities(
+    chromium: &Path,
+    profile: &Path,
+) -> serde_json::Map<String, serde_json::Value> {
     let caps = json!({
         "browserName": "chrome",
         "goog:chromeOptions": {
@@ -698,12 +730,35 @@ fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
                 "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
                 "--disable-dev-shm-usage", "--window-size=1500,1050",
-                format!("--user-data-dir={}", profile.path().display()),
+                format!("--user-data-dir={}", profile.display()),
             ],
         }
     });
-    let caps = caps.as_object().cloned().expect("object");
-    let shot = log_dir.join("serve_e2e.png");
+    caps.as_object().cloned().expect("object")
+}
+
+/// Every phase of the page in turn (module doc), each with its screenshot in `log_dir`,
+/// stopping at the first failure.
+async fn drive_all(c: &Client, base: &str, log_dir: &Path) -> R<()> {
+    drive(c, base, &log_dir.join("serve_e2e.png")).await?;
+    drive_defaults(c, base, &log_dir.join("serve_e2e_physical.png")).await?;
+    drive_bad_url(c, base, &log_dir.join("serve_e2e_bad_url.png")).await?;
+    drive_narrow(c, base, &log_dir.join("serve_e2e_narrow.png")).await?;
+    drive_loop(c, base, &log_dir.join("serve_e2e_loop.png")).await
+}
+
+#[test]
+fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
+    let chromium = tool("HAPSTAB_CHROMIUM", "/usr/bin/chromium");
+    let driver = tool("HAPSTAB_CHROMEDRIVER", "/usr/bin/chromedriver");
+    if !browser_found(&chromium, &driver) {
+        return;
+    }
+    let server = Server::start(&[]);
+    let log_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let (_driver, port) = start_chromedriver(&driver, &log_dir);
+    let profile = tempfile::tempdir().expect("profile dir");
+    let caps = chromium_capabilities(&chromium, profile.path());
     let base = server.base();
     let rt = tokio::runtime::Builder::new_current_thread()
         .enable_all()
@@ -715,19 +770,7 @@ fn browser_moves_delta_slider_and_shows_the_library_alpha_max() {
             .capabilities(caps)
             .connect(&format!("http://127.0.0.1:{port}"))
             .await?;
-        let mut r = drive(&c, &base, &shot).await;
-        if r.is_ok() {
-            r = drive_defaults(&c, &base, &log_dir.join("serve_e2e_physical.png")).await;
-        }
-        if r.is_ok() {
-            r = drive_bad_url(&c, &base, &log_dir.join("serve_e2e_bad_url.png")).await;
-        }
-        if r.is_ok() {
-            r = drive_narrow(&c, &base, &log_dir.join("serve_e2e_narrow.png")).await;
-        }
-        if r.is_ok() {
-            r = drive_loop(&c, &base, &log_dir.join("serve_e2e_loop.png")).await;
-        }
+        let r = drive_all(&c, &base, &log_dir).await;
         let _ = c.close().await;
         r
     });

@@ -117,18 +117,45 @@ fn host_header_must_be_one_loopback_authority_of_this_server() {
 fn oversized_and_malformed_requests_get_json_errors() {
     let s = Server::start(&[]);
     let port = s.port;
+    for (req, status, words) in &oversized_and_malformed_requests(&s) {
+        let r = raw_request(port, req.as_bytes());
+        let (st, msg) = json_error(&r);
+        let shown = &req[..req.len().min(60)];
+        assert_eq!(st, *status, "{shown:?}: {msg}");
+        assert!(msg.contains(words), "{shown:?}: '{msg}' lacks '{words}'");
+    }
+    // a body within the limit is fine, and so is the server after all of the above
+    let host = host_lines(port);
+    let r = raw_request(
+        port,
+        format!("GET /api/limits HTTP/1.1\r\n{host}Content-Length: 3\r\n\r\nabc").as_bytes(),
+    );
+    assert_eq!(r.status, 200, "{}", r.body);
+    // other methods and paths stay JSON too
+    let (st, _) = json_error(&request(port, "DELETE", "/api/region", &[]));
+    assert_eq!(st, 405);
+}
+
+/// The Host and Connection header lines of a request to this server.
+fn host_lines(port: u16) -> String {
+    format!("Host: 127.0.0.1:{port}\r\nConnection: close\r\n")
+}
+
+/// Requests beyond the server's limits (read from `/api/limits`) or malformed: (request,
+/// status, words of the message).
+fn oversized_and_malformed_requests(s: &Server) -> Vec<(String, u16, &'static str)> {
+    let port = s.port;
     let l = s.get("/api/limits").json();
     let max_uri = l["uri_bytes_max"].as_u64().unwrap() as usize;
     let max_head = l["head_bytes_max"].as_u64().unwrap() as usize;
     let max_headers = l["headers_max"].as_u64().unwrap() as usize;
     let max_body = l["body_bytes_max"].as_u64().unwrap() as usize;
-    let host = format!("Host: 127.0.0.1:{port}\r\nConnection: close\r\n");
+    let host = host_lines(port);
     let pad = |n: usize| "a".repeat(n);
     let many: String = (0..=max_headers)
         .map(|i| format!("X-Field-{i}: 1\r\n"))
         .collect();
-    // (request, status, words of the message)
-    let cases: Vec<(String, u16, &str)> = vec![
+    vec![
         (
             format!("GET /api/limits?x={} HTTP/1.1\r\n{host}\r\n", pad(max_uri)),
             414,
@@ -183,23 +210,7 @@ fn oversized_and_malformed_requests_get_json_errors() {
             400,
             "malformed HTTP request",
         ),
-    ];
-    for (req, status, words) in &cases {
-        let r = raw_request(port, req.as_bytes());
-        let (st, msg) = json_error(&r);
-        let shown = &req[..req.len().min(60)];
-        assert_eq!(st, *status, "{shown:?}: {msg}");
-        assert!(msg.contains(words), "{shown:?}: '{msg}' lacks '{words}'");
-    }
-    // a body within the limit is fine, and so is the server after all of the above
-    let r = raw_request(
-        port,
-        format!("GET /api/limits HTTP/1.1\r\n{host}Content-Length: 3\r\n\r\nabc").as_bytes(),
-    );
-    assert_eq!(r.status, 200, "{}", r.body);
-    // other methods and paths stay JSON too
-    let (st, _) = json_error(&request(port, "DELETE", "/api/region", &[]));
-    assert_eq!(st, 405);
+    ]
 }
 
 #[test]

@@ -291,20 +291,68 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
+/// The plot's geometry in the SVG: margins, plot size, and the view in display coordinates
+/// (α·sx, β·sy: K and B in physical mode).
+struct Frame {
+    ml: f64,
+    mt: f64,
+    pw: f64,
+    ph: f64,
+    sx: f64,
+    sy: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+}
+
+impl Frame {
+    /// The frame of a `w` × `h` image of `view`.
+    fn new(out: &RegionOut, view: [f64; 4], w: usize, h: usize) -> Self {
+        let (ml, mr, mt, mb) = (80.0, 20.0, 46.0, 56.0);
+        let (wf, hf) = (w as f64, h as f64);
+        let (sx, sy) = match &out.physical {
+            Some(p) => (p.k_per_alpha, p.b_per_beta),
+            None => (1.0, 1.0),
+        };
+        Self {
+            ml,
+            mt,
+            pw: wf - ml - mr,
+            ph: hf - mt - mb,
+            sx,
+            sy,
+            x0: view[0] * sx,
+            x1: view[1] * sx,
+            y0: view[2] * sy,
+            y1: view[3] * sy,
+        }
+    }
+
+    /// The x pixel of α.
+    fn px(&self, a: f64) -> f64 {
+        self.ml + (a * self.sx - self.x0) / (self.x1 - self.x0) * self.pw
+    }
+
+    /// The y pixel of β.
+    fn py(&self, b: f64) -> f64 {
+        self.mt + self.ph - (b * self.sy - self.y0) / (self.y1 - self.y0) * self.ph
+    }
+
+    /// The SVG points list of (α, β) vertices.
+    fn points(&self, vertices: &[[f64; 2]]) -> String {
+        let d: Vec<String> = vertices
+            .iter()
+            .map(|v| format!("{:.2},{:.2}", self.px(v[0]), self.py(v[1])))
+            .collect();
+        d.join(" ")
+    }
+}
+
 /// A standalone SVG of the view.
 fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usize) -> String {
-    let (ml, mr, mt, mb) = (80.0, 20.0, 46.0, 56.0);
-    let (wf, hf) = (w as f64, h as f64);
-    let (pw, ph) = (wf - ml - mr, hf - mt - mb);
-    let (sx, sy) = match &out.physical {
-        Some(p) => (p.k_per_alpha, p.b_per_beta),
-        None => (1.0, 1.0),
-    };
-    // display coordinates: (α·sx, β·sy)
-    let (x0, x1, y0, y1) = (view[0] * sx, view[1] * sx, view[2] * sy, view[3] * sy);
-    let px = |a: f64| ml + (a * sx - x0) / (x1 - x0) * pw;
-    let py = |b: f64| mt + ph - (b * sy - y0) / (y1 - y0) * ph;
-    let pt_str = |a: f64, b: f64| format!("{:.2},{:.2}", px(a), py(b));
+    let f = Frame::new(out, view, w, h);
+    let (ml, mt, pw, ph) = (f.ml, f.mt, f.pw, f.ph);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -315,7 +363,33 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
         s,
         r#"<defs><clipPath id="plot"><rect x="{ml}" y="{mt}" width="{pw}" height="{ph}"/></clipPath></defs>"#
     );
-    // grid and ticks
+    svg_grid(&mut s, &f);
+    svg_axis_labels(&mut s, out, &f, h as f64);
+    let _ = writeln!(
+        s,
+        r#"<text x="{ml}" y="20" font-size="14" font-weight="bold">{}</text>"#,
+        esc(&svg_title(out))
+    );
+    let _ = writeln!(s, r#"<g clip-path="url(#plot)">"#);
+    svg_areas(&mut s, out, &f);
+    svg_lines(&mut s, out, &f, view);
+    if let Some(p) = pt {
+        svg_point(&mut s, p, &f);
+    }
+    let _ = writeln!(s, "</g>");
+    let _ = writeln!(
+        s,
+        r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##
+    );
+    svg_legend(&mut s, &legend_items(out, pt), &f);
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The grid lines and tick labels of both axes.
+fn svg_grid(s: &mut String, f: &Frame) {
+    let (ml, mt, pw, ph) = (f.ml, f.mt, f.pw, f.ph);
+    let (x0, x1, y0, y1) = (f.x0, f.x1, f.y0, f.y1);
     for t in ticks(x0, x1, 8) {
         let x = ml + (t - x0) / (x1 - x0) * pw;
         let _ = writeln!(
@@ -339,6 +413,10 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
             esc(&sig(t, 4))
         );
     }
+}
+
+/// The x and y axis labels: K and B in physical mode, α and β otherwise.
+fn svg_axis_labels(s: &mut String, out: &RegionOut, f: &Frame, hf: f64) {
     let (xl, yl) = if out.physical.is_some() {
         ("virtual stiffness K (N/m)", "virtual damping B (Ns/m)")
     } else {
@@ -347,14 +425,18 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
     let _ = writeln!(
         s,
         r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{xl}</text>"#,
-        ml + pw / 2.0,
+        f.ml + f.pw / 2.0,
         hf - 14.0
     );
     let _ = writeln!(
         s,
         r#"<text transform="translate(18,{:.1}) rotate(-90)" text-anchor="middle">{yl}</text>"#,
-        mt + ph / 2.0
+        f.mt + f.ph / 2.0
     );
+}
+
+/// The plot's title: the plant, with its physical parameters in physical mode.
+fn svg_title(out: &RegionOut) -> String {
     let p = &out.params;
     let mut title = format!(
         "Exact stable region: γ = {}, δ = {}, d = {}",
@@ -372,97 +454,98 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
             sig(ph.period, 5)
         );
     }
-    let _ = writeln!(
-        s,
-        r#"<text x="{ml}" y="20" font-size="14" font-weight="bold">{}</text>"#,
-        esc(&title)
-    );
-    let _ = writeln!(s, r#"<g clip-path="url(#plot)">"#);
+    title
+}
+
+/// The filled areas: the exact region, the robust region and the passive regions.
+fn svg_areas(s: &mut String, out: &RegionOut, f: &Frame) {
     for poly in &out.region.polygons {
-        let d: Vec<String> = poly.iter().map(|v| pt_str(v[0], v[1])).collect();
         let _ = writeln!(
             s,
             "<polygon class=\"region\" points=\"{}\" fill=\"#4c8fd6\" fill-opacity=\"0.35\" stroke=\"#1d4f91\" stroke-width=\"1.5\"/>",
-            d.join(" ")
+            f.points(poly)
         );
     }
     if let Some(r) = out.robust.as_ref().filter(|r| !r.polygon.is_empty()) {
-        let d: Vec<String> = r.polygon.iter().map(|v| pt_str(v[0], v[1])).collect();
         let _ = writeln!(
             s,
             "<polygon class=\"robust\" points=\"{}\" fill=\"#f0b400\" fill-opacity=\"0.25\" stroke=\"#a87b00\" stroke-width=\"1.5\" stroke-dasharray=\"6 3\"/>",
-            d.join(" ")
+            f.points(&r.polygon)
         );
     }
     if let Some(pa) = &out.passive {
-        let d: Vec<String> = pa.vertices.iter().map(|v| pt_str(v[0], v[1])).collect();
         let _ = writeln!(
             s,
             "<polygon class=\"passive\" points=\"{}\" fill=\"#2ca02c\" fill-opacity=\"0.35\" stroke=\"#1a6e1a\" stroke-width=\"1.5\"/>",
-            d.join(" ")
+            f.points(&pa.vertices)
         );
     }
     if let Some(pa) = &out.passive_with_arm {
-        let d: Vec<String> = pa.vertices.iter().map(|v| pt_str(v[0], v[1])).collect();
         let _ = writeln!(
             s,
             "<polygon class=\"passive-with-arm\" points=\"{}\" fill=\"none\" stroke=\"#1a6e1a\" stroke-width=\"1.5\" stroke-dasharray=\"4 3\"/>",
-            d.join(" ")
+            f.points(&pa.vertices)
         );
     }
+}
+
+/// The lines: the linear condition with its α > −γ bound, and α_max with its vertex.
+fn svg_lines(s: &mut String, out: &RegionOut, f: &Frame, view: [f64; 4]) {
+    let (mt, ph) = (f.mt, f.ph);
     if let Some(l) = &out.linear {
         let (b0, b1) = (view[2], view[3]);
         let _ = writeln!(
             s,
             "<line class=\"linear\" x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"8 4\"/>",
-            px(l.alpha_at_beta0 + l.slope * b0),
-            py(b0),
-            px(l.alpha_at_beta0 + l.slope * b1),
-            py(b1)
+            f.px(l.alpha_at_beta0 + l.slope * b0),
+            f.py(b0),
+            f.px(l.alpha_at_beta0 + l.slope * b1),
+            f.py(b1)
         );
         let _ = writeln!(
             s,
             "<line x1=\"{:.2}\" y1=\"{mt}\" x2=\"{:.2}\" y2=\"{}\" stroke=\"#d62728\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>",
-            px(l.alpha_lower),
-            px(l.alpha_lower),
+            f.px(l.alpha_lower),
+            f.px(l.alpha_lower),
             mt + ph
         );
     }
     let am = out.region.alpha_max;
     if am.is_finite() {
-        let (x, y) = (px(am), py(out.region.beta_at_alpha_max));
+        let (x, y) = (f.px(am), f.py(out.region.beta_at_alpha_max));
         let _ = writeln!(
             s,
             "<line x1=\"{x:.2}\" y1=\"{mt}\" x2=\"{x:.2}\" y2=\"{}\" stroke=\"#444\" stroke-dasharray=\"3 3\"/><circle class=\"alpha-max\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"5\" fill=\"#111\"/>",
             mt + ph
         );
     }
-    if let Some(p) = pt {
-        let color = verdict_color(p.verdict);
-        let (x, y) = (px(p.params.alpha), py(p.params.beta));
-        let _ = writeln!(
-            s,
-            "<g class=\"point\" stroke=\"{color}\" stroke-width=\"2.5\"><line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/><line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/></g>",
-            x - 6.0,
-            y - 6.0,
-            x + 6.0,
-            y + 6.0,
-            x - 6.0,
-            y + 6.0,
-            x + 6.0,
-            y - 6.0
-        );
-    }
-    let _ = writeln!(s, "</g>");
+}
+
+/// The selected point: a cross in its verdict's color.
+fn svg_point(s: &mut String, p: &PointOut, f: &Frame) {
+    let color = verdict_color(p.verdict);
+    let (x, y) = (f.px(p.params.alpha), f.py(p.params.beta));
     let _ = writeln!(
         s,
-        r##"<rect x="{ml}" y="{mt}" width="{pw}" height="{ph}" fill="none" stroke="#333"/>"##
+        "<g class=\"point\" stroke=\"{color}\" stroke-width=\"2.5\"><line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/><line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/></g>",
+        x - 6.0,
+        y - 6.0,
+        x + 6.0,
+        y + 6.0,
+        x - 6.0,
+        y + 6.0,
+        x + 6.0,
+        y - 6.0
     );
-    // legend
+}
+
+/// The legend's entries (text, color) of everything drawn.
+fn legend_items(out: &RegionOut, pt: Option<&PointOut>) -> Vec<(String, &'static str)> {
     let mut items: Vec<(String, &str)> = vec![("exact stable region".into(), "#4c8fd6")];
     if out.linear.is_some() {
         items.push(("linear condition (23), α > −γ (19)".into(), "#d62728"));
     }
+    let am = out.region.alpha_max;
     if am.is_finite() {
         let v = match &out.physical {
             Some(ph) => format!("K_max = {} N/m", sig(am * ph.k_per_alpha, 6)),
@@ -497,9 +580,14 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
             verdict_color(p.verdict),
         ));
     }
-    let lx = ml + pw - 290.0;
+    items
+}
+
+/// The legend: a color swatch and a text per entry, top right of the plot.
+fn svg_legend(s: &mut String, items: &[(String, &str)], f: &Frame) {
+    let lx = f.ml + f.pw - 290.0;
     for (i, (text, color)) in items.iter().enumerate() {
-        let y = mt + 16.0 + 18.0 * i as f64;
+        let y = f.mt + 16.0 + 18.0 * i as f64;
         let _ = writeln!(
             s,
             r#"<rect x="{lx:.1}" y="{:.1}" width="12" height="12" fill="{color}" fill-opacity="0.7"/><text x="{:.1}" y="{:.1}">{}</text>"#,
@@ -509,8 +597,6 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
             esc(text)
         );
     }
-    s.push_str("</svg>\n");
-    s
 }
 
 #[cfg(test)]

@@ -395,87 +395,36 @@ fn delay(p: &Params) -> Result<usize, ApiError> {
 pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     let mode = p.choice("mode", &["normalized", "physical"], "normalized")?;
     if mode == "normalized" {
-        for &name in PHYSICAL_ONLY {
-            if let Some(v) = p.raw(name) {
-                return Err(ApiError::param(
-                    name,
-                    v,
-                    format!(
-                        "parameter '{name}' (got '{}') belongs to mode=physical",
-                        clip(v)
-                    ),
-                ));
-            }
-        }
-        let gamma = p.num_in("gamma", 0.0, MAX_GAMMA, " (normalized stiffness γ = kT²/m)")?;
-        let delta = p.num_in("delta", 0.0, MAX_DELTA, " (normalized damping δ = bT/m)")?;
-        let d = delay(p)?;
-        let plant = PlantParams::new(gamma, delta).map_err(lib_error)?;
-        return Ok(PlantSpec {
-            plant,
-            d,
-            physical: None,
-            general: None,
-        });
+        return normalized_spec(p);
     }
     if LOOP_ONLY.iter().any(|n| p.has(n)) || fractional_delay(p)? {
         return general_spec(p);
     }
-    for name in ["gamma", "delta"] {
-        if let Some(v) = p.raw(name) {
-            return Err(ApiError::param(
-                name,
-                v,
-                format!(
-                    "parameter '{name}' (got '{}') belongs to mode=normalized",
-                    clip(v)
-                ),
-            ));
-        }
-    }
-    let mass_why = " kg";
-    let device = Device {
-        mass: p.num_in("device_mass", 0.0, MAX_MASS, mass_why)?,
-        damping: p.num_in("device_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
-    };
-    let arm = Arm {
-        mass: p.num_in("arm_mass", 0.0, MAX_MASS, mass_why)?,
-        damping: p.num_in("arm_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
-        stiffness: p.num_in("arm_stiffness", 0.0, MAX_PHYS_STIFFNESS, " N/m")?,
-    };
+    paper_physical_spec(p)
+}
+
+/// The normalized mode: (γ, δ, d) of the paper's loop, no physical parameter.
+fn normalized_spec(p: &Params) -> Result<PlantSpec, ApiError> {
+    refuse(p, PHYSICAL_ONLY, "belongs to mode=physical")?;
+    let gamma = p.num_in("gamma", 0.0, MAX_GAMMA, " (normalized stiffness γ = kT²/m)")?;
+    let delta = p.num_in("delta", 0.0, MAX_DELTA, " (normalized damping δ = bT/m)")?;
+    let d = delay(p)?;
+    let plant = PlantParams::new(gamma, delta).map_err(lib_error)?;
+    Ok(PlantSpec {
+        plant,
+        d,
+        physical: None,
+        general: None,
+    })
+}
+
+/// The physical mode on the paper's loop: device + arm, period, whole-sample delay.
+fn paper_physical_spec(p: &Params) -> Result<PlantSpec, ApiError> {
+    refuse(p, &["gamma", "delta"], "belongs to mode=normalized")?;
+    let device = device(p)?;
+    let arm = arm(p)?;
     let period = p.num_in("period", MIN_PERIOD, MAX_PERIOD, " s (sampling period T)")?;
-    let d = match (p.raw("d"), p.opt_num("delay_time")?) {
-        (Some(v), Some(_)) => {
-            return Err(ApiError::param(
-                "d",
-                v,
-                "give either 'd' (samples) or 'delay_time' (s), not both".into(),
-            ));
-        }
-        (Some(_), None) => delay(p)?,
-        (None, Some(td)) => {
-            let s = Sampling::from_delay_time(period, td).map_err(|e| {
-                ApiError::param(
-                    "delay_time",
-                    &fmt(td),
-                    format!("parameter 'delay_time': {e}"),
-                )
-            })?;
-            if s.delay > MAX_D {
-                return Err(ApiError::param(
-                    "delay_time",
-                    &fmt(td),
-                    format!(
-                        "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} s = {} periods)",
-                        fmt(td),
-                        s.delay
-                    ),
-                ));
-            }
-            s.delay
-        }
-        (None, None) => return Err(missing("delay_time")),
-    };
+    let d = whole_delay(p, period)?;
     if device.mass + arm.mass <= 0.0 {
         return Err(ApiError::param(
             "device_mass",
@@ -489,15 +438,7 @@ pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     }
     let eff = Effective::combine(device, arm).map_err(lib_error)?;
     let plant = PlantParams::from_physical(&eff, period).map_err(lib_error)?;
-    if plant.gamma > MAX_GAMMA || plant.delta > MAX_DELTA {
-        return Err(ApiError::bad(format!(
-            "the physical parameters give γ = kT²/m = {} and δ = bT/m = {}; the explorer accepts γ <= {} and δ <= {}",
-            fmt(plant.gamma),
-            fmt(plant.delta),
-            fmt(MAX_GAMMA),
-            fmt(MAX_DELTA)
-        )));
-    }
+    check_explorer_range(&plant)?;
     Ok(PlantSpec {
         plant,
         d,
@@ -517,6 +458,55 @@ pub fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
         }),
         general: None,
     })
+}
+
+/// The delay of the paper's loop in whole samples: `d`, or `delay_time` (s) a whole number
+/// of periods.
+fn whole_delay(p: &Params, period: f64) -> Result<usize, ApiError> {
+    match (p.raw("d"), p.opt_num("delay_time")?) {
+        (Some(v), Some(_)) => Err(ApiError::param(
+            "d",
+            v,
+            "give either 'd' (samples) or 'delay_time' (s), not both".into(),
+        )),
+        (Some(_), None) => delay(p),
+        (None, Some(td)) => {
+            let s = Sampling::from_delay_time(period, td).map_err(|e| {
+                ApiError::param(
+                    "delay_time",
+                    &fmt(td),
+                    format!("parameter 'delay_time': {e}"),
+                )
+            })?;
+            if s.delay > MAX_D {
+                return Err(ApiError::param(
+                    "delay_time",
+                    &fmt(td),
+                    format!(
+                        "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} s = {} periods)",
+                        fmt(td),
+                        s.delay
+                    ),
+                ));
+            }
+            Ok(s.delay)
+        }
+        (None, None) => Err(missing("delay_time")),
+    }
+}
+
+/// The (γ, δ) that physical parameters give are within the explorer's bounds.
+fn check_explorer_range(plant: &PlantParams) -> Result<(), ApiError> {
+    if plant.gamma > MAX_GAMMA || plant.delta > MAX_DELTA {
+        return Err(ApiError::bad(format!(
+            "the physical parameters give γ = kT²/m = {} and δ = bT/m = {}; the explorer accepts γ <= {} and δ <= {}",
+            fmt(plant.gamma),
+            fmt(plant.delta),
+            fmt(MAX_GAMMA),
+            fmt(MAX_DELTA)
+        )));
+    }
+    Ok(())
 }
 
 /// Parameters that make a physical loop other than the paper's.
@@ -549,6 +539,7 @@ fn fractional_delay(p: &Params) -> Result<bool, ApiError> {
     Ok(Delay::from_time(td, t).is_ok_and(|d| d.fraction > 0.0))
 }
 
+/// None of `names` may be given: the first one present is refused with `why`.
 fn refuse(p: &Params, names: &[&str], why: &str) -> Result<(), ApiError> {
     for &name in names {
         if let Some(v) = p.raw(name) {
@@ -562,6 +553,15 @@ fn refuse(p: &Params, names: &[&str], why: &str) -> Result<(), ApiError> {
     Ok(())
 }
 
+/// The one-mass device: `device_mass`, `device_damping`.
+fn device(p: &Params) -> Result<Device, ApiError> {
+    Ok(Device {
+        mass: p.num_in("device_mass", 0.0, MAX_MASS, " kg")?,
+        damping: p.num_in("device_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
+    })
+}
+
+/// The operator's arm: `arm_mass`, `arm_damping`, `arm_stiffness`.
 fn arm(p: &Params) -> Result<Arm, ApiError> {
     Ok(Arm {
         mass: p.num_in("arm_mass", 0.0, MAX_MASS, " kg")?,
@@ -624,11 +624,7 @@ fn plant_model(p: &Params) -> Result<PlantModel, ApiError> {
             arm: arm(p)?,
         }));
     }
-    let device = Device {
-        mass: p.num_in("device_mass", 0.0, MAX_MASS, " kg")?,
-        damping: p.num_in("device_damping", 0.0, MAX_PHYS_DAMPING, " Ns/m")?,
-    };
-    let eff = Effective::combine(device, arm(p)?).map_err(lib_error)?;
+    let eff = Effective::combine(device(p)?, arm(p)?).map_err(lib_error)?;
     Ok(PlantModel::MassSpringDamper(eff))
 }
 

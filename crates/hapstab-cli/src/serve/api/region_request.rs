@@ -56,92 +56,112 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         " (drawing tolerance relative to the region's size)",
     )?;
     let robust = if p.flag("robust")? {
-        if spec.general.is_some() {
-            return Err(ApiError::param(
-                "robust",
-                p.raw("robust").unwrap_or(""),
-                format!(
-                    "parameter 'robust' (got '{}'): the robust region over a range of γ belongs to the paper's loop (device + arm, backward velocity, whole-sample delay, no actuator lag)",
-                    clip(p.raw("robust").unwrap_or(""))
-                ),
-            ));
-        }
-        let (lo, hi, arm_stiffness) = robust_range(p, &spec)?;
-        if spec.d > MAX_ROBUST_D {
-            return Err(ApiError::param(
-                "d",
-                &spec.d.to_string(),
-                format!(
-                    "parameter 'd' must be at most {MAX_ROBUST_D} for the robust region (got {})",
-                    spec.d
-                ),
-            ));
-        }
-        let gs = p
-            .opt_count(
-                "gamma_samples",
-                MIN_ROBUST_GAMMA_SAMPLES,
-                MAX_ROBUST_GAMMA_SAMPLES,
-                "",
-            )?
-            .unwrap_or(DEFAULT_ROBUST_GAMMA_SAMPLES);
-        let bs = p
-            .opt_count(
-                "beta_samples",
-                MIN_ROBUST_BETA_SAMPLES,
-                MAX_ROBUST_BETA_SAMPLES,
-                "",
-            )?
-            .unwrap_or(DEFAULT_ROBUST_BETA_SAMPLES);
-        let refine = p.flag("refine")?;
-        let cost = robust_cost(spec.d, gs, bs, refine);
-        let (name, value) = if gs * DEFAULT_ROBUST_BETA_SAMPLES >= bs * DEFAULT_ROBUST_GAMMA_SAMPLES
-        {
-            ("gamma_samples", gs)
-        } else {
-            ("beta_samples", bs)
-        };
-        within_budget(
-            cost,
-            &format!(
-                "the robust region over gamma_samples × beta_samples = {gs} × {bs} at d = {}{}",
-                spec.d,
-                if refine { " with refinement" } else { "" }
-            ),
-            name,
-            &value.to_string(),
-        )?;
-        Some(RobustReq {
-            lo,
-            hi,
-            arm_stiffness,
-            gamma_samples: gs,
-            beta_samples: bs,
-            refine,
-        })
+        Some(parse_robust(p, &spec)?)
     } else {
-        for name in [
-            "gamma_lo",
-            "gamma_hi",
-            "arm_stiffness_lo",
-            "arm_stiffness_hi",
-            "gamma_samples",
-            "beta_samples",
-            "refine",
-        ] {
-            if let Some(v) = p.raw(name) {
-                return Err(ApiError::param(
-                    name,
-                    v,
-                    format!("parameter '{name}' (got '{}') needs robust=1", clip(v)),
-                ));
-            }
-        }
+        refuse_robust_names(p)?;
         None
     };
     let nominal = nominal_region_cost(spec.cost_d());
     within_budget(nominal, "the exact region", "d", &spec.d.to_string())?;
     Ok(RegionReq { spec, tol, robust })
+}
+
+/// The robust part of a region request (robust=1): its γ range, grid and refinement.
+fn parse_robust(p: &Params, spec: &PlantSpec) -> Result<RobustReq, ApiError> {
+    refuse_robust_for_general_loop(p, spec)?;
+    let (lo, hi, arm_stiffness) = robust_range(p, spec)?;
+    if spec.d > MAX_ROBUST_D {
+        return Err(ApiError::param(
+            "d",
+            &spec.d.to_string(),
+            format!(
+                "parameter 'd' must be at most {MAX_ROBUST_D} for the robust region (got {})",
+                spec.d
+            ),
+        ));
+    }
+    let gs = p
+        .opt_count(
+            "gamma_samples",
+            MIN_ROBUST_GAMMA_SAMPLES,
+            MAX_ROBUST_GAMMA_SAMPLES,
+            "",
+        )?
+        .unwrap_or(DEFAULT_ROBUST_GAMMA_SAMPLES);
+    let bs = p
+        .opt_count(
+            "beta_samples",
+            MIN_ROBUST_BETA_SAMPLES,
+            MAX_ROBUST_BETA_SAMPLES,
+            "",
+        )?
+        .unwrap_or(DEFAULT_ROBUST_BETA_SAMPLES);
+    let refine = p.flag("refine")?;
+    robust_within_budget(spec.d, gs, bs, refine)?;
+    Ok(RobustReq {
+        lo,
+        hi,
+        arm_stiffness,
+        gamma_samples: gs,
+        beta_samples: bs,
+        refine,
+    })
+}
+
+/// The robust region over a range of γ belongs to the paper's loop only.
+fn refuse_robust_for_general_loop(p: &Params, spec: &PlantSpec) -> Result<(), ApiError> {
+    if spec.general.is_some() {
+        return Err(ApiError::param(
+            "robust",
+            p.raw("robust").unwrap_or(""),
+            format!(
+                "parameter 'robust' (got '{}'): the robust region over a range of γ belongs to the paper's loop (device + arm, backward velocity, whole-sample delay, no actuator lag)",
+                clip(p.raw("robust").unwrap_or(""))
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The robust grid's cost within one request's budget, naming the grid's larger side.
+fn robust_within_budget(d: usize, gs: usize, bs: usize, refine: bool) -> Result<(), ApiError> {
+    let cost = robust_cost(d, gs, bs, refine);
+    let (name, value) = if gs * DEFAULT_ROBUST_BETA_SAMPLES >= bs * DEFAULT_ROBUST_GAMMA_SAMPLES {
+        ("gamma_samples", gs)
+    } else {
+        ("beta_samples", bs)
+    };
+    within_budget(
+        cost,
+        &format!(
+            "the robust region over gamma_samples × beta_samples = {gs} × {bs} at d = {d}{}",
+            if refine { " with refinement" } else { "" }
+        ),
+        name,
+        &value.to_string(),
+    )
+}
+
+/// Without robust=1, none of the robust region's parameters may be given.
+fn refuse_robust_names(p: &Params) -> Result<(), ApiError> {
+    for name in [
+        "gamma_lo",
+        "gamma_hi",
+        "arm_stiffness_lo",
+        "arm_stiffness_hi",
+        "gamma_samples",
+        "beta_samples",
+        "refine",
+    ] {
+        if let Some(v) = p.raw(name) {
+            return Err(ApiError::param(
+                name,
+                v,
+                format!("parameter '{name}' (got '{}') needs robust=1", clip(v)),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The γ range of a robust request: `gamma_lo`, `gamma_hi`, or in physical mode the arm's
