@@ -54,15 +54,20 @@ def _k_max_mark(ax, k, b, label):
         ax.plot([k], [b], "o", color=MARK, label=label, zorder=5)
 
 
-def region(r, ax=None):
-    """The exact stable region over the wall (K, B): each polygon filled and outlined, K_max
-    marked."""
-    ax = _axes(ax)
-    for i, p in enumerate(r.polygons):
+def _stable_polygons(ax, polygons):
+    """Each stable polygon filled and outlined; one legend entry for them all."""
+    for i, p in enumerate(polygons):
         closed = np.vstack([p, p[:1]])
         ax.fill(closed[:, 0], closed[:, 1], color=STABLE, alpha=0.35, lw=0,
                 label="stable" if i == 0 else None)
         ax.plot(closed[:, 0], closed[:, 1], color=BOUNDARY, lw=1.0)
+
+
+def region(r, ax=None):
+    """The exact stable region over the wall (K, B): each polygon filled and outlined, K_max
+    marked."""
+    ax = _axes(ax)
+    _stable_polygons(ax, r.polygons)
     if r.k_max is not None:
         _k_max_mark(ax, r.k_max, r.b_at_k_max, f"K_max = {_eng_text(r.k_max, 'N/m')}")
     _finish_wall_plane(ax, "Stable region of the wall")
@@ -97,11 +102,7 @@ def stability_map(m, ax=None):
 def zwidth(z, ax=None):
     """Z-width: the stable region, the passive region outlined over it, K_max of each."""
     ax = _axes(ax)
-    for i, p in enumerate(z.stable):
-        closed = np.vstack([p, p[:1]])
-        ax.fill(closed[:, 0], closed[:, 1], color=STABLE, alpha=0.30, lw=0,
-                label="stable" if i == 0 else None)
-        ax.plot(closed[:, 0], closed[:, 1], color=BOUNDARY, lw=1.0)
+    _stable_polygons(ax, z.stable)
     if z.passive is not None:
         v = np.asarray(z.passive.vertices)
         if len(v):

@@ -8,20 +8,22 @@ use super::within_budget;
 use crate::serve::limits::*;
 use crate::serve::query::{ApiError, Params, PlantSpec, clip, fmt, lib_error, plant_spec};
 
+/// Query names of the robust region (robust=1 only).
+const ROBUST_NAMES: [&str; 7] = [
+    "gamma_lo",
+    "gamma_hi",
+    "arm_stiffness_lo",
+    "arm_stiffness_hi",
+    "gamma_samples",
+    "beta_samples",
+    "refine",
+];
+
 /// Query names of `/api/region`.
 pub fn region_names() -> Vec<&'static str> {
     let mut v: Vec<&str> = crate::serve::query::PLANT_PARAMS.to_vec();
-    v.extend([
-        "tol",
-        "robust",
-        "gamma_lo",
-        "gamma_hi",
-        "arm_stiffness_lo",
-        "arm_stiffness_hi",
-        "gamma_samples",
-        "beta_samples",
-        "refine",
-    ]);
+    v.extend(["tol", "robust"]);
+    v.extend(ROBUST_NAMES);
     v
 }
 
@@ -144,15 +146,7 @@ fn robust_within_budget(d: usize, gs: usize, bs: usize, refine: bool) -> Result<
 
 /// Without robust=1, none of the robust region's parameters may be given.
 fn refuse_robust_names(p: &Params) -> Result<(), ApiError> {
-    for name in [
-        "gamma_lo",
-        "gamma_hi",
-        "arm_stiffness_lo",
-        "arm_stiffness_hi",
-        "gamma_samples",
-        "beta_samples",
-        "refine",
-    ] {
+    for name in ROBUST_NAMES {
         if let Some(v) = p.raw(name) {
             return Err(ApiError::param(
                 name,
