@@ -314,6 +314,9 @@ pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> 
 /// start.
 const TABLE_BLOCK: usize = 512;
 
+/// Angles per parallel task of [`CircleTable::on`] (a few hundred angles in all).
+const SHARED_BLOCK: usize = 128;
+
 /// The parts (P0, PK, PB) of a family on the θ grid of the crossing scan, computed once for
 /// many lines: [`line_crossings_tabulated`] then finds the same crossings as
 /// [`line_crossings`] (the same values at the same θ) without re-evaluating p on the grid,
@@ -337,11 +340,15 @@ impl CircleTable {
         Self { thetas, parts }
     }
 
-    /// The table of `fam` on the given sorted angles in (0, π), built on this thread: one
-    /// analysis's shared grid (the margins'), where a parallel task's start costs more than
-    /// the scan. Its crossings are those of [`line_crossings`] on that grid.
+    /// The table of `fam` on the given sorted angles in (0, π): one analysis's shared grid
+    /// (the margins'), in blocks of [`SHARED_BLOCK`] angles that an idle thread may take.
+    /// Its crossings are those of [`line_crossings`] on that grid.
     pub fn on(fam: &AffineFamily, thetas: Vec<f64>) -> Self {
-        let parts = thetas.iter().map(|&t| fam.parts_on_circle(t)).collect();
+        let parts = thetas
+            .par_iter()
+            .with_min_len(SHARED_BLOCK)
+            .map(|&t| fam.parts_on_circle(t))
+            .collect();
         Self { thetas, parts }
     }
 

@@ -27,7 +27,6 @@ use crate::model::{Delay, Loop};
 use crate::params::{MAX_DELAY, Wall};
 use crate::stability::roots;
 use crate::verdict::{Verdict, decide, decide_fast, stable as verdict_stable};
-use crate::zoh::DiscreteLoop;
 
 /// The confirmed delay margin puts the wall stable at h·(1 − CONFIRM_REL) and not stable at
 /// h·(1 + CONFIRM_REL).
@@ -87,7 +86,8 @@ pub fn delay_margin(lp: &Loop, wall: Wall) -> Result<(DelayScan, Option<f64>)> {
     let (a, b) = base.to_units(wall.stiffness, wall.damping);
     let modes = frequency_grid(&base, a, b);
     let pm = pm_over_wc(&gain_scan(&base, a, b), lp.period);
-    Ok((delay_margin_with(lp, &dl, wall, (a, b), &modes)?, pm))
+    let fl = FractionLoop::new(lp, &dl, a, b, &modes)?;
+    Ok((delay_margin_with(lp, wall, &fl)?, pm))
 }
 
 /// The MATLAB-style figure min PM/ω_c over the gain crossovers of a gain scan, in seconds
@@ -101,18 +101,11 @@ pub fn pm_over_wc(own: &GainScan, period: f64) -> Option<f64> {
         .map(|h| h * period)
 }
 
-/// [`delay_margin`] with the loop's discretization `dl` and [`frequency_grid`] `modes`, as
-/// the margins have them already; (a, b) is the wall in the loop's wall units.
-pub fn delay_margin_with(
-    lp: &Loop,
-    dl: &DiscreteLoop,
-    wall: Wall,
-    (a, b): (f64, f64),
-    modes: &[f64],
-) -> Result<DelayScan> {
+/// [`delay_margin`] on the wall's [`FractionLoop`] `fl` (its grid joined with the loop's
+/// [`frequency_grid`]), as the margins build it beside their own grid.
+pub fn delay_margin_with(lp: &Loop, wall: Wall, fl: &FractionLoop) -> Result<DelayScan> {
     let s0 = lp.delay.in_samples();
-    let fl = FractionLoop::new(lp, dl, a, b, modes)?;
-    let table = FractionTable::new(&fl);
+    let table = FractionTable::new(fl);
     let peak = table.peak_bound();
     if peak < SMALL_GAIN_LIMIT {
         return Ok(DelayScan::SmallGain(peak));
@@ -127,8 +120,8 @@ pub fn delay_margin_with(
     {
         return Ok(DelayScan::StableUpToMax);
     }
-    if let Some((s, theta)) = smallest_solution(&fl, s0, seeds)
-        && confirmed(&fl, s0, s)
+    if let Some((s, theta)) = smallest_solution(fl, s0, seeds)
+        && confirmed(fl, s0, s)
     {
         return Ok(DelayScan::Crossing(DelayMargin {
             seconds: (s - s0) * lp.period,

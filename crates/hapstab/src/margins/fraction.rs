@@ -27,6 +27,7 @@
 //! max_λ |L_λ(θ)| ≤ [max(|W_∅|, |W_∅ + Σ Γ_j ΔW_j|) + Σ_j δ_j·|ΔW_j|]/|P0|.
 
 use num_complex::Complex64;
+use rayon::prelude::*;
 
 use super::frequency::{UNIFORM_PER_DEGREE, root_grid, trimmed};
 use crate::closed_loop::{AffineFamily, SHIFTED_THETA, ShiftedParts};
@@ -35,6 +36,9 @@ use crate::extremum::{golden_max, merge_grid, refine_max, sample_maxima};
 use crate::model::{Delay, Loop};
 use crate::poly::{self, Mat, modulus};
 use crate::zoh::{DiscreteLoop, StateSpace, WallScale, exp_and_integral};
+
+/// Angles per block of [`FractionTable::new`]'s evaluation, one parallel task each.
+const TABLE_BLOCK: usize = 64;
 
 /// Fractions j/FRACTIONS of a sample (j = 0 … FRACTIONS − 1) on which the crossovers of every
 /// fraction's loop are tabulated, and on which the bound's δ_j is sampled.
@@ -264,6 +268,12 @@ impl FractionLoop {
     /// W_∅ and P0 come from the family at g = 0 (exact at z = 1, [`AffineFamily::new`]); the
     /// ΔW_j = (z − 1)·C adj(zI − Φ)e_j·(a·Vd + b·Vn) from one numerator each (module doc).
     pub fn new(lp: &Loop, dl: &DiscreteLoop, a: f64, b: f64, modes: &[f64]) -> Result<Self> {
+        Ok(Self::unjoined(lp, dl, a, b)?.joined(modes))
+    }
+
+    /// [`FractionLoop::new`] with the grid of the wall part at half a sample alone, built
+    /// while the loop's own grid is still being found; [`FractionLoop::joined`] adds that.
+    pub fn unjoined(lp: &Loop, dl: &DiscreteLoop, a: f64, b: f64) -> Result<Self> {
         let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
         // Γ = Γ0 + Γ1 = Ψ(1)B at any fraction of the loop's own delay
         let gamma: Vec<f64> = dl
@@ -331,11 +341,16 @@ impl FractionLoop {
             Some(w) => (w.wall_at(&g_half), 1.0),
             None => (fl.in_z.wall_at(&g_half), 0.0),
         };
-        let mut grid = modes.to_vec();
-        grid.extend(root_grid(&[trimmed(&half)], shift, uniform_step(&fl.in_z)));
-        merge_grid(&mut grid);
-        fl.grid = grid;
+        fl.grid = root_grid(&[trimmed(&half)], shift, uniform_step(&fl.in_z));
         Ok(fl)
+    }
+
+    /// The loop with the loop's own [`super::frequency::frequency_grid`] `modes` joined to
+    /// its grid.
+    pub fn joined(mut self, modes: &[f64]) -> Self {
+        self.grid.extend_from_slice(modes);
+        merge_grid(&mut self.grid);
+        self
     }
 
     /// The number of parts at one angle, n + 2.
@@ -554,14 +569,23 @@ impl<'a> FractionTable<'a> {
         let delta = fl.deviation_bound(fl.holds());
         let width = fl.width();
         let mut values = vec![Complex64::new(0.0, 0.0); width * fl.grid.len()];
-        let mut powers = Vec::new();
-        for (&t, out) in fl.grid.iter().zip(values.chunks_exact_mut(width)) {
-            fl.parts_into(t, &mut powers, out);
-        }
-        let bounds = values
-            .chunks_exact(width)
-            .map(|p| fl.gain_bounds(FractionParts(p), &delta))
-            .collect();
+        // in blocks of angles that an idle thread may take (the margins' other half)
+        let mut bounds = vec![(0.0, 0.0); fl.grid.len()];
+        values
+            .par_chunks_mut(width * TABLE_BLOCK)
+            .zip(bounds.par_chunks_mut(TABLE_BLOCK))
+            .zip(fl.grid.par_chunks(TABLE_BLOCK))
+            .for_each(|((values, bounds), thetas)| {
+                let mut powers = Vec::new();
+                for ((&t, out), bound) in thetas
+                    .iter()
+                    .zip(values.chunks_exact_mut(width))
+                    .zip(bounds)
+                {
+                    fl.parts_into(t, &mut powers, out);
+                    *bound = fl.gain_bounds(FractionParts(out), &delta);
+                }
+            });
         Self {
             fl,
             values,

@@ -38,6 +38,7 @@ use crate::model::Loop;
 use crate::params::{MAX_DELAY, Wall};
 use crate::verdict::stable as verdict_stable;
 use crate::zoh::DiscreteLoop;
+use fraction::FractionLoop;
 
 pub use delay::{DelayScan, delay_margin, delay_scan};
 pub use frequency::{
@@ -206,10 +207,16 @@ fn margins_of_stable(
     wall: Wall,
 ) -> Result<Margins> {
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
-    let modes = frequency_grid(fam, a, b);
+    // the fraction loop's own part is built while the loop's grid is found; then the
+    // frequency response's margins and the delay margin run side by side
+    let (modes, fraction_loop) = rayon::join(
+        || frequency_grid(fam, a, b),
+        || FractionLoop::unjoined(lp, dl, a, b),
+    );
+    let fraction_loop = fraction_loop?.joined(&modes);
     let ((mut out, scan), delay) = rayon::join(
         || frequency_margins(lp, fam, (a, b), &modes),
-        || delay::delay_margin_with(lp, dl, wall, (a, b), &modes),
+        || delay::delay_margin_with(lp, wall, &fraction_loop),
     );
     out.delay_pm_over_wc = delay::pm_over_wc(&scan, lp.period);
     delay_note(&mut out, delay?);
@@ -229,8 +236,24 @@ fn frequency_margins(
     let mut out = Margins::withheld(true, "");
     out.notes.clear();
     let table = CircleTable::on(fam, margin_grid(fam, modes));
-    let ray = (!(a == 0.0 && b == 0.0)).then(|| factors(fam, &table, &WallLine::ray(p), 1.0, hz));
-    let axis = (a != 0.0).then(|| factors(fam, &table, &WallLine::stiffness_axis(b), a, hz));
+    // the factors on two lines and the readings of the response, side by side on one table
+    let ((ray, axis), (scan, (sm, sm_theta))) = rayon::join(
+        || {
+            rayon::join(
+                || {
+                    (!(a == 0.0 && b == 0.0))
+                        .then(|| factors(fam, &table, &WallLine::ray(p), 1.0, hz))
+                },
+                || (a != 0.0).then(|| factors(fam, &table, &WallLine::stiffness_axis(b), a, hz)),
+            )
+        },
+        || {
+            (
+                gain_scan_tabulated(fam, a, b, &table),
+                stability_margin_tabulated(fam, a, b, &table),
+            )
+        },
+    );
     if let Some(r) = &ray {
         (out.gain, out.gain_lower) = (r.upper, r.lower);
         out.crossings = r.crossings.clone();
@@ -252,7 +275,6 @@ fn frequency_margins(
         out.notes
             .push("no factor on K makes the wall unstable (stiffness margin unbounded)".into());
     }
-    let scan = gain_scan_tabulated(fam, a, b, &table);
     out.peak_gain = scan
         .peak
         .1
@@ -285,11 +307,10 @@ fn frequency_margins(
             scan.peak.0
         ));
     }
-    let (sm, t) = stability_margin_tabulated(fam, a, b, &table);
     out.stability_margin = sm.is_finite().then(|| StabilityMargin {
         value: sm,
-        theta: t,
-        frequency_hz: hz(t),
+        theta: sm_theta,
+        frequency_hz: hz(sm_theta),
     });
     (out, scan)
 }
