@@ -362,13 +362,17 @@ impl FractionLoop {
     /// −2 sin²(θ/2) + i sin θ below [`SHIFTED_THETA`] (no cancellation near z = 1, as
     /// [`AffineFamily::parts_on_circle`]), in z above.
     fn parts_into(&self, theta: f64, powers: &mut Vec<Complex64>, out: &mut [Complex64]) {
-        let z = Complex64::from_polar(1.0, theta);
         match &self.in_w {
             Some(w_polys) if theta.abs() < SHIFTED_THETA => {
-                let h = (0.5 * theta).sin();
-                w_polys.at_into(Complex64::new(-2.0 * h * h, theta.sin()), z, powers, out)
+                // sin θ = 2 sin(θ/2) cos(θ/2): one sine and cosine for w and z = 1 + w
+                let (h, c) = (0.5 * theta).sin_cos();
+                let w = Complex64::new(-2.0 * h * h, 2.0 * h * c);
+                w_polys.at_into(w, w + 1.0, powers, out)
             }
-            _ => self.in_z.at_into(z, z, powers, out),
+            _ => {
+                let z = Complex64::from_polar(1.0, theta);
+                self.in_z.at_into(z, z, powers, out)
+            }
         }
     }
 
