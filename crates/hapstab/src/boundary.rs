@@ -330,23 +330,22 @@ pub struct CircleTable {
 impl CircleTable {
     /// The table of `fam` on its scan grid.
     pub fn new(fam: &AffineFamily) -> Self {
-        let thetas = scan_thetas(fam);
-        // in parallel, in blocks of TABLE_BLOCK angles (each the same value as unblocked)
-        let parts = thetas
-            .par_iter()
-            .with_min_len(TABLE_BLOCK)
-            .map(|&t| fam.parts_on_circle(t))
-            .collect();
-        Self { thetas, parts }
+        Self::in_blocks(fam, scan_thetas(fam), TABLE_BLOCK)
     }
 
     /// The table of `fam` on the given sorted angles in (0, π): one analysis's shared grid
     /// (the margins'), in blocks of [`SHARED_BLOCK`] angles that an idle thread may take.
     /// Its crossings are those of [`line_crossings`] on that grid.
     pub fn on(fam: &AffineFamily, thetas: Vec<f64>) -> Self {
+        Self::in_blocks(fam, thetas, SHARED_BLOCK)
+    }
+
+    /// The parts of `fam` at `thetas`, in parallel blocks of at least `block` angles (each
+    /// the same value as unblocked).
+    fn in_blocks(fam: &AffineFamily, thetas: Vec<f64>, block: usize) -> Self {
         let parts = thetas
             .par_iter()
-            .with_min_len(SHARED_BLOCK)
+            .with_min_len(block)
             .map(|&t| fam.parts_on_circle(t))
             .collect();
         Self { thetas, parts }
