@@ -216,7 +216,13 @@ fn random_argument_vectors_end_in_time_with_exit_0_or_2_and_one_line_errors() {
                 "{args:?}: killed by a signal; {err}"
             )));
         };
-        prop_assert!(code == 0 || code == 2, "{args:?}: exit {code}; {err}");
+        // exit 1 is `check --fail-unstable`'s documented answer for a wall that is not
+        // stable, never an error
+        let may_fail = args.iter().any(|a| a == "--fail-unstable");
+        prop_assert!(
+            code == 0 || code == 2 || (code == 1 && may_fail && !err.contains("error:")),
+            "{args:?}: exit {code}; {err}"
+        );
         prop_assert!(!err.contains("panicked"), "{args:?}: {err}");
         codes.borrow_mut()[code as usize] += 1;
         if code == 2 {
@@ -227,10 +233,11 @@ fn random_argument_vectors_end_in_time_with_exit_0_or_2_and_one_line_errors() {
     });
     let (slowest, codes) = (slowest.into_inner(), codes.into_inner());
     println!(
-        "{} cases in {:.1} s: {} exit 0, {} exit 2; slowest {:.2} s: {:?}",
+        "{} cases in {:.1} s: {} exit 0, {} exit 1 (not stable), {} exit 2; slowest {:.2} s: {:?}",
         cases(),
         t0.elapsed().as_secs_f64(),
         codes[0],
+        codes[1],
         codes[2],
         slowest.0.as_secs_f64(),
         slowest.1
