@@ -310,35 +310,42 @@ fn physical_paper_loop_has_the_normalized_view() {
     assert!(max_diff(&f.coefficients(alpha, beta), &pf.coefficients(alpha, beta)) < 1e-15);
 }
 
-/// Ten loops beyond the paper's: two-mass device, actuator lag, every velocity estimator,
-/// fractional delays, a transfer function.
-fn general_loops() -> Vec<(&'static str, Loop)> {
-    let arm = Arm::TYPICAL;
-    let msd = || paper_plant();
-    let two_mass = || {
-        Plant::new(
-            PlantModel::TwoMass(TwoMass {
-                motor_mass: 0.05,
-                motor_damping: 0.5,
-                handle_mass: 0.05,
-                transmission_stiffness: 2e4,
-                transmission_damping: 2.0,
-                arm,
-            }),
-            0.0,
-        )
-        .unwrap()
-    };
-    let frac = |x: f64| Delay::from_time(x * 1e-3, 1e-3).unwrap();
-    let whole = |d: usize| Delay::samples(d).unwrap();
-    let tf = Plant::new(
+/// A two-mass device (50 g motor and handle, 20 kN/m transmission) held by the typical arm.
+fn two_mass_plant() -> Plant {
+    Plant::new(
+        PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.05,
+            motor_damping: 0.5,
+            handle_mass: 0.05,
+            transmission_stiffness: 2e4,
+            transmission_damping: 2.0,
+            arm: Arm::TYPICAL,
+        }),
+        0.0,
+    )
+    .unwrap()
+}
+
+/// P(s) = (2s + 400)/(0.1s⁴ + 8s³ + 900s² + 4e4 s + 1e5).
+fn fourth_order_plant() -> Plant {
+    Plant::new(
         PlantModel::TransferFunction {
             num: vec![2.0, 400.0],
             den: vec![0.1, 8.0, 900.0, 4.0e4, 1.0e5],
         },
         0.0,
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// Ten loops beyond the paper's: two-mass device, actuator lag, every velocity estimator,
+/// fractional delays, a transfer function.
+fn general_loops() -> Vec<(&'static str, Loop)> {
+    let msd = || paper_plant();
+    let two_mass = two_mass_plant;
+    let frac = |x: f64| Delay::from_time(x * 1e-3, 1e-3).unwrap();
+    let whole = |d: usize| Delay::samples(d).unwrap();
+    let tf = fourth_order_plant();
     let iir = VelocityEstimator::Iir {
         // backward difference through a 2-tap moving average: (1 − z⁻²)/(2T)
         b: vec![500.0, 0.0, -500.0],
@@ -602,6 +609,25 @@ fn wall_map_agrees_with_the_region() {
     }
 }
 
+/// The product of two polynomials (coefficients in either order, the same for both).
+fn poly_mul(p: &[f64], q: &[f64]) -> Vec<f64> {
+    let mut r = vec![0.0; p.len() + q.len() - 1];
+    for (i, x) in p.iter().enumerate() {
+        for (k, y) in q.iter().enumerate() {
+            r[i + k] += x * y;
+        }
+    }
+    r
+}
+
+/// The exact stable stiffness intervals (N/m) of a family at damping `b_ns` (Ns/m).
+fn stiffness_intervals(fam: &AffineFamily, b_ns: f64) -> Vec<(f64, f64)> {
+    hapstab::boundary::stable_alpha_intervals(fam, fam.to_units(0.0, b_ns).1)
+        .iter()
+        .map(|iv| (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0))
+        .collect()
+}
+
 /// A two-mass device with an arm equals the transfer function written from its equations of
 /// motion: motor J s²x_m + b_m s x_m + (b_t s + k_t)(x_m − x_h) = F, handle and arm
 /// M s²x_h + b_H s x_h + k_H x_h = (b_t s + k_t)(x_m − x_h), so P = A_h/(A_m A_h − C²) with
@@ -616,16 +642,7 @@ fn two_mass_equals_its_transfer_function() {
     let am = [j, bm + bt, kt];
     let ah = [m, arm.damping + bt, kt + arm.stiffness];
     let c = [bt, kt];
-    let mul = |p: &[f64], q: &[f64]| {
-        let mut r = vec![0.0; p.len() + q.len() - 1];
-        for (i, x) in p.iter().enumerate() {
-            for (k, y) in q.iter().enumerate() {
-                r[i + k] += x * y;
-            }
-        }
-        r
-    };
-    let (amah, cc) = (mul(&am, &ah), mul(&c, &c));
+    let (amah, cc) = (poly_mul(&am, &ah), poly_mul(&c, &c));
     let mut den = amah.clone();
     let off = den.len() - cc.len();
     for (i, x) in cc.iter().enumerate() {
@@ -670,18 +687,9 @@ fn two_mass_equals_its_transfer_function() {
         .unwrap();
         let (f2, ft) = (family(&two), family(&tf));
         for b_ns in [0.0, 2.0, 8.0] {
-            let to_n = |fam: &AffineFamily, ivs: Vec<hapstab::boundary::Interval>| {
-                ivs.iter()
-                    .map(|iv| (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0))
-                    .collect::<Vec<_>>()
-            };
-            let i2 = to_n(
-                &f2,
-                hapstab::boundary::stable_alpha_intervals(&f2, f2.to_units(0.0, b_ns).1),
-            );
-            let it = to_n(
-                &ft,
-                hapstab::boundary::stable_alpha_intervals(&ft, ft.to_units(0.0, b_ns).1),
+            let (i2, it) = (
+                stiffness_intervals(&f2, b_ns),
+                stiffness_intervals(&ft, b_ns),
             );
             assert_eq!(
                 i2.len(),

@@ -233,8 +233,6 @@ fn frequency_margins(
 ) -> (Margins, GainScan) {
     let p = AlphaBeta { alpha: a, beta: b };
     let hz = |theta: f64| theta / (2.0 * std::f64::consts::PI * lp.period);
-    let mut out = Margins::withheld(true, "");
-    out.notes.clear();
     let table = CircleTable::on(fam, margin_grid(fam, modes));
     // the factors on two lines and the readings of the response, side by side on one table
     let ((ray, axis), (scan, (sm, sm_theta))) = rayon::join(
@@ -254,11 +252,26 @@ fn frequency_margins(
             )
         },
     );
-    if let Some(r) = &ray {
+    let mut out = Margins::withheld(true, "");
+    out.notes.clear();
+    put_factors(&mut out, ray.as_ref(), axis.as_ref());
+    put_gain_scan(&mut out, &scan, hz);
+    out.stability_margin = sm.is_finite().then(|| StabilityMargin {
+        value: sm,
+        theta: sm_theta,
+        frequency_hz: hz(sm_theta),
+    });
+    (out, scan)
+}
+
+/// The gain and stiffness margins from the factors along the ray through the wall and along
+/// the K axis (None where the wall has no such line), with the notes for unbounded ones.
+fn put_factors(out: &mut Margins, ray: Option<&Factors>, axis: Option<&Factors>) {
+    if let Some(r) = ray {
         (out.gain, out.gain_lower) = (r.upper, r.lower);
         out.crossings = r.crossings.clone();
     }
-    if let Some(k) = &axis {
+    if let Some(k) = axis {
         (out.stiffness, out.stiffness_lower) = (k.upper, k.lower);
     }
     if out.gain.is_none() {
@@ -275,6 +288,11 @@ fn frequency_margins(
         out.notes
             .push("no factor on K makes the wall unstable (stiffness margin unbounded)".into());
     }
+}
+
+/// The peak gain, the gain crossovers (joined to the crossings in increasing frequency) and
+/// the phase margin smallest in magnitude over them, from the gain scan.
+fn put_gain_scan(out: &mut Margins, scan: &GainScan, hz: impl Fn(f64) -> f64) {
     out.peak_gain = scan
         .peak
         .1
@@ -307,12 +325,6 @@ fn frequency_margins(
             scan.peak.0
         ));
     }
-    out.stability_margin = sm.is_finite().then(|| StabilityMargin {
-        value: sm,
-        theta: sm_theta,
-        frequency_hz: hz(sm_theta),
-    });
-    (out, scan)
 }
 
 /// The delay margin's outcome into the margins and their notes.

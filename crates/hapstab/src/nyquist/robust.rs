@@ -199,28 +199,79 @@ pub fn robust_region_with_progress(
         .collect();
     // extents by bisection between empty and non-empty neighbours
     let nonempty = |b: f64| robust_at(&configs, b).0.iter().any(|iv| iv.lo < iv.hi);
+    let extra = extent_betas(&betas, &res, bb, nonempty);
+    refine_bends(&mut betas, &mut res, opts.refine_beta_rounds, &slice);
+    for b in extra {
+        if let Some(s) = slice(b) {
+            betas.push(b);
+            res.push(Some(s));
+        }
+    }
+    let multiple_intervals = res.iter().flatten().any(|s| s.3);
+    let mut slices: Vec<RobustSlice> = betas
+        .iter()
+        .zip(&res)
+        .filter_map(|(&beta, s)| {
+            s.map(|(iv, tl, th, _)| RobustSlice {
+                beta,
+                lo: iv.lo,
+                hi: iv.hi,
+                gamma_at_lo: tl,
+                gamma_at_hi: th,
+            })
+        })
+        .collect();
+    slices.sort_by(|a, b| a.beta.total_cmp(&b.beta));
+    Ok(region_of_slices(
+        (delta, d, gamma_lo, gamma_hi),
+        degenerate_gammas,
+        slices,
+        multiple_intervals,
+    ))
+}
+
+/// The β where the region's extent ends, by bisection between every empty and nonempty pair
+/// of neighbouring samples, and at ±B beyond a nonempty end sample (|β| = B is unstable for
+/// the plant that sets B).
+fn extent_betas(
+    betas: &[f64],
+    res: &[Option<Slice>],
+    bb: f64,
+    nonempty: impl Fn(f64) -> bool,
+) -> Vec<f64> {
+    let n = betas.len();
     let mut extra: Vec<f64> = Vec::new();
-    for i in 0..betas.len().saturating_sub(1) {
+    for i in 0..n.saturating_sub(1) {
         match (res[i].is_some(), res[i + 1].is_some()) {
-            (false, true) => extra.push(bisect_pred(betas[i], betas[i + 1], nonempty)),
-            (true, false) => extra.push(bisect_pred(betas[i + 1], betas[i], nonempty)),
+            (false, true) => extra.push(bisect_pred(betas[i], betas[i + 1], &nonempty)),
+            (true, false) => extra.push(bisect_pred(betas[i + 1], betas[i], &nonempty)),
             _ => {}
         }
     }
-    // |β| = B is unstable for the plant that sets B: close the grid at ±B
     if res[0].is_some() {
-        extra.push(bisect_pred(-bb, betas[0], nonempty));
+        extra.push(bisect_pred(-bb, betas[0], &nonempty));
     }
     if res[n - 1].is_some() {
-        extra.push(bisect_pred(bb, betas[n - 1], nonempty));
+        extra.push(bisect_pred(bb, betas[n - 1], &nonempty));
     }
-    // adaptive refinement where the slice ends bend
+    extra
+}
+
+/// Adaptive refinement where the slice ends bend: up to `rounds` times, a slice at the
+/// midpoint of every pair of nonempty neighbours, stopping when no midpoint's ends leave the
+/// chord by more than 1e-6 of the region's scale; `betas` and `res` stay sorted by β.
+fn refine_bends(
+    betas: &mut Vec<f64>,
+    res: &mut Vec<Option<Slice>>,
+    rounds: usize,
+    slice: &(impl Fn(f64) -> Option<Slice> + Sync),
+) {
     let scale = res
         .iter()
         .flatten()
         .map(|s| s.0.hi.abs().max(s.0.lo.abs()))
         .fold(1e-12_f64, f64::max);
-    for _ in 0..opts.refine_beta_rounds {
+    for _ in 0..rounds {
         let mut mids = Vec::new();
         for i in 0..betas.len().saturating_sub(1) {
             if let (Some(a), Some(b)) = (&res[i], &res[i + 1]) {
@@ -250,33 +301,22 @@ pub fn robust_region_with_progress(
         }
         let mut order: Vec<usize> = (0..betas.len()).collect();
         order.sort_by(|&a, &b| betas[a].total_cmp(&betas[b]));
-        betas = order.iter().map(|&i| betas[i]).collect();
-        res = order.iter().map(|&i| res[i]).collect();
+        *betas = order.iter().map(|&i| betas[i]).collect();
+        *res = order.iter().map(|&i| res[i]).collect();
         if !any {
             break;
         }
     }
-    for b in extra {
-        if let Some(s) = slice(b) {
-            betas.push(b);
-            res.push(Some(s));
-        }
-    }
-    let mut slices: Vec<RobustSlice> = betas
-        .iter()
-        .zip(&res)
-        .filter_map(|(&beta, s)| {
-            s.map(|(iv, tl, th, _)| RobustSlice {
-                beta,
-                lo: iv.lo,
-                hi: iv.hi,
-                gamma_at_lo: tl,
-                gamma_at_hi: th,
-            })
-        })
-        .collect();
-    slices.sort_by(|a, b| a.beta.total_cmp(&b.beta));
-    let multiple_intervals = res.iter().flatten().any(|s| s.3);
+}
+
+/// The robust region from its slices sorted by β: the polygon through their upper ends and
+/// back through their lower ends, its area, and α_max with the β where it is reached.
+fn region_of_slices(
+    (delta, d, gamma_lo, gamma_hi): (f64, usize, f64, f64),
+    degenerate_gammas: Vec<f64>,
+    slices: Vec<RobustSlice>,
+    multiple_intervals: bool,
+) -> RobustRegion {
     let mut polygon: Vec<AlphaBeta> = slices
         .iter()
         .map(|s| AlphaBeta {
@@ -294,7 +334,7 @@ pub fn robust_region_with_progress(
         0.0
     };
     let best = slices.iter().max_by(|a, b| a.hi.total_cmp(&b.hi));
-    Ok(RobustRegion {
+    RobustRegion {
         delta,
         d,
         gamma_lo,
@@ -307,5 +347,5 @@ pub fn robust_region_with_progress(
         multiple_intervals,
         polygon,
         area,
-    })
+    }
 }

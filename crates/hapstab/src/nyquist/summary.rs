@@ -106,46 +106,69 @@ pub fn region_summary(pp: PlantParams, d: usize, beta_samples: usize) -> Result<
     let above = if last + 1 == n { bb } else { betas[last + 1] };
     out.beta_min = bisect_pred(below, betas[first], nonempty);
     out.beta_max = bisect_pred(above, betas[last], nonempty);
-    let mut best = first;
-    let mut amin = f64::INFINITY;
-    for &i in &idx {
-        let (lo, hi, _) = slices[i].unwrap_or((f64::NAN, f64::NAN, 0.0));
-        amin = amin.min(lo);
-        if hi > slices[best].map_or(f64::NEG_INFINITY, |s| s.1) {
+    out.alpha_min = idx
+        .iter()
+        .map(|&i| slices[i].map_or(f64::NAN, |s| s.0))
+        .fold(f64::INFINITY, f64::min);
+    (out.alpha_max, out.beta_at_alpha_max) = alpha_peak(&betas, &slices, &idx, hi_at);
+    out.area = trapezoid_area(
+        &betas,
+        &slices,
+        h,
+        (first, last),
+        (out.beta_min, out.beta_max),
+    );
+    Ok(out)
+}
+
+/// The slices' exact (lowest α, highest α, total length) at each β sample, None where empty.
+type Slices = [Option<(f64, f64, f64)>];
+
+/// (α_max, β there) of the region: the best sample's highest α refined by golden-section
+/// search between its neighbours (`hi_at`: the highest stable α at a β), kept only where it
+/// improves on the sample; `idx` are the nonempty samples.
+fn alpha_peak(
+    betas: &[f64],
+    slices: &Slices,
+    idx: &[usize],
+    hi_at: impl Fn(f64) -> f64,
+) -> (f64, f64) {
+    let n = betas.len();
+    let hi = |i: usize| slices[i].map_or(f64::NEG_INFINITY, |s| s.1);
+    let mut best = idx[0];
+    for &i in idx {
+        if hi(i) > hi(best) {
             best = i;
         }
     }
-    let a = if best > 0 {
-        betas[best - 1]
-    } else {
-        betas[best]
-    };
-    let b = if best + 1 < n {
-        betas[best + 1]
-    } else {
-        betas[best]
-    };
+    let a = betas[best.saturating_sub(1)];
+    let b = betas[(best + 1).min(n - 1)];
     let (bx, fx) = golden_max(a, b, hi_at);
-    let sample_hi = slices[best].map_or(f64::NEG_INFINITY, |s| s.1);
-    if fx >= sample_hi {
-        out.alpha_max = fx;
-        out.beta_at_alpha_max = bx;
+    if fx >= hi(best) {
+        (fx, bx)
     } else {
-        out.alpha_max = sample_hi;
-        out.beta_at_alpha_max = betas[best];
+        (hi(best), betas[best])
     }
-    out.alpha_min = amin;
-    // trapezoid over the grid, with the ends closed at the refined extent (length 0 there)
+}
+
+/// The region's area: the trapezoidal rule over the β grid of step h, with the ends closed
+/// at the refined extent `(beta_min, beta_max)` (length 0 there) beyond the first and last
+/// nonempty samples.
+fn trapezoid_area(
+    betas: &[f64],
+    slices: &Slices,
+    h: f64,
+    (first, last): (usize, usize),
+    (beta_min, beta_max): (f64, f64),
+) -> f64 {
     let len = |i: usize| slices[i].map_or(0.0, |s| s.2);
     let mut area = 0.0;
-    for w in betas.windows(2).enumerate() {
-        let (i, _) = w;
+    for i in 0..betas.len().saturating_sub(1) {
         area += 0.5 * (len(i) + len(i + 1)) * h;
     }
-    area += 0.5 * len(first) * (betas[first] - out.beta_min).abs();
-    area += 0.5 * len(last) * (out.beta_max - betas[last]).abs();
-    out.area = area;
-    Ok(out)
+    area += 0.5 * len(first) * (betas[first] - beta_min).abs();
+    area += 0.5 * len(last) * (beta_max - betas[last]).abs();
+    area
 }
 
 /// The stable regions for γ = i/steps · F · γ_N, i = 0..=steps, with γ_N = π² + δ²/4

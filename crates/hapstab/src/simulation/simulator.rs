@@ -447,15 +447,7 @@ fn run_loop<const LINEAR: bool, const N: usize>(
         if recursive {
             vring[j & vmask] = v;
         }
-        let wall = if LINEAR {
-            WallSample {
-                force: laws.a * (yd - laws.xw) + laws.b * v,
-                in_contact: true,
-                linear: true,
-            }
-        } else {
-            laws.wall(yd, v)
-        };
+        let wall = wall_law::<LINEAR>(laws, yd, v);
         let uh = match laws.human_at(k) {
             Ok(uh) => uh,
             Err(err) => {
@@ -464,15 +456,7 @@ fn run_loop<const LINEAR: bool, const N: usize>(
             }
         };
         let u = [-wall.force, -prev, uh, 0.0];
-        let mut vel = e.velocity.read(&x);
-        if direct {
-            let ua = if laws.fractional {
-                u[WALL_PREV]
-            } else {
-                u[WALL_NOW]
-            };
-            vel += laws.direct_actuator * ua + laws.direct_human * u[HUMAN];
-        }
+        let vel = sensed_velocity(laws, e, &x, u, direct);
         if let Some(r) = recorder.as_mut()
             && r.next == k
         {
@@ -485,13 +469,7 @@ fn run_loop<const LINEAR: bool, const N: usize>(
             in_contact: wall.in_contact,
             linear: wall.linear,
         });
-        x = match (&laws.continuous, &e.stuck, laws.friction) {
-            (Some(c), Some(stuck), Some(fr)) if !LINEAR => {
-                *friction_events += c.friction_sample(&e.free, stuck, &mut x, u, fr);
-                x
-            }
-            _ => e.free.step(&x, u),
-        };
+        x = plant_step::<LINEAR, N>(laws, e, x, u, friction_events);
         prev = wall.force;
         k += 1;
         done += 1;
@@ -503,6 +481,65 @@ fn run_loop<const LINEAR: bool, const N: usize>(
     mem_x[..N].copy_from_slice(&x);
     (*mem_k, *prev_force) = (k, prev);
     result.map(|()| done)
+}
+
+/// The wall's force on the delayed position `yd` and the velocity estimate `v`: the linear
+/// spring-damper a·(yd − x_w) + b·v in contact throughout, or the wall's own law
+/// ([`Laws::wall`]: unilateral contact, saturation).
+#[inline(always)]
+fn wall_law<const LINEAR: bool>(laws: &Laws, yd: f64, v: f64) -> WallSample {
+    if LINEAR {
+        WallSample {
+            force: laws.a * (yd - laws.xw) + laws.b * v,
+            in_contact: true,
+            linear: true,
+        }
+    } else {
+        laws.wall(yd, v)
+    }
+}
+
+/// The plant's velocity output at state x, with the inputs' direct feed-through (a plant
+/// whose velocity responds at once to the actuator's force, the current or, under a
+/// fractional delay, the previous one, and to the human's).
+#[inline(always)]
+fn sensed_velocity<const N: usize>(
+    laws: &Laws,
+    e: &Engine<N>,
+    x: &[f64; N],
+    u: [f64; 4],
+    direct: bool,
+) -> f64 {
+    let mut vel = e.velocity.read(x);
+    if direct {
+        let ua = if laws.fractional {
+            u[WALL_PREV]
+        } else {
+            u[WALL_NOW]
+        };
+        vel += laws.direct_actuator * ua + laws.direct_human * u[HUMAN];
+    }
+    vel
+}
+
+/// The plant's state one sample on under the held inputs u: the exact step, or, with Coulomb
+/// friction on a nonlinear run, the step that sticks and slips (the stepper's friction sample, counted
+/// in `friction_events`).
+#[inline(always)]
+fn plant_step<const LINEAR: bool, const N: usize>(
+    laws: &Laws,
+    e: &Engine<N>,
+    mut x: [f64; N],
+    u: [f64; 4],
+    friction_events: &mut usize,
+) -> [f64; N] {
+    match (&laws.continuous, &e.stuck, laws.friction) {
+        (Some(c), Some(stuck), Some(fr)) if !LINEAR => {
+            *friction_events += c.friction_sample(&e.free, stuck, &mut x, u, fr);
+            x
+        }
+        _ => e.free.step(&x, u),
+    }
 }
 
 /// The loop's state as one vector, for measuring its growth ([`super::growth`]): plant
