@@ -312,6 +312,13 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     if a.json {
         return print_json(&out);
     }
+    print_text(&rl, &out, band, a.wall_damping.is_none());
+    Ok(())
+}
+
+/// The human-readable answer of `kmax`: the loop, K_max with where it is reached (or why no
+/// stiffness is stable), the plot's files, and over a damping band K_max at B = 0 as well.
+fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: bool) {
     for line in describe_loop(&rl.lp) {
         println!("{line}");
     }
@@ -357,7 +364,7 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     if !out.plot.is_empty() {
         println!("plot written to {}", wall_plot::files_text(&out.plot));
     }
-    if a.wall_damping.is_none() {
+    if over_band {
         match out.k_max_at_zero_damping {
             Some(k) => println!(
                 "K_max = {} at B = 0 (no virtual damping, the plant's own damping only)",
@@ -366,5 +373,4 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
             None => println!("no stiffness is stable at B = 0"),
         }
     }
-    Ok(())
 }

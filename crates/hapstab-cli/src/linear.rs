@@ -5,11 +5,11 @@ use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::PlantParams;
 use hapstab::limits::validity_points_cost;
-use hapstab::linear::validity_points;
+use hapstab::linear::{ValidityPoint, validity_points};
 use serde::Serialize;
 
 use crate::budget::{self, Driver};
-use crate::model::PlantArgs;
+use crate::model::{PlantArgs, PlantModel};
 use crate::output::{eng, print_json, sig};
 
 /// Arguments of `hapstab linear`.
@@ -117,23 +117,9 @@ pub fn run(a: &LinearArgs) -> Result<()> {
         .physical
         .map(|(eff, s)| (eff.mass / (s.period * s.period), eff.mass / s.period));
     let tr = pm.d as f64 + 0.5;
-    let plant = match pm.physical {
-        None => PlantInput::Normalized {
-            gamma: pm.gamma,
-            delta: pm.delta,
-            d: pm.d,
-        },
-        Some((eff, s)) => PlantInput::Physical {
-            mass: eff.mass,
-            damping: eff.damping,
-            stiffness: eff.stiffness,
-            period: s.period,
-            d: pm.d,
-        },
-    };
     let out = LinearOut {
         input: LinearInput {
-            plant,
+            plant: plant_input(&pm),
             levels: a.levels.clone(),
         },
         normalized: pm.physical.map(|_| NormalizedPlant {
@@ -160,6 +146,31 @@ pub fn run(a: &LinearArgs) -> Result<()> {
     if a.json {
         return print_json(&out);
     }
+    print_text(&pm, &out, &pts);
+    Ok(())
+}
+
+/// The plant as the user gave it: normalized (γ, δ, d) or physical (m, b, k, T, d).
+fn plant_input(pm: &PlantModel) -> PlantInput {
+    match pm.physical {
+        None => PlantInput::Normalized {
+            gamma: pm.gamma,
+            delta: pm.delta,
+            d: pm.d,
+        },
+        Some((eff, s)) => PlantInput::Physical {
+            mass: eff.mass,
+            damping: eff.damping,
+            stiffness: eff.stiffness,
+            period: s.period,
+            d: pm.d,
+        },
+    }
+}
+
+/// The human-readable answer of `linear`: the plant, the linear condition (23) with the bound
+/// (19), and where the error (24) first reaches each level.
+fn print_text(pm: &PlantModel, out: &LinearOut, pts: &[ValidityPoint]) {
     println!(
         "plant       γ = {}, δ = {}, d = {}",
         sig(pm.gamma, 6),
@@ -173,7 +184,7 @@ pub fn run(a: &LinearArgs) -> Result<()> {
         sig(out.alpha_lower, 6)
     );
     println!("error (24) first reaches, going up from β = 0⁺ (α on the exact boundary):");
-    for (p, q) in out.points.iter().zip(&pts) {
+    for (p, q) in out.points.iter().zip(pts) {
         let phys = match (p.wall_stiffness, p.wall_damping) {
             (Some(k), Some(b)) => {
                 format!("   (K = {}, B = {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
@@ -193,5 +204,4 @@ pub fn run(a: &LinearArgs) -> Result<()> {
             sig(p.alpha_linear, 6)
         );
     }
-    Ok(())
 }

@@ -7,9 +7,9 @@ use clap::Args;
 use hapstab::boundary::AlphaBeta;
 use hapstab::limits::{Cost, gamma_sweep_cost, passive_check_cost, robust_region_cost};
 use hapstab::nyquist::{
-    NyquistStiffness, PassiveCheck, RegionSummary, RobustOptions, gamma_sweep_with_progress,
-    nyquist_gamma, nyquist_stiffness, passive_inside_robust_with_progress, passive_region,
-    robust_region_with_progress,
+    NyquistStiffness, PassiveCheck, RegionSummary, RobustOptions, RobustRegion,
+    gamma_sweep_with_progress, nyquist_gamma, nyquist_stiffness,
+    passive_inside_robust_with_progress, passive_region, robust_region_with_progress,
 };
 use serde::Serialize;
 
@@ -193,15 +193,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     }
     let delta = p.delta.unwrap_or(0.0);
     let delay = delay_samples(p.delay.unwrap_or(0.0))?;
-    if !(a.gamma_fraction.is_finite() && a.gamma_fraction >= 0.0) {
-        bail!(
-            "--gamma-fraction must be a finite number >= 0 (got {})",
-            a.gamma_fraction
-        );
-    }
-    if a.steps == 0 {
-        bail!("--steps must be >= 1");
-    }
+    check_sweep_args(a)?;
     let opts = RobustOptions {
         gamma_samples: a.gamma_samples.max(2),
         ..Default::default()
@@ -235,26 +227,8 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
         &bar.stage(0),
     )?;
     let r = robust_region_with_progress(delta, delay, 0.0, g_hi, opts, &bar.stage(stages[0]))?;
-    let passive = if delta > 0.0 {
-        let p = passive_region(delta)?;
-        let check = passive_inside_robust_with_progress(
-            delta,
-            delay,
-            0.0,
-            g_hi,
-            PASSIVE_SAMPLES,
-            opts,
-            &bar.stage(stages[0] + stages[1]),
-        )?;
-        Some(PassiveOut {
-            area: p.area(),
-            vertices: pairs(&p.vertices),
-            applies: delay == 0,
-            check,
-        })
-    } else {
-        None
-    };
+    let passive_progress = bar.stage(stages[0] + stages[1]);
+    let passive = passive_out(delta, delay, g_hi, opts, &passive_progress)?;
     bar.finish();
     let out = NyquistOut {
         input: SweepInput {
@@ -267,17 +241,7 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
         },
         gamma_nyquist: gn,
         sweep: sweep.iter().map(SweepRow::from).collect(),
-        robust: RobustOut {
-            gamma_lo: 0.0,
-            gamma_hi: g_hi,
-            empty: r.empty,
-            alpha_max: r.alpha_max,
-            beta_at_alpha_max: r.beta_at_alpha_max,
-            area: r.area,
-            degenerate_gammas: r.degenerate_gammas,
-            multiple_intervals: r.multiple_intervals,
-            polygon: pairs(&r.polygon),
-        },
+        robust: robust_out(r, g_hi),
         passive,
     };
     if a.json {
@@ -285,6 +249,65 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     }
     print_text(&out);
     Ok(())
+}
+
+/// The sweep's own flags: --gamma-fraction finite and ≥ 0, --steps ≥ 1.
+fn check_sweep_args(a: &NyquistArgs) -> Result<()> {
+    if !(a.gamma_fraction.is_finite() && a.gamma_fraction >= 0.0) {
+        bail!(
+            "--gamma-fraction must be a finite number >= 0 (got {})",
+            a.gamma_fraction
+        );
+    }
+    if a.steps == 0 {
+        bail!("--steps must be >= 1");
+    }
+    Ok(())
+}
+
+/// Colgate's passive region at δ > 0 and whether it lies inside the robust region over
+/// γ ∈ [0, g_hi] (None at δ = 0, where it is empty).
+fn passive_out(
+    delta: f64,
+    delay: usize,
+    g_hi: f64,
+    opts: RobustOptions,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Option<PassiveOut>> {
+    if delta <= 0.0 {
+        return Ok(None);
+    }
+    let p = passive_region(delta)?;
+    let check = passive_inside_robust_with_progress(
+        delta,
+        delay,
+        0.0,
+        g_hi,
+        PASSIVE_SAMPLES,
+        opts,
+        progress,
+    )?;
+    Ok(Some(PassiveOut {
+        area: p.area(),
+        vertices: pairs(&p.vertices),
+        applies: delay == 0,
+        check,
+    }))
+}
+
+/// The robust region over γ ∈ [0, g_hi] as `nyquist` reports it.
+fn robust_out(r: RobustRegion, g_hi: f64) -> RobustOut {
+    RobustOut {
+        gamma_lo: 0.0,
+        gamma_hi: g_hi,
+        empty: r.empty,
+        alpha_max: r.alpha_max,
+        beta_at_alpha_max: r.beta_at_alpha_max,
+        area: r.area,
+        degenerate_gammas: r.degenerate_gammas,
+        multiple_intervals: r.multiple_intervals,
+        polygon: pairs(&r.polygon),
+    }
 }
 
 /// Vertices as [alpha, beta] pairs, as every command writes polygons.

@@ -16,6 +16,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::output::print_json;
+use crate::plot::Saved;
 
 /// Arguments of `hapstab paper`.
 #[derive(Args, Debug)]
@@ -105,27 +106,13 @@ pub fn run(a: &PaperArgs) -> Result<()> {
     bar.message("report");
     let shown = figures::shown();
     let rows = report::alpha_rows(&results, &shown)?;
-    let file_name = |p: &std::path::Path| {
-        p.file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    };
     let rep = report::Report {
         version: env!("CARGO_PKG_VERSION"),
         seconds: t0.elapsed().as_secs_f64(),
         axes: report::AXES,
         claims: claim_list,
         robust: report::robust_rows(&results)?,
-        figures: figs
-            .iter()
-            .zip(&saved)
-            .map(|(f, s)| report::FigureRow {
-                name: f.name,
-                svg: file_name(&s.svg),
-                png: file_name(&s.png),
-                caption: f.caption.clone(),
-            })
-            .collect(),
+        figures: figure_rows(&figs, &saved),
         notes: notes(&results, &rows),
         alpha_max: rows,
     };
@@ -156,14 +143,37 @@ pub fn run(a: &PaperArgs) -> Result<()> {
     if a.json {
         return print_json(&summary);
     }
+    print_text(&summary, &rep);
+    Ok(())
+}
+
+/// The report's row of each figure: its name, the file names of its SVG and PNG, its caption.
+fn figure_rows(figs: &[figures::PaperFigure], saved: &[Saved]) -> Vec<report::FigureRow> {
+    let file_name = |p: &std::path::Path| {
+        p.file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    };
+    figs.iter()
+        .zip(saved)
+        .map(|(f, s)| report::FigureRow {
+            name: f.name,
+            svg: file_name(&s.svg),
+            png: file_name(&s.png),
+            caption: f.caption.clone(),
+        })
+        .collect()
+}
+
+/// The human-readable answer of `paper`: the files written and every claim's verdict.
+fn print_text(summary: &Summary, rep: &report::Report) {
     println!(
         "wrote {} files to {} in {:.2} s",
         summary.files.len(),
         summary.input.out,
-        seconds
+        summary.seconds
     );
     for c in &rep.claims {
         println!("  {:<4} {:<18} {}", c.id, c.verdict.as_str(), c.claim);
     }
-    Ok(())
 }

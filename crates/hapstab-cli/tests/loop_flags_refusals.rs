@@ -17,8 +17,10 @@ fn refused(args: &[&str], needles: &[&str]) {
     assert!(!err.contains("panicked"), "{err}");
 }
 
+/// Arm flags beside --no-arm, normalized beside physical input, and two delays are refused
+/// naming both flags.
 #[test]
-fn contradictory_flags_are_refused_naming_both() {
+fn contradictory_arm_units_and_delay_flags_are_refused_naming_both() {
     for (args, a, b) in [
         (
             &["check", "--no-arm", "--arm-mass", "1"][..],
@@ -63,6 +65,17 @@ fn contradictory_flags_are_refused_naming_both() {
             "--delay",
             "--delay-time",
         ),
+    ] {
+        refused(args, &[a, b, "cannot be used with"]);
+    }
+}
+
+/// Two plant models at once (transfer function, two-mass device, mass-spring-damper), and a
+/// velocity estimator beside γ, are
+/// refused naming both flags.
+#[test]
+fn contradictory_plant_models_are_refused_naming_both() {
+    for (args, a, b) in [
         (
             &[
                 "discretize",
@@ -72,7 +85,7 @@ fn contradictory_flags_are_refused_naming_both() {
                 "1,0,0",
                 "--mass",
                 "1",
-            ],
+            ][..],
             "--plant-num",
             "--mass",
         ),
@@ -122,8 +135,18 @@ fn contradictory_flags_are_refused_naming_both() {
             "--gamma",
             "--velocity",
         ),
+    ] {
+        refused(args, &[a, b, "cannot be used with"]);
+    }
+}
+
+/// Loop flags beside the paper's normalized view, and the robust analysis beside a velocity
+/// estimator, are refused naming both flags.
+#[test]
+fn loop_flags_beside_the_normalized_view_are_refused_naming_both() {
+    for (args, a, b) in [
         (
-            &["check", "--delta", "0.1", "--force-lag", "0.001"],
+            &["check", "--delta", "0.1", "--force-lag", "0.001"][..],
             "--delta",
             "--force-lag",
         ),
@@ -172,8 +195,10 @@ fn contradictory_flags_are_refused_naming_both() {
     }
 }
 
+/// A velocity estimator that does not parse or is not causal and proper is refused in one line
+/// naming --velocity and the value.
 #[test]
-fn bad_loop_input_is_one_line_naming_flag_and_value() {
+fn velocity_estimator_input_is_refused_in_one_line() {
     for (args, needles) in [
         (
             &["check", "--velocity", "forward"][..],
@@ -215,12 +240,22 @@ fn bad_loop_input_is_one_line_naming_flag_and_value() {
             &["check", "--velocity", "backward:3"],
             &["--velocity", "backward:3"],
         ),
+    ] {
+        refused(args, needles);
+    }
+}
+
+/// A transfer function that is not strictly proper, does not parse, is too long, or lacks its
+/// other half is refused in one line naming the flag.
+#[test]
+fn transfer_function_input_is_refused_in_one_line() {
+    for (args, needles) in [
         (
-            &["check", "--plant-num", "1,2,3", "--plant-den", "1,1"],
+            &["check", "--plant-num", "1,2,3", "--plant-den", "1,1"][..],
             &[
                 "--plant-num 1,2,3",
                 "strictly proper: numerator degree < denominator degree (got numerator degree 2, denominator degree 1)",
-            ],
+            ][..],
         ),
         (
             &["check", "--plant-num", "1,2", "--plant-den", "1,2"],
@@ -256,7 +291,20 @@ fn bad_loop_input_is_one_line_naming_flag_and_value() {
             &["check", "--plant-den", "1,0,0"],
             &["--plant-den", "--plant-num"],
         ),
-        (&["check", "--force-lag", "-1"], &["--force-lag", "-1"]),
+    ] {
+        refused(args, needles);
+    }
+}
+
+/// A force lag, a two-mass device or a delay time out of range or half given is refused in one
+/// line naming the parameter and the value.
+#[test]
+fn lag_two_mass_and_delay_input_is_refused_in_one_line() {
+    for (args, needles) in [
+        (
+            &["check", "--force-lag", "-1"][..],
+            &["--force-lag", "-1"][..],
+        ),
         (&["check", "--force-lag", "inf"], &["--force-lag", "inf"]),
         (
             &["check", "--motor-mass", "0.1"],
@@ -291,6 +339,16 @@ fn bad_loop_input_is_one_line_naming_flag_and_value() {
             &["delay time", "-0.001"],
         ),
         (&["check", "--delay-time", "nan"], &["delay time", "NaN"]),
+    ] {
+        refused(args, needles);
+    }
+}
+
+/// Normalized input beside a transfer function, mixed map axes and a half-given normalized wall
+/// are refused in one line naming the flags.
+#[test]
+fn normalized_and_map_input_is_refused_in_one_line() {
+    for (args, needles) in [
         (
             &[
                 "check",
@@ -302,8 +360,8 @@ fn bad_loop_input_is_one_line_naming_flag_and_value() {
                 "0.1",
                 "--beta",
                 "0.1",
-            ],
-            &["--alpha", "--plant-num"],
+            ][..],
+            &["--alpha", "--plant-num"][..],
         ),
         (
             &["map", "--x", "K:0:1:2", "--y", "alpha:0:1:2"],

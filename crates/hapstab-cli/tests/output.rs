@@ -122,7 +122,15 @@ const NO_JSON: &[(&str, &str)] = &[(
 
 /// Small, fast runs of every command with `--json`, and the top-level keys that each must
 /// print (README, "JSON output"). `{dir}` is a temporary folder.
-fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
+fn json_cases() -> Vec<JsonCase> {
+    [verdict_cases(), region_cases(), more_cases()].concat()
+}
+
+/// A command, its arguments and the top-level keys its `--json` must print.
+type JsonCase = (&'static str, Vec<&'static str>, Vec<&'static str>);
+
+/// The verdicts and stiffness limits of [`json_cases`]: check and kmax.
+fn verdict_cases() -> Vec<JsonCase> {
     let results_of_check = vec![
         "stable",
         "verdict",
@@ -165,6 +173,12 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
                 "k_linear_worst",
             ],
         ),
+    ]
+}
+
+/// The regions and their sections of [`json_cases`]: boundary, map, linear, nyquist.
+fn region_cases() -> Vec<JsonCase> {
+    vec![
         (
             "boundary",
             vec!["boundary", "--gamma", "0.001", "--delta", "0.015"],
@@ -235,6 +249,13 @@ fn json_cases() -> Vec<(&'static str, Vec<&'static str>, Vec<&'static str>)> {
                 "nyquist_frequency_hz",
             ],
         ),
+    ]
+}
+
+/// The rest of [`json_cases`]: passivity, Z-width, sweeps, the loop's tables, simulations,
+/// the frequency-response plots and the paper.
+fn more_cases() -> Vec<JsonCase> {
+    vec![
         (
             "passivity",
             vec!["passivity", "--no-arm"],

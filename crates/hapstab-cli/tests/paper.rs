@@ -298,10 +298,27 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
         .map(|f| f.as_str().unwrap())
         .collect();
 
-    // Every figure as SVG (< 2 MB, with α and β on the axes) and as a decodable PNG.
+    check_figures(dir.path(), &files);
+    check_report(dir.path(), &summary);
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("claims.json")).unwrap())
+            .unwrap();
+    let claims = json["claims"].as_array().unwrap();
+    check_claims_json(&json);
+    check_verdicts(claims);
+    let get = |id: &str| claims.iter().find(|c| c["id"] == id).unwrap();
+    // The summary carries the same verdicts.
+    for c in summary["claims"].as_array().unwrap() {
+        assert_eq!(c["verdict"], get(c["id"].as_str().unwrap())["verdict"]);
+    }
+}
+
+/// Every figure as SVG (< 2 MB, with α and β on the axes) and as a decodable PNG, each
+/// listed among the written `files`.
+fn check_figures(dir: &Path, files: &[&str]) {
     for f in FIGURES {
-        let svg = dir.path().join(format!("{f}.svg"));
-        let png = dir.path().join(format!("{f}.png"));
+        let svg = dir.join(format!("{f}.svg"));
+        let png = dir.join(format!("{f}.png"));
         assert!(files.iter().any(|x| x.ends_with(&format!("{f}.svg"))));
         let text = std::fs::read_to_string(&svg).unwrap();
         assert!(text.starts_with("<svg"), "{f}.svg");
@@ -312,10 +329,13 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
         );
         check_png(&png);
     }
+}
 
-    // The report: a table row per claim in report.md, figures embedded in report.html.
-    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
-    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
+/// The report: a table row per claim in report.md, figures embedded in report.html, no
+/// outside links, C4's areas in the units of K–B regions.
+fn check_report(dir: &Path, summary: &Value) {
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(dir.join("report.html")).unwrap();
     for id in IDS {
         assert!(
             md.contains(&format!("\n| {id} |")),
@@ -342,15 +362,14 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
         "{measured}"
     );
     assert!(!md.contains("N²/m²·s⁻¹") && md.contains("N²·s/m²"));
+}
 
-    // claims.json: every claim with a measured value and a verdict.
-    let json: Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("claims.json")).unwrap())
-            .unwrap();
+/// claims.json: every claim with a measured value and a verdict; the α_max table covers the
+/// (γ, δ, d) of the figures.
+fn check_claims_json(json: &Value) {
     let claims = json["claims"].as_array().unwrap();
     let ids: Vec<&str> = claims.iter().map(|c| c["id"].as_str().unwrap()).collect();
     assert_eq!(ids, IDS);
-    let get = |id: &str| claims.iter().find(|c| c["id"] == id).unwrap();
     for c in claims {
         assert!(
             !c["measured"].as_str().unwrap().is_empty(),
@@ -370,7 +389,12 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
     // α < 2β(2 − β)/(2 + β): the maximum 2(√2 − 1)²·2 = 12 − 8√2 at β = 2(√2 − 1).
     let amax = 12.0 - 8.0 * 2f64.sqrt();
     assert!((pure["alpha_max"].as_f64().unwrap() - amax).abs() < 1e-9);
+}
 
+/// Every claim's verdict against the independent checks, and the report's numbers against
+/// the test's own where both measure the same quantity.
+fn check_verdicts(claims: &[Value]) {
+    let get = |id: &str| claims.iter().find(|c| c["id"] == id).unwrap();
     // Verdicts against independent checks.
     let c6_worst = c6();
     let (c10_verdict, c10_k) = c10();
@@ -397,7 +421,6 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
         }
     }
     assert!(wrong.is_empty(), "{wrong:#?}");
-    // The report's numbers agree with the test's own where both measure the same quantity.
     let reported = get("C6")["values"]["max_relative_difference"]
         .as_f64()
         .unwrap();
@@ -407,8 +430,4 @@ fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
     );
     let k = get("C10")["values"]["stiffness_kN_per_m"].as_f64().unwrap();
     assert!((k - c10_k).abs() < 1e-6);
-    // The summary carries the same verdicts.
-    for c in summary["claims"].as_array().unwrap() {
-        assert_eq!(c["verdict"], get(c["id"].as_str().unwrap())["verdict"]);
-    }
 }

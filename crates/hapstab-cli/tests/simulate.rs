@@ -141,9 +141,13 @@ fn csv_trace_plot_files() {
     ] {
         assert!(svg.contains(t), "SVG lacks {t}");
     }
+}
 
-    // Physical units, a run extended until it settles: the trace keeps at most --max-rows
-    // rows, every n-th sample over the whole run.
+/// Physical units, a run extended until it settles: the trace keeps at most --max-rows rows,
+/// every n-th sample over the whole run.
+#[test]
+fn csv_trace_of_a_long_run_is_thinned_to_max_rows() {
+    let dir = tempfile::tempdir().unwrap();
     let v = simulate(
         dir.path(),
         "long",
@@ -300,8 +304,13 @@ fn simboundary_table_csv_plot() {
         !svg.contains("virtual stiffness α"),
         "physical input drawn in α"
     );
+}
 
-    // Text mode, stdout not a terminal: the table, and no progress bar on stderr.
+/// Text mode, stdout not a terminal: the table in physical units, no progress bar on stderr,
+/// and no file that was not asked for.
+#[test]
+fn simboundary_text_table() {
+    let dir = tempfile::tempdir().unwrap();
     let out = hapstab()
         .current_dir(dir.path())
         .args([

@@ -185,75 +185,90 @@ fn occupied(f: &Figure, bx: [f64; 4]) -> bool {
 /// about 1.65 font heights, 46 px icons, 12 px margins; measured on the PNGs), with 2 % of
 /// the plot to spare.
 fn place_legend(f: &mut Figure, size: (u32, u32), may_widen: bool) {
+    let Some(lb) = legend_box(f, size) else {
+        return;
+    };
+    let corners = [
+        Legend::UpperRight,
+        Legend::UpperLeft,
+        Legend::LowerRight,
+        Legend::LowerLeft,
+    ];
+    for pos in corners {
+        if !occupied(f, lb.at(f.ranges(), pos)) {
+            f.legend = pos;
+            return;
+        }
+    }
+    if may_widen {
+        widen_for_legend(f, &lb);
+    } else {
+        f.legend = Legend::UpperRight;
+    }
+}
+
+/// The legend box's estimated size and its offset from the plot's edge, as fractions of the
+/// plotting area's width and height.
+struct LegendBox {
+    w: f64,
+    h: f64,
+    off: (f64, f64),
+}
+
+impl LegendBox {
+    /// The box [x_lo, x_hi, y_lo, y_hi] in data units at the corner `pos` of the ranges.
+    fn at(&self, ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)), pos: Legend) -> [f64; 4] {
+        let (xs, ys) = (x1 - x0, y1 - y0);
+        let (w, h, off) = (self.w, self.h, self.off);
+        let right = matches!(
+            pos,
+            Legend::UpperRight | Legend::LowerRight | Legend::Hidden
+        );
+        let upper = matches!(pos, Legend::UpperRight | Legend::UpperLeft | Legend::Hidden);
+        let (xa, xb) = if right {
+            (x1 - (off.0 + w) * xs, x1 - off.0 * xs)
+        } else {
+            (x0 + off.0 * xs, x0 + (off.0 + w) * xs)
+        };
+        let (ya, yb) = if upper {
+            (y1 - (off.1 + h) * ys, y1 - off.1 * ys)
+        } else {
+            (y0 + off.1 * ys, y0 + (off.1 + h) * ys)
+        };
+        [xa, xb, ya, yb]
+    }
+}
+
+/// The legend box of a figure on a panel of `size` px (see [`place_legend`]); None when no
+/// series is labelled.
+fn legend_box(f: &Figure, size: (u32, u32)) -> Option<LegendBox> {
     let labels: Vec<usize> = f
         .series
         .iter()
         .filter_map(|s| s.label.as_ref().map(|l| l.chars().count()))
         .collect();
     if labels.is_empty() {
-        return;
+        return None;
     }
     let s = f.font_scale;
     let font = 21.0 * s;
     let plot_w = size.0 as f64 - (105.0 + 42.0) * s;
     let plot_h = size.1 as f64 - (70.0 + 28.0 + if f.title.is_empty() { 0.0 } else { 45.0 }) * s;
     let chars = labels.iter().copied().max().unwrap_or(0) as f64;
-    let w = (46.0 * s + 0.56 * font * chars + 30.0 * s) / plot_w + 0.01;
-    let h = (labels.len() as f64 * 1.65 * font + 14.0 * s) / plot_h + 0.02;
-    let off = (12.0 * s / plot_w, 12.0 * s / plot_h);
+    Some(LegendBox {
+        w: (46.0 * s + 0.56 * font * chars + 30.0 * s) / plot_w + 0.01,
+        h: (labels.len() as f64 * 1.65 * font + 14.0 * s) / plot_h + 0.02,
+        off: (12.0 * s / plot_w, 12.0 * s / plot_h),
+    })
+}
+
+/// Every corner covers data: widens the α range to the right or the β range upwards,
+/// whichever needs the smaller widening, so that the legend box clears every drawn point in
+/// its band, and puts the legend there.
+fn widen_for_legend(f: &mut Figure, lb: &LegendBox) {
+    let (w, h, off) = (lb.w, lb.h, lb.off);
     let ((x0, x1), (y0, y1)) = f.ranges();
     let (xs, ys) = (x1 - x0, y1 - y0);
-    let boxes = [
-        (
-            Legend::UpperRight,
-            [
-                x1 - (off.0 + w) * xs,
-                x1 - off.0 * xs,
-                y1 - (off.1 + h) * ys,
-                y1 - off.1 * ys,
-            ],
-        ),
-        (
-            Legend::UpperLeft,
-            [
-                x0 + off.0 * xs,
-                x0 + (off.0 + w) * xs,
-                y1 - (off.1 + h) * ys,
-                y1 - off.1 * ys,
-            ],
-        ),
-        (
-            Legend::LowerRight,
-            [
-                x1 - (off.0 + w) * xs,
-                x1 - off.0 * xs,
-                y0 + off.1 * ys,
-                y0 + (off.1 + h) * ys,
-            ],
-        ),
-        (
-            Legend::LowerLeft,
-            [
-                x0 + off.0 * xs,
-                x0 + (off.0 + w) * xs,
-                y0 + off.1 * ys,
-                y0 + (off.1 + h) * ys,
-            ],
-        ),
-    ];
-    for (pos, bx) in boxes {
-        if !occupied(f, bx) {
-            f.legend = pos;
-            return;
-        }
-    }
-    if !may_widen {
-        f.legend = Legend::UpperRight;
-        return;
-    }
-    // Every corner covers data: widen the α range to the right or the β range upwards,
-    // whichever needs the smaller widening, so that the box clears every drawn point in its
-    // band.
     let fit = |need: f64, lo: f64, span: f64, box_frac: f64, off: f64| {
         let frac = (1.0 - box_frac - 2.0 * off).max(0.25);
         ((need - lo) / frac * 1.02).max(span)

@@ -311,39 +311,8 @@ fn html_report(dir: &Path, rep: &Report) -> Result<String> {
         rep.seconds,
         html(rep.axes)
     );
-    s.push_str("<h2>Claims</h2>\n<table><tr><th>id</th><th>claim</th><th>tested by</th><th>measured</th><th>verdict</th></tr>\n");
-    for c in &rep.claims {
-        let class = match c.verdict {
-            super::claims::Verdict::Reproduced => "reproduced",
-            super::claims::Verdict::Partly => "partly",
-            super::claims::Verdict::Differs => "differs",
-        };
-        let _ = writeln!(
-            s,
-            "<tr id=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"{class}\"><b>{}</b><br><small>{}</small></td></tr>",
-            c.id,
-            c.id,
-            html(c.claim),
-            html(c.figure),
-            html(&c.measured),
-            c.verdict.as_str(),
-            html(&c.note)
-        );
-    }
-    s.push_str("</table>\n<h2>Figures</h2>\n");
-    for f in &rep.figures {
-        let png = dir.join(&f.png);
-        let bytes =
-            std::fs::read(&png).with_context(|| format!("cannot read {}", png.display()))?;
-        let _ = writeln!(
-            s,
-            "<figure id=\"{}\"><img alt=\"{}\" src=\"data:image/png;base64,{}\"><figcaption>{}</figcaption></figure>",
-            f.name,
-            html(f.name),
-            base64(&bytes),
-            html(&f.caption)
-        );
-    }
+    html_claims(&mut s, rep);
+    html_figures(&mut s, dir, rep)?;
     s.push_str("<h2>α<sub>max</sub> of every region shown</h2>\n<table><tr><th>figures</th><th>γ</th><th>δ</th><th>d</th><th>α<sub>max</sub></th><th>β at α<sub>max</sub></th><th>area</th><th>outline</th></tr>\n");
     for r in &rep.alpha_max {
         let _ = writeln!(
@@ -374,6 +343,49 @@ fn html_report(dir: &Path, rep: &Report) -> Result<String> {
     }
     s.push_str("</ul>\n</body></html>\n");
     Ok(s)
+}
+
+/// The report's claims as an HTML table, each verdict coloured.
+fn html_claims(s: &mut String, rep: &Report) {
+    s.push_str("<h2>Claims</h2>\n<table><tr><th>id</th><th>claim</th><th>tested by</th><th>measured</th><th>verdict</th></tr>\n");
+    for c in &rep.claims {
+        let class = match c.verdict {
+            super::claims::Verdict::Reproduced => "reproduced",
+            super::claims::Verdict::Partly => "partly",
+            super::claims::Verdict::Differs => "differs",
+        };
+        let _ = writeln!(
+            s,
+            "<tr id=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"{class}\"><b>{}</b><br><small>{}</small></td></tr>",
+            c.id,
+            c.id,
+            html(c.claim),
+            html(c.figure),
+            html(&c.measured),
+            c.verdict.as_str(),
+            html(&c.note)
+        );
+    }
+    s.push_str("</table>\n");
+}
+
+/// The report's figures as HTML, each PNG embedded as a data URL with its caption.
+fn html_figures(s: &mut String, dir: &Path, rep: &Report) -> Result<()> {
+    s.push_str("<h2>Figures</h2>\n");
+    for f in &rep.figures {
+        let png = dir.join(&f.png);
+        let bytes =
+            std::fs::read(&png).with_context(|| format!("cannot read {}", png.display()))?;
+        let _ = writeln!(
+            s,
+            "<figure id=\"{}\"><img alt=\"{}\" src=\"data:image/png;base64,{}\"><figcaption>{}</figcaption></figure>",
+            f.name,
+            html(f.name),
+            base64(&bytes),
+            html(&f.caption)
+        );
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -2,21 +2,81 @@
 //! and thinned to the plotting area, the annotations and the legend.
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::clip::{Rect, clip_polygon, clip_polyline};
 use super::simplify::thin;
-use super::{FONT, Figure, Kind, Legend, Marker, palette};
+use super::{FONT, Figure, Kind, Legend, Marker, Series, palette};
+
+/// The chart of a figure: f64 axes on a drawing backend.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A drawing step's outcome.
+type Drawn<T, DB> = Result<T, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// The plotting area's bounds in data units and its pixels per unit on each axis: where a
+/// series is clipped and how finely it is thinned.
+struct Window {
+    bounds: Rect,
+    px_scale: (f64, f64),
+}
+
+impl Window {
+    /// A polyline clipped to the window, each piece simplified to 0.4 px (see `thin`).
+    fn pieces(&self, pts: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+        clip_polyline(pts, &self.bounds)
+            .into_iter()
+            .map(|p| thin(&p, self.px_scale, 0.4))
+            .collect()
+    }
+}
 
 impl Figure {
-    pub(super) fn draw<DB: DrawingBackend>(
+    /// Draws the figure on `area`: the mesh, every series, the annotations, the legend.
+    pub(super) fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Drawn<(), DB> {
+        let mut chart = self.chart(area)?;
+        let ((x0, x1), (y0, y1)) = self.ranges();
+        let (pw, ph) = chart.plotting_area().dim_in_pixel();
+        let window = Window {
+            bounds: Rect { x0, x1, y0, y1 },
+            px_scale: (pw as f64 / (x1 - x0), ph as f64 / (y1 - y0)),
+        };
+        let mut labelled = false;
+        for (i, series) in self.series.iter().enumerate() {
+            let color = series
+                .color
+                .unwrap_or(palette::CYCLE[i % palette::CYCLE.len()]);
+            labelled |= match series.kind {
+                Kind::Line { dashed } => draw_line(&mut chart, &window, series, color, dashed)?,
+                Kind::Polygon { alpha, outline } => {
+                    draw_polygon(&mut chart, &window, series, color, (alpha, outline))?
+                }
+                Kind::Scatter { marker, filled } => {
+                    draw_scatter(&mut chart, &window, series, color, (marker, filled))?
+                }
+            };
+        }
+        self.draw_annotations(&mut chart, &window.bounds)?;
+        if labelled && self.legend != Legend::Hidden {
+            self.draw_legend(&mut chart)?;
+        }
+        Ok(())
+    }
+
+    /// A font size in pixels at the figure's scale.
+    fn px(&self, v: f64) -> u32 {
+        (v * self.font_scale).round().max(1.0) as u32
+    }
+
+    /// The chart on `area` with its title, axes, mesh and tick labels.
+    fn chart<'a, DB: DrawingBackend>(
         &self,
-        area: &DrawingArea<DB, Shift>,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        let s = self.font_scale;
-        let px = |v: f64| (v * s).round().max(1.0) as u32;
+        area: &'a DrawingArea<DB, Shift>,
+    ) -> Drawn<Chart<'a, DB>, DB> {
+        let px = |v: f64| self.px(v);
         let ((x0, x1), (y0, y1)) = self.ranges();
         let mut builder = ChartBuilder::on(area);
         builder
@@ -25,7 +85,7 @@ impl Figure {
             .x_label_area_size(px(80.0))
             .y_label_area_size(px(120.0));
         if !self.title.is_empty() {
-            let size = fit_font(34.0 * s, &self.title, area.dim_in_pixel().0);
+            let size = fit_font(34.0 * self.font_scale, &self.title, area.dim_in_pixel().0);
             builder.caption(&self.title, (FONT, size).into_font());
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
@@ -53,123 +113,16 @@ impl Figure {
             .bold_line_style(RGBColor(212, 212, 212))
             .axis_style(BLACK.stroke_width(2))
             .draw()?;
-        let bounds = Rect { x0, x1, y0, y1 };
-        let (pw, ph) = chart.plotting_area().dim_in_pixel();
-        let px_scale = (pw as f64 / (x1 - x0), ph as f64 / (y1 - y0));
-        // Clip, then simplify to 0.4 px (see `thin`).
-        let pieces_of = |pts: &[(f64, f64)]| -> Vec<Vec<(f64, f64)>> {
-            clip_polyline(pts, &bounds)
-                .into_iter()
-                .map(|p| thin(&p, px_scale, 0.4))
-                .collect()
-        };
-        let mut labelled = false;
-        for (i, series) in self.series.iter().enumerate() {
-            let color = series
-                .color
-                .unwrap_or(palette::CYCLE[i % palette::CYCLE.len()]);
-            let w = series.width.max(1);
-            let line_style = color.stroke_width(w);
-            match series.kind {
-                Kind::Line { dashed: false } => {
-                    let pieces = pieces_of(&series.points);
-                    let a = chart
-                        .draw_series(pieces.into_iter().map(|p| PathElement::new(p, line_style)))?;
-                    if let Some(l) = &series.label {
-                        labelled = true;
-                        a.label(l).legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 36, y)], color.stroke_width(w))
-                        });
-                    }
-                }
-                Kind::Line { dashed: true } => {
-                    let pieces = pieces_of(&series.points);
-                    let (dash, gap) = ((4 * w + 6) as i32, (2 * w + 5) as i32);
-                    let a = chart.draw_series(
-                        pieces
-                            .into_iter()
-                            .map(|p| DashedPathElement::new(p, dash, gap, line_style)),
-                    )?;
-                    if let Some(l) = &series.label {
-                        labelled = true;
-                        a.label(l).legend(move |(x, y)| {
-                            DashedPathElement::new(
-                                vec![(x, y), (x + 36, y)],
-                                9,
-                                6,
-                                color.stroke_width(w),
-                            )
-                        });
-                    }
-                }
-                Kind::Polygon { alpha, outline } => {
-                    let poly = thin(&clip_polygon(&series.points, &bounds), px_scale, 0.4);
-                    if poly.len() < 3 {
-                        continue;
-                    }
-                    let a = chart.draw_series(std::iter::once(Polygon::new(
-                        poly,
-                        color.mix(alpha).filled(),
-                    )))?;
-                    if let Some(l) = &series.label {
-                        labelled = true;
-                        a.label(l).legend(move |(x, y)| {
-                            let fill =
-                                Rectangle::new([(0, -9), (36, 9)], color.mix(alpha).filled());
-                            let edge = Rectangle::new(
-                                [(0, -9), (36, 9)],
-                                color.stroke_width(if outline { 2 } else { 0 }),
-                            );
-                            EmptyElement::at((x, y)) + fill + edge
-                        });
-                    }
-                    if outline {
-                        // Outline only along the true edges, not along the clip window.
-                        let mut ring = series.points.clone();
-                        ring.push(series.points[0]);
-                        let pieces = pieces_of(&ring);
-                        chart.draw_series(
-                            pieces.into_iter().map(|p| PathElement::new(p, line_style)),
-                        )?;
-                    }
-                }
-                Kind::Scatter { marker, filled } => {
-                    let r = series.size.max(1) as i32;
-                    let style = if filled {
-                        color.filled()
-                    } else {
-                        color.stroke_width(2)
-                    };
-                    let pts: Vec<(f64, f64)> = series
-                        .points
-                        .iter()
-                        .copied()
-                        .filter(|&p| bounds.contains(p))
-                        .collect();
-                    // One element type per marker (plotters' series need concrete types).
-                    macro_rules! scatter {
-                        ($p:ident => $e:expr) => {{
-                            let a = chart.draw_series(pts.iter().map(|&$p| $e))?;
-                            if let Some(l) = &series.label {
-                                labelled = true;
-                                a.label(l).legend(move |(x, y)| {
-                                    let $p = (x + 18, y);
-                                    $e
-                                });
-                            }
-                        }};
-                    }
-                    match marker {
-                        Marker::Circle => scatter!(p => Circle::new(p, r, style)),
-                        Marker::Square => scatter!(p => EmptyElement::at(p)
-                            + Rectangle::new([(-r, -r), (r, r)], style)),
-                        Marker::Triangle => scatter!(p => TriangleMarker::new(p, r + 2, style)),
-                        Marker::Cross => scatter!(p => Cross::new(p, r, style.stroke_width(3))),
-                    }
-                }
-            }
-        }
-        let font = (FONT, px(25.0)).into_font();
+        Ok(chart)
+    }
+
+    /// Every annotation whose anchor lies inside the plotting area.
+    fn draw_annotations<'a, DB: DrawingBackend + 'a>(
+        &self,
+        chart: &mut Chart<'a, DB>,
+        bounds: &Rect,
+    ) -> Drawn<(), DB> {
+        let font = (FONT, self.px(25.0)).into_font();
         for an in &self.annotations {
             if bounds.contains(an.at) {
                 let style = font.clone().color(&an.color);
@@ -180,25 +133,150 @@ impl Figure {
                 )))?;
             }
         }
-        if labelled && self.legend != Legend::Hidden {
-            let pos = match self.legend {
-                Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
-                Legend::UpperRight | Legend::Hidden => SeriesLabelPosition::UpperRight,
-                Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
-                Legend::LowerRight => SeriesLabelPosition::LowerRight,
-            };
-            chart
-                .configure_series_labels()
-                .position(pos)
-                .margin(px(12.0))
-                .legend_area_size(px(50.0))
-                .label_font((FONT, px(25.0)))
-                .background_style(WHITE.mix(0.88))
-                .border_style(RGBColor(120, 120, 120))
-                .draw()?;
-        }
         Ok(())
     }
+
+    /// The legend of the labelled series, at the figure's corner.
+    fn draw_legend<'a, DB: DrawingBackend + 'a>(&self, chart: &mut Chart<'a, DB>) -> Drawn<(), DB> {
+        let pos = match self.legend {
+            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Legend::UpperRight | Legend::Hidden => SeriesLabelPosition::UpperRight,
+            Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+            Legend::LowerRight => SeriesLabelPosition::LowerRight,
+        };
+        chart
+            .configure_series_labels()
+            .position(pos)
+            .margin(self.px(12.0))
+            .legend_area_size(self.px(50.0))
+            .label_font((FONT, self.px(25.0)))
+            .background_style(WHITE.mix(0.88))
+            .border_style(RGBColor(120, 120, 120))
+            .draw()?;
+        Ok(())
+    }
+}
+
+/// A solid or dashed line, clipped and thinned; true when it has a legend entry.
+fn draw_line<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    window: &Window,
+    series: &Series,
+    color: RGBColor,
+    dashed: bool,
+) -> Drawn<bool, DB> {
+    let w = series.width.max(1);
+    let line_style = color.stroke_width(w);
+    let pieces = window.pieces(&series.points);
+    if dashed {
+        let (dash, gap) = ((4 * w + 6) as i32, (2 * w + 5) as i32);
+        let a = chart.draw_series(
+            pieces
+                .into_iter()
+                .map(|p| DashedPathElement::new(p, dash, gap, line_style)),
+        )?;
+        if let Some(l) = &series.label {
+            a.label(l).legend(move |(x, y)| {
+                DashedPathElement::new(vec![(x, y), (x + 36, y)], 9, 6, color.stroke_width(w))
+            });
+        }
+    } else {
+        let a = chart.draw_series(pieces.into_iter().map(|p| PathElement::new(p, line_style)))?;
+        if let Some(l) = &series.label {
+            a.label(l).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 36, y)], color.stroke_width(w))
+            });
+        }
+    }
+    Ok(series.label.is_some())
+}
+
+/// A filled polygon clipped to the window, outlined along its true edges only (not along the
+/// clip window) when `outline`; true when it has a legend entry.
+fn draw_polygon<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    window: &Window,
+    series: &Series,
+    color: RGBColor,
+    (alpha, outline): (f64, bool),
+) -> Drawn<bool, DB> {
+    let poly = thin(
+        &clip_polygon(&series.points, &window.bounds),
+        window.px_scale,
+        0.4,
+    );
+    if poly.len() < 3 {
+        return Ok(false);
+    }
+    let a = chart.draw_series(std::iter::once(Polygon::new(
+        poly,
+        color.mix(alpha).filled(),
+    )))?;
+    if let Some(l) = &series.label {
+        a.label(l).legend(move |(x, y)| {
+            let fill = Rectangle::new([(0, -9), (36, 9)], color.mix(alpha).filled());
+            let edge = Rectangle::new(
+                [(0, -9), (36, 9)],
+                color.stroke_width(if outline { 2 } else { 0 }),
+            );
+            EmptyElement::at((x, y)) + fill + edge
+        });
+    }
+    if outline {
+        let mut ring = series.points.clone();
+        ring.push(series.points[0]);
+        let line_style = color.stroke_width(series.width.max(1));
+        chart.draw_series(
+            window
+                .pieces(&ring)
+                .into_iter()
+                .map(|p| PathElement::new(p, line_style)),
+        )?;
+    }
+    Ok(series.label.is_some())
+}
+
+/// Markers at the points inside the window; true when the series has a legend entry.
+fn draw_scatter<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    window: &Window,
+    series: &Series,
+    color: RGBColor,
+    (marker, filled): (Marker, bool),
+) -> Drawn<bool, DB> {
+    let r = series.size.max(1) as i32;
+    let style = if filled {
+        color.filled()
+    } else {
+        color.stroke_width(2)
+    };
+    let pts: Vec<(f64, f64)> = series
+        .points
+        .iter()
+        .copied()
+        .filter(|&p| window.bounds.contains(p))
+        .collect();
+    // One element type per marker (plotters' series need concrete types).
+    macro_rules! scatter {
+        ($p:ident => $e:expr) => {{
+            let a = chart.draw_series(pts.iter().map(|&$p| $e))?;
+            if let Some(l) = &series.label {
+                a.label(l).legend(move |(x, y)| {
+                    let $p = (x + 18, y);
+                    $e
+                });
+            }
+        }};
+    }
+    match marker {
+        Marker::Circle => scatter!(p => Circle::new(p, r, style)),
+        Marker::Square => {
+            scatter!(p => EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], style))
+        }
+        Marker::Triangle => scatter!(p => TriangleMarker::new(p, r + 2, style)),
+        Marker::Cross => scatter!(p => Cross::new(p, r, style.stroke_width(3))),
+    }
+    Ok(series.label.is_some())
 }
 
 /// The nominal font size for a one-line title: `nominal`, shrunk (not below 23, i.e. 18.5 px) so that

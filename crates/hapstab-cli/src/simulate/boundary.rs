@@ -239,6 +239,37 @@ fn boundary_row(p: &EmpiricalPoint, scale: Option<(f64, f64)>) -> BoundaryRow {
     }
 }
 
+/// The figure of the exact region and the simulated boundary at `--plot`'s stem, if asked for;
+/// `per_unit` puts the axes in N/m and Ns/m.
+fn save_boundary_plot(
+    a: &SimboundaryArgs,
+    (region, points): (&hapstab::region::StableRegion, &[EmpiricalPoint]),
+    model: &SimModel,
+    per_unit: Option<(f64, f64)>,
+    settings: &RunSettings,
+    units: Units,
+) -> Result<Option<Saved>> {
+    let Some(stem) = &a.plot else {
+        return Ok(None);
+    };
+    let paper = match model {
+        SimModel::Paper(m) => Some(m.params),
+        SimModel::Loop(_) => None,
+    };
+    let fig = boundary_plot(
+        region,
+        points,
+        paper.as_ref(),
+        Plane { per_unit },
+        settings,
+        units,
+    );
+    let saved = fig
+        .save(stem)
+        .with_context(|| format!("--plot {}", stem.display()))?;
+    Ok(Some(saved))
+}
+
 /// Runs `hapstab simboundary`.
 pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     let stable_when = check_boundary_args(a)?;
@@ -269,27 +300,8 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         write_boundary_csv(path, &rows)?;
     }
-    let paper = match &model {
-        SimModel::Paper(m) => Some(m.params),
-        SimModel::Loop(_) => None,
-    };
-    let saved = match &a.plot {
-        Some(stem) => Some(
-            boundary_plot(
-                &region,
-                &points,
-                paper.as_ref(),
-                Plane {
-                    per_unit: scale.filter(|_| units.physical),
-                },
-                &settings,
-                units,
-            )
-            .save(stem)
-            .with_context(|| format!("--plot {}", stem.display()))?,
-        ),
-        None => None,
-    };
+    let per_unit = scale.filter(|_| units.physical);
+    let saved = save_boundary_plot(a, (&region, &points), &model, per_unit, &settings, units)?;
     let out = SimboundaryOut {
         normalized: pm.filter(|_| !rl.normalized).map(|p| PaperPlant {
             gamma: p.gamma,

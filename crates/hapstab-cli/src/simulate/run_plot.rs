@@ -64,22 +64,32 @@ fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
     (f, format!("{p}{unit}"))
 }
 
-pub(super) fn trace_plot(
-    tr: &Trace,
-    r: &RunResult,
-    cfg: &Config,
-    s: &RunSettings,
-    units: Units,
-) -> Grid {
-    let verdict = outcome_summary(r, units);
-    let params = model_caption(&cfg.model, units);
-    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let xw = cfg.effects.wall_position;
-    let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
-    let fu = if units.physical { "N" } else { "" };
-    let (fs, funit) = scaled_unit(max_abs(&tr.wall_force), fu);
-    let series = |v: &[f64], scale: f64, from: f64| -> Vec<(f64, f64)> {
-        let pts: Vec<(f64, f64)> = tr
+/// What every panel of a run's figure shares: the trace, its end time and the time axis label.
+struct Panels<'a> {
+    tr: &'a Trace,
+    cfg: &'a Config,
+    t_end: f64,
+    tlabel: String,
+}
+
+/// The largest magnitude in `v` (0 for none).
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// (min, max) of the values.
+fn extent<'a>(v: impl IntoIterator<Item = &'a f64>) -> (f64, f64) {
+    v.into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        })
+}
+
+impl Panels<'_> {
+    /// The samples of `v` from time `from` on, scaled, min-max decimated for plotting.
+    fn series(&self, v: &[f64], scale: f64, from: f64) -> Vec<(f64, f64)> {
+        let pts: Vec<(f64, f64)> = self
+            .tr
             .time
             .iter()
             .zip(v)
@@ -87,105 +97,109 @@ pub(super) fn trace_plot(
             .map(|(&t, &y)| (t, y * scale))
             .collect();
         crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
-    };
-    let t_end = tr
-        .time
-        .last()
-        .copied()
-        .unwrap_or(1.0)
-        .max(cfg.model.period());
-    let tlabel = format!("time t ({})", units.time());
-    let mut pos = Figure::new(params)
-        .x_label(&tlabel)
-        .y_label(format!("position x ({xunit})"))
-        .x_range(0.0, t_end)
-        .legend(Legend::UpperRight);
-    let (lo, hi) = tr
-        .position
-        .iter()
-        .chain([&xw])
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let (j0, j1) = (
-        r.verdict.judged_from_sample as f64 * cfg.model.period(),
-        r.verdict.judged_to_sample as f64 * cfg.model.period(),
-    );
-    if hi > lo {
-        let (lo, hi) = (lo * xs, hi * xs);
-        pos.add(
-            Series::polygon([(j0, lo), (j1, lo), (j1, hi), (j0, hi)])
-                .color(palette::GREY)
-                .alpha(0.15)
-                .no_outline()
-                .label("judged window"),
-        );
     }
-    pos.add(
-        Series::line(series(&tr.position, xs, 0.0))
-            .color(palette::BLUE)
-            .width(2)
-            .label("position x"),
-    );
-    let wall_line = cfg.effects.contact != Contact::Bilateral || xw != 0.0;
-    if wall_line {
+
+    /// Position over time with the judged window shaded and the wall surface where it is not
+    /// the bilateral contact at 0.
+    fn position(&self, r: &RunResult, params: String) -> Figure {
+        let (tr, cfg) = (self.tr, self.cfg);
+        let xw = cfg.effects.wall_position;
+        let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
+        let mut pos = Figure::new(params)
+            .x_label(&self.tlabel)
+            .y_label(format!("position x ({xunit})"))
+            .x_range(0.0, self.t_end)
+            .legend(Legend::UpperRight);
+        let (lo, hi) = extent(tr.position.iter().chain([&xw]));
+        let (j0, j1) = (
+            r.verdict.judged_from_sample as f64 * cfg.model.period(),
+            r.verdict.judged_to_sample as f64 * cfg.model.period(),
+        );
+        if hi > lo {
+            let (lo, hi) = (lo * xs, hi * xs);
+            pos.add(
+                Series::polygon([(j0, lo), (j1, lo), (j1, hi), (j0, hi)])
+                    .color(palette::GREY)
+                    .alpha(0.15)
+                    .no_outline()
+                    .label("judged window"),
+            );
+        }
         pos.add(
-            Series::dashed([(0.0, xw * xs), (t_end, xw * xs)])
+            Series::line(self.series(&tr.position, xs, 0.0))
+                .color(palette::BLUE)
+                .width(2)
+                .label("position x"),
+        );
+        if cfg.effects.contact != Contact::Bilateral || xw != 0.0 {
+            pos.add(
+                Series::dashed([(0.0, xw * xs), (self.t_end, xw * xs)])
+                    .color(palette::GREY)
+                    .width(2)
+                    .label("wall surface x_w"),
+            );
+        }
+        pos
+    }
+
+    /// The wall force over time, with the saturation limits and the human's push.
+    fn force(&self, s: &RunSettings, units: Units) -> Figure {
+        let (tr, t_end) = (self.tr, self.t_end);
+        let fu = if units.physical { "N" } else { "" };
+        let (fs, funit) = scaled_unit(max_abs(&tr.wall_force), fu);
+        let flabel = if units.physical {
+            format!("wall force F ({funit})")
+        } else {
+            "wall force T²F/m".to_string()
+        };
+        let effects = describe_effects(s, units.force());
+        let effects = effects
+            .strip_prefix("none: ")
+            .unwrap_or(&effects)
+            .to_string();
+        let mut force = Figure::new(effects)
+            .x_label(&self.tlabel)
+            .y_label(flabel)
+            .x_range(0.0, t_end)
+            .legend(Legend::UpperRight);
+        force.add(
+            Series::line(self.series(&tr.wall_force, fs, 0.0))
+                .color(palette::VERMILLION)
+                .width(2)
+                .label("wall force F"),
+        );
+        if let Some(fmax) = self.cfg.effects.saturation {
+            let (hi, lo) = (fmax * fs, -fmax * fs);
+            force.add(
+                Series::dashed([
+                    (0.0, hi),
+                    (t_end, hi),
+                    (f64::NAN, 0.0),
+                    (0.0, lo),
+                    (t_end, lo),
+                ])
                 .color(palette::GREY)
                 .width(2)
-                .label("wall surface x_w"),
-        );
+                .label("saturation ±F_max"),
+            );
+        }
+        if s.human_force != 0.0 {
+            let fh = s.human_force * fs;
+            force.add(
+                Series::dashed([(0.0, fh), (t_end, fh)])
+                    .color(palette::GREEN)
+                    .width(2)
+                    .label("human push F_H"),
+            );
+        }
+        force
     }
-    let flabel = if units.physical {
-        format!("wall force F ({funit})")
-    } else {
-        "wall force T²F/m".to_string()
-    };
-    let effects = describe_effects(s, units.force());
-    let effects = effects
-        .strip_prefix("none: ")
-        .unwrap_or(&effects)
-        .to_string();
-    let mut force = Figure::new(effects)
-        .x_label(&tlabel)
-        .y_label(flabel)
-        .x_range(0.0, t_end)
-        .legend(Legend::UpperRight);
-    force.add(
-        Series::line(series(&tr.wall_force, fs, 0.0))
-            .color(palette::VERMILLION)
-            .width(2)
-            .label("wall force F"),
-    );
-    if let Some(fmax) = cfg.effects.saturation {
-        let (hi, lo) = (fmax * fs, -fmax * fs);
-        force.add(
-            Series::dashed([
-                (0.0, hi),
-                (t_end, hi),
-                (f64::NAN, 0.0),
-                (0.0, lo),
-                (t_end, lo),
-            ])
-            .color(palette::GREY)
-            .width(2)
-            .label("saturation ±F_max"),
-        );
-    }
-    if s.human_force != 0.0 {
-        let fh = s.human_force * fs;
-        force.add(
-            Series::dashed([(0.0, fh), (t_end, fh)])
-                .color(palette::GREEN)
-                .width(2)
-                .label("human push F_H"),
-        );
-    }
-    let mut g = Grid::new(format!("Simulation: {verdict}"), 1).panel_size(1000, 520);
-    g.push(pos);
-    g.push(force);
-    // A limit cycle: zoom on its last periods.
-    if r.verdict.outcome == Outcome::LimitCycle && tr.time.len() > 16 {
+
+    /// A zoom on the last periods of a limit cycle (eight periods, at most a quarter of the
+    /// run), with the encoder's thresholds around it under quantization.
+    fn limit_cycle(&self, r: &RunResult) -> Figure {
+        let (tr, t_end) = (self.tr, self.t_end);
+        let xw = self.cfg.effects.wall_position;
         let span = r
             .verdict
             .limit_cycle
@@ -203,23 +217,18 @@ pub(super) fn trace_plot(
             .collect();
         let (zs, zunit) = scaled_unit(max_abs(&tail).max(xw.abs()), "m");
         let mut zoom = Figure::new("Limit cycle: the last periods")
-            .x_label(&tlabel)
+            .x_label(&self.tlabel)
             .y_label(format!("position x ({zunit})"))
             .x_range(from, t_end)
             .legend(Legend::UpperRight);
         zoom.add(
-            Series::line(series(&tr.position, zs, from))
+            Series::line(self.series(&tr.position, zs, from))
                 .color(palette::BLUE)
                 .width(3)
                 .label("position x"),
         );
-        if let Some(q) = cfg.effects.quantization {
-            // The encoder levels around the cycle.
-            let (lo, hi) = tail
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                    (a.min(x), b.max(x))
-                });
+        if let Some(q) = self.cfg.effects.quantization {
+            let (lo, hi) = extent(&tail);
             // Thresholds (k + 1/2)·q from just below the cycle to just above it.
             let (k0, k1) = ((lo / q - 0.5).floor() as i64, (hi / q - 0.5).ceil() as i64);
             if k1 - k0 <= 40 {
@@ -236,7 +245,37 @@ pub(super) fn trace_plot(
                 );
             }
         }
-        g.push(zoom);
+        zoom
+    }
+}
+
+/// The figure of one run: position (with the judged window) and wall force over time, and
+/// for a limit cycle a zoom on its last periods.
+pub(super) fn trace_plot(
+    tr: &Trace,
+    r: &RunResult,
+    cfg: &Config,
+    s: &RunSettings,
+    units: Units,
+) -> Grid {
+    let verdict = outcome_summary(r, units);
+    let t_end = tr
+        .time
+        .last()
+        .copied()
+        .unwrap_or(1.0)
+        .max(cfg.model.period());
+    let panels = Panels {
+        tr,
+        cfg,
+        t_end,
+        tlabel: format!("time t ({})", units.time()),
+    };
+    let mut g = Grid::new(format!("Simulation: {verdict}"), 1).panel_size(1000, 520);
+    g.push(panels.position(r, model_caption(&cfg.model, units)));
+    g.push(panels.force(s, units));
+    if r.verdict.outcome == Outcome::LimitCycle && tr.time.len() > 16 {
+        g.push(panels.limit_cycle(r));
     }
     g
 }
