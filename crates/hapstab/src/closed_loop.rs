@@ -20,7 +20,7 @@ use serde::Serialize;
 
 use crate::error::Result;
 use crate::model::Loop;
-use crate::params::{Normalized, PlantParams, check_delay};
+use crate::params::{PlantParams, check_delay};
 use crate::plant::DiscretePlant;
 use crate::poly;
 use crate::zoh::{DiscreteLoop, WallScale};
@@ -404,37 +404,5 @@ impl PolyFamily {
     /// α = −γ is a root at z = 1).
     pub fn value_at_one(&self, alpha: f64) -> f64 {
         self.plant.numerator_at_one() * (alpha + self.plant.gamma)
-    }
-}
-
-/// The closed loop for one parameter set.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ClosedLoop {
-    /// Parameters.
-    pub params: Normalized,
-    /// Family (plant and delay).
-    pub family: PolyFamily,
-    /// Ascending coefficients of the monic characteristic polynomial p(z), degree d + 3.
-    pub poly: Vec<f64>,
-}
-
-impl ClosedLoop {
-    /// Builds p(z) of eq. (9) for normalized parameters.
-    pub fn new(params: Normalized) -> Result<Self> {
-        let params = params.validated()?;
-        let family = PolyFamily::new(params.plant(), params.d)?;
-        let poly = family.coefficients(params.alpha, params.beta);
-        Ok(Self {
-            params,
-            family,
-            poly,
-        })
-    }
-
-    /// G_x(z) of eq. (7) in normalized units: x/F = (T²/m) · z^{1+d} N(z) / p(z); this returns
-    /// z^{1+d} N(z)/p(z).
-    pub fn gx(&self, z: Complex64) -> Complex64 {
-        let num = z.powu(self.params.d as u32 + 1) * self.family.plant.numerator(z);
-        num / self.family.eval(self.params.alpha, self.params.beta, z)
     }
 }

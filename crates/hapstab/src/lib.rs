@@ -66,7 +66,7 @@ pub mod verdict;
 pub mod zoh;
 pub mod zwidth;
 
-pub use closed_loop::{AffineFamily, ClosedLoop, PolyFamily};
+pub use closed_loop::{AffineFamily, PolyFamily};
 pub use error::{Error, Result};
 pub use model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 pub use params::{Arm, Device, Effective, Normalized, Physical, PlantParams, Sampling, Wall};

@@ -9,7 +9,7 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::closed_loop::{AffineFamily, ClosedLoop, PolyFamily};
+use crate::closed_loop::{AffineFamily, PolyFamily};
 use crate::error::Result;
 use crate::params::Normalized;
 use crate::polyroots::{RootEstimate, aberth, companion};
@@ -251,9 +251,10 @@ const POLISH_SWEEPS: usize = 12;
 /// Stability of one normalized parameter set by the one verdict ([`crate::verdict::decide`]):
 /// true iff stable (a marginal wall is not).
 pub fn is_stable(params: &Normalized) -> Result<bool> {
-    let cl = ClosedLoop::new(*params)?;
-    let mut c = cl.poly.clone();
-    Ok(decide(&cl.family, params.alpha, params.beta, &mut c).verdict == Verdict::Stable)
+    let params = params.validated()?;
+    let fam = PolyFamily::new(params.plant(), params.d)?;
+    let mut c = fam.coefficients(params.alpha, params.beta);
+    Ok(decide(&fam, params.alpha, params.beta, &mut c).verdict == Verdict::Stable)
 }
 
 #[cfg(test)]

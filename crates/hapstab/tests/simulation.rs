@@ -9,7 +9,7 @@ use hapstab::simulation::{
     BoundarySearch, Config, Contact, Effects, Friction, HumanForce, Model, Outcome, StableWhen,
     empirical_boundary, exact_alpha_limit, linear_growth, simulate,
 };
-use hapstab::{Analysis, ClosedLoop, Error, Normalized, PlantParams};
+use hapstab::{Analysis, Error, Normalized, PlantParams, PolyFamily};
 
 const M: f64 = 0.1;
 const T: f64 = 1e-3;
@@ -96,7 +96,7 @@ fn linear_growth_equals_spectral_radius_at_random_points() {
 
 /// The run loop itself (ring-buffer delay line, wall law, ZOH step) reproduces eq. (9): by
 /// Cayley–Hamilton every trajectory of the unforced linear loop satisfies the recurrence
-/// Σ c_i x[k+i] = 0 with the coefficients c of p(z) from `ClosedLoop` (eq. 7–9).
+/// Σ c_i x[k+i] = 0 with the coefficients c of p(z) (eq. 7–9).
 #[test]
 fn run_satisfies_the_characteristic_recurrence() {
     for &(alpha, beta, gamma, delta, d) in &[
@@ -106,7 +106,9 @@ fn run_satisfies_the_characteristic_recurrence() {
         (0.9, 0.05, 1e-4, 0.0, 4),
     ] {
         let p = Normalized::new(alpha, beta, gamma, delta, d).unwrap();
-        let c = ClosedLoop::new(p).unwrap().poly;
+        let c = PolyFamily::new(p.plant(), d)
+            .unwrap()
+            .coefficients(alpha, beta);
         let mut cfg = Config::new(Model::new(p, M, T).unwrap(), 300);
         cfg.initial.position = 1e-3;
         cfg.initial.velocity = -0.02;
