@@ -301,51 +301,50 @@ fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> crate::plo
     fig
 }
 
+/// The human-readable answer of `boundary`: in normalized mode the region in α and β; in
+/// physical mode the loop, K_max and the area in N/m and Ns/m, and for the paper's loop its
+/// normalized view on one labelled line; then every polygon's edges.
 fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &BoundaryOut) {
     let paper = rl.lp.paper_view().map(|pp| (pp, rl.lp.delay.samples));
-    match paper {
-        Some((pp, d)) => println!(
-            "stable region for γ = {}, δ = {}, d = {d}",
-            sig(pp.gamma, 6),
-            sig(pp.delta, 6),
-        ),
-        None => println!("stable region of the loop"),
-    }
-    if !rl.normalized {
+    let empty = r.polygons.is_empty();
+    if rl.normalized {
+        if let Some((pp, d)) = paper {
+            println!(
+                "stable region for γ = {}, δ = {}, d = {d}",
+                sig(pp.gamma, 6),
+                sig(pp.delta, 6),
+            );
+        }
+        if !empty {
+            println!(
+                "α_max = {} at β = {}",
+                sig(r.alpha_max, 6),
+                sig(r.beta_at_alpha_max, 6)
+            );
+            println!("area  = {} (in α·β)", sig(r.area, 6));
+        }
+    } else {
+        println!("stable region of the loop");
         for line in describe_loop(&rl.lp) {
             println!("{line}");
         }
     }
-    if r.polygons.is_empty() {
+    if empty {
         println!("empty: no wall (K, B) makes this loop stable");
         return;
     }
-    if paper.is_some() {
-        println!(
-            "α_max = {} at β = {}",
-            sig(r.alpha_max, 6),
-            sig(r.beta_at_alpha_max, 6)
-        );
-        println!("area  = {} (in α·β)", sig(r.area, 6));
-    }
     if let Some(p) = &out.physical {
-        if p.k_max_attained {
-            println!(
-                "K_max = {} at B = {}",
-                eng(p.k_max, "N/m", 6),
-                eng(p.b_at_k_max, "Ns/m", 6)
-            );
-        } else {
-            println!(
-                "K_max = {}, approached as B → {} (a supremum: a corner of the region; K = {} \
-                 is stable at B = {})",
-                eng(p.k_max, "N/m", 6),
-                eng(p.b_at_k_max, "Ns/m", 6),
-                eng(p.k_stable_near_k_max, "N/m", 10),
-                eng(p.b_stable_near_k_max, "Ns/m", 10)
-            );
-        }
-        println!("area  = {} N²·s/m²", sig(p.area, 6));
+        print_k_max(p);
+    }
+    if let (Some((pp, d)), false) = (paper, rl.normalized) {
+        println!(
+            "normalized  γ = {}, δ = {}, d = {d}: α_max = {} at β = {}, area {} (α·β)",
+            sig(pp.gamma, 6),
+            sig(pp.delta, 6),
+            sig(r.alpha_max, 6),
+            sig(r.beta_at_alpha_max, 6),
+            sig(r.area, 6)
+        );
     }
     // polygons are numbered from 0, as in the CSV's polygon column and the JSON arrays
     for (i, p) in r.polygons.iter().enumerate() {
@@ -364,4 +363,26 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
             );
         }
     }
+}
+
+/// K_max with the damping that reaches it (or, for a supremum at a corner of the region, a
+/// stable wall beside it) and the region's area, in physical units.
+fn print_k_max(p: &PhysicalRegion) {
+    if p.k_max_attained {
+        println!(
+            "K_max = {} at B = {}",
+            eng(p.k_max, "N/m", 6),
+            eng(p.b_at_k_max, "Ns/m", 6)
+        );
+    } else {
+        println!(
+            "K_max = {}, approached as B → {} (a supremum: a corner of the region; K = {} \
+             is stable at B = {})",
+            eng(p.k_max, "N/m", 6),
+            eng(p.b_at_k_max, "Ns/m", 6),
+            eng(p.k_stable_near_k_max, "N/m", 10),
+            eng(p.b_stable_near_k_max, "Ns/m", 10)
+        );
+    }
+    println!("area  = {} N²·s/m²", sig(p.area, 6));
 }

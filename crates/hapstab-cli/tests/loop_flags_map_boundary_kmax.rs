@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{check, f, floats, hapstab, json, radius};
+use common::{check, f, floats, hapstab, json, radius, text};
 
 /// A wall map over (K, B) of a pure mass (m = 0.1 kg, T = 1 ms, d = 0) against the closed
 /// form 0 < α < 2β(2 − β)/(2 + β), α = KT²/m, β = BT/m.
@@ -159,4 +159,33 @@ fn check_gives_the_k_interval_of_every_loop() {
         "0.0003",
     ]);
     assert!((radius(&c) - 1.0).abs() < 1e-9, "{c}");
+}
+
+/// Physical input, physical answer: `boundary` on the default device without an arm leads
+/// with the loop and K_max in N/m, and the normalized view is one labelled line whose α_max
+/// is K_max·T²/m (Table I); no line speaks α or β otherwise.
+#[test]
+fn boundary_text_speaks_physical_units() {
+    let text = text(&["boundary", "--no-arm"]);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "stable region of the loop", "{text}");
+    let k_line = lines.iter().find(|l| l.starts_with("K_max = ")).unwrap();
+    let k_kn: f64 = k_line.split_whitespace().nth(2).unwrap().parse().unwrap();
+    assert!(k_line.contains("kN/m at B = "), "{k_line}");
+    let norm = lines.iter().find(|l| l.starts_with("normalized ")).unwrap();
+    let alpha: f64 = norm
+        .split("α_max = ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    // the default device alone: m = 0.1 kg, T = 1 ms
+    let (m, t) = (0.1, 1e-3);
+    assert!(
+        (k_kn * 1e3 * t * t / m - alpha).abs() < 1e-5 * alpha,
+        "{k_line} / {norm}"
+    );
+    let spoken = |l: &&&str| l.contains('α') || l.contains('β') || l.contains('γ');
+    assert_eq!(lines.iter().filter(spoken).count(), 1, "{text}");
 }
