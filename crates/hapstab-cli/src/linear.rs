@@ -5,7 +5,8 @@ use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::PlantParams;
 use hapstab::limits::validity_points_cost;
-use hapstab::linear::{ValidityPoint, validity_points};
+use hapstab::linear::{ValidityPoint, linear_condition};
+use hapstab::model::Loop;
 use serde::Serialize;
 
 use crate::budget::{self, Driver};
@@ -112,11 +113,13 @@ pub fn run(a: &LinearArgs) -> Result<()> {
             Driver::delay(pm.d),
         ],
     )?;
-    let pts = validity_points(PlantParams::new(pm.gamma, pm.delta)?, pm.d, &a.levels)?;
-    let scale = pm
-        .physical
-        .map(|(eff, s)| (eff.mass / (s.period * s.period), eff.mass / s.period));
-    let tr = pm.d as f64 + 0.5;
+    let lp = match pm.physical {
+        Some((eff, s)) => Loop::paper(eff, s.period, pm.d)?,
+        None => Loop::normalized(PlantParams::new(pm.gamma, pm.delta)?, pm.d)?,
+    };
+    let lc = linear_condition(&lp, &a.levels)?;
+    let scale = pm.physical.map(|_| (lc.units.stiffness, lc.units.damping));
+    let pts = &lc.points;
     let out = LinearOut {
         input: LinearInput {
             plant: plant_input(&pm),
@@ -127,9 +130,9 @@ pub fn run(a: &LinearArgs) -> Result<()> {
             delta: pm.delta,
             d: pm.d,
         }),
-        linear_slope: 1.0 / tr,
-        linear_intercept: pm.delta / tr,
-        alpha_lower: -pm.gamma,
+        linear_slope: lc.slope,
+        linear_intercept: lc.intercept,
+        alpha_lower: lc.alpha_lower,
         points: pts
             .iter()
             .map(|p| PointOut {
@@ -146,7 +149,7 @@ pub fn run(a: &LinearArgs) -> Result<()> {
     if a.json {
         return print_json(&out);
     }
-    print_text(&pm, &out, &pts);
+    print_text(&pm, &out, pts);
     Ok(())
 }
 

@@ -10,6 +10,7 @@ mod budget;
 mod discretize;
 mod errors;
 mod freqresp;
+mod linear;
 mod locus;
 mod loops;
 mod map;
@@ -49,6 +50,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<locus::PyRootLocus>()?;
     m.add_class::<sweep::PySweep>()?;
     m.add_class::<zwidth::PyZWidth>()?;
+    m.add_class::<linear::PyLinearCondition>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
@@ -61,6 +63,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(locus::root_locus, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(zwidth::zwidth, m)?)?;
+    m.add_function(wrap_pyfunction!(linear::linear_condition, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_rebuild, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_result_fields, m)?)?;
     Ok(())

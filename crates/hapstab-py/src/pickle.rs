@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use crate::analysis::{PyCheck, PyEdge, PyKmax, PyRegion};
 use crate::discretize::PyDiscretization;
 use crate::freqresp::{PyFrequencyResponse, PyMark};
+use crate::linear::PyLinearCondition;
 use crate::locus::PyRootLocus;
 use crate::map::PyStabilityMap;
 use crate::margins::PyMargins;
@@ -83,6 +84,9 @@ results! {
         final_velocity },
     "Sweep" => PySweep { param, unit, values, k_max, b_at_k_max, k_max_passive,
         k_max_passive_with_arm, notes },
+    "LinearCondition" => PyLinearCondition { gamma, delta, d, linear_slope, linear_intercept,
+        alpha_lower, levels, beta, alpha, alpha_linear, error, at_start, wall_stiffness,
+        wall_damping },
     "ZWidth" => PyZWidth { stable, stable_area, k_max, b_at_k_max, k_max_nonnegative_damping,
         device_damping, passive, k_max_passive_with_arm, passive_inside_stable, linear,
         table_damping, table_k_max, table_k_min, table_k_max_passive, table_k_linear },

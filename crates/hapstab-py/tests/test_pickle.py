@@ -50,7 +50,7 @@ def results(lp, wall):
         hs.passivity(lp, *wall), hs.frequency_response(lp, *wall),
         hs.root_locus(lp, wall_damping=wall[1]), hs.discretize(lp, *wall),
         hs.simulate(lp, *wall), hs.sweep(lp, "arm-stiffness", [100.0, 300.0]), hs.zwidth(lp),
-        hs.stability_map(lp, grid_k, grid_b),
+        hs.stability_map(lp, grid_k, grid_b), hs.linear_condition(lp),
     ]
 
 

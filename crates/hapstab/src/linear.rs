@@ -17,7 +17,9 @@ use serde::Serialize;
 use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_alpha_intervals};
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite};
+use crate::model::{Loop, PlantModel};
 use crate::params::{Normalized, Physical, PlantParams, check_delay};
+use crate::zoh::WallScale;
 
 /// The cubic a3 s³ + a2 s² + a1 s + a0 of eq. (17).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -217,6 +219,61 @@ pub struct ValidityPoint {
     /// True when the error is at or above `level` already at the first sample β₀ > 0
     /// ([`VALIDITY_BETA_START`]): the linear condition never holds to this level.
     pub at_start: bool,
+}
+
+/// The linear condition of a loop with the paper's normalized view and where it stops
+/// holding: the half-planes of (23) and (19) and the validity points of every error level
+/// (Sections VI–VII, Fig. 7), with the wall's units to read them in N/m and Ns/m.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LinearCondition {
+    /// γ of Table I.
+    pub gamma: f64,
+    /// δ of Table I.
+    pub delta: f64,
+    /// The delay d in samples.
+    pub d: usize,
+    /// 1/(d + 1/2): (23) is α < slope·β + intercept.
+    pub slope: f64,
+    /// δ/(d + 1/2).
+    pub intercept: f64,
+    /// (19): α > −γ.
+    pub alpha_lower: f64,
+    /// The validity point of each level, in the order given.
+    pub points: Vec<ValidityPoint>,
+    /// N/m per unit of α and Ns/m per unit of β: m/T² and m/T of the loop's plant (1 and 1
+    /// for [`Loop::normalized`]).
+    pub units: WallScale,
+}
+
+/// [`LinearCondition`] of a loop: its (γ, δ, d) from [`Loop::paper_view`] and the
+/// [`validity_points`] of the levels. A loop without the paper's normalized view (another
+/// plant or estimator, an actuator lag, a fractional delay) is refused naming the loop.
+pub fn linear_condition(lp: &Loop, levels: &[f64]) -> Result<LinearCondition> {
+    let (Some(pp), PlantModel::MassSpringDamper(e)) = (lp.paper_view(), &lp.plant.model) else {
+        return Err(Error::Invalid {
+            name: "loop",
+            reason: "has no normalized view (the paper's loop: a mass-spring-damper, the \
+                     backward difference, a whole-sample delay, no actuator lag): the linear \
+                     condition (22) belongs to it"
+                .into(),
+        });
+    };
+    let d = lp.delay.samples;
+    let tr = d as f64 + 0.5;
+    let t = lp.period;
+    Ok(LinearCondition {
+        gamma: pp.gamma,
+        delta: pp.delta,
+        d,
+        slope: 1.0 / tr,
+        intercept: pp.delta / tr,
+        alpha_lower: -pp.gamma,
+        points: validity_points(pp, d, levels)?,
+        units: WallScale {
+            stiffness: e.mass / (t * t),
+            damping: e.mass / t,
+        },
+    })
 }
 
 /// First β of the scan for the validity points: the scan starts at β₀ = 1e-7 (β = 0⁺).

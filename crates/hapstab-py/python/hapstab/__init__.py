@@ -32,6 +32,8 @@ and answers from the same Rust engine as the `hapstab` command line:
   Nyquist plot); root_locus: the roots of p(z) as K sweeps at a damping B.
 - sweep: K_max (stable and passive) against one parameter of the loop.
 - zwidth: the Z-width, stable and passive regions with K_max against the damping.
+- linear_condition: the paper's linear condition (22)-(23) and the smallest damping at
+  which it errs by a given fraction of the exact boundary (eq. 24, Fig. 7).
 
 Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad arguments raise
 ValueError naming the keyword argument.
@@ -47,6 +49,7 @@ from ._hapstab import (
     Edge,
     FrequencyResponse,
     Kmax,
+    LinearCondition,
     Loop,
     Margins,
     Mark,
@@ -69,6 +72,7 @@ from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
 from ._hapstab import frequency_response as _frequency_response
 from ._hapstab import kmax as _kmax
+from ._hapstab import linear_condition as _linear_condition
 from ._hapstab import margins as _margins
 from ._hapstab import passivity as _passivity
 from ._hapstab import region as _region
@@ -145,6 +149,7 @@ check = _named(_check)
 discretize = _named(_discretize)
 frequency_response = _named(_frequency_response)
 kmax = _named(_kmax)
+linear_condition = _named(_linear_condition)
 margins = _named(_margins)
 passivity = _named(_passivity)
 region = _named(_region)
@@ -161,6 +166,7 @@ __all__ = [
     "Edge",
     "FrequencyResponse",
     "Kmax",
+    "LinearCondition",
     "Loop",
     "Margins",
     "Mark",
@@ -180,6 +186,7 @@ __all__ = [
     "discretize",
     "frequency_response",
     "kmax",
+    "linear_condition",
     "margins",
     "passivity",
     "region",

@@ -419,6 +419,29 @@ class Sweep:
     def plot(self, ax: Any = None) -> Any:
         """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
+class LinearCondition:
+    """The paper's linear condition (22)-(23) and its validity points (eq. 24, Fig. 7)."""
+
+    gamma: float
+    delta: float
+    d: int
+    linear_slope: float
+    """1/(d + 1/2): (23) is alpha < linear_slope*beta + linear_intercept."""
+    linear_intercept: float
+    alpha_lower: float
+    """(19): alpha > -gamma."""
+    levels: Float64Array
+    beta: Float64Array
+    """The smallest beta > 0 at which the error (24) reaches each level."""
+    alpha: Float64Array
+    alpha_linear: Float64Array
+    error: Float64Array
+    at_start: list[bool]
+    wall_stiffness: Optional[Float64Array]
+    """alpha in N/m at each point (None for Loop.normalized)."""
+    wall_damping: Optional[Float64Array]
+    """beta in Ns/m at each point (None for Loop.normalized)."""
+
 class ZWidth:
     """The Z-width of a loop: stable and passive regions, K_max, the K_max table."""
 
@@ -559,6 +582,8 @@ def sweep(
     damping_range: Optional[Tuple[float, float]] = None,
 ) -> Sweep:
     """K_max (stable and passive) with `param` ("delay-time", "arm-stiffness", …) at each value."""
+def linear_condition(loop: Loop, *, levels: Sequence[float] = (0.02, 0.05)) -> LinearCondition:
+    """The linear condition of the paper's loop: the numbers of `hapstab linear --json`."""
 def zwidth(loop: Loop, *, table_damping: Optional[Sequence[float]] = None) -> ZWidth:
     """The Z-width: the numbers of `hapstab zwidth --json`."""
     def plot(self, ax: Any = None) -> Any:
