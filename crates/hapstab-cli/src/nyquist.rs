@@ -4,12 +4,8 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use hapstab::boundary::AlphaBeta;
-use hapstab::limits::{Cost, gamma_sweep_cost, passive_check_cost, robust_region_cost};
 use hapstab::nyquist::{
-    NyquistStiffness, PassiveCheck, RegionSummary, RobustOptions, RobustRegion,
-    gamma_sweep_with_progress, nyquist_gamma, nyquist_stiffness,
-    passive_inside_robust_with_progress, passive_region, robust_region_with_progress,
+    NyquistRegions, NyquistStiffness, SweepInput, nyquist_regions, nyquist_stiffness,
 };
 use serde::Serialize;
 
@@ -24,9 +20,6 @@ const DEFAULT_STEPS: usize = 4;
 const DEFAULT_BETA_SAMPLES: usize = 201;
 /// Default of `--gamma-samples`.
 const DEFAULT_GAMMA_SAMPLES: usize = 41;
-/// β samples of the passivity check (Section VIII-A).
-const PASSIVE_SAMPLES: usize = 41;
-
 /// Arguments of `hapstab nyquist`: the normalized plant (--delta, --delay) for the regions,
 /// or the plant in physical units (the same flags as every command) for Remark 4.
 /// `--gamma` and `--stiffness` are refused (γ is swept, Remark 4 computes the stiffness), so
@@ -54,54 +47,6 @@ pub struct NyquistArgs {
     json: bool,
 }
 
-/// Below this |α_max| a swept region has no stable point with α > 0: its α_max comes out of
-/// the golden-section search at round-off level (about 1e-16·γ for γ up to γ_N ≈ 10), far
-/// below this bound, and is reported as 0.
-const ALPHA_ROUNDOFF: f64 = 1e-12;
-
-/// The inputs of the normalized analysis, after defaults.
-#[derive(Serialize)]
-struct SweepInput {
-    delta: f64,
-    d: usize,
-    gamma_fraction: f64,
-    steps: usize,
-    beta_samples: usize,
-    gamma_samples: usize,
-}
-
-/// One region of the γ sweep (α_max of 0 when every stable point has α ≤ 0, to round-off).
-#[derive(Serialize)]
-struct SweepRow {
-    gamma: f64,
-    degenerate: bool,
-    empty: bool,
-    beta_min: f64,
-    beta_max: f64,
-    alpha_min: f64,
-    alpha_max: f64,
-    /// Null when α_max is 0 to round-off (then reached along a boundary segment).
-    beta_at_alpha_max: Option<f64>,
-    area: f64,
-}
-
-impl From<&RegionSummary> for SweepRow {
-    fn from(s: &RegionSummary) -> Self {
-        let roundoff = s.alpha_max.abs() <= ALPHA_ROUNDOFF;
-        SweepRow {
-            gamma: s.gamma,
-            degenerate: s.degenerate,
-            empty: s.empty,
-            beta_min: s.beta_min,
-            beta_max: s.beta_max,
-            alpha_min: s.alpha_min,
-            alpha_max: if roundoff { 0.0 } else { s.alpha_max },
-            beta_at_alpha_max: (!roundoff).then_some(s.beta_at_alpha_max),
-            area: s.area,
-        }
-    }
-}
-
 /// Remark 4's inputs: the effective mass and damping and the period.
 #[derive(Serialize)]
 struct Remark4Input {
@@ -122,41 +67,6 @@ struct Remark4Out {
     gamma_nyquist: f64,
     /// The Nyquist frequency 1/(2T) in Hz.
     nyquist_frequency_hz: f64,
-}
-
-#[derive(Serialize)]
-struct RobustOut {
-    gamma_lo: f64,
-    gamma_hi: f64,
-    empty: bool,
-    alpha_max: f64,
-    beta_at_alpha_max: f64,
-    area: f64,
-    degenerate_gammas: Vec<f64>,
-    multiple_intervals: bool,
-    /// Counter-clockwise vertices [alpha, beta].
-    polygon: Vec<[f64; 2]>,
-}
-
-#[derive(Serialize)]
-struct PassiveOut {
-    /// Vertices [alpha, beta].
-    vertices: Vec<[f64; 2]>,
-    area: f64,
-    /// Eq. (28) is Colgate's condition for d = 0.
-    applies: bool,
-    check: PassiveCheck,
-}
-
-#[derive(Serialize)]
-struct NyquistOut {
-    input: SweepInput,
-    /// γ_N = π² + δ²/4 (eq. 27).
-    gamma_nyquist: f64,
-    sweep: Vec<SweepRow>,
-    robust: RobustOut,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    passive: Option<PassiveOut>,
 }
 
 /// The plant flags with a --loop file's paper loop filled in, but not the parts that
@@ -194,11 +104,15 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
     let delta = p.delta.unwrap_or(0.0);
     let delay = delay_samples(p.delay.unwrap_or(0.0))?;
     check_sweep_args(a)?;
-    let opts = RobustOptions {
-        gamma_samples: a.gamma_samples.max(2),
-        ..Default::default()
+    let input = SweepInput {
+        delta,
+        d: delay,
+        gamma_fraction: a.gamma_fraction,
+        steps: a.steps,
+        beta_samples: a.beta_samples,
+        gamma_samples: a.gamma_samples,
     };
-    let cost = estimate(a, delta, delay, opts);
+    let cost = input.cost();
     budget::check(
         cost,
         "the sweep and the robust region",
@@ -209,41 +123,14 @@ pub fn run(a: &NyquistArgs) -> Result<()> {
             Driver::delay(delay),
         ],
     )?;
-    let gn = nyquist_gamma(delta);
-    let g_hi = gn * a.gamma_fraction;
     // one bar over the three stages: sweep regions, robust slices, passivity slices
-    let stages = [a.steps + 1, opts.beta_samples.max(8), PASSIVE_SAMPLES];
     let bar = Bar::new(
-        stages.iter().sum::<usize>(),
+        input.stages().iter().sum::<usize>(),
         "steps",
         !a.json && cost.seconds >= crate::progress::LONG_SECONDS,
     );
-    let sweep = gamma_sweep_with_progress(
-        delta,
-        delay,
-        a.gamma_fraction,
-        a.steps,
-        a.beta_samples,
-        &bar.stage(0),
-    )?;
-    let r = robust_region_with_progress(delta, delay, 0.0, g_hi, opts, &bar.stage(stages[0]))?;
-    let passive_progress = bar.stage(stages[0] + stages[1]);
-    let passive = passive_out(delta, delay, g_hi, opts, &passive_progress)?;
+    let out = nyquist_regions(input, &bar.stage(0))?;
     bar.finish();
-    let out = NyquistOut {
-        input: SweepInput {
-            delta,
-            d: delay,
-            gamma_fraction: a.gamma_fraction,
-            steps: a.steps,
-            beta_samples: a.beta_samples,
-            gamma_samples: a.gamma_samples,
-        },
-        gamma_nyquist: gn,
-        sweep: sweep.iter().map(SweepRow::from).collect(),
-        robust: robust_out(r, g_hi),
-        passive,
-    };
     if a.json {
         return print_json(&out);
     }
@@ -263,74 +150,6 @@ fn check_sweep_args(a: &NyquistArgs) -> Result<()> {
         bail!("--steps must be >= 1");
     }
     Ok(())
-}
-
-/// Colgate's passive region at δ > 0 and whether it lies inside the robust region over
-/// γ ∈ [0, g_hi] (None at δ = 0, where it is empty).
-fn passive_out(
-    delta: f64,
-    delay: usize,
-    g_hi: f64,
-    opts: RobustOptions,
-    progress: &(dyn Fn(usize) + Sync),
-) -> Result<Option<PassiveOut>> {
-    if delta <= 0.0 {
-        return Ok(None);
-    }
-    let p = passive_region(delta)?;
-    let check = passive_inside_robust_with_progress(
-        delta,
-        delay,
-        0.0,
-        g_hi,
-        PASSIVE_SAMPLES,
-        opts,
-        progress,
-    )?;
-    Ok(Some(PassiveOut {
-        area: p.area(),
-        vertices: pairs(&p.vertices),
-        applies: delay == 0,
-        check,
-    }))
-}
-
-/// The robust region over γ ∈ [0, g_hi] as `nyquist` reports it.
-fn robust_out(r: RobustRegion, g_hi: f64) -> RobustOut {
-    RobustOut {
-        gamma_lo: 0.0,
-        gamma_hi: g_hi,
-        empty: r.empty,
-        alpha_max: r.alpha_max,
-        beta_at_alpha_max: r.beta_at_alpha_max,
-        area: r.area,
-        degenerate_gammas: r.degenerate_gammas,
-        multiple_intervals: r.multiple_intervals,
-        polygon: pairs(&r.polygon),
-    }
-}
-
-/// Vertices as [alpha, beta] pairs, as every command writes polygons.
-fn pairs(v: &[AlphaBeta]) -> Vec<[f64; 2]> {
-    v.iter().map(|p| [p.alpha, p.beta]).collect()
-}
-
-/// The estimated cost of the sweep, the robust region and the passivity check.
-fn estimate(a: &NyquistArgs, delta: f64, delay: usize, opts: RobustOptions) -> Cost {
-    let sweep = gamma_sweep_cost(a.steps, a.beta_samples, delay);
-    let robust = robust_region_cost(
-        opts.gamma_samples,
-        opts.beta_samples,
-        delay,
-        opts.refine_gamma,
-        opts.refine_beta_rounds,
-    );
-    let passive = if delta > 0.0 {
-        passive_check_cost(PASSIVE_SAMPLES, opts.gamma_samples, delay)
-    } else {
-        Cost::ZERO
-    };
-    sweep.then(robust).then(passive)
 }
 
 /// Remark 4 for the effective plant of the physical flags: the stiffness that brings it to
@@ -380,7 +199,7 @@ fn print_remark4(r: &NyquistStiffness) {
     );
 }
 
-fn print_text(o: &NyquistOut) {
+fn print_text(o: &NyquistRegions) {
     let (delta, gn) = (o.input.delta, o.gamma_nyquist);
     println!(
         "plant       δ = {}, d = {};  Nyquist at γ_N = π² + δ²/4 = {} (eq. 27)",

@@ -15,6 +15,7 @@ mod locus;
 mod loops;
 mod map;
 mod margins;
+mod nyquist;
 mod passivity;
 mod pickle;
 mod simulate;
@@ -51,6 +52,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sweep::PySweep>()?;
     m.add_class::<zwidth::PyZWidth>()?;
     m.add_class::<linear::PyLinearCondition>()?;
+    m.add_class::<nyquist::PyNyquistRegions>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
@@ -64,6 +66,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(zwidth::zwidth, m)?)?;
     m.add_function(wrap_pyfunction!(linear::linear_condition, m)?)?;
+    m.add_function(wrap_pyfunction!(nyquist::nyquist_regions, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_rebuild, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_result_fields, m)?)?;
     Ok(())

@@ -15,6 +15,7 @@ use crate::linear::PyLinearCondition;
 use crate::locus::PyRootLocus;
 use crate::map::PyStabilityMap;
 use crate::margins::PyMargins;
+use crate::nyquist::PyNyquistRegions;
 use crate::passivity::{PyPassiveRegion, PyPassivity};
 use crate::simulate::PySimulation;
 use crate::sweep::PySweep;
@@ -87,6 +88,11 @@ results! {
     "LinearCondition" => PyLinearCondition { gamma, delta, d, linear_slope, linear_intercept,
         alpha_lower, levels, beta, alpha, alpha_linear, error, at_start, wall_stiffness,
         wall_damping },
+    "NyquistRegions" => PyNyquistRegions { delta, d, gamma_nyquist, sweep_gamma,
+        sweep_alpha_max, sweep_beta_at_alpha_max, sweep_alpha_min, sweep_beta_min,
+        sweep_beta_max, sweep_area, sweep_empty, sweep_degenerate, robust_polygon,
+        robust_alpha_max, robust_beta_at_alpha_max, robust_area, robust_gamma_hi,
+        passive_polygon, passive_area, passive_inside_robust, passive_applies },
     "ZWidth" => PyZWidth { stable, stable_area, k_max, b_at_k_max, k_max_nonnegative_damping,
         device_damping, passive, k_max_passive_with_arm, passive_inside_stable, linear,
         table_damping, table_k_max, table_k_min, table_k_max_passive, table_k_linear },

@@ -51,6 +51,7 @@ def results(lp, wall):
         hs.root_locus(lp, wall_damping=wall[1]), hs.discretize(lp, *wall),
         hs.simulate(lp, *wall), hs.sweep(lp, "arm-stiffness", [100.0, 300.0]), hs.zwidth(lp),
         hs.stability_map(lp, grid_k, grid_b), hs.linear_condition(lp),
+        hs.nyquist_regions(0.1, 1, steps=2, beta_samples=16, gamma_samples=3),
     ]
 
 

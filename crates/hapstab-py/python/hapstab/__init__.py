@@ -34,6 +34,8 @@ and answers from the same Rust engine as the `hapstab` command line:
 - zwidth: the Z-width, stable and passive regions with K_max against the damping.
 - linear_condition: the paper's linear condition (22)-(23) and the smallest damping at
   which it errs by a given fraction of the exact boundary (eq. 24, Fig. 7).
+- nyquist_regions: Section VIII in normalized units: the stable regions as gamma sweeps up
+  to the Nyquist frequency, the robustly stable region, Colgate's passive region inside it.
 
 Units are SI throughout: K in N/m, B in Ns/m, masses in kg, times in s. Bad arguments raise
 ValueError naming the keyword argument.
@@ -55,6 +57,7 @@ from ._hapstab import (
     Mark,
     MassSpringDamper,
     NumericalError,
+    NyquistRegions,
     PassiveRegion,
     Passivity,
     Region,
@@ -74,6 +77,7 @@ from ._hapstab import frequency_response as _frequency_response
 from ._hapstab import kmax as _kmax
 from ._hapstab import linear_condition as _linear_condition
 from ._hapstab import margins as _margins
+from ._hapstab import nyquist_regions as _nyquist_regions
 from ._hapstab import passivity as _passivity
 from ._hapstab import region as _region
 from ._hapstab import root_locus as _root_locus
@@ -151,6 +155,7 @@ frequency_response = _named(_frequency_response)
 kmax = _named(_kmax)
 linear_condition = _named(_linear_condition)
 margins = _named(_margins)
+nyquist_regions = _named(_nyquist_regions)
 passivity = _named(_passivity)
 region = _named(_region)
 root_locus = _named(_root_locus)
@@ -172,6 +177,7 @@ __all__ = [
     "Mark",
     "MassSpringDamper",
     "NumericalError",
+    "NyquistRegions",
     "PassiveRegion",
     "Passivity",
     "Region",
@@ -188,6 +194,7 @@ __all__ = [
     "kmax",
     "linear_condition",
     "margins",
+    "nyquist_regions",
     "passivity",
     "region",
     "root_locus",

@@ -442,6 +442,33 @@ class LinearCondition:
     wall_damping: Optional[Float64Array]
     """beta in Ns/m at each point (None for Loop.normalized)."""
 
+class NyquistRegions:
+    """Section VIII: the gamma sweep's regions, the robust region, the passive region."""
+
+    delta: float
+    d: int
+    gamma_nyquist: float
+    """gamma_N = pi^2 + delta^2/4 (eq. 27)."""
+    sweep_gamma: Float64Array
+    sweep_alpha_max: Float64Array
+    sweep_beta_at_alpha_max: Float64Array
+    sweep_alpha_min: Float64Array
+    sweep_beta_min: Float64Array
+    sweep_beta_max: Float64Array
+    sweep_area: Float64Array
+    sweep_empty: list[bool]
+    sweep_degenerate: list[bool]
+    robust_polygon: Float64Array
+    """(N, 2) array of [alpha, beta], counter-clockwise."""
+    robust_alpha_max: float
+    robust_beta_at_alpha_max: float
+    robust_area: float
+    robust_gamma_hi: float
+    passive_polygon: Optional[Float64Array]
+    passive_area: Optional[float]
+    passive_inside_robust: Optional[bool]
+    passive_applies: Optional[bool]
+
 class ZWidth:
     """The Z-width of a loop: stable and passive regions, K_max, the K_max table."""
 
@@ -584,6 +611,16 @@ def sweep(
     """K_max (stable and passive) with `param` ("delay-time", "arm-stiffness", …) at each value."""
 def linear_condition(loop: Loop, *, levels: Sequence[float] = (0.02, 0.05)) -> LinearCondition:
     """The linear condition of the paper's loop: the numbers of `hapstab linear --json`."""
+def nyquist_regions(
+    delta: float = 0.0,
+    d: int = 0,
+    *,
+    gamma_fraction: float = 1.0,
+    steps: int = 4,
+    beta_samples: int = 201,
+    gamma_samples: int = 41,
+) -> NyquistRegions:
+    """Section VIII in normalized units: the numbers of `hapstab nyquist --json`."""
 def zwidth(loop: Loop, *, table_damping: Optional[Sequence[float]] = None) -> ZWidth:
     """The Z-width: the numbers of `hapstab zwidth --json`."""
     def plot(self, ax: Any = None) -> Any:

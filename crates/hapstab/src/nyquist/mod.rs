@@ -44,6 +44,7 @@ mod passive;
 mod plant_box;
 mod robust;
 mod search;
+mod section;
 mod slice;
 mod summary;
 
@@ -62,6 +63,10 @@ pub use plant_box::{
 pub use robust::{
     RobustOptions, RobustRegion, RobustSlice, polygon_area, robust_region,
     robust_region_with_progress,
+};
+pub use section::{
+    ALPHA_ROUNDOFF, NyquistRegions, PASSIVE_SAMPLES, PassiveOut, RobustOut, SweepInput, SweepRow,
+    nyquist_regions,
 };
 pub use summary::{
     RegionSummary, beta_bound, gamma_sweep, gamma_sweep_with_progress, region_summary,
