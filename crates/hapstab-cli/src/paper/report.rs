@@ -153,6 +153,21 @@ fn g(x: f64) -> String {
 }
 
 /// The cells of one robust-region row, shared by the Markdown and HTML tables.
+/// The cells of an α_max row: the figures (through `text`, the format's escaping), γ, δ, d,
+/// α_max, β there, the area, and the outline's source with its vertex count.
+fn alpha_cells(r: &AlphaRow, text: &dyn Fn(&str) -> String) -> [String; 8] {
+    [
+        text(&r.figures),
+        g(r.gamma),
+        g(r.delta),
+        r.d.to_string(),
+        g(r.alpha_max),
+        g(r.beta_at_alpha_max),
+        g(r.area),
+        format!("{} ({} vertices)", source_text(r.source), r.vertices),
+    ]
+}
+
 fn robust_cells(r: &RobustRow) -> [String; 7] {
     [
         r.figure.to_string(),
@@ -261,19 +276,7 @@ fn markdown(rep: &Report) -> String {
         "| figures | γ | δ | d | α_max | β at α_max | area | outline |\n|---|---|---|---|---|---|---|---|"
     );
     for r in &rep.alpha_max {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} ({} vertices) |",
-            r.figures,
-            g(r.gamma),
-            g(r.delta),
-            r.d,
-            g(r.alpha_max),
-            g(r.beta_at_alpha_max),
-            g(r.area),
-            source_text(r.source),
-            r.vertices
-        );
+        let _ = writeln!(s, "| {} |", alpha_cells(r, &|t| t.to_string()).join(" | "));
     }
     let _ = writeln!(s, "\n## Robustly stable regions (Figs. 8–10)\n");
     let _ = writeln!(
@@ -315,18 +318,11 @@ fn html_report(dir: &Path, rep: &Report) -> Result<String> {
     html_figures(&mut s, dir, rep)?;
     s.push_str("<h2>α<sub>max</sub> of every region shown</h2>\n<table><tr><th>figures</th><th>γ</th><th>δ</th><th>d</th><th>α<sub>max</sub></th><th>β at α<sub>max</sub></th><th>area</th><th>outline</th></tr>\n");
     for r in &rep.alpha_max {
+        let [figures, nums @ .., outline] = alpha_cells(r, &html);
         let _ = writeln!(
             s,
-            "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{} ({} vertices)</td></tr>",
-            html(&r.figures),
-            g(r.gamma),
-            g(r.delta),
-            r.d,
-            g(r.alpha_max),
-            g(r.beta_at_alpha_max),
-            g(r.area),
-            source_text(r.source),
-            r.vertices
+            "<tr><td>{figures}</td><td class=\"num\">{}</td><td>{outline}</td></tr>",
+            nums.join("</td><td class=\"num\">")
         );
     }
     s.push_str("</table>\n<h2>Robustly stable regions (Figs. 8–10)</h2>\n<table><tr><th>figure</th><th>δ</th><th>d</th><th>γ range</th><th>robust α<sub>max</sub></th><th>β at α<sub>max</sub></th><th>area</th></tr>\n");
