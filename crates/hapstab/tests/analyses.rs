@@ -8,18 +8,20 @@ use std::f64::consts::PI;
 
 use hapstab::boundary::stable_alpha_intervals;
 use hapstab::linear::{
-    continuous_cubic_normalized, linear_alpha_limit, relative_error, routh_hurwitz,
-    routh_hurwitz_normalized, validity_points,
+    continuous_cubic_normalized, linear_alpha_limit, linear_condition, relative_error,
+    routh_hurwitz, routh_hurwitz_normalized, validity_points,
 };
+use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
 use hapstab::nyquist::{
-    BoxOptions, PlantBox, RobustOptions, beta_bound, gamma_sweep, nyquist_gamma, nyquist_stiffness,
-    passive_inside_robust, passive_region, region_summary, robust_kmax, robust_region,
+    BoxOptions, PlantBox, RobustOptions, SweepInput, beta_bound, gamma_sweep, nyquist_gamma,
+    nyquist_regions, nyquist_stiffness, passive_inside_robust, passive_region, region_summary,
+    robust_kmax, robust_region,
 };
 use hapstab::params::{Effective, Physical, Sampling, Wall};
 use hapstab::ranges::ranges;
 use hapstab::stability::{Verdict, roots, schur_stable};
 use hapstab::verdict::decide_coefficients;
-use hapstab::{Normalized, PlantParams, PolyFamily};
+use hapstab::{Error, Normalized, PlantParams, PolyFamily};
 
 const PI2: f64 = PI * PI;
 
@@ -397,6 +399,82 @@ fn gamma_sweep_fig8() {
     // pure mass: α_max = 12 − 8√2 at β = 2√2 − 2 (maximum of 2β(2 − β)/(2 + β))
     assert!((s[0].alpha_max - (12.0 - 8.0 * 2f64.sqrt())).abs() < 1e-9);
     assert!((s[0].beta_at_alpha_max - (2.0 * 2f64.sqrt() - 2.0)).abs() < 1e-5);
+}
+
+/// The linear condition of a physical paper loop is its normalized view's: the validity
+/// points of (γ, δ) of Table I, (23)'s slope 1/(d + 1/2) and intercept δ/(d + 1/2), (19)'s
+/// −γ, and the wall's units m/T², m/T; a loop without the view is refused naming the loop.
+#[test]
+fn linear_condition_of_a_loop_is_its_normalized_view() {
+    let (e, t, d) = (Effective::new(1.1, 7.5, 350.0).unwrap(), 1e-3, 2);
+    let levels = [0.02, 0.1];
+    let lc = linear_condition(&Loop::paper(e, t, d).unwrap(), &levels).unwrap();
+    let pp = PlantParams::from_physical(&e, t).unwrap();
+    assert_eq!((lc.gamma, lc.delta, lc.d), (pp.gamma, pp.delta, d));
+    assert_eq!(lc.points, validity_points(pp, d, &levels).unwrap());
+    assert_eq!((lc.slope, lc.intercept), (1.0 / 2.5, pp.delta / 2.5));
+    assert_eq!(lc.alpha_lower, -pp.gamma);
+    assert_eq!(
+        (lc.units.stiffness, lc.units.damping),
+        (1.1 / (t * t), 1.1 / t)
+    );
+    let lowpass = Loop::new(
+        Plant::mass_spring_damper(e).unwrap(),
+        t,
+        Delay::samples(d).unwrap(),
+        VelocityEstimator::LowPass { cutoff_hz: 100.0 },
+    )
+    .unwrap();
+    match linear_condition(&lowpass, &levels) {
+        Err(Error::Invalid { name: "loop", .. }) => {}
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Section VIII as one analysis is the composition of its parts: the sweep, the robust
+/// region and the passive region with its check equal the separate calls, and the progress
+/// reaches the three stages' sum.
+#[test]
+fn nyquist_regions_compose_sweep_robust_and_passive() {
+    let input = SweepInput {
+        delta: 0.2,
+        d: 1,
+        gamma_fraction: 0.5,
+        steps: 2,
+        beta_samples: 24,
+        gamma_samples: 3,
+    };
+    let most = std::sync::atomic::AtomicUsize::new(0);
+    let progress = |n: usize| {
+        most.fetch_max(n, std::sync::atomic::Ordering::Relaxed);
+    };
+    let r = nyquist_regions(input, &progress).unwrap();
+    let sweep = gamma_sweep(0.2, 1, 0.5, 2, 24).unwrap();
+    assert_eq!(r.sweep.len(), 3);
+    for (row, s) in r.sweep.iter().zip(&sweep) {
+        assert_eq!(
+            (row.gamma, row.area, row.beta_min),
+            (s.gamma, s.area, s.beta_min)
+        );
+    }
+    let g_hi = nyquist_gamma(0.2) * 0.5;
+    assert_eq!(r.gamma_nyquist, nyquist_gamma(0.2));
+    let robust = robust_region(0.2, 1, 0.0, g_hi, input.robust_options()).unwrap();
+    assert_eq!(
+        (r.robust.alpha_max, r.robust.area),
+        (robust.alpha_max, robust.area)
+    );
+    assert_eq!(r.robust.polygon.len(), robust.polygon.len());
+    let passive = r.passive.as_ref().unwrap();
+    assert_eq!(passive.area, passive_region(0.2).unwrap().area());
+    assert!(
+        !passive.applies,
+        "eq. (28) is Colgate's condition for d = 0 only"
+    );
+    assert_eq!(
+        most.load(std::sync::atomic::Ordering::Relaxed),
+        input.stages().iter().sum::<usize>()
+    );
 }
 
 // ---------------------------------------------------------------- robust design
