@@ -329,6 +329,16 @@ fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: b
             .map(|k| format!("; linear condition (22){what}: {}", kt(k)))
             .unwrap_or_default()
     };
+    // the pure spring first: the number a device renders without virtual damping
+    if over_band {
+        match out.k_max_at_zero_damping {
+            Some(k) => println!(
+                "K_max = {} at B = 0 (no virtual damping, the plant's own damping only)",
+                kt(k)
+            ),
+            None => println!("no stiffness is stable at B = 0"),
+        }
+    }
     match (out.k_max, out.wall_damping, out.b_at_k_max) {
         (None, None, _) => println!("no stiffness is stable for {}", band_text(band)),
         (None, Some(b), _) => println!("no stiffness is stable at B = {}", bt(b)),
@@ -361,16 +371,18 @@ fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: b
         ),
         _ => {}
     }
+    if over_band
+        && band.lo == 0.0
+        && band.hi == f64::INFINITY
+        && let Some(b) = out.b_at_k_max.filter(|&b| b > 0.0)
+    {
+        println!(
+            "            (that needs the device to render B = {}; --damping-range LO:HI \
+             gives K_max over the dampings yours renders)",
+            bt(b)
+        );
+    }
     if !out.plot.is_empty() {
         println!("plot written to {}", wall_plot::files_text(&out.plot));
-    }
-    if over_band {
-        match out.k_max_at_zero_damping {
-            Some(k) => println!(
-                "K_max = {} at B = 0 (no virtual damping, the plant's own damping only)",
-                kt(k)
-            ),
-            None => println!("no stiffness is stable at B = 0"),
-        }
     }
 }

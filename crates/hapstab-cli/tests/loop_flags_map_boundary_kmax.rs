@@ -189,3 +189,34 @@ fn boundary_text_speaks_physical_units() {
     let spoken = |l: &&&str| l.contains('α') || l.contains('β') || l.contains('γ');
     assert_eq!(lines.iter().filter(spoken).count(), 1, "{text}");
 }
+
+/// `kmax` leads with the pure spring: its first K_max line is the one at B = 0, equal to
+/// `kmax --wall-damping 0` (the interval at one damping, another path); the overall maximum
+/// follows, with a line that names the damping it needs and --damping-range.
+#[test]
+fn kmax_text_leads_with_zero_damping() {
+    let text = text(&["kmax", "--no-arm"]);
+    let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("K_max = ")).collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    assert!(lines[0].contains(" at B = 0 (no virtual damping"), "{text}");
+    let at_zero = json(&["kmax", "--no-arm", "--wall-damping", "0"]);
+    let k0 = f(&at_zero["k_max"]);
+    let printed: f64 = lines[0].split_whitespace().nth(2).unwrap().parse().unwrap();
+    assert!(
+        (printed * 1e3 - k0).abs() <= 5e-6 * k0,
+        "{} vs {k0}",
+        lines[0]
+    );
+    let overall = json(&["kmax", "--no-arm"]);
+    assert_eq!(f(&overall["k_max_at_zero_damping"]), k0);
+    let b = f(&overall["b_at_k_max"]);
+    assert!(b > 0.0);
+    let hint = text
+        .lines()
+        .find(|l| l.contains("--damping-range LO:HI"))
+        .unwrap();
+    assert!(hint.contains("needs the device to render B = "), "{hint}");
+    // a band given: no hint
+    let banded = crate::text(&["kmax", "--no-arm", "--damping-range", "0:20"]);
+    assert!(!banded.contains("--damping-range LO:HI"), "{banded}");
+}
