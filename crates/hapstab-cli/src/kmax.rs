@@ -7,7 +7,7 @@ use hapstab::AffineFamily;
 use serde::Serialize;
 
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
-use crate::output::{eng, print_json, sig};
+use crate::output::{eng, print_json};
 use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
 use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
@@ -241,7 +241,7 @@ fn figure(
             (k, 0.0),
             Marker::Triangle,
             palette::GREEN,
-            &format!("K_max at B = 0: {} N/m", sig(k, 6)),
+            &format!("K_max at B = 0: {}", eng(k, "N/m", 6)),
             "B = 0",
         );
     }

@@ -11,7 +11,7 @@ use hapstab::region::StableRegion;
 use num_complex::Complex64;
 
 use crate::model::ResolvedLoop;
-use crate::output::sig;
+use crate::output::{eng, sig};
 use crate::plot::{Figure, Grid, Legend, Marker, RGBColor, Series, palette};
 
 /// The wall plane of a loop: physical (K, B) or the paper's normalized (α, β).
@@ -41,7 +41,7 @@ impl<'a> Plane<'a> {
     /// A wall as plotted, named as the axes are: (K, B) or (α, β).
     pub fn describe(&self, (x, y): (f64, f64)) -> String {
         if self.physical {
-            format!("K = {} N/m, B = {} Ns/m", sig(x, 6), sig(y, 6))
+            format!("K = {}, B = {}", eng(x, "N/m", 6), eng(y, "Ns/m", 6))
         } else {
             format!("α = {}, β = {}", sig(x, 6), sig(y, 6))
         }
