@@ -10,7 +10,7 @@ use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop}
 use crate::output::{eng, print_json};
 use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
-use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
+use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, RenderableBand};
 
 /// A band of virtual damping lo ≤ B ≤ hi in Ns/m (`LO:HI`; `inf` for no upper bound).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -57,6 +57,17 @@ pub struct KmaxArgs {
     #[arg(long, value_name = "LO:HI", value_parser = parse_damping_range,
           allow_hyphen_values = true, conflicts_with_all = ["wall_damping", "robust"])]
     damping_range: Option<DampingRange>,
+    /// Position resolution Δ at the handle in m (encoder step): with --force-noise it sets the
+    /// renderable damping band 0 ≤ B ≤ F_n·√12/(Δ·‖V‖₂) reported without --wall-damping and
+    /// --damping-range (‖V‖₂: the velocity estimator's noise gain)
+    #[arg(long, value_name = "M", allow_hyphen_values = true, default_value_t = hapstab::kmax::DEFAULT_POSITION_RESOLUTION,
+          conflicts_with_all = ["wall_damping", "damping_range", "robust"])]
+    position_resolution: f64,
+    /// Largest force noise the virtual damper may add, RMS in N (sets the renderable band
+    /// with --position-resolution)
+    #[arg(long, value_name = "N", allow_hyphen_values = true, default_value_t = hapstab::kmax::DEFAULT_FORCE_NOISE,
+          conflicts_with_all = ["wall_damping", "damping_range", "robust"])]
+    force_noise: f64,
     /// Robust design (beyond the paper): K_max stable for every plant in a box, by default
     /// from the ungrabbed device to the device held by the arm (see --box-* flags).
     #[arg(long, conflicts_with_all = LOOP_FLAGS)]
@@ -112,35 +123,12 @@ impl KmaxInput {
 #[derive(Serialize)]
 struct KmaxOut {
     input: KmaxInput,
-    /// Largest stable K in N/m.
-    k_max: Option<f64>,
-    /// B at which K_max over the damping range is reached (when no B was given), Ns/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    b_at_k_max: Option<f64>,
-    /// False where K_max over the band is a supremum: a corner of the region that only the
-    /// damping `b_at_k_max` touches, approached as B → `b_at_k_max` (absent with a given B).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_max_attained: Option<bool>,
-    /// For a supremum, a damping beside `b_at_k_max` at which `k_stable_near_k_max` is
-    /// stable, Ns/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    b_stable_near_k_max: Option<f64>,
-    /// For a supremum, a stiffness within 1e-6 of K_max (1e-9 where the corner's wedge is
-    /// wide enough) that the verdict confirms stable at `b_stable_near_k_max`, N/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_stable_near_k_max: Option<f64>,
-    /// K_max with no virtual damping (B = 0: the plant's own damping only), N/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_max_at_zero_damping: Option<f64>,
+    /// The answer, under the library's report keys.
+    #[serde(flatten)]
+    report: KmaxReport,
     /// The given B, Ns/m (echoed under `input`).
     #[serde(skip)]
     wall_damping: Option<f64>,
-    /// Stable K interval at the given B, N/m.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_interval: Option<[f64; 2]>,
-    /// Linear condition (22): (b + B)/(t_d + T/2) at the same B, N/m (the paper's loop).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_linear: Option<f64>,
     /// The paper's loop: the same result in normalized units (Table I).
     #[serde(rename = "normalized", skip_serializing_if = "Option::is_none")]
     paper: Option<PaperView>,
@@ -149,63 +137,19 @@ struct KmaxOut {
     plot: Vec<std::path::PathBuf>,
 }
 
-/// The stable interval with the largest upper end at damping B (Ns/m), in wall units.
-fn at_damping(rl: &ResolvedLoop, fam: &AffineFamily, b: f64) -> Result<KmaxOut> {
-    if !b.is_finite() {
-        bail!("wall damping B must be a finite number (got {b})");
-    }
-    let bu = damping_units(&rl.lp, fam, b)?;
-    let best = k_max_at_damping(&rl.lp, fam, bu)?;
-    let k = |a: f64| fam.to_physical(a, 0.0).0;
-    Ok(KmaxOut {
-        input: KmaxInput::new(rl, Some(b), None),
-        k_max: best.map(|i| k(i.hi)),
-        b_at_k_max: None,
-        k_max_attained: None,
-        b_stable_near_k_max: None,
-        k_stable_near_k_max: None,
-        k_max_at_zero_damping: None,
-        wall_damping: Some(b),
-        k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
-        k_linear: linear_k(&rl.lp, b),
-        paper: paper_view(rl, best.map(|i| i.hi), Some(bu)),
-        plot: Vec::new(),
-    })
-}
-
-/// K_max over the damping band (Ns/m) and the B that reaches it
-/// ([`k_max_within`]), beside K_max at B = 0.
-fn within(rl: &ResolvedLoop, fam: &AffineFamily, band: DampingRange) -> Result<KmaxOut> {
-    let units = |b: f64| -> Result<f64> {
-        if b.is_finite() {
-            Ok(damping_units(&rl.lp, fam, b)?)
-        } else {
-            Ok(b)
-        }
+/// The library's answer to the query, with the loop and the query echoed.
+fn answer(rl: &ResolvedLoop, fam: &AffineFamily, query: KmaxQuery) -> Result<KmaxOut> {
+    let report = hapstab::kmax::kmax(&rl.lp, fam, query)?;
+    let (wall_damping, damping_range) = match query {
+        KmaxQuery::AtDamping(b) => (Some(b), None),
+        KmaxQuery::Band { lo, hi } => (None, Some([Some(lo), hi.is_finite().then_some(hi)])),
+        KmaxQuery::Design(_) => (None, Some([Some(0.0), None])),
     };
-    let best = k_max_within(&rl.lp, fam, units(band.lo)?, units(band.hi)?)?;
-    let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
-    let at_zero = k_max_at_damping(&rl.lp, fam, 0.0)?;
     Ok(KmaxOut {
-        input: KmaxInput::new(
-            rl,
-            None,
-            Some([Some(band.lo), band.hi.is_finite().then_some(band.hi)]),
-        ),
-        k_max: phys.map(|p| p.0),
-        b_at_k_max: phys.map(|p| p.1),
-        k_max_attained: best.map(|p| p.attained),
-        b_stable_near_k_max: best
-            .filter(|p| !p.attained)
-            .map(|p| fam.to_physical(0.0, p.beta_stable).1),
-        k_stable_near_k_max: best
-            .filter(|p| !p.attained)
-            .map(|p| fam.to_physical(p.alpha_stable, 0.0).0),
-        k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
-        wall_damping: None,
-        k_interval: None,
-        k_linear: phys.and_then(|p| linear_k(&rl.lp, p.1)),
-        paper: paper_view(rl, best.map(|p| p.alpha), best.map(|p| p.beta)),
+        input: KmaxInput::new(rl, wall_damping, damping_range),
+        paper: paper_view(rl, report.k_max_units, report.b_units),
+        report,
+        wall_damping,
         plot: Vec::new(),
     })
 }
@@ -235,7 +179,7 @@ fn figure(
         };
         wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
     }
-    if let Some(k) = out.k_max_at_zero_damping {
+    if let Some(k) = out.report.k_max_at_zero_damping {
         wall_plot::mark(
             &mut fig,
             (k, 0.0),
@@ -245,8 +189,8 @@ fn figure(
             "B = 0",
         );
     }
-    let b_best = out.b_at_k_max.or(out.wall_damping);
-    if let (Some(k), Some(b)) = (out.k_max, b_best) {
+    let b_best = out.report.b_at_k_max.or(out.wall_damping);
+    if let (Some(k), Some(b)) = (out.report.k_max, b_best) {
         wall_plot::mark(
             &mut fig,
             (k, b),
@@ -278,6 +222,26 @@ fn paper_view(rl: &ResolvedLoop, alpha_max: Option<f64>, beta: Option<f64>) -> O
     })
 }
 
+/// The query the flags ask: at --wall-damping, over --damping-range, or the design query
+/// (B = 0, the renderable band of the noise flags, B ≥ 0).
+fn query(a: &KmaxArgs) -> Result<KmaxQuery> {
+    Ok(match (a.wall_damping, a.damping_range) {
+        (Some(b), _) => KmaxQuery::AtDamping(b),
+        (None, Some(r)) => KmaxQuery::Band { lo: r.lo, hi: r.hi },
+        (None, None) => {
+            for (flag, v) in [
+                ("--position-resolution", a.position_resolution),
+                ("--force-noise", a.force_noise),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    bail!("{flag} must be a positive finite number (got {v})");
+                }
+            }
+            KmaxQuery::Design(NoiseModel::new(a.position_resolution, a.force_noise)?)
+        }
+    })
+}
+
 /// Runs `hapstab kmax`.
 pub fn run(a: &KmaxArgs) -> Result<()> {
     if a.robust {
@@ -287,6 +251,7 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     if rl.normalized {
         bail!("kmax works in physical units; for normalized parameters use `hapstab boundary`");
     }
+    let query = query(a)?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let n = fam.degree();
     let mut cost = hapstab::limits::interval_cost(n);
@@ -301,10 +266,7 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         lo: 0.0,
         hi: f64::INFINITY,
     });
-    let mut out = match a.wall_damping {
-        Some(b) => at_damping(&rl, &fam, b)?,
-        None => within(&rl, &fam, band)?,
-    };
+    let mut out = answer(&rl, &fam, query)?;
     if let Some(path) = &a.plot {
         let fig = figure(&rl, &fam, &out, band)?;
         out.plot = wall_plot::save(fig, None, path)?;
@@ -322,16 +284,10 @@ fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: b
     for line in describe_loop(&rl.lp) {
         println!("{line}");
     }
-    let kt = |k: f64| eng(k, "N/m", 6);
-    let bt = |b: f64| eng(b, "Ns/m", 6);
-    let linear = |what: &str| {
-        out.k_linear
-            .map(|k| format!("; linear condition (22){what}: {}", kt(k)))
-            .unwrap_or_default()
-    };
+    let r = &out.report;
     // the pure spring first: the number a device renders without virtual damping
     if over_band {
-        match out.k_max_at_zero_damping {
+        match r.k_max_at_zero_damping {
             Some(k) => println!(
                 "K_max = {} at B = 0 (no virtual damping, the plant's own damping only)",
                 kt(k)
@@ -339,26 +295,88 @@ fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: b
             None => println!("no stiffness is stable at B = 0"),
         }
     }
-    match (out.k_max, out.wall_damping, out.b_at_k_max) {
+    if let Some(rb) = &r.renderable {
+        print_renderable(rl, rb);
+    }
+    print_main(r, out.wall_damping, band);
+    if over_band
+        && band.lo == 0.0
+        && band.hi == f64::INFINITY
+        && let Some(b) = r.b_at_k_max.filter(|&b| b > 0.0)
+        && r.renderable.as_ref().is_none_or(|rb| b > rb.b_max)
+    {
+        println!(
+            "            (that needs the device to render B = {}; --damping-range LO:HI \
+             gives K_max over the dampings yours renders)",
+            bt(b)
+        );
+    }
+    if !out.plot.is_empty() {
+        println!("plot written to {}", wall_plot::files_text(&out.plot));
+    }
+}
+
+fn kt(k: f64) -> String {
+    eng(k, "N/m", 6)
+}
+
+fn bt(b: f64) -> String {
+    eng(b, "Ns/m", 6)
+}
+
+/// K_max over the renderable band and how the band is set.
+fn print_renderable(rl: &ResolvedLoop, rb: &RenderableBand) {
+    let band = format!("the renderable band 0 ≤ B ≤ {}", bt(rb.b_max));
+    match (rb.k_max, rb.b_at_k_max) {
+        (Some(k), Some(b)) => println!(
+            "K_max = {}, {} B = {} (largest over {band})",
+            kt(k),
+            if rb.k_max_attained == Some(false) {
+                "approached as"
+            } else {
+                "reached at"
+            },
+            bt(b)
+        ),
+        _ => println!("no stiffness is stable over {band}"),
+    }
+    println!(
+        "            (the damper's force noise stays ≤ {} RMS there: {} position steps through \
+         the {} estimator, noise gain {}; --position-resolution, --force-noise)",
+        eng(rb.noise.force_noise, "N", 6),
+        eng(rb.noise.position_resolution, "m", 6),
+        rl.lp.velocity,
+        format!("{} s⁻¹", crate::output::sig(rb.velocity_noise_gain, 6)),
+    );
+}
+
+/// K_max at the given B, or over the band with where it is reached.
+fn print_main(r: &KmaxReport, wall_damping: Option<f64>, band: DampingRange) {
+    let linear = |what: &str| {
+        r.k_linear
+            .map(|k| format!("; linear condition (22){what}: {}", kt(k)))
+            .unwrap_or_default()
+    };
+    match (r.k_max, wall_damping, r.b_at_k_max) {
         (None, None, _) => println!("no stiffness is stable for {}", band_text(band)),
         (None, Some(b), _) => println!("no stiffness is stable at B = {}", bt(b)),
         (Some(k), Some(b), _) => println!(
             "K_max = {} at B = {} (stable for {} < K < {}){}",
             kt(k),
             bt(b),
-            out.k_interval.map_or("—".into(), |i| kt(i[0])),
+            r.k_interval.map_or("—".into(), |i| kt(i[0])),
             kt(k),
             linear("")
         ),
-        (Some(k), None, Some(b)) if out.k_max_attained == Some(false) => println!(
+        (Some(k), None, Some(b)) if r.k_max_attained == Some(false) => println!(
             "K_max = {}, approached as B → {} (largest over {}: a supremum, a corner of the \
              region that no stiffness at exactly that B reaches; K = {} is stable at B = {}){}",
             kt(k),
             bt(b),
             band_text(band),
-            out.k_stable_near_k_max
+            r.k_stable_near_k_max
                 .map_or("—".into(), |k| eng(k, "N/m", 10)),
-            out.b_stable_near_k_max
+            r.b_stable_near_k_max
                 .map_or("—".into(), |b| eng(b, "Ns/m", 10)),
             linear(" at that B")
         ),
@@ -370,19 +388,5 @@ fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: b
             linear(" at that B")
         ),
         _ => {}
-    }
-    if over_band
-        && band.lo == 0.0
-        && band.hi == f64::INFINITY
-        && let Some(b) = out.b_at_k_max.filter(|&b| b > 0.0)
-    {
-        println!(
-            "            (that needs the device to render B = {}; --damping-range LO:HI \
-             gives K_max over the dampings yours renders)",
-            bt(b)
-        );
-    }
-    if !out.plot.is_empty() {
-        println!("plot written to {}", wall_plot::files_text(&out.plot));
     }
 }

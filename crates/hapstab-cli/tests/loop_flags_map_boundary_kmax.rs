@@ -197,8 +197,12 @@ fn boundary_text_speaks_physical_units() {
 fn kmax_text_leads_with_zero_damping() {
     let text = text(&["kmax", "--no-arm"]);
     let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("K_max = ")).collect();
-    assert_eq!(lines.len(), 2, "{text}");
+    assert_eq!(lines.len(), 3, "{text}");
     assert!(lines[0].contains(" at B = 0 (no virtual damping"), "{text}");
+    assert!(
+        lines[1].contains("largest over the renderable band 0 ≤ B ≤ "),
+        "{text}"
+    );
     let at_zero = json(&["kmax", "--no-arm", "--wall-damping", "0"]);
     let k0 = f(&at_zero["k_max"]);
     let printed: f64 = lines[0].split_whitespace().nth(2).unwrap().parse().unwrap();
@@ -219,4 +223,53 @@ fn kmax_text_leads_with_zero_damping() {
     // a band given: no hint
     let banded = crate::text(&["kmax", "--no-arm", "--damping-range", "0:20"]);
     assert!(!banded.contains("--damping-range LO:HI"), "{banded}");
+}
+
+/// The renderable band B_r = F_n·√12/(Δ·‖V‖₂) of the backward difference (‖V‖₂ = √2/T)
+/// and K_max over it, equal to K_max over the band given as --damping-range.
+#[test]
+fn kmax_reports_the_renderable_band() {
+    let out = json(&[
+        "kmax",
+        "--no-arm",
+        "--position-resolution",
+        "2e-5",
+        "--force-noise",
+        "0.08",
+    ]);
+    let rb = &out["renderable"];
+    let b_r = 0.08 * 12f64.sqrt() * 1e-3 / (2e-5 * 2f64.sqrt());
+    assert!((f(&rb["b_max"]) - b_r).abs() <= 1e-14 * b_r, "{rb}");
+    assert_eq!(f(&rb["position_resolution"]), 2e-5);
+    assert_eq!(f(&rb["force_noise"]), 0.08);
+    let band = format!("0:{}", f(&rb["b_max"]));
+    let given = json(&["kmax", "--no-arm", "--damping-range", &band]);
+    assert_eq!(f(&rb["k_max"]), f(&given["k_max"]));
+    assert!(f(&rb["k_max"]) < f(&out["k_max"]));
+    assert!(given.get("renderable").is_none());
+}
+
+#[test]
+fn kmax_refuses_a_bad_noise_model() {
+    for (flags, needle) in [
+        (
+            &["--force-noise", "0"][..],
+            "--force-noise must be a positive finite number (got 0)",
+        ),
+        (
+            &["--position-resolution", "-1e-5"][..],
+            "--position-resolution must be a positive finite number (got -0.00001)",
+        ),
+        (
+            &["--force-noise", "0.1", "--wall-damping", "3"][..],
+            "--wall-damping",
+        ),
+    ] {
+        let mut args = vec!["kmax"];
+        args.extend_from_slice(flags);
+        let out = hapstab().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{flags:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{flags:?}: {err}");
+    }
 }

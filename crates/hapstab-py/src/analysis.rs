@@ -1,18 +1,17 @@
-//! `check`, `region` and `kmax`: the exact analyses of Section V for one loop, through the
+//! `check` and `region`: the exact analyses of Section V for one loop, through the
 //! library's `loop_analysis` (the same functions the command line calls).
 
 use hapstab::AffineFamily;
 use hapstab::boundary::Interval;
 use hapstab::loop_analysis::{
-    analysis, damping_units, k_max_at_damping, k_max_within, linear_k, pick_interval,
-    region as loop_region, stable_intervals, wall_units,
+    analysis, linear_k, pick_interval, region as loop_region, stable_intervals, wall_units,
 };
-use hapstab::region::{ConfirmedMax, EdgeKind, Polygon, StableRegion};
+use hapstab::region::{EdgeKind, Polygon, StableRegion};
 use num_complex::Complex64;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 
-use crate::errors::{Context, bad};
+use crate::errors::Context;
 use crate::loops::PyLoop;
 use crate::text::num;
 use crate::wall::WallArgs;
@@ -61,7 +60,7 @@ impl PyCheck {
     }
 }
 
-fn interval_text(iv: Option<(f64, f64)>) -> String {
+pub(crate) fn interval_text(iv: Option<(f64, f64)>) -> String {
     iv.map_or("None".into(), |(lo, hi)| {
         format!("({}, {})", num(lo), num(hi))
     })
@@ -306,154 +305,4 @@ pub fn region(r#loop: &PyLoop, py: Python<'_>) -> PyResult<PyRegion> {
     crate::budget::check_loop(cost, lp, &fam, "the exact region")?;
     let r = py.detach(|| loop_region(lp, &fam)).py()?;
     region_object(py, &fam, &r)
-}
-
-/// The result of `kmax`.
-#[pyclass(frozen, get_all, module = "hapstab", name = "Kmax")]
-pub struct PyKmax {
-    /// Largest stable K in N/m; None when no K is stable.
-    pub k_max: Option<f64>,
-    /// The damping B in Ns/m where it holds: the given wall_damping, or where the region's
-    /// K_max is reached (within damping_range when given).
-    pub b_at_k_max: Option<f64>,
-    /// With wall_damping: the stable K interval (lo, hi) in N/m that reaches K_max.
-    pub k_interval: Option<(f64, f64)>,
-    /// K_max in normalized units (α_max for the paper's loop).
-    pub alpha_max: Option<f64>,
-    /// β where α_max holds.
-    pub beta_at_alpha_max: Option<f64>,
-    /// The paper's loop: linear condition (22), (b + B)/(t_d + T/2) in N/m at the same B.
-    pub k_linear: Option<f64>,
-    /// Without wall_damping: False where K_max is a supremum, a corner of the region that
-    /// only the damping b_at_k_max touches (approached as B → b_at_k_max); None with a B.
-    pub k_max_attained: Option<bool>,
-    /// For a supremum: a damping in Ns/m beside b_at_k_max at which k_stable_near_k_max is
-    /// stable.
-    pub b_stable_near_k_max: Option<f64>,
-    /// For a supremum: a stiffness in N/m within 1e-6 of K_max, stable at b_stable_near_k_max.
-    pub k_stable_near_k_max: Option<f64>,
-}
-
-#[pymethods]
-impl PyKmax {
-    fn __repr__(&self) -> String {
-        let opt = |x: Option<f64>| x.map_or("None".into(), num);
-        format!(
-            "Kmax(k_max={}, b_at_k_max={}, k_interval={})",
-            opt(self.k_max),
-            opt(self.b_at_k_max),
-            interval_text(self.k_interval)
-        )
-    }
-}
-
-/// A (b_lo, b_hi) damping band in Ns/m, ends possibly infinite.
-fn damping_band(range: (f64, f64)) -> PyResult<(f64, f64)> {
-    let (lo, hi) = range;
-    if lo.is_nan() || hi.is_nan() || lo > hi {
-        return Err(bad(
-            "damping_range",
-            format!("must be (B_lo, B_hi) in Ns/m with B_lo <= B_hi (got ({lo}, {hi}))"),
-        ));
-    }
-    Ok((lo, hi))
-}
-
-fn kmax_at(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<PyKmax> {
-    let b = crate::errors::finite("wall_damping", b)?;
-    let bu = damping_units(&lp.lp, fam, b).py()?;
-    let best = k_max_at_damping(&lp.lp, fam, bu).py()?;
-    let k = |a: f64| fam.to_physical(a, 0.0).0;
-    Ok(PyKmax {
-        k_max: best.map(|iv| k(iv.hi)),
-        b_at_k_max: best.map(|_| b),
-        k_interval: best.map(|iv| k_pair(fam, iv)),
-        alpha_max: best.map(|iv| iv.hi),
-        beta_at_alpha_max: best.map(|_| bu),
-        k_linear: linear_k(&lp.lp, b),
-        k_max_attained: None,
-        b_stable_near_k_max: None,
-        k_stable_near_k_max: None,
-    })
-}
-
-/// An end of a damping band in wall units (infinite ends stay infinite).
-fn band_units(lp: &PyLoop, fam: &AffineFamily, b: f64) -> PyResult<f64> {
-    if b.is_infinite() {
-        return Ok(b);
-    }
-    damping_units(&lp.lp, fam, b).py()
-}
-
-fn kmax_within(
-    lp: &PyLoop,
-    fam: &AffineFamily,
-    band: (f64, f64),
-    py: Python<'_>,
-) -> PyResult<PyKmax> {
-    let (lo, hi) = damping_band(band)?;
-    let blo = band_units(lp, fam, lo)?;
-    let bhi = band_units(lp, fam, hi)?;
-    let best = py.detach(|| k_max_within(&lp.lp, fam, blo, bhi)).py()?;
-    Ok(overall_from(lp, fam, best))
-}
-
-fn overall_from(lp: &PyLoop, fam: &AffineFamily, max: Option<ConfirmedMax>) -> PyKmax {
-    let best = max.map(|p| (p.alpha, p.beta));
-    let phys = best.map(|(a, b)| fam.to_physical(a, b));
-    let supremum = max.filter(|p| !p.attained);
-    PyKmax {
-        k_max_attained: max.map(|p| p.attained),
-        b_stable_near_k_max: supremum.map(|p| fam.to_physical(0.0, p.beta_stable).1),
-        k_stable_near_k_max: supremum.map(|p| fam.to_physical(p.alpha_stable, 0.0).0),
-        k_max: phys.map(|p| p.0),
-        b_at_k_max: phys.map(|p| p.1),
-        k_interval: None,
-        alpha_max: best.map(|p| p.0),
-        beta_at_alpha_max: best.map(|p| p.1),
-        k_linear: linear_k(&lp.lp, phys.map_or(0.0, |p| p.1)),
-    }
-}
-
-/// The largest stable virtual stiffness K_max in N/m (Section V). With wall_damping B in
-/// Ns/m: the upper end of the stable K interval reaching furthest at that B. With
-/// damping_range (B_lo, B_hi) in Ns/m (ends may be ±inf): the largest stable K over that
-/// band of damping and the B that reaches it. Without either: the overall K_max of the
-/// stable region and its B. Beside it, the paper's linear condition (22)
-/// K < (b + B)/(t_d + T/2).
-#[pyfunction]
-#[pyo3(signature = (r#loop, *, wall_damping = None, damping_range = None))]
-pub fn kmax(
-    r#loop: &PyLoop,
-    wall_damping: Option<f64>,
-    damping_range: Option<(f64, f64)>,
-    py: Python<'_>,
-) -> PyResult<PyKmax> {
-    let fam = r#loop.family()?;
-    let n = fam.degree();
-    let cost = match wall_damping {
-        Some(_) => hapstab::limits::interval_cost(n),
-        None => hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(&fam)),
-    };
-    crate::budget::check_loop(cost, &r#loop.lp, &fam, "K_max")?;
-    match (wall_damping, damping_range) {
-        (Some(_), Some(_)) => Err(bad(
-            "wall_damping, damping_range",
-            "give one damping B or a damping range, not both",
-        )),
-        (Some(b), None) => kmax_at(r#loop, &fam, b),
-        (None, Some(band)) => kmax_within(r#loop, &fam, band, py),
-        (None, None) => {
-            let lp = &r#loop.lp;
-            let r = py.detach(|| loop_region(lp, &fam)).py()?;
-            let best = (!r.polygons.is_empty()).then_some(ConfirmedMax {
-                alpha: r.alpha_max,
-                beta: r.beta_at_alpha_max,
-                attained: r.alpha_max_attained,
-                beta_stable: r.beta_stable,
-                alpha_stable: r.alpha_stable,
-            });
-            Ok(overall_from(r#loop, &fam, best))
-        }
-    }
 }

@@ -10,6 +10,7 @@ mod budget;
 mod discretize;
 mod errors;
 mod freqresp;
+mod kmax;
 mod linear;
 mod locus;
 mod loops;
@@ -39,7 +40,8 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<analysis::PyCheck>()?;
     m.add_class::<analysis::PyEdge>()?;
     m.add_class::<analysis::PyRegion>()?;
-    m.add_class::<analysis::PyKmax>()?;
+    m.add_class::<kmax::PyKmax>()?;
+    m.add_class::<kmax::PyRenderableBand>()?;
     m.add_class::<map::PyStabilityMap>()?;
     m.add_class::<discretize::PyDiscretization>()?;
     m.add_class::<simulate::PySimulation>()?;
@@ -55,7 +57,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<nyquist::PyNyquistRegions>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
-    m.add_function(wrap_pyfunction!(analysis::kmax, m)?)?;
+    m.add_function(wrap_pyfunction!(kmax::kmax, m)?)?;
     m.add_function(wrap_pyfunction!(map::stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(discretize::discretize, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;

@@ -8,9 +8,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::analysis::{PyCheck, PyEdge, PyKmax, PyRegion};
+use crate::analysis::{PyCheck, PyEdge, PyRegion};
 use crate::discretize::PyDiscretization;
 use crate::freqresp::{PyFrequencyResponse, PyMark};
+use crate::kmax::{PyKmax, PyRenderableBand};
 use crate::linear::PyLinearCondition;
 use crate::locus::PyRootLocus;
 use crate::map::PyStabilityMap;
@@ -59,7 +60,10 @@ results! {
         k_max_attained, b_stable_near_k_max, k_stable_near_k_max, alpha_max, beta_at_alpha_max,
         area, area_normalized, k_per_alpha, b_per_beta },
     "Kmax" => PyKmax { k_max, b_at_k_max, k_interval, alpha_max, beta_at_alpha_max, k_linear,
-        k_max_attained, b_stable_near_k_max, k_stable_near_k_max },
+        k_max_attained, b_stable_near_k_max, k_stable_near_k_max, k_max_at_zero_damping,
+        renderable },
+    "RenderableBand" => PyRenderableBand { position_resolution, force_noise,
+        velocity_noise_gain, b_max, k_max, b_at_k_max, k_max_attained },
     "Discretization" => PyDiscretization { period, plant_num, plant_den, plant_delay,
         velocity_num, velocity_den, p0, pk, pb, characteristic, wall_stiffness, wall_damping },
     "Mark" => PyMark { kind, omega, frequency_hz, value, magnitude_db, phase_deg, response,

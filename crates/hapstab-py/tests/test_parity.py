@@ -186,7 +186,12 @@ def test_region_and_kmax(hapstab_cli, server, case):
     band = cli(hapstab_cli, "kmax", *flags)
     kb = hs.kmax(lp, damping_range=(0.0, math.inf))
     assert (kb.k_max, kb.b_at_k_max) == (band["k_max"], band["b_at_k_max"]), name
-    assert hs.kmax(lp).k_max == r.k_max, name
+    # without a damping: B ≥ 0, B = 0 and the renderable band, as the command line gives them
+    kd = hs.kmax(lp)
+    assert (kd.k_max, kd.b_at_k_max) == (band["k_max"], band["b_at_k_max"]), name
+    assert kd.k_max_at_zero_damping == band["k_max_at_zero_damping"], name
+    rb = band["renderable"]
+    assert {f: getattr(kd.renderable, f) for f in rb} == rb, name
 
 
 @pytest.mark.parametrize("case", range(len(LOOPS)), ids=IDS)

@@ -75,7 +75,7 @@ def test_every_result_type_pickles_field_for_field():
     got = results(lp, (1e4, 10.0))
     names = {type(r).__name__ for r in got}
     # every result class the package exports, nested ones (Edge, Mark, PassiveRegion) inside
-    assert names | {"Edge", "Mark", "PassiveRegion"} == {
+    assert names | {"Edge", "Mark", "PassiveRegion", "RenderableBand"} == {
         n for n in hs.__all__ if n[0].isupper()
     } - {"Loop", "MassSpringDamper", "TwoMass", "TransferFunction", "NumericalError"}
     for r in got:

@@ -17,6 +17,7 @@
 //! | [`passivity`] | Section VIII, eq. (28), for any loop (Colgate & Schenkel 1997) |
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
 //! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
+//! | [`kmax`] | Section V: K_max at a damping, over a band, and over the renderable band |
 //! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
 //! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
 //! | [`sweep`] | K_max against a parameter of the loop |
@@ -39,6 +40,7 @@ pub mod delay;
 pub mod error;
 pub mod extremum;
 pub mod freqresp;
+pub mod kmax;
 pub mod limits;
 pub mod linear;
 pub mod locus;

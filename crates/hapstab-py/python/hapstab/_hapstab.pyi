@@ -229,6 +229,20 @@ class Kmax:
     k_max_attained: Optional[bool]
     b_stable_near_k_max: Optional[float]
     k_stable_near_k_max: Optional[float]
+    k_max_at_zero_damping: Optional[float]
+    renderable: Optional[RenderableBand]
+
+class RenderableBand:
+    """The renderable damping band 0 <= B <= b_max (force noise F_n RMS from position steps
+    through the velocity estimator) and K_max over it."""
+
+    position_resolution: float
+    force_noise: float
+    velocity_noise_gain: float
+    b_max: float
+    k_max: Optional[float]
+    b_at_k_max: Optional[float]
+    k_max_attained: Optional[bool]
 
 class StabilityMap:
     stable: BoolArray
@@ -508,8 +522,11 @@ def kmax(
     *,
     wall_damping: Optional[float] = None,
     damping_range: Optional[Tuple[float, float]] = None,
+    position_resolution: Optional[float] = None,
+    force_noise: Optional[float] = None,
 ) -> Kmax:
-    """K_max in N/m: at a damping B, over a band of B, or overall."""
+    """K_max in N/m: at a damping B, over a band of B, or (without either) over B >= 0
+    beside K_max at B = 0 and over the renderable band."""
 
 def stability_map(
     loop: Loop,
