@@ -6,7 +6,7 @@ use clap::Args;
 use hapstab::AffineFamily;
 use serde::Serialize;
 
-use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, ResolvedLoop, describe_loop};
+use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{eng, print_json};
 use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
@@ -68,10 +68,30 @@ pub struct KmaxArgs {
     #[arg(long, value_name = "N", allow_hyphen_values = true, default_value_t = hapstab::kmax::DEFAULT_FORCE_NOISE,
           conflicts_with_all = ["wall_damping", "damping_range", "robust"])]
     force_noise: f64,
-    /// Robust design (beyond the paper): K_max stable for every plant in a box, by default
-    /// from the ungrabbed device to the device held by the arm (see --box-* flags).
-    #[arg(long, conflicts_with_all = LOOP_FLAGS)]
+    /// Robust design (beyond the paper): K_max stable for every plant in a box. With --box:
+    /// any loop, at --wall-damping (default 0), over the box of its parameters; without:
+    /// the paper's loop from the ungrabbed device to the device held by the arm (see the
+    /// --box-* flags), over every damping.
+    #[arg(long)]
     robust: bool,
+    /// A side of the robust box, NAME:LO:HI with NAME one of `sweep --param`'s names
+    /// (arm-stiffness, arm-mass, arm-damping, mass, damping, stiffness, motor-mass,
+    /// transmission-stiffness, cutoff, delay-time, period, force-lag, …), repeatable.
+    #[arg(long = "box", value_name = "NAME:LO:HI", value_parser = crate::robust_box::parse_side,
+          requires = "robust", allow_hyphen_values = true)]
+    boxes: Vec<hapstab::robust::BoxSide>,
+    /// With --box: uniform samples of the box before refinement.
+    #[arg(long, default_value_t = hapstab::robust::RobustOptions::default().samples,
+          requires = "boxes")]
+    samples: usize,
+    /// With --box: random plants of the box verified stable at K_max·(1 − 1e-6).
+    #[arg(long, default_value_t = hapstab::robust::RobustOptions::default().verify,
+          requires = "boxes")]
+    verify: usize,
+    /// With --box: seed of the samples and of the verification plants.
+    #[arg(long, default_value_t = hapstab::robust::RobustOptions::default().seed,
+          requires = "boxes")]
+    seed: u64,
     #[command(flatten)]
     robust_box: crate::robust::RobustArgs,
     /// Draw the stable region to FILE with K_max and its B marked: SVG or PNG by its
@@ -244,7 +264,21 @@ fn query(a: &KmaxArgs) -> Result<KmaxQuery> {
 
 /// Runs `hapstab kmax`.
 pub fn run(a: &KmaxArgs) -> Result<()> {
+    if a.robust && !a.boxes.is_empty() {
+        let opts = hapstab::robust::RobustOptions {
+            samples: a.samples,
+            verify: a.verify,
+            seed: a.seed,
+        };
+        return crate::robust_box::run(&a.lp, &a.boxes, a.wall_damping, opts, a.json);
+    }
     if a.robust {
+        if a.lp.any_loop_flag() || a.lp.plant.loop_file.is_some() {
+            bail!(
+                "kmax --robust without --box is the paper's loop over a box of its plant; \
+                 for this loop give the box as --box NAME:LO:HI"
+            );
+        }
         return crate::robust::run_robust(&a.lp.plant, &a.robust_box, a.json);
     }
     let rl = a.lp.resolve(false)?;
@@ -342,11 +376,11 @@ fn print_renderable(rl: &ResolvedLoop, rb: &RenderableBand) {
     }
     println!(
         "            (the damper's force noise stays ≤ {} RMS there: {} position steps through \
-         the {} estimator, noise gain {}; --position-resolution, --force-noise)",
+         the {} estimator, noise gain {} s⁻¹; --position-resolution, --force-noise)",
         eng(rb.noise.force_noise, "N", 6),
         eng(rb.noise.position_resolution, "m", 6),
         rl.lp.velocity,
-        format!("{} s⁻¹", crate::output::sig(rb.velocity_noise_gain, 6)),
+        crate::output::sig(rb.velocity_noise_gain, 6),
     );
 }
 

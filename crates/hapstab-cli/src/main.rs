@@ -22,6 +22,7 @@ mod plot;
 mod progress;
 mod ranges;
 mod robust;
+mod robust_box;
 mod serve;
 mod simulate;
 mod sweep;

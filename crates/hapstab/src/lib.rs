@@ -18,6 +18,7 @@
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
 //! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
 //! | [`kmax`] | Section V: K_max at a damping, over a band, and over the renderable band |
+//! | [`robust`] | beyond the paper: robust K_max of any loop over a box of its parameters |
 //! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
 //! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
 //! | [`sweep`] | K_max against a parameter of the loop |
@@ -59,6 +60,7 @@ pub mod poly;
 pub mod polyroots;
 pub mod ranges;
 pub mod region;
+pub mod robust;
 pub mod schur_cohn;
 pub mod simulation;
 pub mod spec;

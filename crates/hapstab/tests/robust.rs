@@ -1,0 +1,171 @@
+//! Robust K_max over a box of loop parameters (`hapstab::robust`): against the paper's
+//! robust K_max (`nyquist::robust_kmax`, an independent search over the same plant box), and
+//! on seeded loops and boxes against an independent verification — plants drawn with another
+//! seed are stable at K_max·(1 − 1e-6) by the root-based analysis, and the reported worst
+//! plant, rebuilt from its printed values, is not stable at K_max·(1 + 1e-6).
+
+mod common;
+
+use common::SplitMix;
+use common::loops::random_loop;
+use hapstab::loop_analysis::{analysis, wall_units};
+use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
+use hapstab::params::{Effective, Wall};
+use hapstab::robust::{BoxSide, RobustOptions, robust_kmax};
+use hapstab::sweep::SweepParam;
+use hapstab::{AffineFamily, Verdict};
+
+fn one_mass(m: f64, b: f64, k: f64) -> Loop {
+    let plant = Plant::mass_spring_damper(Effective::new(m, b, k).unwrap()).unwrap();
+    Loop::new(
+        plant,
+        1e-3,
+        Delay::samples(0).unwrap(),
+        VelocityEstimator::Backward,
+    )
+    .unwrap()
+}
+
+fn side(param: SweepParam, lo: f64, hi: f64) -> BoxSide {
+    BoxSide { param, lo, hi }
+}
+
+fn verdict_at(lp: &Loop, k: f64, b: f64) -> Verdict {
+    let fam = AffineFamily::of_loop(lp).unwrap();
+    let w = Wall {
+        stiffness: k,
+        damping: b,
+    };
+    analysis(lp, &fam, wall_units(lp, &fam, w).unwrap())
+        .unwrap()
+        .verdict
+}
+
+/// The worst plant rebuilt from the report's values.
+fn worst_loop(lp: &Loop, sides: &[BoxSide], values: &[f64]) -> Loop {
+    sides
+        .iter()
+        .zip(values)
+        .fold(lp.clone(), |l, (s, &v)| s.param.apply(&l, v).unwrap())
+}
+
+#[test]
+fn paper_box_agrees_with_the_paper_search() {
+    // the default `kmax --robust` box: from the ungrabbed PHANToM-like device (0.1 kg,
+    // 1.5 Ns/m) to the held one (1.1 kg, 7.5 Ns/m, 350 N/m); its robust K_max over every B
+    // is reached at B* — at that B the box's K_max must be the same number and plant
+    let pbox = hapstab::nyquist::PlantBox {
+        mass: [0.1, 1.1],
+        damping: [1.5, 7.5],
+        stiffness: [0.0, 350.0],
+        period: 1e-3,
+        d: 0,
+    };
+    let paper = hapstab::nyquist::robust_kmax(&pbox, Default::default()).unwrap();
+    let sides = [
+        side(SweepParam::Mass, 0.1, 1.1),
+        side(SweepParam::Damping, 1.5, 7.5),
+        side(SweepParam::Stiffness, 0.0, 350.0),
+    ];
+    let r = robust_kmax(
+        &one_mass(1.1, 7.5, 350.0),
+        &sides,
+        paper.damping_at_max,
+        &RobustOptions::default(),
+    )
+    .unwrap();
+    let k = r.k_max.unwrap();
+    assert!(
+        (k - paper.stiffness_max).abs() <= 1e-9 * paper.stiffness_max,
+        "{k} vs {}",
+        paper.stiffness_max
+    );
+    let worst: Vec<f64> = r.worst_plant.iter().map(|p| p.value).collect();
+    assert_eq!(worst, [0.1, 1.5, 350.0]);
+}
+
+#[test]
+fn seeded_loops_and_boxes_verify_independently() {
+    let mut rng = SplitMix(0x0b0b_5eed);
+    let mut done = 0;
+    for i in 0..200 {
+        if done == 12 {
+            break;
+        }
+        let Some(lp) = random_loop(&mut rng, i) else {
+            continue;
+        };
+        if lp.delay.samples > 20 {
+            continue;
+        }
+        // a box of ±30 % around the period and the delay (every loop has both)
+        let t = lp.period;
+        let td = lp.delay_time();
+        let sides = [
+            side(SweepParam::Period, 0.7 * t, 1.3 * t),
+            side(SweepParam::DelayTime, 0.7 * td, 1.3 * td + 0.3 * t),
+        ];
+        let b = 0.0;
+        let opts = RobustOptions {
+            samples: 128,
+            verify: 2000,
+            seed: i as u64,
+        };
+        let Ok(r) = robust_kmax(&lp, &sides, b, &opts) else {
+            continue;
+        };
+        let Some(k) = r.k_max else { continue };
+        // independent plants (another seed), the root-based verdict
+        let mut draw = SplitMix(0xfeed ^ i as u64);
+        for _ in 0..200 {
+            let l = worst_loop(
+                &lp,
+                &sides,
+                &sides.map(|s| s.lo + draw.next_f64() * (s.hi - s.lo)),
+            );
+            let v = verdict_at(&l, k - 1e-6 * k.abs(), b);
+            if v == Verdict::Unstable {
+                let fam = AffineFamily::of_loop(&l).unwrap();
+                let own = hapstab::kmax::kmax(&l, &fam, hapstab::kmax::KmaxQuery::AtDamping(b));
+                panic!("loop {i}: robust {r:?}\nplant {l:?}: {own:?}");
+            }
+        }
+        let values: Vec<f64> = r.worst_plant.iter().map(|p| p.value).collect();
+        let w = worst_loop(&lp, &sides, &values);
+        assert_ne!(
+            verdict_at(&w, k + 1e-6 * k.abs(), b),
+            Verdict::Stable,
+            "loop {i}"
+        );
+        done += 1;
+    }
+    assert_eq!(done, 12);
+}
+
+#[test]
+fn a_bad_box_is_refused_naming_it() {
+    let lp = one_mass(1.1, 7.5, 350.0);
+    for (sides, needle) in [
+        (vec![], "box needs at least one parameter"),
+        (
+            vec![side(SweepParam::Mass, 2.0, 1.0)],
+            "mass: needs finite LO <= HI",
+        ),
+        (
+            vec![
+                side(SweepParam::Mass, 1.0, 2.0),
+                side(SweepParam::Mass, 1.0, 3.0),
+            ],
+            "mass is given twice",
+        ),
+        (
+            vec![side(SweepParam::Cutoff, 10.0, 20.0)],
+            "cutoff needs a low-pass",
+        ),
+    ] {
+        let e = robust_kmax(&lp, &sides, 0.0, &RobustOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(needle), "{e}");
+    }
+}
