@@ -3,9 +3,7 @@
 
 use anyhow::{Result, bail};
 use hapstab::AffineFamily;
-use hapstab::robust::{
-    BoxSide, REFINE_BUDGET, REFINE_STARTS, RobustKmax, RobustOptions, robust_kmax,
-};
+use hapstab::robust::{BoxSide, RobustKmax, RobustOptions, robust_kmax};
 use hapstab::sweep::SweepParam;
 use serde::Serialize;
 
@@ -78,14 +76,7 @@ pub fn run(
     let b = wall_damping.unwrap_or(0.0);
     let fam = AffineFamily::of_loop(&rl.lp)?;
     let n = fam.degree();
-    let plants = (opts.samples + (1 << sides.len().min(8)) + REFINE_STARTS * REFINE_BUDGET) as f64
-        * 4.0
-        + opts.verify as f64;
-    let one = hapstab::limits::interval_cost(n);
-    let cost = hapstab::limits::Cost {
-        seconds: one.seconds * plants,
-        memory: one.memory,
-    };
+    let cost = hapstab::limits::robust_box_cost(n, sides.len(), &opts);
     crate::budget::check_loop(args, &rl.lp, cost, "the robust K_max")?;
     let report = robust_kmax(&rl.lp, sides, b, &opts)?;
     if json {

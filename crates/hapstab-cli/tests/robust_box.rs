@@ -69,7 +69,7 @@ fn a_bad_box_is_one_line() {
     for (args, needle) in [
         (
             &["kmax", "--robust", "--box", "foo:0:1"][..],
-            "unknown parameter 'foo'",
+            "'foo' is not one of delay-time",
         ),
         (
             &["kmax", "--robust", "--box", "mass:2:1"][..],

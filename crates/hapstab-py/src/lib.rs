@@ -19,6 +19,7 @@ mod margins;
 mod nyquist;
 mod passivity;
 mod pickle;
+mod robust;
 mod simulate;
 mod sweep;
 mod text;
@@ -42,6 +43,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<analysis::PyRegion>()?;
     m.add_class::<kmax::PyKmax>()?;
     m.add_class::<kmax::PyRenderableBand>()?;
+    m.add_class::<robust::PyRobustKmax>()?;
     m.add_class::<map::PyStabilityMap>()?;
     m.add_class::<discretize::PyDiscretization>()?;
     m.add_class::<simulate::PySimulation>()?;
@@ -58,6 +60,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(kmax::kmax, m)?)?;
+    m.add_function(wrap_pyfunction!(robust::robust_kmax, m)?)?;
     m.add_function(wrap_pyfunction!(map::stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(discretize::discretize, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;

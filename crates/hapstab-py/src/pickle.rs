@@ -18,6 +18,7 @@ use crate::map::PyStabilityMap;
 use crate::margins::PyMargins;
 use crate::nyquist::PyNyquistRegions;
 use crate::passivity::{PyPassiveRegion, PyPassivity};
+use crate::robust::PyRobustKmax;
 use crate::simulate::PySimulation;
 use crate::sweep::PySweep;
 use crate::zwidth::PyZWidth;
@@ -62,6 +63,8 @@ results! {
     "Kmax" => PyKmax { k_max, b_at_k_max, k_interval, alpha_max, beta_at_alpha_max, k_linear,
         k_max_attained, b_stable_near_k_max, k_stable_near_k_max, k_max_at_zero_damping,
         renderable },
+    "RobustKmax" => PyRobustKmax { wall_damping, k_max, k_min, k_max_nominal, worst_plant,
+        plants_evaluated, plants_verified, verification_found },
     "RenderableBand" => PyRenderableBand { position_resolution, force_noise,
         velocity_noise_gain, b_max, k_max, b_at_k_max, k_max_attained },
     "Discretization" => PyDiscretization { period, plant_num, plant_den, plant_delay,

@@ -52,6 +52,8 @@ def results(lp, wall):
         hs.simulate(lp, *wall), hs.sweep(lp, "arm-stiffness", [100.0, 300.0]), hs.zwidth(lp),
         hs.stability_map(lp, grid_k, grid_b), hs.linear_condition(lp),
         hs.nyquist_regions(0.1, 1, steps=2, beta_samples=16, gamma_samples=3),
+        hs.robust_kmax(lp, {"period": (lp.period, 1.5 * lp.period)}, wall_damping=wall[1],
+                       samples=8, verify=50),
     ]
 
 

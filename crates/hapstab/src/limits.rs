@@ -415,6 +415,24 @@ pub fn interval_cost(n: usize) -> Cost {
     }
 }
 
+/// Cost of a robust K_max over a box ([`crate::robust::robust_kmax`]) for p(z) of degree n:
+/// each sampled, refined and folded-in plant one exact stable interval (the discretization
+/// counted as three more), each verified plant one point test.
+pub fn robust_box_cost(n: usize, params: usize, opts: &crate::robust::RobustOptions) -> Cost {
+    use crate::robust::{MAX_CORNER_PARAMS, REFINE_BUDGET, REFINE_STARTS, VERIFY_ROUNDS};
+    let corners = if params <= MAX_CORNER_PARAMS {
+        1usize << params
+    } else {
+        0
+    };
+    let solved = (opts.samples + corners + (REFINE_STARTS + VERIFY_ROUNDS) * REFINE_BUDGET) as f64;
+    let one = interval_cost(n);
+    Cost {
+        seconds: one.seconds * (4.0 * solved + (VERIFY_ROUNDS * opts.verify) as f64),
+        memory: one.memory * opts.verify.max(1) as f64,
+    }
+}
+
 /// Cost of the stability margins of one stable wall ([`crate::margins::margins`]) for p(z)
 /// of degree n whose parts without the plant's pure delay have degree `core`: the phase
 /// margin and the two gain margins scan [`MARGIN_GRID_PER_DEGREE`]·(n + 1) frequencies, each

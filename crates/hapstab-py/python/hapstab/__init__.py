@@ -52,6 +52,7 @@ from ._hapstab import (
     FrequencyResponse,
     Kmax,
     RenderableBand,
+    RobustKmax,
     LinearCondition,
     Loop,
     Margins,
@@ -81,6 +82,7 @@ from ._hapstab import margins as _margins
 from ._hapstab import nyquist_regions as _nyquist_regions
 from ._hapstab import passivity as _passivity
 from ._hapstab import region as _region
+from ._hapstab import robust_kmax as _robust_kmax
 from ._hapstab import root_locus as _root_locus
 from ._hapstab import simulate as _simulate
 from ._hapstab import stability_map as _stability_map
@@ -159,6 +161,7 @@ margins = _named(_margins)
 nyquist_regions = _named(_nyquist_regions)
 passivity = _named(_passivity)
 region = _named(_region)
+robust_kmax = _named(_robust_kmax)
 root_locus = _named(_root_locus)
 simulate = _named(_simulate)
 stability_map = _named(_stability_map)
@@ -173,6 +176,7 @@ __all__ = [
     "FrequencyResponse",
     "Kmax",
     "RenderableBand",
+    "RobustKmax",
     "LinearCondition",
     "Loop",
     "Margins",
@@ -199,6 +203,7 @@ __all__ = [
     "nyquist_regions",
     "passivity",
     "region",
+    "robust_kmax",
     "root_locus",
     "simulate",
     "stability_map",

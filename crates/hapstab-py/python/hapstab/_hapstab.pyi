@@ -2,7 +2,7 @@
 docstring for the equations). Units are SI: K in N/m, B in Ns/m, masses in kg, times in s."""
 
 import os
-from typing import Any, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -243,6 +243,18 @@ class RenderableBand:
     k_max: Optional[float]
     b_at_k_max: Optional[float]
     k_max_attained: Optional[bool]
+
+class RobustKmax:
+    """Robust K_max over a box of loop parameters (hapstab kmax --robust --box)."""
+
+    wall_damping: float
+    k_max: Optional[float]
+    k_min: Optional[float]
+    k_max_nominal: Optional[float]
+    worst_plant: List[Tuple[str, float]]
+    plants_evaluated: int
+    plants_verified: int
+    verification_found: int
 
 class StabilityMap:
     stable: BoolArray
@@ -527,6 +539,18 @@ def kmax(
 ) -> Kmax:
     """K_max in N/m: at a damping B, over a band of B, or (without either) over B >= 0
     beside K_max at B = 0 and over the renderable band."""
+
+def robust_kmax(
+    loop: Loop,
+    bounds: Dict[str, Tuple[float, float]],
+    *,
+    wall_damping: float = 0.0,
+    samples: int = 256,
+    verify: int = 10000,
+    seed: int = 1,
+) -> RobustKmax:
+    """Robust K_max at wall_damping over a box {name: (lo, hi)} of the loop's parameters
+    (sweep's names): sampled, refined and verified."""
 
 def stability_map(
     loop: Loop,
