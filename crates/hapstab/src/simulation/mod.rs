@@ -71,6 +71,7 @@ use crate::params::{Normalized, Physical, Wall};
 use crate::stability::Analysis;
 
 mod boundary;
+mod clip;
 mod filter;
 mod growth;
 mod simulator;
@@ -81,6 +82,7 @@ pub use boundary::{
     BoundarySearch, EmpiricalPoint, InconclusiveRun, MAX_BISECTION_STEPS, MIN_REL_TOLERANCE,
     StableWhen, empirical_boundary, exact_alpha_limit,
 };
+pub use clip::{CLIP_FACTOR, TraceClip, simulate_clipped, start_scale};
 pub use growth::{LinearGrowth, linear_growth, linear_growth_of};
 pub use simulator::Simulator;
 pub use verdict::{
