@@ -78,10 +78,12 @@ fn simulated_contact_agrees_with_the_analysis_and_with_simulate() {
         .json();
     assert_eq!(bil["outcome"], "growing", "{bil}");
     assert!(j["trace_clipped"].is_null(), "a limit cycle is not cut");
-    // the flags of `hapstab simulate` the answer names for this run are the ones used below
-    let samples = j["requested_samples"].as_u64().unwrap().to_string();
+    // the flags of `hapstab simulate` the answer names for this run (unilateral, 1 N push,
+    // entered at x = 0 with 10 mm/s) are the ones used below
+    let samples = j["requested_samples"].as_u64().unwrap();
+    let flags = j["simulate_flags"].as_str().unwrap();
     assert_eq!(
-        j["simulate_flags"],
+        flags,
         format!(
             "--unilateral --push 1 --initial-position 0 --initial-velocity 0.01 --duration-samples {samples}"
         )
@@ -98,21 +100,10 @@ fn simulated_contact_agrees_with_the_analysis_and_with_simulate() {
             "2",
             "--delay",
             "1",
-            "--wall-stiffness",
-            "20000",
-            "--wall-damping",
-            "5",
-            "--unilateral",
-            "--push",
-            "1",
-            "--initial-position",
-            "0",
-            "--initial-velocity",
-            "0.01",
-            "--duration-samples",
-            &samples,
-            "--json",
         ])
+        .args(["--wall-stiffness", "20000", "--wall-damping", "5"])
+        .args(flags.split(' '))
+        .args(["--json"])
         .output()
         .unwrap();
     assert!(out.status.success());

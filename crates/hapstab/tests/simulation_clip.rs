@@ -49,7 +49,10 @@ fn first_beyond_at_every_sample(c: &Config, samples: usize, threshold: f64) -> (
     sim.advance(samples).unwrap();
     assert_eq!(sim.trace_stride(), 1);
     let x = sim.take_trace().unwrap().position;
-    let k = x.iter().position(|v| !(v.abs() <= threshold)).unwrap();
+    let k = x
+        .iter()
+        .position(|v| !v.is_finite() || v.abs() > threshold)
+        .unwrap();
     (k, x)
 }
 

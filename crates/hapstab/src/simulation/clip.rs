@@ -59,7 +59,9 @@ pub fn start_scale(config: &Config) -> f64 {
 
 /// The first row whose |x| is above `threshold` (a non-finite position counts as above).
 fn first_beyond(position: &[f64], threshold: f64) -> Option<usize> {
-    position.iter().position(|x| !(x.abs() <= threshold))
+    position
+        .iter()
+        .position(|x| !x.is_finite() || x.abs() > threshold)
 }
 
 /// The trace of the same run recorded again over its first `samples` samples, with
