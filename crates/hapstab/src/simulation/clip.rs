@@ -89,23 +89,34 @@ fn truncate(trace: &mut Trace, rows: usize) {
     }
 }
 
-/// Runs [`simulate`] and, if the run is [`Outcome::Growing`], cuts its trace before the first
-/// sample where |x| exceeds [`CLIP_FACTOR`] · [`start_scale`] (module documentation): the run
-/// is recorded again up to there with `config.trace_rows` rows, so the kept part is as finely
-/// sampled as a whole run of that length, and `trace_stride` is that recording's. The verdict
-/// and every other field are those of the whole run. Returns where the trace was cut, or
-/// None (a run that is not growing, has no trace, starts at scale 0 or never exceeds the
-/// threshold keeps its whole trace).
-pub fn simulate_clipped(config: &Config) -> Result<(RunResult, Option<TraceClip>)> {
-    let mut run = simulate(config)?;
+/// The kept part of a growing run's trace ([`clip_growing_trace`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClippedTrace {
+    /// The trace before the cut.
+    pub trace: Trace,
+    /// Its rows are every `stride`-th sample.
+    pub stride: usize,
+    /// Where it was cut.
+    pub clip: TraceClip,
+}
+
+/// The trace `trace` of `run` (a run of `config`; rows every `run.trace_stride` samples) cut before the first sample where |x| exceeds
+/// [`CLIP_FACTOR`] · [`start_scale`], if the run is [`Outcome::Growing`] (module
+/// documentation): the run is recorded again up to there with `config.trace_rows` rows, so
+/// the kept part is as finely sampled as a whole run of that length. None for a run that is
+/// not growing, starts at scale 0 or never exceeds the threshold.
+pub fn clip_growing_trace(
+    config: &Config,
+    run: &RunResult,
+    coarse: &Trace,
+) -> Result<Option<ClippedTrace>> {
     let scale = start_scale(config);
     let threshold = CLIP_FACTOR * scale;
-    let coarse = match &run.trace {
-        Some(t) if run.verdict.outcome == Outcome::Growing && scale > 0.0 => t,
-        _ => return Ok((run, None)),
-    };
+    if run.verdict.outcome != Outcome::Growing || scale <= 0.0 {
+        return Ok(None);
+    }
     let Some(row) = first_beyond(&coarse.position, threshold) else {
-        return Ok((run, None));
+        return Ok(None);
     };
     let mut stride = run.trace_stride.max(1);
     let mut trace = coarse.clone();
@@ -116,7 +127,7 @@ pub fn simulate_clipped(config: &Config) -> Result<(RunResult, Option<TraceClip>
         }
     }
     let Some(row) = first_beyond(&trace.position, threshold) else {
-        return Ok((run, None));
+        return Ok(None);
     };
     let clip = TraceClip {
         sample: row * stride,
@@ -127,7 +138,29 @@ pub fn simulate_clipped(config: &Config) -> Result<(RunResult, Option<TraceClip>
         factor: CLIP_FACTOR,
     };
     truncate(&mut trace, row);
-    run.trace = Some(trace);
-    run.trace_stride = stride;
-    Ok((run, Some(clip)))
+    Ok(Some(ClippedTrace {
+        trace,
+        stride,
+        clip,
+    }))
+}
+
+/// Runs [`simulate`] and replaces the trace of a growing run by its part before the first
+/// sample where |x| exceeds [`CLIP_FACTOR`] · [`start_scale`] ([`clip_growing_trace`]), with
+/// `trace_stride` that recording's. The verdict and every other field are those of the whole
+/// run. Returns where the trace was cut, or None if it was kept whole.
+pub fn simulate_clipped(config: &Config) -> Result<(RunResult, Option<TraceClip>)> {
+    let mut run = simulate(config)?;
+    let clipped = match &run.trace {
+        Some(t) => clip_growing_trace(config, &run, t)?,
+        None => None,
+    };
+    Ok(match clipped {
+        Some(c) => {
+            run.trace = Some(c.trace);
+            run.trace_stride = c.stride;
+            (run, Some(c.clip))
+        }
+        None => (run, None),
+    })
 }

@@ -82,7 +82,9 @@ pub use boundary::{
     BoundarySearch, EmpiricalPoint, InconclusiveRun, MAX_BISECTION_STEPS, MIN_REL_TOLERANCE,
     StableWhen, empirical_boundary, exact_alpha_limit,
 };
-pub use clip::{CLIP_FACTOR, TraceClip, simulate_clipped, start_scale};
+pub use clip::{
+    CLIP_FACTOR, ClippedTrace, TraceClip, clip_growing_trace, simulate_clipped, start_scale,
+};
 pub use growth::{LinearGrowth, linear_growth, linear_growth_of};
 pub use simulator::Simulator;
 pub use verdict::{
