@@ -1,6 +1,7 @@
-//! Figures in physical units (`--plot` of boundary, map, kmax, check), kmax's damping range,
-//! and quiet standard error when it is not a terminal. Expected values come from the library
-//! or from closed forms, never from the program's own output.
+//! Figures in physical units (`--plot` of boundary, map, kmax, check), a growing simulation's
+//! clipped figure, kmax's damping range, and quiet standard error when it is not a terminal.
+//! Expected values come from the library or from closed forms, never from the program's own
+//! output.
 
 mod common;
 
@@ -396,4 +397,57 @@ fn long_commands_write_nothing_to_a_non_terminal_stderr() {
         let out = run_quiet(&args);
         assert!(!out.is_empty(), "{args:?} printed nothing");
     }
+}
+
+/// A growing run (the bilateral wall α = 0.5, β = 0.2 beyond α_max at γ = 0.001, δ = 0.005,
+/// d = 1, from the default x(0) = 1 mm) that blows up: its figure ends where |x| first exceeds
+/// 10³ × 1 mm = 1 m and says so, so every tick label stays within 1000 (mm, samples, T²F/m);
+/// the CSV keeps every recorded row, out to the blow-up.
+#[test]
+fn simulate_plot_of_a_growing_run_is_clipped_at_a_thousand_times_its_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let stem = dir.path().join("run");
+    let csv = dir.path().join("run.csv");
+    let v = json(&[
+        "simulate",
+        "--alpha",
+        "0.5",
+        "--beta",
+        "0.2",
+        "--gamma",
+        "0.001",
+        "--delta",
+        "0.005",
+        "--delay",
+        "1",
+        "--plot",
+        stem.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        (&v["outcome"], &v["blown_up"]),
+        (&"growing".into(), &true.into())
+    );
+    let svg = std::fs::read_to_string(dir.path().join("run.svg")).unwrap();
+    let texts: Vec<String> = svg_texts(&svg).into_iter().map(|t| t.3).collect();
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.starts_with("unstable: clipped at t = ") && t.ends_with(", |x| &gt; 1 m"))
+            && texts.iter().any(|t| t == "position x (mm)"),
+        "{texts:?}"
+    );
+    let ticks: Vec<f64> = texts.iter().filter_map(|t| tick_value(t)).collect();
+    assert!(
+        ticks.len() > 10 && ticks.iter().all(|t| t.abs() <= 1000.0),
+        "{ticks:?}"
+    );
+    let peak = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').nth(1)?.parse::<f64>().ok())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(peak > 1e90, "the CSV keeps the whole run: {peak}");
 }

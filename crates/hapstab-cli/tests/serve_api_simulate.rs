@@ -17,6 +17,7 @@ fn simulate_returns_a_short_contact_trace() {
     assert_eq!(j["contact_mode"], "unilateral");
     assert_eq!(j["linear_window"], true);
     assert!(j["measured_growth_per_sample"].as_f64().unwrap() < 1.0);
+    assert!(j["trace_clipped"].is_null(), "a decaying run is not cut");
     let n = j["trace"]["time"].as_array().unwrap().len();
     assert!((10..=2000).contains(&n), "{n}");
     assert_eq!(j["trace"]["position"].as_array().unwrap().len(), n);
@@ -76,9 +77,19 @@ fn simulated_contact_agrees_with_the_analysis_and_with_simulate() {
         .get(&format!("/api/simulate?{REPRO_WALL}&contact=bilateral"))
         .json();
     assert_eq!(bil["outcome"], "growing", "{bil}");
+    assert!(j["trace_clipped"].is_null(), "a limit cycle is not cut");
+    // the flags of `hapstab simulate` the answer names for this run (unilateral, 1 N push,
+    // entered at x = 0 with 10 mm/s) are the ones used below
+    let samples = j["requested_samples"].as_u64().unwrap();
+    let flags = j["simulate_flags"].as_str().unwrap();
+    assert_eq!(
+        flags,
+        format!(
+            "--unilateral --push 1 --initial-position 0 --initial-velocity 0.01 --duration-samples {samples}"
+        )
+    );
 
     // hapstab simulate with the same setting and run length: the same verdict.
-    let samples = j["requested_samples"].as_u64().unwrap().to_string();
     let out = assert_cmd::Command::cargo_bin("hapstab")
         .unwrap()
         .args([
@@ -89,21 +100,10 @@ fn simulated_contact_agrees_with_the_analysis_and_with_simulate() {
             "2",
             "--delay",
             "1",
-            "--wall-stiffness",
-            "20000",
-            "--wall-damping",
-            "5",
-            "--unilateral",
-            "--push",
-            "1",
-            "--initial-position",
-            "0",
-            "--initial-velocity",
-            "0.01",
-            "--duration-samples",
-            &samples,
-            "--json",
         ])
+        .args(["--wall-stiffness", "20000", "--wall-damping", "5"])
+        .args(flags.split(' '))
+        .args(["--json"])
         .output()
         .unwrap();
     assert!(out.status.success());
@@ -122,4 +122,42 @@ fn simulated_contact_agrees_with_the_analysis_and_with_simulate() {
     ] {
         assert_eq!(cli[key], j[key], "{key}");
     }
+}
+
+/// A wall beyond α_max at d = 1 (normalized mode, shown for m = 1 kg, T = 1 ms) whose
+/// simulated contact blows up (the state reaches the simulator's bound 1e100): the returned
+/// trace ends before the first sample where |x| exceeds 10³ times the scale of the start,
+/// max(|x(0)| = 0, |ẋ(0)|·T = 0.01 m/s · 1 ms, F_H·T²/m = 1 N · (1 ms)²/1 kg) = 10 µm, so
+/// 10 mm; `trace_clipped` says where, and the verdict beside it is growing.
+#[test]
+fn a_blown_up_contact_is_clipped_where_it_leaves_the_start_scale() {
+    let s = Server::start(&[]);
+    let j = s
+        .get("/api/simulate?gamma=0.001&delta=0.005&d=1&alpha=0.5&beta=0.2")
+        .json();
+    assert_eq!(j["outcome"], "growing", "{j}");
+    assert_eq!(j["linear_verdict"], "unstable");
+    assert_eq!(j["blown_up"], true, "the whole run reached 1e100");
+    let c = &j["trace_clipped"];
+    let scale = c["start_scale"].as_f64().unwrap();
+    assert!((scale - 1e-5).abs() < 1e-18, "{c}");
+    assert_eq!(c["factor"], 1e3);
+    let threshold = c["threshold"].as_f64().unwrap();
+    assert!((threshold - 1e-2).abs() < 1e-15, "{c}");
+    let (t, x) = (&j["trace"]["time"], &j["trace"]["position"]);
+    let n = t.as_array().unwrap().len();
+    assert!(n >= 10 && x.as_array().unwrap().len() == n, "{n} rows");
+    assert!(j["trace"]["wall_force"].as_array().unwrap().len() == n);
+    let peak = (0..n).fold(0.0f64, |m, i| m.max(x[i].as_f64().unwrap().abs()));
+    assert!(peak <= threshold && peak > 0.1 * threshold, "{peak}");
+    let (ts, xs) = (c["time"].as_f64().unwrap(), c["position"].as_f64().unwrap());
+    assert!(xs.abs() > threshold, "{c}");
+    assert!(
+        t[n - 1].as_f64().unwrap() < ts,
+        "the trace ends before the cut"
+    );
+    let k = c["sample"].as_f64().unwrap();
+    assert!((ts - k * 1e-3).abs() < 1e-12, "{c}");
+    // the run behind it went on: its verdict and length are the whole run's
+    assert!(j["samples"].as_f64().unwrap() > k, "{j}");
 }

@@ -10,7 +10,9 @@
 //! parameters still draws the default region, marks the fields and names each parameter and
 //! value (`target/tmp/serve_e2e_bad_url.png`), and a refused or emptied field greys out the
 //! old region; at 420×800 the plot lies within the viewport with its region drawn
-//! (`target/tmp/serve_e2e_narrow.png`); last, a loop beyond the paper's (a two-mass device
+//! (`target/tmp/serve_e2e_narrow.png`); on a phone (390×844) the verdict, α_max and the
+//! simulated contact's outcome sit directly under the plot, and a contact that blows up is
+//! plotted clipped, saying where (`target/tmp/serve_e2e_phone.png`); last, a loop beyond the paper's (a two-mass device
 //! with an actuator lag and a fractional delay): its region and α_max are the library's for
 //! that loop, typing another velocity estimator redraws it, and a clicked wall gets `hapstab
 //! check`'s verdict, all p(z) roots and a simulated contact (`target/tmp/serve_e2e_loop.png`).
@@ -20,13 +22,14 @@
 //! stays green elsewhere, unless HAPSTAB_E2E_REQUIRED=1 (set by `.ci/run`), where it fails.
 //! Override the paths with HAPSTAB_CHROMIUM / HAPSTAB_CHROMEDRIVER.
 
+mod e2e_browser;
 mod serve_support;
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
 
-use fantoccini::elements::Element;
+use e2e_browser::{
+    R, attr, browser_found, chromium_capabilities, start_chromedriver, tool, wait_for,
+};
 use fantoccini::key::Key;
 use fantoccini::{Client, ClientBuilder, Locator};
 use hapstab::loop_analysis;
@@ -37,26 +40,7 @@ use hapstab::{
     PolyFamily, TwoMass, VelocityEstimator,
 };
 use serde_json::json;
-use serve_support::{Server, request};
-
-/// A child process killed on drop.
-struct Guard(Child);
-
-impl Drop for Guard {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-fn tool(env: &str, default: &str) -> PathBuf {
-    std::env::var_os(env).map_or_else(|| PathBuf::from(default), PathBuf::from)
-}
-
-fn free_port() -> u16 {
-    let l = std::net::TcpListener::bind("127.0.0.1:0").expect("bind");
-    l.local_addr().expect("addr").port()
-}
+use serve_support::Server;
 
 fn library_alpha_max(gamma: f64, delta: f64, d: usize) -> f64 {
     stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
@@ -69,30 +53,6 @@ fn library_alpha_max(gamma: f64, delta: f64, d: usize) -> f64 {
 fn default_plant() -> PlantParams {
     let eff = Effective::combine(Device::PHANTOM_LIKE, Arm::TYPICAL).unwrap();
     PlantParams::from_physical(&eff, 1e-3).unwrap()
-}
-
-type R<T> = Result<T, Box<dyn std::error::Error>>;
-
-async fn attr(el: &Element, name: &str) -> R<String> {
-    Ok(el.attr(name).await?.unwrap_or_default())
-}
-
-/// Polls `f` every 50 ms until it returns Some, for at most `secs` seconds.
-async fn wait_for<T, F, Fut>(secs: u64, what: &str, mut f: F) -> R<T>
-where
-    F: FnMut() -> Fut,
-    Fut: std::future::Future<Output = R<Option<T>>>,
-{
-    let t0 = Instant::now();
-    loop {
-        if let Some(v) = f().await? {
-            return Ok(v);
-        }
-        if t0.elapsed() > Duration::from_secs(secs) {
-            return Err(format!("timed out waiting for {what}").into());
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    }
 }
 
 /// The region state the page exposes on the plot element once a redraw has finished and
@@ -672,69 +632,79 @@ async fn assert_two_mass_form(c: &Client) -> R<()> {
     Ok(())
 }
 
-/// Chromium and chromedriver are installed; when not, the test is skipped (false), or fails
-/// under HAPSTAB_E2E_REQUIRED=1.
-fn browser_found(chromium: &Path, driver: &Path) -> bool {
-    for p in [chromium, driver] {
-        if !p.exists() {
-            let msg = format!(
-                "{} not found (install Debian's chromium and chromium-driver, as .ci/run does)",
-                p.display()
-            );
-            // CI sets HAPSTAB_E2E_REQUIRED=1 so that a missing browser fails instead of skipping.
-            if std::env::var_os("HAPSTAB_E2E_REQUIRED").is_some_and(|v| v == "1") {
-                panic!("serve_e2e: {msg}");
-            }
-            eprintln!("SKIPPED serve_e2e: {msg}");
-            return false;
-        }
-    }
-    true
-}
-
-/// Starts chromedriver on a free port, logging to `log_dir`, and waits until it answers.
-fn start_chromedriver(driver: &Path, log_dir: &Path) -> (Guard, u16) {
-    let port = free_port();
-    let log = std::fs::File::create(log_dir.join("serve_e2e_chromedriver.log")).expect("log");
-    let guard = Guard(
-        Command::new(driver)
-            .arg(format!("--port={port}"))
-            .stdout(Stdio::from(log.try_clone().expect("log")))
-            .stderr(Stdio::from(log))
-            .spawn()
-            .expect("start chromedriver"),
+/// A phone (390×844) on a wall whose simulated contact blows up (normalized γ = 0.001,
+/// δ = 0.005, d = 1, α = 0.5, β = 0.2): directly under the plot and within the first screen,
+/// the summary gives α_max (the library's), the wall's verdict (the library's) and the
+/// simulated contact's outcome; the contact's plot says where its trace was clipped (10³ ×
+/// the 10 µm scale of its start = 10 mm) and its axis stays within that.
+async fn drive_phone(c: &Client, base: &str, shot: &Path) -> R<()> {
+    c.set_window_size(390, 844).await?;
+    c.goto(&format!(
+        "{base}/?mode=normalized&gamma=0.001&delta=0.005&d=1&alpha=0.5&beta=0.2"
+    ))
+    .await?;
+    let sim = wait_for(30, "the phone's simulated contact", || async {
+        let t = c.find(Locator::Id("sum-sim")).await?.text().await?;
+        Ok((!t.is_empty()).then_some(t))
+    })
+    .await?;
+    let lib = Analysis::new(Normalized::new(0.5, 0.2, 0.001, 0.005, 1)?)?;
+    let am = library_alpha_max(0.001, 0.005, 1);
+    let point = c.find(Locator::Id("sum-point")).await?.text().await?;
+    let region = c.find(Locator::Id("sum-region")).await?.text().await?;
+    assert!(
+        point.contains(&format!(": {} (", lib.verdict.as_str())),
+        "{point}"
     );
-    let t0 = Instant::now();
-    while !std::net::TcpStream::connect(("127.0.0.1", port))
-        .is_ok_and(|_| request(port, "GET", "/status", &[]).status == 200)
-    {
-        assert!(
-            t0.elapsed() < Duration::from_secs(20),
-            "chromedriver did not start"
-        );
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    (guard, port)
+    assert!(
+        region.starts_with(&format!("α_max = {} ", sig6(am))),
+        "{region} vs {am}"
+    );
+    assert!(sim.contains("growing") && sim.contains("clipped"), "{sim}");
+    let v = c
+        .execute(
+            "const p = document.getElementById('plot').getBoundingClientRect(); \
+             const s = document.getElementById('summary').getBoundingClientRect(); \
+             return [innerHeight, p.bottom, s.top, s.bottom];",
+            vec![],
+        )
+        .await?;
+    let n: Vec<f64> = serde_json::from_value(v)?;
+    let (h, plot_bottom, top, bottom) = (n[0], n[1], n[2], n[3]);
+    assert!(
+        top >= plot_bottom && top - plot_bottom < 20.0 && bottom <= h,
+        "summary {top}–{bottom} under the plot ending at {plot_bottom}, within {h}"
+    );
+    let texts = c
+        .execute(
+            "return Array.from(document.querySelectorAll('#sim text')).map((t) => t.textContent);",
+            vec![],
+        )
+        .await?;
+    let texts: Vec<String> = serde_json::from_value(texts)?;
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.starts_with("unstable: trace clipped at t = "))
+            && texts.iter().any(|t| t == "where |x| exceeded 10 mm")
+            && texts.iter().any(|t| t.starts_with("position x [mm]")),
+        "{texts:?}"
+    );
+    // every tick of the position axis lies within the 10 mm of the clip (plus the padding)
+    let ticks: Vec<f64> = texts.iter().filter_map(|t| t.parse().ok()).collect();
+    assert!(ticks.iter().all(|v| v.abs() <= 300.0), "{ticks:?}");
+    std::fs::write(shot, c.screenshot().await?)?;
+    c.set_window_size(1500, 1050).await?;
+    println!(
+        "serve_e2e: phone 390×844, summary {top}–{bottom} under the plot; {sim}; screenshot {}",
+        shot.display()
+    );
+    Ok(())
 }
 
-/// The WebDriver capabilities of a headless Chromium with its own profile directory.
-fn chromium_capabilities(
-    chromium: &Path,
-    profile: &Path,
-) -> serde_json::Map<String, serde_json::Value> {
-    let caps = json!({
-        "browserName": "chrome",
-        "goog:chromeOptions": {
-            "binary": chromium.to_string_lossy(),
-            "args": [
-                "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                "--disable-dev-shm-usage", "--window-size=1500,1050",
-                format!("--user-data-dir={}", profile.display()),
-            ],
-        }
-    });
-    caps.as_object().cloned().expect("object")
+/// `x` with 6 significant digits as the page's fmt writes it.
+fn sig6(x: f64) -> String {
+    format!("{}", format!("{x:.5e}").parse::<f64>().unwrap_or(x))
 }
 
 /// Every phase of the page in turn (module doc), each with its screenshot in `log_dir`,
@@ -744,6 +714,7 @@ async fn drive_all(c: &Client, base: &str, log_dir: &Path) -> R<()> {
     drive_defaults(c, base, &log_dir.join("serve_e2e_physical.png")).await?;
     drive_bad_url(c, base, &log_dir.join("serve_e2e_bad_url.png")).await?;
     drive_narrow(c, base, &log_dir.join("serve_e2e_narrow.png")).await?;
+    drive_phone(c, base, &log_dir.join("serve_e2e_phone.png")).await?;
     drive_loop(c, base, &log_dir.join("serve_e2e_loop.png")).await
 }
 

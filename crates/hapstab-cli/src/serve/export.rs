@@ -8,7 +8,7 @@ use serde::Serialize;
 use super::api::{PointOut, RegionOut, RegionReq, parse_region, point, region, region_names};
 use super::limits::{MAX_EXPORT_PX, MIN_EXPORT_PX};
 use super::query::{ApiError, Params, fmt};
-use crate::output::sig;
+use crate::output::{eng, sig};
 
 /// Query names of `/api/export`.
 pub fn export_names() -> Vec<&'static str> {
@@ -386,11 +386,34 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
     s
 }
 
+/// Tick labels of one axis as the page writes them: with a k or M prefix once the ticks reach
+/// 10⁴ (250k for 250 000 N/m).
+fn tick_labels(ts: &[f64]) -> Vec<String> {
+    let big = ts.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+    let (div, unit) = if big >= 1e7 {
+        (1e6, "M")
+    } else if big >= 1e4 {
+        (1e3, "k")
+    } else {
+        (1.0, "")
+    };
+    ts.iter()
+        .map(|&t| {
+            if t == 0.0 {
+                "0".to_string()
+            } else {
+                format!("{}{unit}", sig(t / div, 4))
+            }
+        })
+        .collect()
+}
+
 /// The grid lines and tick labels of both axes.
 fn svg_grid(s: &mut String, f: &Frame) {
     let (ml, mt, pw, ph) = (f.ml, f.mt, f.pw, f.ph);
     let (x0, x1, y0, y1) = (f.x0, f.x1, f.y0, f.y1);
-    for t in ticks(x0, x1, 8) {
+    let xt = ticks(x0, x1, 8);
+    for (t, label) in xt.iter().copied().zip(tick_labels(&xt)) {
         let x = ml + (t - x0) / (x1 - x0) * pw;
         let _ = writeln!(
             s,
@@ -398,10 +421,11 @@ fn svg_grid(s: &mut String, f: &Frame) {
             mt + ph,
             if t == 0.0 { "#888" } else { "#eee" },
             mt + ph + 16.0,
-            esc(&sig(t, 4))
+            esc(&label)
         );
     }
-    for t in ticks(y0, y1, 8) {
+    let yt = ticks(y0, y1, 8);
+    for (t, label) in yt.iter().copied().zip(tick_labels(&yt)) {
         let y = mt + ph - (t - y0) / (y1 - y0) * ph;
         let _ = writeln!(
             s,
@@ -410,7 +434,7 @@ fn svg_grid(s: &mut String, f: &Frame) {
             if t == 0.0 { "#888" } else { "#eee" },
             ml - 6.0,
             y + 4.0,
-            esc(&sig(t, 4))
+            esc(&label)
         );
     }
 }
@@ -447,11 +471,11 @@ fn svg_title(out: &RegionOut) -> String {
     if let Some(ph) = &out.physical {
         let _ = write!(
             title,
-            "  (m = {} kg, b = {} Ns/m, k = {} N/m, T = {} s)",
-            sig(ph.mass, 5),
-            sig(ph.damping, 5),
-            sig(ph.stiffness, 5),
-            sig(ph.period, 5)
+            "  (m = {}, b = {}, k = {}, T = {})",
+            eng(ph.mass, "kg", 5),
+            eng(ph.damping, "Ns/m", 5),
+            eng(ph.stiffness, "N/m", 5),
+            eng(ph.period, "s", 5)
         );
     }
     title
@@ -548,7 +572,7 @@ fn legend_items(out: &RegionOut, pt: Option<&PointOut>) -> Vec<(String, &'static
     let am = out.region.alpha_max;
     if am.is_finite() {
         let v = match &out.physical {
-            Some(ph) => format!("K_max = {} N/m", sig(am * ph.k_per_alpha, 6)),
+            Some(ph) => format!("K_max = {}", eng(am * ph.k_per_alpha, "N/m", 6)),
             None => format!("α_max = {}", sig(am, 6)),
         };
         items.push((v, "#111"));
@@ -569,7 +593,7 @@ fn legend_items(out: &RegionOut, pt: Option<&PointOut>) -> Vec<(String, &'static
     }
     if let Some(r) = &out.robust {
         let range = match (r.arm_stiffness_lo, r.arm_stiffness_hi) {
-            (Some(lo), Some(hi)) => format!("k_H ∈ [{}, {}] N/m", sig(lo, 4), sig(hi, 4)),
+            (Some(lo), Some(hi)) => format!("k_H ∈ [{}, {}]", eng(lo, "N/m", 4), eng(hi, "N/m", 4)),
             _ => format!("γ ∈ [{}, {}]", sig(r.gamma_lo, 4), sig(r.gamma_hi, 4)),
         };
         items.push((format!("robust region, {range}"), "#f0b400"));
@@ -612,5 +636,12 @@ mod tests {
         }
         assert!(ticks(1.0, 1.0, 5).is_empty());
         assert_eq!(ticks(-0.015, 0.015, 3), vec![-0.01, 0.0, 0.01]);
+    }
+
+    #[test]
+    fn tick_labels_take_a_prefix_from_ten_thousand() {
+        assert_eq!(tick_labels(&[0.0, 5000.0, 9000.0]), ["0", "5000", "9000"]);
+        assert_eq!(tick_labels(&[-2e4, 0.0, 2.5e5]), ["-20k", "0", "250k"]);
+        assert_eq!(tick_labels(&[1e7, 1.5e7]), ["10M", "15M"]);
     }
 }

@@ -217,11 +217,16 @@ fn write_files(
         write_trace_csv(csv, trace)?;
     }
     let saved = match &a.plot {
-        Some(stem) => Some(
-            trace_plot(trace, result, cfg, settings, units)
-                .save(stem)
-                .with_context(|| format!("--plot {}", stem.display()))?,
-        ),
+        Some(stem) => {
+            // a growing run is plotted up to where it leaves the scale of its start; the CSV
+            // keeps every recorded row
+            let clipped = hapstab::simulation::clip_growing_trace(cfg, result, trace)?;
+            Some(
+                trace_plot(trace, clipped.as_ref(), result, cfg, settings, units)
+                    .save(stem)
+                    .with_context(|| format!("--plot {}", stem.display()))?,
+            )
+        }
         None => None,
     };
     Ok(Files {

@@ -1,7 +1,7 @@
 //! The figure of one run: position and wall force over time with the judged window, and a
 //! zoom on the last periods of a limit cycle.
 
-use hapstab::simulation::{Config, Contact, Outcome, RunResult, SimModel, Trace};
+use hapstab::simulation::{ClippedTrace, Config, Contact, Outcome, RunResult, SimModel, Trace};
 
 use super::run_args::RunSettings;
 use super::run_text::outcome_summary;
@@ -100,8 +100,8 @@ impl Panels<'_> {
     }
 
     /// Position over time with the judged window shaded and the wall surface where it is not
-    /// the bilateral contact at 0.
-    fn position(&self, r: &RunResult, params: String) -> Figure {
+    /// the bilateral contact at 0; a clipped trace ends at a dashed line labelled `clip_note`.
+    fn position(&self, r: &RunResult, params: String, clip_note: Option<String>) -> Figure {
         let (tr, cfg) = (self.tr, self.cfg);
         let xw = cfg.effects.wall_position;
         let (xs, xunit) = scaled_unit(max_abs(&tr.position).max(xw.abs()), "m");
@@ -109,11 +109,25 @@ impl Panels<'_> {
             .x_label(&self.tlabel)
             .y_label(format!("position x ({xunit})"))
             .x_range(0.0, self.t_end)
-            .legend(Legend::UpperRight);
+            .legend(if clip_note.is_some() {
+                Legend::UpperLeft
+            } else {
+                Legend::UpperRight
+            });
         let (lo, hi) = extent(tr.position.iter().chain([&xw]));
+        if let Some(note) = clip_note {
+            let (lo, hi) = (lo * xs, hi * xs);
+            pos.add(
+                Series::dashed([(self.t_end, lo), (self.t_end, hi)])
+                    .color(palette::VERMILLION)
+                    .width(2)
+                    .label(note),
+            );
+        }
+        // within the plotted time (a clipped trace may end before the judged window)
         let (j0, j1) = (
-            r.verdict.judged_from_sample as f64 * cfg.model.period(),
-            r.verdict.judged_to_sample as f64 * cfg.model.period(),
+            (r.verdict.judged_from_sample as f64 * cfg.model.period()).min(self.t_end),
+            (r.verdict.judged_to_sample as f64 * cfg.model.period()).min(self.t_end),
         );
         if hi > lo {
             let (lo, hi) = (lo * xs, hi * xs);
@@ -249,22 +263,42 @@ impl Panels<'_> {
     }
 }
 
+/// The title's note on a clipped trace: where it was cut and why.
+fn clip_note(c: &ClippedTrace, units: Units, period: f64) -> String {
+    let at = if units.physical {
+        eng(c.clip.time, "s", 4)
+    } else {
+        format!("{} samples", sig(c.clip.time / period, 6))
+    };
+    format!(
+        "unstable: clipped at t = {at}, |x| > {}",
+        eng(c.clip.threshold, "m", 4)
+    )
+}
+
 /// The figure of one run: position (with the judged window) and wall force over time, and
-/// for a limit cycle a zoom on its last periods.
+/// for a limit cycle a zoom on its last periods. A growing run's trace `clipped` before it
+/// leaves the scale of its start ([`hapstab::simulation::clip_growing_trace`]) is plotted
+/// instead of the whole `tr`, and the title says where it was cut.
 pub(super) fn trace_plot(
     tr: &Trace,
+    clipped: Option<&ClippedTrace>,
     r: &RunResult,
     cfg: &Config,
     s: &RunSettings,
     units: Units,
 ) -> Grid {
-    let verdict = outcome_summary(r, units);
-    let t_end = tr
-        .time
-        .last()
-        .copied()
+    let mut verdict = outcome_summary(r, units);
+    let tr = clipped.map_or(tr, |c| &c.trace);
+    let t_end = clipped
+        .map(|c| c.clip.time)
+        .or_else(|| tr.time.last().copied())
         .unwrap_or(1.0)
         .max(cfg.model.period());
+    let note = clipped.map(|c| clip_note(c, units, cfg.model.period()));
+    if clipped.is_some() {
+        verdict.push_str(", trace clipped");
+    }
     let panels = Panels {
         tr,
         cfg,
@@ -272,7 +306,7 @@ pub(super) fn trace_plot(
         tlabel: format!("time t ({})", units.time()),
     };
     let mut g = Grid::new(format!("Simulation: {verdict}"), 1).panel_size(1000, 520);
-    g.push(panels.position(r, model_caption(&cfg.model, units)));
+    g.push(panels.position(r, model_caption(&cfg.model, units), note));
     g.push(panels.force(s, units));
     if r.verdict.outcome == Outcome::LimitCycle && tr.time.len() > 16 {
         g.push(panels.limit_cycle(r));

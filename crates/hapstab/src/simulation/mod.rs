@@ -71,6 +71,7 @@ use crate::params::{Normalized, Physical, Wall};
 use crate::stability::Analysis;
 
 mod boundary;
+mod clip;
 mod filter;
 mod growth;
 mod simulator;
@@ -80,6 +81,9 @@ pub mod verdict;
 pub use boundary::{
     BoundarySearch, EmpiricalPoint, InconclusiveRun, MAX_BISECTION_STEPS, MIN_REL_TOLERANCE,
     StableWhen, empirical_boundary, exact_alpha_limit,
+};
+pub use clip::{
+    CLIP_FACTOR, ClippedTrace, TraceClip, clip_growing_trace, simulate_clipped, start_scale,
 };
 pub use growth::{LinearGrowth, linear_growth, linear_growth_of};
 pub use simulator::Simulator;

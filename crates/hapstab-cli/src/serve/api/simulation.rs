@@ -7,7 +7,7 @@ use hapstab::Loop;
 use hapstab::limits::{point_cost, simulation_cost};
 use hapstab::params::{Normalized, Wall};
 use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, LoopModel, Model};
-use hapstab::simulation::{RunResult, SimModel};
+use hapstab::simulation::{RunResult, SimModel, TraceClip, simulate_clipped};
 use serde::Serialize;
 
 use super::point::{point_names, point_params, wall_out, wall_point};
@@ -33,6 +33,15 @@ pub struct SimReq {
     pub velocity: f64,
     pub contact: Contact,
 }
+
+/// The explorer's simulated contact by default: the operator pushes with 1 N (into the wall)...
+const DEFAULT_PUSH: f64 = 1.0;
+/// ... and the device reaches the wall surface x = 0 at 10 mm/s ...
+const DEFAULT_VELOCITY: f64 = 0.01;
+/// ... of a unilateral wall (force only in contact). `hapstab simulate` starts instead from
+/// x(0) = 1 mm at rest with no push against the bilateral wall of the paper's analysis; the
+/// answer's `simulate_flags` give its flags for the explorer's run.
+const DEFAULT_CONTACT: &str = "unilateral";
 
 /// Validates a simulation request.
 pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
@@ -65,14 +74,14 @@ pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
     )?;
     let push = p.num_or(
         "push",
-        1.0,
+        DEFAULT_PUSH,
         -MAX_PUSH,
         MAX_PUSH,
         " N (human push into the wall)",
     )?;
     let velocity = p.num_or(
         "velocity",
-        0.01,
+        DEFAULT_VELOCITY,
         -MAX_VELOCITY,
         MAX_VELOCITY,
         " m/s (approach velocity at the wall surface)",
@@ -80,7 +89,7 @@ pub fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
     let contact = match p.choice(
         "contact",
         &["unilateral", "unilateral_no_pull", "bilateral"],
-        "unilateral",
+        DEFAULT_CONTACT,
     )? {
         "bilateral" => Contact::Bilateral,
         "unilateral_no_pull" => Contact::UnilateralNoPull,
@@ -122,19 +131,48 @@ pub struct SimOut {
     pub units_note: &'static str,
     /// unilateral | unilateral_no_pull | bilateral.
     pub contact_mode: Contact,
+    /// Human push F_H in N (positive into the wall).
     pub push: f64,
+    /// Initial position x(0) in m: the wall surface.
+    pub initial_position: f64,
+    /// Initial velocity ẋ(0) in m/s (positive into the wall).
     pub velocity: f64,
+    /// The flags of `hapstab simulate` for this run (besides the loop and the wall): its own
+    /// defaults are a bilateral wall from x(0) = 1 mm at rest, no push.
+    pub simulate_flags: String,
     /// outcome, reason, judged window, measured growth beside the spectral radius, limit
     /// cycle, contact events, samples simulated (see `hapstab::simulation::RunResult`).
     #[serde(flatten)]
     pub run: RunResult,
+    /// The trace of the run, cut for a growing run before it leaves the scale of its start
+    /// (see `trace_clipped`).
     pub trace: TraceOut,
+    /// For a growing run, where the trace was cut: the first sample whose |x| exceeds
+    /// `factor` (10³) times `start_scale` (the largest of |x(0)|, |ẋ(0)|·T and F_H·T²/m, in m),
+    /// with its time (s), position (m) and the `threshold` (m); null when the whole run is
+    /// returned (see `hapstab::simulation::simulate_clipped`).
+    pub trace_clipped: Option<TraceClip>,
     pub server_ms: f64,
+}
+
+/// The flags of `hapstab simulate` that give the run of `req` (besides the loop and the wall).
+fn simulate_flags(req: &SimReq) -> String {
+    let contact = match req.contact {
+        Contact::Bilateral => "",
+        Contact::Unilateral => "--unilateral ",
+        Contact::UnilateralNoPull => "--unilateral --no-pull ",
+    };
+    format!(
+        "{contact}--push {} --initial-position 0 --initial-velocity {} --duration-samples {}",
+        req.push, req.velocity, req.samples
+    )
 }
 
 /// Runs `/api/simulate`: the device starts at the wall surface x = 0 moving in with
 /// `velocity`, the operator pushes with a constant `push`; unilateral wall by default. The
-/// run is `samples` long, extended like `hapstab simulate` until its verdict settles.
+/// run is `samples` long, extended like `hapstab simulate` until its verdict settles; a
+/// growing run's trace ends where |x| first exceeds 10³ times the scale of its start
+/// (`hapstab::simulation::simulate_clipped`).
 pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     let t0 = Instant::now();
     let spec = &req.spec;
@@ -168,7 +206,7 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
         velocity: req.velocity,
     };
     cfg.trace_rows = MAX_TRACE_POINTS;
-    let mut run = hapstab::simulation::simulate(&cfg).map_err(lib_error)?;
+    let (mut run, trace_clipped) = simulate_clipped(&cfg).map_err(lib_error)?;
     let trace = run.trace.take().unwrap_or_default();
     Ok(SimOut {
         params: n,
@@ -178,13 +216,16 @@ pub fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
         units_note,
         contact_mode: req.contact,
         push: req.push,
+        initial_position: 0.0,
         velocity: req.velocity,
+        simulate_flags: simulate_flags(req),
         run,
         trace: TraceOut {
             time: trace.time,
             position: trace.position,
             wall_force: trace.wall_force,
         },
+        trace_clipped,
         server_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
 }
