@@ -19,6 +19,7 @@ mod paper;
 mod passivity;
 mod passivity_quantized;
 mod plot;
+mod population;
 mod progress;
 mod ranges;
 mod robust;
@@ -71,6 +72,9 @@ enum Command {
     Zwidth(zwidth::ZwidthArgs),
     /// K_max (stable and passive) against delay, period, filter cut-off or a plant parameter
     Sweep(sweep::SweepArgs),
+    /// P(stable) over a population of operators: against K at a damping, the K of 99 % and
+    /// 99.9 %, and at one wall
+    Population(population::PopulationArgs),
     /// The γ and δ ranges of real haptic systems for a sampling period (Section IV, eq. 11–15)
     Ranges(ranges::RangesArgs),
     /// The exact discrete loop as coefficients: plant H(z) with its delay, velocity filter V(z), p(z)
@@ -96,6 +100,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Passivity(a) => passivity::run(&a),
         Command::Zwidth(a) => zwidth::run(&a),
         Command::Sweep(a) => sweep::run(&a),
+        Command::Population(a) => population::run(&a),
         Command::Map(a) => map::run(&a),
         Command::Serve(a) => serve::run(&a),
         Command::Ranges(a) => ranges::run(&a),

@@ -18,6 +18,7 @@
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
 //! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
 //! | [`kmax`] | Section V: K_max at a damping, over a band, and over the renderable band |
+//! | [`population`] | beyond the paper: P(stable) over a population of operators |
 //! | [`robust`] | beyond the paper: robust K_max of any loop over a box of its parameters |
 //! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
 //! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
@@ -58,6 +59,7 @@ pub mod passivity_quantized;
 pub mod plant;
 pub mod poly;
 pub mod polyroots;
+pub mod population;
 pub mod ranges;
 pub mod region;
 pub mod robust;
