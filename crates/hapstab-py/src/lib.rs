@@ -19,6 +19,7 @@ mod margins;
 mod nyquist;
 mod passivity;
 mod pickle;
+mod population;
 mod robust;
 mod simulate;
 mod sweep;
@@ -44,6 +45,8 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<kmax::PyKmax>()?;
     m.add_class::<kmax::PyRenderableBand>()?;
     m.add_class::<robust::PyRobustKmax>()?;
+    m.add_class::<population::PyWallProbability>()?;
+    m.add_class::<population::PyStabilityCurve>()?;
     m.add_class::<map::PyStabilityMap>()?;
     m.add_class::<discretize::PyDiscretization>()?;
     m.add_class::<simulate::PySimulation>()?;
@@ -61,6 +64,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(kmax::kmax, m)?)?;
     m.add_function(wrap_pyfunction!(robust::robust_kmax, m)?)?;
+    m.add_function(wrap_pyfunction!(population::stability_probability, m)?)?;
     m.add_function(wrap_pyfunction!(map::stability_map, m)?)?;
     m.add_function(wrap_pyfunction!(discretize::discretize, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;

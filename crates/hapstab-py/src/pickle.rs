@@ -18,6 +18,7 @@ use crate::map::PyStabilityMap;
 use crate::margins::PyMargins;
 use crate::nyquist::PyNyquistRegions;
 use crate::passivity::{PyPassiveRegion, PyPassivity};
+use crate::population::{PyStabilityCurve, PyWallProbability};
 use crate::robust::PyRobustKmax;
 use crate::simulate::PySimulation;
 use crate::sweep::PySweep;
@@ -65,6 +66,10 @@ results! {
         renderable },
     "RobustKmax" => PyRobustKmax { wall_damping, k_max, k_min, k_max_nominal, worst_plant,
         plants_evaluated, plants_verified, verification_found },
+    "WallProbability" => PyWallProbability { wall_stiffness, wall_damping, samples, stable,
+        probability, interval, param_names, draws, verdicts },
+    "StabilityCurve" => PyStabilityCurve { wall_damping, samples, k, probability,
+        probability_lo, probability_hi, levels, param_names, draws, intervals },
     "RenderableBand" => PyRenderableBand { position_resolution, force_noise,
         velocity_noise_gain, b_max, k_max, b_at_k_max, k_max_attained },
     "Discretization" => PyDiscretization { period, plant_num, plant_den, plant_delay,

@@ -54,6 +54,10 @@ def results(lp, wall):
         hs.nyquist_regions(0.1, 1, steps=2, beta_samples=16, gamma_samples=3),
         hs.robust_kmax(lp, {"period": (lp.period, 1.5 * lp.period)}, wall_damping=wall[1],
                        samples=8, verify=50),
+        hs.stability_probability(lp, distributions={"period": "uniform:1e-3:2e-3"},
+                                 wall_stiffness=wall[0], wall_damping=wall[1], samples=20),
+        hs.stability_probability(lp, distributions={"period": "uniform:1e-3:2e-3"},
+                                 wall_damping=wall[1], samples=20),
     ]
 
 

@@ -53,6 +53,8 @@ from ._hapstab import (
     Kmax,
     RenderableBand,
     RobustKmax,
+    StabilityCurve,
+    WallProbability,
     LinearCondition,
     Loop,
     Margins,
@@ -86,6 +88,7 @@ from ._hapstab import robust_kmax as _robust_kmax
 from ._hapstab import root_locus as _root_locus
 from ._hapstab import simulate as _simulate
 from ._hapstab import stability_map as _stability_map
+from ._hapstab import stability_probability as _stability_probability
 from ._hapstab import sweep as _sweep
 from ._hapstab import zwidth as _zwidth
 
@@ -165,6 +168,7 @@ robust_kmax = _named(_robust_kmax)
 root_locus = _named(_root_locus)
 simulate = _named(_simulate)
 stability_map = _named(_stability_map)
+stability_probability = _named(_stability_probability)
 sweep = _named(_sweep)
 zwidth = _named(_zwidth)
 
@@ -177,6 +181,8 @@ __all__ = [
     "Kmax",
     "RenderableBand",
     "RobustKmax",
+    "StabilityCurve",
+    "WallProbability",
     "LinearCondition",
     "Loop",
     "Margins",
@@ -207,6 +213,7 @@ __all__ = [
     "root_locus",
     "simulate",
     "stability_map",
+    "stability_probability",
     "sweep",
     "zwidth",
 ]

@@ -256,6 +256,33 @@ class RobustKmax:
     plants_verified: int
     verification_found: int
 
+class WallProbability:
+    """P(stable) of one wall over a population of operators (hapstab population)."""
+
+    wall_stiffness: float
+    wall_damping: float
+    samples: int
+    stable: int
+    probability: float
+    interval: Tuple[float, float]
+    param_names: List[str]
+    draws: Float64Array
+    verdicts: BoolArray
+
+class StabilityCurve:
+    """P(stable) against K over a population of operators (hapstab population)."""
+
+    wall_damping: float
+    samples: int
+    k: Float64Array
+    probability: Float64Array
+    probability_lo: Float64Array
+    probability_hi: Float64Array
+    levels: List[Tuple[float, Optional[float], Optional[float], Optional[float]]]
+    param_names: List[str]
+    draws: Float64Array
+    intervals: Float64Array
+
 class StabilityMap:
     stable: BoolArray
     spectral_radius: Optional[Float64Array]
@@ -551,6 +578,19 @@ def robust_kmax(
 ) -> RobustKmax:
     """Robust K_max at wall_damping over a box {name: (lo, hi)} of the loop's parameters
     (sweep's names): sampled, refined and verified."""
+
+def stability_probability(
+    loop: Loop,
+    *,
+    wall_stiffness: Optional[float] = None,
+    wall_damping: float = 0.0,
+    samples: int = 10000,
+    seed: int = 1,
+    levels: Sequence[float] = (0.99, 0.999),
+    distributions: Optional[Dict[str, str]] = None,
+) -> Union[WallProbability, StabilityCurve]:
+    """P(stable) over a population of operators: at the wall (wall_stiffness, wall_damping),
+    or against K at wall_damping with the K of each level."""
 
 def stability_map(
     loop: Loop,
