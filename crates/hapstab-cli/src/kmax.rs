@@ -220,7 +220,8 @@ fn figure(
 ) -> Result<crate::plot::Figure> {
     let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
     let plane = Plane::of(rl, fam);
-    let mut fig = wall_plot::region_figure(&plane, &r, &wall_plot::title(rl, "K_max"));
+    let mut fig = wall_plot::region_figure(&plane, &r, "Largest stable stiffness K_max")
+        .subtitle(wall_plot::loop_line(rl));
     let lines: Vec<f64> = match out.wall_damping {
         Some(b) => vec![b],
         None => [band.lo, band.hi]
@@ -307,7 +308,7 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     };
     if let Some(path) = &a.plot {
         let fig = figure(&rl, &fam, &out, band)?;
-        out.plot = wall_plot::save(fig, None, path)?;
+        out.plot = wall_plot::save(fig, path)?;
     }
     if a.json {
         return print_json(&out);

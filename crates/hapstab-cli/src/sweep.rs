@@ -119,7 +119,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
         write_csv(path, range.param, &points)?;
     }
     let plot = match &a.plot {
-        Some(p) => Some(figure(range.param, at, &points).save(p)?),
+        Some(p) => Some(figure(range.param, at, &points, &swept_line(&rl, range.param)).save(p)?),
         None => None,
     };
     let out = SweepOut {
@@ -232,8 +232,21 @@ fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -
     Ok(())
 }
 
+/// The loop in words without the part that the swept parameter changes.
+fn swept_line(rl: &crate::model::ResolvedLoop, param: SweepParam) -> String {
+    use crate::wall_plot::Part;
+    let part = match param {
+        SweepParam::DelayTime => Part::Delay,
+        SweepParam::Period => Part::Period,
+        SweepParam::Cutoff | SweepParam::Window => Part::Estimator,
+        SweepParam::ForceLag => Part::Lag,
+        _ => Part::Plant,
+    };
+    crate::wall_plot::loop_line_without(rl, &[part])
+}
+
 /// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter.
-fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
+fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint], subtitle: &str) -> Figure {
     // times in ms (delays and periods of a haptic loop are milliseconds)
     let (xs, unit) = match param.unit() {
         "s" => (1e3, "ms"),
@@ -251,9 +264,10 @@ fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
         KmaxAt::Band { lo, hi } => format!("Largest stable stiffness for {lo} ≤ B ≤ {hi} Ns/m"),
     };
     let mut f = Figure::new(title)
+        .subtitle(subtitle)
         .x_label(format!("{} ({unit})", param.name()))
         .y_label("K_max (N/m)")
-        .legend(Legend::UpperRight);
+        .legend(Legend::Below);
     let stable = series(|p| p.k_max);
     f.add(
         Series::line(stable.clone())

@@ -146,6 +146,10 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
     }
     let dampings = a.table_damping.as_deref();
     check_budget(a, &loops)?;
+    let subtitle = match a.compare.is_empty() {
+        true => crate::wall_plot::loop_line(&loops[0].1),
+        false => format!("base loop: {}", crate::wall_plot::loop_line(&loops[0].1)),
+    };
     // a comparison analyses several loops: one step each
     let bar = crate::progress::Bar::new(loops.len(), "loops", !a.json && !a.compare.is_empty());
     let out: Vec<LoopOut> = loops
@@ -164,7 +168,7 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         write_csv(path, &out)?;
     }
-    let plot = a.plot.as_ref().map(|p| figure(&out).save(p)).transpose()?;
+    let plot = a.plot.as_ref().map(|p| figure(&out, &subtitle).save(p)).transpose()?;
     if a.json {
         let input = ZwidthInput {
             compare: a.compare.clone(),
@@ -395,7 +399,7 @@ fn extent<'a>(polys: impl IntoIterator<Item = &'a Vec<Wall>>) -> Option<Extent> 
 /// Two panels: every loop's stable region (light) and passive region (dark) with K_max marked
 /// and the linear condition (22) of the first loop dashed; then the same zoomed onto the
 /// passive regions, which are small beside the stable ones.
-fn figure(out: &[LoopOut]) -> Grid {
+fn figure(out: &[LoopOut], subtitle: &str) -> Grid {
     let stable = extent(out.iter().flat_map(|o| o.zwidth.stable.iter()));
     let passive = extent(
         out.iter()
@@ -403,13 +407,13 @@ fn figure(out: &[LoopOut]) -> Grid {
             .map(|p| &p.vertices)
             .filter(|v| !v.is_empty()),
     );
-    let mut g = Grid::new("Z-width: stable (light) and passive (dark) walls", 2);
+    let mut g = Grid::new("Z-width: stable (light) and passive (dark) walls", 2).subtitle(subtitle);
     let whole = stable.or(passive).unwrap_or((0.0, 1.0, -1.0, 1.0));
     g.push(panel(
         out,
         "all stable walls",
         pad(whole),
-        Legend::LowerRight,
+        Legend::Below,
     ));
     if let Some(p) = passive {
         let (k0, k1, b0, b1) = p;

@@ -175,7 +175,8 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     let mut result = simulate(&cfg)?;
     let trace = result.trace.take().unwrap_or_default();
     let files = if files_wanted {
-        Some(write_files(a, &trace, &result, &cfg, &settings, units)?)
+        let line = crate::wall_plot::loop_line(&sl.rl);
+        Some(write_files(a, (&trace, &result), &cfg, &settings, units, &line)?)
     } else {
         None
     };
@@ -207,11 +208,11 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
 /// Writes the CSV and the plot that were asked for.
 fn write_files(
     a: &SimulateArgs,
-    trace: &Trace,
-    result: &RunResult,
+    (trace, result): (&Trace, &RunResult),
     cfg: &Config,
     settings: &RunSettings,
     units: Units,
+    loop_line: &str,
 ) -> Result<Files> {
     if let Some(csv) = &a.csv {
         write_trace_csv(csv, trace)?;
@@ -219,6 +220,7 @@ fn write_files(
     let saved = match &a.plot {
         Some(stem) => Some(
             trace_plot(trace, result, cfg, settings, units)
+                .subtitle(loop_line)
                 .save(stem)
                 .with_context(|| format!("--plot {}", stem.display()))?,
         ),

@@ -109,7 +109,7 @@ impl Panels<'_> {
             .x_label(&self.tlabel)
             .y_label(format!("position x ({xunit})"))
             .x_range(0.0, self.t_end)
-            .legend(Legend::UpperRight);
+            .legend(Legend::Below);
         let (lo, hi) = extent(tr.position.iter().chain([&xw]));
         let (j0, j1) = (
             r.verdict.judged_from_sample as f64 * cfg.model.period(),
@@ -161,7 +161,7 @@ impl Panels<'_> {
             .x_label(&self.tlabel)
             .y_label(flabel)
             .x_range(0.0, t_end)
-            .legend(Legend::UpperRight);
+            .legend(Legend::Below);
         force.add(
             Series::line(self.series(&tr.wall_force, fs, 0.0))
                 .color(palette::VERMILLION)
@@ -220,7 +220,7 @@ impl Panels<'_> {
             .x_label(&self.tlabel)
             .y_label(format!("position x ({zunit})"))
             .x_range(from, t_end)
-            .legend(Legend::UpperRight);
+            .legend(Legend::Below);
         zoom.add(
             Series::line(self.series(&tr.position, zs, from))
                 .color(palette::BLUE)
