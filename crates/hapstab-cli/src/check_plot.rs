@@ -61,7 +61,10 @@ pub fn save(
     );
     let roots = wall_plot::roots_figure(
         c.roots,
-        &format!("Roots of p(z): spectral radius {}", sig(c.spectral_radius, 6)),
+        &format!(
+            "Roots of p(z): spectral radius {}",
+            sig(c.spectral_radius, 6)
+        ),
     );
     let region = wall_plot::room_for_tags(region);
     g.push(region.clone());
@@ -98,7 +101,10 @@ fn wall_zoom(mut fig: Figure, plane: &Plane, r: &StableRegion, at: (f64, f64)) -
         .fold(f64::INFINITY, f64::min);
     let half = (WALL_REACH * d).clamp(0.01, 0.5);
     fig.annotations.clear();
-    fig.title = format!("zoom: the wall and the nearest boundary (±{} %)", sig(100.0 * half, 2));
+    fig.title = format!(
+        "zoom: the wall and the nearest boundary (±{} %)",
+        sig(100.0 * half, 2)
+    );
     fig.legend = Legend::Hidden;
     fig.x_range(at.0 - half * span.0, at.0 + half * span.0)
         .y_range(at.1 - half * span.1, at.1 + half * span.1)

@@ -49,7 +49,12 @@ fn x_of(f: f64) -> f64 {
 }
 
 fn note(fig: &mut Figure, at: (f64, f64), text: String, color: RGBColor) {
-    fig.annotations.push(Annotation { at, text, color });
+    fig.annotations.push(Annotation {
+        at,
+        text,
+        color,
+        lift: false,
+    });
 }
 
 /// The vertical Nyquist-frequency line over the y range.

@@ -236,23 +236,28 @@ fn figure(
         };
         wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
     }
+    // a tag on a damping line is lifted off it (the marker stays at its point)
+    let tag = |fig: &mut crate::plot::Figure, at: (f64, f64), style, legend: &str, text| match lines
+        .contains(&at.1)
+    {
+        true => wall_plot::mark_above(fig, at, style, legend, text),
+        false => wall_plot::mark(fig, at, style.0, style.1, legend, text),
+    };
     if let Some(k) = out.k_max_at_zero_damping {
-        wall_plot::mark(
+        tag(
             &mut fig,
             (k, 0.0),
-            Marker::Triangle,
-            palette::GREEN,
+            (Marker::Triangle, palette::GREEN),
             &format!("K_max at B = 0: {}", eng(k, "N/m", 6)),
             "B = 0",
         );
     }
     let b_best = out.b_at_k_max.or(out.wall_damping);
     if let (Some(k), Some(b)) = (out.k_max, b_best) {
-        wall_plot::mark(
+        tag(
             &mut fig,
             (k, b),
-            Marker::Circle,
-            palette::VERMILLION,
+            (Marker::Circle, palette::VERMILLION),
             &format!("K_max: {}", plane.describe((k, b))),
             "K_max",
         );

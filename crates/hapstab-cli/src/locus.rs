@@ -324,6 +324,7 @@ fn mark_crossing(fig: &mut Figure, l: &RootLocus, period: f64, w: [f64; 4]) {
             at: (x, at.1 + 0.04 * span),
             text,
             color: palette::VERMILLION,
+            lift: false,
         });
     }
 }

@@ -245,17 +245,22 @@ fn swept_line(rl: &crate::model::ResolvedLoop, param: SweepParam) -> String {
     crate::wall_plot::loop_line_without(rl, &[part])
 }
 
-/// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter.
+/// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter,
+/// K on a log axis.
 fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint], subtitle: &str) -> Figure {
     // times in ms (delays and periods of a haptic loop are milliseconds)
     let (xs, unit) = match param.unit() {
         "s" => (1e3, "ms"),
         u => (1.0, u),
     };
+    // K on a log axis: the passive K_max is often a small fraction of the stable one
     let series = |f: fn(&SweepPoint) -> Option<f64>| -> Vec<(f64, f64)> {
         points
             .iter()
-            .map(|p| (p.value * xs, f(p).unwrap_or(f64::NAN)))
+            .map(|p| {
+                let k = f(p).filter(|k| *k > 0.0).map_or(f64::NAN, f64::log10);
+                (p.value * xs, k)
+            })
             .collect()
     };
     let title = match at {
@@ -266,7 +271,8 @@ fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint], subtitle: &str) 
     let mut f = Figure::new(title)
         .subtitle(subtitle)
         .x_label(format!("{} ({unit})", param.name()))
-        .y_label("K_max (N/m)")
+        .y_label("K_max (N/m, log scale)")
+        .y_log10()
         .legend(Legend::Below);
     let stable = series(|p| p.k_max);
     f.add(

@@ -95,7 +95,23 @@ pub fn mark(
         at,
         text: format!("   {tag}"),
         color,
+        lift: false,
     });
+}
+
+/// [`mark`] with the tag written just above the point (the marker stays on it), off a line
+/// drawn through the point.
+pub fn mark_above(
+    fig: &mut Figure,
+    at: (f64, f64),
+    (marker, color): (Marker, RGBColor),
+    legend: &str,
+    tag: &str,
+) {
+    mark(fig, at, marker, color, legend, tag);
+    if let Some(a) = fig.annotations.last_mut() {
+        a.lift = true;
+    }
 }
 
 /// A horizontal dashed line at damping `y` across the figure's data (a band edge).
@@ -247,7 +263,11 @@ fn plant_words(p: &hapstab::model::Plant) -> String {
             }
         }
         (M::MassSpringDamper(e), None) => {
-            let mut s = format!("m = {} kg, b = {}", sig(e.mass, 4), eng(e.damping, "Ns/m", 4));
+            let mut s = format!(
+                "m = {} kg, b = {}",
+                sig(e.mass, 4),
+                eng(e.damping, "Ns/m", 4)
+            );
             if e.stiffness != 0.0 {
                 s += &format!(", k = {}", eng(e.stiffness, "N/m", 4));
             }

@@ -192,9 +192,19 @@ impl Figure {
         bounds: &Rect,
     ) -> Drawn<(), DB> {
         let font = (FONT, self.px(25.0)).into_font();
-        for an in &self.annotations {
-            if bounds.contains(an.at) {
-                let style = font.clone().color(&an.color);
+        let lift = self.px(8.0) as i32;
+        for an in self.annotations.iter().filter(|a| bounds.contains(a.at)) {
+            let style = font.clone().color(&an.color);
+            if an.lift {
+                chart.draw_series(std::iter::once(
+                    EmptyElement::at(an.at)
+                        + Text::new(
+                            an.text.clone(),
+                            (0, -lift),
+                            style.pos(Pos::new(HPos::Left, VPos::Bottom)),
+                        ),
+                ))?;
+            } else {
                 chart.draw_series(std::iter::once(Text::new(
                     an.text.clone(),
                     an.at,
@@ -358,19 +368,29 @@ pub(super) fn fit_font(nominal: f64, text: &str, width: u32) -> f64 {
 }
 
 /// The ticks of a log axis over log10 values lo … hi: (value, whether it is a power of
-/// ten) at 1, 2, 5 × 10ⁿ; only 10ⁿ when that gives more than 12, 1 … 9 × 10ⁿ when 1, 2, 5
-/// give fewer than 3.
+/// ten) at 1, 2, 5 × 10ⁿ; only 10ⁿ when that gives more than 12 (every k-th decade, at most
+/// about 10), 1 … 9 × 10ⁿ when 1, 2, 5 give fewer than 3.
 fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, bool)> {
     let pick = |mantissas: &[f64]| -> Vec<(f64, bool)> {
         let (n0, n1) = (lo.floor() as i32, hi.ceil() as i32);
         (n0..=n1)
-            .flat_map(|n| mantissas.iter().map(move |&m| (m * 10f64.powi(n), m == 1.0)))
+            .flat_map(|n| {
+                mantissas
+                    .iter()
+                    .map(move |&m| (m * 10f64.powi(n), m == 1.0))
+            })
             .filter(|(v, _)| (lo..=hi).contains(&v.log10()))
             .collect()
     };
     let t = pick(&[1.0, 2.0, 5.0]);
     if t.len() > 12 {
-        pick(&[1.0])
+        // whole decades, every k-th over many of them
+        let decades = pick(&[1.0]);
+        let k = decades.len().div_ceil(10).max(1) as i32;
+        decades
+            .into_iter()
+            .filter(|(v, _)| v.log10().round() as i32 % k == 0)
+            .collect()
     } else if t.len() < 3 {
         pick(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
     } else {

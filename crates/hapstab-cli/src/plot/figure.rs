@@ -35,6 +35,9 @@ pub struct Annotation {
     pub text: String,
     /// Colour.
     pub color: RGBColor,
+    /// Written above the point (its bottom a few pixels over it) rather than centred on
+    /// it: a tag lifted off a line drawn through the point.
+    pub lift: bool,
 }
 
 /// One plot panel: title, axis labels, ranges, series, annotations and legend.
@@ -169,6 +172,7 @@ impl Figure {
             at: (x, y),
             text: text.into(),
             color: palette::BLACK,
+            lift: false,
         });
         self
     }

@@ -106,7 +106,10 @@ impl Figure {
         area.draw(&Rectangle::new(
             [
                 (left as i32, 2),
-                ((left + box_w) as i32, (top * 2.0 + rows as f64 * row_h) as i32 - 2),
+                (
+                    (left + box_w) as i32,
+                    (top * 2.0 + rows as f64 * row_h) as i32 - 2,
+                ),
             ],
             RGBColor(150, 150, 150).stroke_width(1),
         ))?;
@@ -171,7 +174,10 @@ fn swatch<DB: DrawingBackend>(
             let r = e.size as i32;
             match marker {
                 Marker::Circle => area.draw(&Circle::new(p, r, style)),
-                Marker::Square => area.draw(&Rectangle::new([(p.0 - r, p.1 - r), (p.0 + r, p.1 + r)], style)),
+                Marker::Square => area.draw(&Rectangle::new(
+                    [(p.0 - r, p.1 - r), (p.0 + r, p.1 + r)],
+                    style,
+                )),
                 Marker::Triangle => area.draw(&TriangleMarker::new(p, r + 2, style)),
                 Marker::Cross => area.draw(&Cross::new(p, r, style.stroke_width(3))),
             }

@@ -76,7 +76,11 @@ impl Render for Grid {
         // the panels of a row keep one legend strip height, so that their axes line up
         let width = self.panel_size.0;
         for (row, chunk) in self.panels.chunks(self.cols).enumerate() {
-            let strip = chunk.iter().map(|p| p.strip_height(width)).max().unwrap_or(0);
+            let strip = chunk
+                .iter()
+                .map(|p| p.strip_height(width))
+                .max()
+                .unwrap_or(0);
             for (k, panel) in chunk.iter().enumerate() {
                 panel.draw_reserving(&areas[row * self.cols + k], strip)?;
             }

@@ -176,7 +176,14 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     let trace = result.trace.take().unwrap_or_default();
     let files = if files_wanted {
         let line = crate::wall_plot::loop_line(&sl.rl);
-        Some(write_files(a, (&trace, &result), &cfg, &settings, units, &line)?)
+        Some(write_files(
+            a,
+            (&trace, &result),
+            &cfg,
+            &settings,
+            units,
+            &line,
+        )?)
     } else {
         None
     };
