@@ -31,8 +31,9 @@ pub struct CheckArgs {
     #[command(flatten)]
     wall: WallArgs,
     /// Draw the stable region with the wall marked and, beside it, the roots of p(z) with
-    /// the unit circle, to FILE: SVG or PNG by its extension (both FILE.svg and FILE.png for
-    /// any other name); K (N/m) and B (Ns/m) for a physical loop, α and β normalized.
+    /// the unit circle, each over a zoom (onto the wall and its nearest boundary, onto z = 1),
+    /// to FILE: SVG or PNG by its extension (both FILE.svg and FILE.png for any other name);
+    /// K (N/m) and B (Ns/m) for a physical loop, α and β normalized.
     #[arg(long, value_name = "FILE")]
     plot: Option<std::path::PathBuf>,
     /// Exit with status 1 when the wall is not stable (marginal or unstable), for scripts and

@@ -237,11 +237,17 @@ fn figure(
         wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
     }
     // a tag on a damping line is lifted off it (the marker stays at its point)
-    let tag = |fig: &mut crate::plot::Figure, at: (f64, f64), style, legend: &str, text| match lines
-        .contains(&at.1)
-    {
-        true => wall_plot::mark_above(fig, at, style, legend, text),
-        false => wall_plot::mark(fig, at, style.0, style.1, legend, text),
+    let on_line = |b: f64| {
+        lines
+            .iter()
+            .any(|l| (l - b).abs() <= 1e-9 * l.abs().max(1.0))
+    };
+    let tag = |fig: &mut crate::plot::Figure, at: (f64, f64), style, legend: &str, text| {
+        if on_line(at.1) {
+            wall_plot::mark_above(fig, at, style, legend, text)
+        } else {
+            wall_plot::mark(fig, at, style.0, style.1, legend, text)
+        }
     };
     if let Some(k) = out.k_max_at_zero_damping {
         tag(

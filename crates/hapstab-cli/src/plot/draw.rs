@@ -436,3 +436,34 @@ fn tick_formatter(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{log_tick_label, log_ticks};
+
+    #[test]
+    fn log_ticks_at_one_two_five_per_decade() {
+        let t: Vec<f64> = log_ticks(300f64.log10(), 70e3f64.log10())
+            .into_iter()
+            .map(|(v, _)| v)
+            .collect();
+        let want = [500.0, 1e3, 2e3, 5e3, 1e4, 2e4, 5e4];
+        assert_eq!(t.len(), want.len(), "{t:?}");
+        for (a, b) in t.iter().zip(want) {
+            assert!((a / b - 1.0).abs() < 1e-12, "{t:?}");
+        }
+        let labels: Vec<String> = t.iter().map(|v| log_tick_label(*v)).collect();
+        assert_eq!(labels, ["500", "1k", "2k", "5k", "10k", "20k", "50k"]);
+        // 31 decades: whole decades only, every fourth (ceil(31 / 10)), evenly spaced
+        let many: Vec<i32> = log_ticks(-27.0, 3.0)
+            .into_iter()
+            .map(|(v, d)| {
+                assert!(d, "{v} is no power of ten");
+                v.log10().round() as i32
+            })
+            .collect();
+        assert_eq!(many, [-24, -20, -16, -12, -8, -4, 0]);
+        // within one decade: 1 … 9
+        assert_eq!(log_ticks(2.0f64.log10(), 8.5f64.log10()).len(), 7);
+    }
+}

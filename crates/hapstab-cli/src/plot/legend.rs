@@ -184,3 +184,54 @@ fn swatch<DB: DrawingBackend>(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::plot::{Figure, Legend, Marker, Series};
+
+    #[test]
+    fn below_legend_skips_series_with_nothing_drawn_and_repeated_labels() {
+        let mut f = Figure::new("t").x_range(0.0, 1.0).y_range(0.0, 1.0);
+        f.add(Series::line([(0.1, 0.1), (0.9, 0.9)]).label("line"));
+        f.add(Series::scatter([(5.0, 5.0)], Marker::Circle).label("outside"));
+        f.add(Series::line([(0.2, 0.1), (0.3, 0.9)]).label("line"));
+        f.add(Series::polygon([(2.0, 2.0), (3.0, 2.0), (3.0, 3.0)]).label("far polygon"));
+        f.add(Series::scatter(Vec::new(), Marker::Cross).label("no points"));
+        f.add(Series::line([(0.5, 0.5), (0.6, 0.6)]).label(" "));
+        f.add(Series::polygon([(0.1, 0.1), (0.5, 0.1), (0.5, 0.5)]).label("region"));
+        let labels: Vec<String> = f.below_entries().into_iter().map(|e| e.label).collect();
+        assert_eq!(labels, ["line", "region"]);
+        // the SVG holds each drawn entry's text once and none of the others
+        let dir = tempfile::tempdir().unwrap();
+        let saved = f.save(dir.path().join("l")).unwrap();
+        let svg = std::fs::read_to_string(saved.svg).unwrap();
+        let texts: Vec<&str> = svg
+            .split("<text")
+            .skip(1)
+            .filter_map(|c| c.split_once('>'))
+            .map(|(_, r)| r.split("</text>").next().unwrap_or("").trim())
+            .collect();
+        assert_eq!(texts.iter().filter(|t| **t == "line").count(), 1);
+        assert_eq!(texts.iter().filter(|t| **t == "region").count(), 1);
+        for gone in ["outside", "far polygon", "no points"] {
+            assert!(!texts.contains(&gone), "{gone} in {texts:?}");
+        }
+        // no legend at a corner: nothing else is listed
+        assert!(f.clone().legend(Legend::Hidden).below_entries().is_empty());
+    }
+
+    #[test]
+    fn below_legend_takes_as_many_columns_as_fit() {
+        let mut f = Figure::new("t").x_range(0.0, 1.0).y_range(0.0, 1.0);
+        for l in ["a", "b", "c", "d"] {
+            f.add(Series::line([(0.1, 0.1), (0.9, 0.9)]).label(l));
+        }
+        let e = f.below_entries();
+        // four one-letter entries fit side by side on 900 px: one row
+        assert_eq!(f.below_layout(&e, 900).0, 4);
+        // on 150 px only one column fits: four rows, a taller strip
+        let (cols, rows, h) = f.below_layout(&e, 150);
+        assert_eq!((cols, rows), (1, 4));
+        assert!(h > f.below_layout(&e, 900).2);
+    }
+}

@@ -41,8 +41,9 @@ pub struct SimulateArgs {
     /// of the wall).
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
-    /// Plot position and force over time, with the judged window: writes STEM.svg and
-    /// STEM.png.
+    /// Plot position and force over time, with the judged window (a decaying run: its
+    /// transient, and the envelope of |x| over the whole run on a log scale): writes STEM.svg
+    /// and STEM.png.
     #[arg(long, value_name = "STEM")]
     plot: Option<PathBuf>,
     /// Most trace rows (at most 2000000); longer runs record every n-th sample.
