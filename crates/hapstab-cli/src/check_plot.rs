@@ -76,8 +76,9 @@ pub fn save(
 }
 
 /// The region zoomed onto the wall: a window around it of [`WALL_REACH`] times its
-/// distance to the boundary (measured in shares of the whole region's extent), so that the
-/// nearest stretch of boundary shows; the wall keeps its marker, without its tag.
+/// distance to the boundary (measured in shares of the whole region's extent; a wall far
+/// outside the region gets a window just reaching the boundary), so that the nearest stretch
+/// of boundary shows; the wall keeps its marker, without its tag.
 fn wall_zoom(mut fig: Figure, plane: &Plane, r: &StableRegion, at: (f64, f64)) -> Figure {
     let ((x0, x1), (y0, y1)) = fig.ranges();
     let span = (x1 - x0, y1 - y0);
@@ -99,12 +100,13 @@ fn wall_zoom(mut fig: Figure, plane: &Plane, r: &StableRegion, at: (f64, f64)) -
         .iter()
         .map(|&(a, b)| segment_distance(share(a), share(b)))
         .fold(f64::INFINITY, f64::min);
-    let half = (WALL_REACH * d).clamp(0.01, 0.5);
+    // far from the region, just wide enough to reach the boundary
+    let half = match WALL_REACH * d {
+        h if h <= 0.5 => h.max(0.01),
+        _ => (1.15 * d).min(2.0),
+    };
     fig.annotations.clear();
-    fig.title = format!(
-        "zoom: the wall and the nearest boundary (±{} %)",
-        sig(100.0 * half, 2)
-    );
+    fig.title = "zoom: the wall and the nearest boundary".to_string();
     fig.legend = Legend::Hidden;
     fig.x_range(at.0 - half * span.0, at.0 + half * span.0)
         .y_range(at.1 - half * span.1, at.1 + half * span.1)
@@ -121,30 +123,41 @@ fn segment_distance(a: (f64, f64), b: (f64, f64)) -> f64 {
     (a.0 + t * dx).hypot(a.1 + t * dy)
 }
 
-/// The z-plane zoomed onto z = 1: a square window around 1 that holds the roots within
-/// [`NEAR_ONE`] of it (at least ±0.002), with the stretch of the unit circle through it
-/// drawn finely.
+/// The z-plane zoomed onto z = 1 (or, with no root within [`NEAR_ONE`] of it, onto the
+/// point of the unit circle nearest the dominant root of the upper half plane): a square window that holds the roots
+/// within [`NEAR_ONE`] of that point (at least ±0.002), with the stretch of the unit circle
+/// through it drawn finely and each root's |z| written beside it (upper half plane).
 fn one_zoom(roots: &[Complex64]) -> Figure {
     let one = Complex64::new(1.0, 0.0);
+    let near_one = roots.iter().any(|z| (z - one).norm() < NEAR_ONE);
+    let dominant = roots
+        .iter()
+        .filter(|z| z.norm() > 0.0 && z.im >= 0.0)
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()));
+    let c = match (near_one, dominant) {
+        (false, Some(z)) => z / z.norm(),
+        _ => one,
+    };
     let near: Vec<&Complex64> = roots
         .iter()
-        .filter(|z| (*z - one).norm() < NEAR_ONE)
+        .filter(|z| (*z - c).norm() < NEAR_ONE)
         .collect();
-    let reach = near.iter().map(|z| (*z - one).norm()).fold(0.0, f64::max);
+    let reach = near.iter().map(|z| (*z - c).norm()).fold(0.0, f64::max);
     let h = (1.5 * reach).clamp(0.002, NEAR_ONE);
+    let at = c.arg();
     let arc = (0..=600).map(|i| {
-        let t = (i as f64 / 300.0 - 1.0) * 2.0 * h;
+        let t = at + (i as f64 / 300.0 - 1.0) * 2.0 * h;
         (t.cos(), t.sin())
     });
-    let title = match near.len() {
-        0 => "zoom: z = 1 (no root within 0.5)".to_string(),
-        n => format!("zoom: the {n} roots near z = 1 (±{})", sig(h, 2)),
+    let title = match (near_one, near.len()) {
+        (true, n) => format!("zoom: the {n} roots near z = 1 (±{})", sig(h, 2)),
+        (false, _) => "zoom: the dominant roots and the unit circle".to_string(),
     };
     let mut fig = Figure::new(title)
         .x_label("Re z")
         .y_label("Im z")
-        .x_range(1.0 - h, 1.0 + h)
-        .y_range(-h, h)
+        .x_range(c.re - h, c.re + h)
+        .y_range(c.im - h, c.im + h)
         .legend(Legend::Hidden)
         .with(Series::line(arc).color(palette::BLACK).width(2))
         .with(
