@@ -7,6 +7,9 @@ use anyhow::Result;
 use super::save::{Saved, save_both};
 use super::{DEFAULT_SIZE, Figure};
 
+/// Space in px above a grid's title, so that its tallest glyphs clear the image's edge.
+pub(super) const GRID_TITLE_TOP: u32 = 8;
+
 /// A grid of panels saved as one image: `cols` columns, rows as needed, panels in reading
 /// order, each of `panel_size` px, with an optional overall title.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,7 +61,11 @@ impl Grid {
     }
 
     pub(super) fn title_height(&self) -> u32 {
-        let title = if self.title.is_empty() { 0 } else { 56 };
+        let title = if self.title.is_empty() {
+            0
+        } else {
+            GRID_TITLE_TOP + 56
+        };
         let subtitle = if self.subtitle.is_empty() { 0 } else { 42 };
         title + subtitle
     }

@@ -65,6 +65,7 @@ impl Render for Grid {
         let mut body = root.clone();
         if !self.title.is_empty() {
             let size = fit_font(40.0, &self.title, width);
+            body = body.margin(super::grid::GRID_TITLE_TOP, 0, 0, 0);
             body = body.titled(&self.title, (FONT, size).into_font())?;
         }
         if !self.subtitle.is_empty() {
@@ -289,7 +290,7 @@ mod tests {
         g.push(sample_figure().x_label("right β"));
         g.push(sample_figure().x_label("third"));
         let saved = g.save(dir.path().join("grid")).unwrap();
-        check_png(&saved.png, (1200, 900 + 56));
+        check_png(&saved.png, (1200, 900 + 8 + 56));
         let svg = std::fs::read_to_string(&saved.svg).unwrap();
         for t in ["left α", "right β", "third", "Two panels"] {
             assert!(svg.contains(t), "SVG lacks {t}");
