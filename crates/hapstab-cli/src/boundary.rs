@@ -267,7 +267,7 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
     }
     let mut out = output(&rl, &fam, &r);
     if let Some(path) = &a.plot {
-        out.plot = wall_plot::save(figure(&rl, &fam, &r), None, path)?;
+        out.plot = wall_plot::save(figure(&rl, &fam, &r), path)?;
     }
     if a.json {
         return print_json(&out);
@@ -285,7 +285,8 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
 /// The stable region with K_max (α_max) marked.
 fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> crate::plot::Figure {
     let plane = Plane::of(rl, fam);
-    let mut fig = wall_plot::region_figure(&plane, r, &wall_plot::title(rl, "Stable region"));
+    let mut fig =
+        wall_plot::region_figure(&plane, r, "Stable region").subtitle(wall_plot::loop_line(rl));
     if !r.polygons.is_empty() {
         let at = plane.point(r.alpha_max, r.beta_at_alpha_max);
         let name = if rl.normalized { "α_max" } else { "K_max" };

@@ -18,8 +18,7 @@ use crate::model::{
     resolve_loop_wall,
 };
 use crate::output::{eng, print_json, radius_text, sig};
-use crate::plot::{Marker, palette};
-use crate::wall_plot::{self, Plane};
+use crate::wall_plot;
 use hapstab::loop_analysis::{analysis, linear_k, pick_interval, stable_intervals, wall_units};
 
 /// Arguments of `hapstab check`.
@@ -32,8 +31,9 @@ pub struct CheckArgs {
     #[command(flatten)]
     wall: WallArgs,
     /// Draw the stable region with the wall marked and, beside it, the roots of p(z) with
-    /// the unit circle, to FILE: SVG or PNG by its extension (both FILE.svg and FILE.png for
-    /// any other name); K (N/m) and B (Ns/m) for a physical loop, α and β normalized.
+    /// the unit circle, each over a zoom (onto the wall and its nearest boundary, onto z = 1),
+    /// to FILE: SVG or PNG by its extension (both FILE.svg and FILE.png for any other name);
+    /// K (N/m) and B (Ns/m) for a physical loop, α and β normalized.
     #[arg(long, value_name = "FILE")]
     plot: Option<std::path::PathBuf>,
     /// Exit with status 1 when the wall is not stable (marginal or unstable), for scripts and
@@ -175,8 +175,13 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         plot: Vec::new(),
     };
     if let Some(path) = &a.plot {
-        let (region, roots) = figures(&rl, &fam, units, &out)?;
-        out.plot = wall_plot::save(region, Some(roots), path)?;
+        let fig = crate::check_plot::CheckFigure {
+            wall: units,
+            verdict: out.verdict,
+            roots: &out.roots,
+            spectral_radius: out.spectral_radius,
+        };
+        out.plot = crate::check_plot::save(&rl, &fam, &fig, path)?;
     }
     if a.json {
         print_json(&out)?;
@@ -192,35 +197,6 @@ pub fn run(a: &CheckArgs) -> Result<()> {
         std::process::exit(1);
     }
     Ok(())
-}
-
-/// The stable region with the wall marked, and the roots of p(z) in the z-plane.
-fn figures(
-    rl: &ResolvedLoop,
-    fam: &AffineFamily,
-    (a, b): (f64, f64),
-    o: &CheckOut,
-) -> Result<(crate::plot::Figure, crate::plot::Figure)> {
-    let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
-    let plane = Plane::of(rl, fam);
-    let mut region = wall_plot::region_figure(&plane, &r, &wall_plot::title(rl, "Stable region"));
-    let at = plane.point(a, b);
-    wall_plot::mark(
-        &mut region,
-        at,
-        Marker::Square,
-        palette::BLACK,
-        &format!("wall ({}): {}", o.verdict, plane.describe(at)),
-        "wall",
-    );
-    let roots = wall_plot::roots_figure(
-        &o.roots,
-        &format!(
-            "Roots of p(z): spectral radius {}",
-            sig(o.spectral_radius, 6)
-        ),
-    );
-    Ok((region, roots))
 }
 
 fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {

@@ -19,12 +19,13 @@ const DB_SPAN: f64 = 120.0;
 const NYQUIST_SIZE: (u32, u32) = (978, 950);
 
 /// The Bode plot: magnitude above phase, margins marked (module doc).
-pub fn bode(fr: &FrequencyResponse, title: &str) -> Grid {
+pub fn bode(fr: &FrequencyResponse, title: &str, subtitle: &str) -> Grid {
     let lx: Vec<f64> = fr.frequency_hz.iter().map(|f| f.log10()).collect();
     let x_lo = lx.first().copied().unwrap_or(0.0);
     let x_hi = fr.nyquist_hz.log10();
     let xr = (x_lo, x_hi + 0.04 * (x_hi - x_lo).max(1.0));
     let mut grid = Grid::new(format!("Bode plot of L(e^(jωT)), {title}"), 1)
+        .subtitle(subtitle)
         .panel_size(BODE_PANEL.0, BODE_PANEL.1);
     grid.push(magnitude_panel(fr, &lx, xr));
     grid.push(phase_panel(fr, &lx, xr));
@@ -48,7 +49,12 @@ fn x_of(f: f64) -> f64 {
 }
 
 fn note(fig: &mut Figure, at: (f64, f64), text: String, color: RGBColor) {
-    fig.annotations.push(Annotation { at, text, color });
+    fig.annotations.push(Annotation {
+        at,
+        text,
+        color,
+        lift: false,
+    });
 }
 
 /// The vertical Nyquist-frequency line over the y range.
@@ -79,7 +85,7 @@ fn magnitude_panel(fr: &FrequencyResponse, lx: &[f64], xr: (f64, f64)) -> Figure
         .x_log10()
         .x_range(xr.0, xr.1)
         .y_range(bottom, top)
-        .legend(Legend::LowerLeft);
+        .legend(Legend::Below);
     fig.add(
         Series::line(lx.iter().copied().zip(fr.magnitude_db.iter().copied()))
             .color(palette::BLUE)
@@ -165,7 +171,7 @@ fn phase_panel(fr: &FrequencyResponse, lx: &[f64], xr: (f64, f64)) -> Figure {
         .x_log10()
         .x_range(xr.0, xr.1)
         .y_range(y0, y1)
-        .legend(Legend::LowerLeft);
+        .legend(Legend::Below);
     fig.add(
         Series::line(lx.iter().copied().zip(fr.phase_deg.iter().copied()))
             .color(palette::BLUE)
@@ -219,7 +225,7 @@ fn phase_mark(fig: &mut Figure, m: &Mark, xr: (f64, f64), span: f64) {
 }
 
 /// The Nyquist plot (module doc).
-pub fn nyquist(fr: &FrequencyResponse, title: &str) -> Figure {
+pub fn nyquist(fr: &FrequencyResponse, title: &str, subtitle: &str) -> Figure {
     let reach = fr
         .marks
         .iter()
@@ -228,12 +234,13 @@ pub fn nyquist(fr: &FrequencyResponse, title: &str) -> Figure {
         .fold(1.0_f64, f64::max);
     let r = (1.6 * reach).max(2.0);
     let mut fig = Figure::new(format!("Nyquist plot of L(e^(jωT)), {title}"))
+        .subtitle(subtitle)
         .x_label("Re L")
         .y_label("Im L")
         .x_range(-r, r)
         .y_range(-r, r)
         .size(NYQUIST_SIZE.0, NYQUIST_SIZE.1)
-        .legend(Legend::UpperRight);
+        .legend(Legend::Below);
     let curve = || fr.re.iter().copied().zip(fr.im.iter().copied());
     fig.add(
         Series::line(curve())

@@ -113,10 +113,11 @@ fn run(a: &FreqArgs, kind: Kind) -> Result<()> {
     let fr = frequency_response(&rl.lp, w, None)?;
     let mut plot = Vec::new();
     if let Some(path) = &a.plot {
-        let title = crate::wall_plot::title(&rl, &wall_text(w));
+        let title = wall_text(w);
+        let sub = crate::wall_plot::loop_line(&rl);
         let written = match kind {
-            Kind::Bode => crate::freq_figures::bode(&fr, &title).save_as(path),
-            Kind::Nyquist => crate::freq_figures::nyquist(&fr, &title).save_as(path),
+            Kind::Bode => crate::freq_figures::bode(&fr, &title, &sub).save_as(path),
+            Kind::Nyquist => crate::freq_figures::nyquist(&fr, &title, &sub).save_as(path),
         };
         plot = written.with_context(|| format!("--plot {}", path.display()))?;
     }

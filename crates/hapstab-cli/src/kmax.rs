@@ -184,7 +184,8 @@ fn figure(
 ) -> Result<crate::plot::Figure> {
     let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
     let plane = Plane::of(rl, fam);
-    let mut fig = wall_plot::region_figure(&plane, &r, &wall_plot::title(rl, "K_max"));
+    let mut fig = wall_plot::region_figure(&plane, &r, "Largest stable stiffness K_max")
+        .subtitle(wall_plot::loop_line(rl));
     let lines: Vec<f64> = match out.wall_damping {
         Some(b) => vec![b],
         None => [band.lo, band.hi]
@@ -199,23 +200,34 @@ fn figure(
         };
         wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
     }
+    // a tag on a damping line is lifted off it (the marker stays at its point)
+    let on_line = |b: f64| {
+        lines
+            .iter()
+            .any(|l| (l - b).abs() <= 1e-9 * l.abs().max(1.0))
+    };
+    let tag = |fig: &mut crate::plot::Figure, at: (f64, f64), style, legend: &str, text| {
+        if on_line(at.1) {
+            wall_plot::mark_above(fig, at, style, legend, text)
+        } else {
+            wall_plot::mark(fig, at, style.0, style.1, legend, text)
+        }
+    };
     if let Some(k) = out.report.k_max_at_zero_damping {
-        wall_plot::mark(
+        tag(
             &mut fig,
             (k, 0.0),
-            Marker::Triangle,
-            palette::GREEN,
+            (Marker::Triangle, palette::GREEN),
             &format!("K_max at B = 0: {}", eng(k, "N/m", 6)),
             "B = 0",
         );
     }
     let b_best = out.report.b_at_k_max.or(out.wall_damping);
     if let (Some(k), Some(b)) = (out.report.k_max, b_best) {
-        wall_plot::mark(
+        tag(
             &mut fig,
             (k, b),
-            Marker::Circle,
-            palette::VERMILLION,
+            (Marker::Circle, palette::VERMILLION),
             &format!("K_max: {}", plane.describe((k, b))),
             "K_max",
         );
@@ -303,7 +315,7 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     let mut out = answer(&rl, &fam, query)?;
     if let Some(path) = &a.plot {
         let fig = figure(&rl, &fam, &out, band)?;
-        out.plot = wall_plot::save(fig, None, path)?;
+        out.plot = wall_plot::save(fig, path)?;
     }
     if a.json {
         return print_json(&out);

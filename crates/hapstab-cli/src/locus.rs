@@ -93,9 +93,9 @@ pub fn run(a: &LocusArgs) -> Result<()> {
     let locus = root_locus(&rl.lp, b, None)?;
     let mut plot = Vec::new();
     if let Some(path) = &a.plot {
-        let title =
-            crate::wall_plot::title(&rl, &format!("Root locus in K at B = {} Ns/m", sig(b, 4)));
-        plot = figure(&locus, rl.lp.period, &title)
+        let title = format!("Root locus in K at B = {} Ns/m", sig(b, 4));
+        let sub = crate::wall_plot::loop_line(&rl);
+        plot = figure(&locus, rl.lp.period, &title, &sub)
             .save_as(path)
             .with_context(|| format!("--plot {}", path.display()))?;
     }
@@ -198,7 +198,7 @@ const PANEL: (u32, u32) = (840, 800);
 const ZOOM_RADIUS: f64 = 0.5;
 
 /// The z-plane with every branch, and beside it a zoom on the crossing at K_max.
-fn figure(l: &RootLocus, period: f64, title: &str) -> Grid {
+fn figure(l: &RootLocus, period: f64, title: &str, subtitle: &str) -> Grid {
     let reach = l
         .spectral_radius
         .iter()
@@ -209,7 +209,9 @@ fn figure(l: &RootLocus, period: f64, title: &str) -> Grid {
         * 1.12;
     let full = [-reach, reach, -reach, reach];
     let zoom = zoom_box(l);
-    let mut g = Grid::new(title, if zoom.is_some() { 2 } else { 1 }).panel_size(PANEL.0, PANEL.1);
+    let mut g = Grid::new(title, if zoom.is_some() { 2 } else { 1 })
+        .subtitle(subtitle)
+        .panel_size(PANEL.0, PANEL.1);
     g.push(panel(l, period, full, "z-plane", true));
     if let Some(b) = zoom {
         g.push(panel(l, period, b, "near the crossing at K_max", false));
@@ -248,7 +250,7 @@ fn panel(l: &RootLocus, period: f64, w: [f64; 4], title: &str, legend: bool) -> 
         .x_range(w[0], w[1])
         .y_range(w[2], w[3])
         .legend(if legend {
-            Legend::LowerLeft
+            Legend::Below
         } else {
             Legend::Hidden
         });
@@ -322,6 +324,7 @@ fn mark_crossing(fig: &mut Figure, l: &RootLocus, period: f64, w: [f64; 4]) {
             at: (x, at.1 + 0.04 * span),
             text,
             color: palette::VERMILLION,
+            lift: false,
         });
     }
 }

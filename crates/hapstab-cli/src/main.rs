@@ -4,6 +4,7 @@
 mod boundary;
 mod budget;
 mod check;
+mod check_plot;
 mod discretize;
 mod freq_figures;
 mod freq_plots;

@@ -134,6 +134,8 @@ struct Values {
     stable: Vec<bool>,
     radius: Option<Vec<f64>>,
     input: LoopInput,
+    /// The loop in words, for the figure's subtitle.
+    loop_line: String,
 }
 
 /// Layout of the `--out` file.
@@ -194,6 +196,7 @@ fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
+        loop_line: normalized_line(base, (x.name, y.name))?,
         input: LoopInput::Normalized {
             gamma: base.gamma,
             delta: base.delta,
@@ -202,6 +205,34 @@ fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values
             beta: Some(base.beta),
         },
     })
+}
+
+/// The fixed parameters of a normalized map (those of α, β, γ, δ that are no axis), then the
+/// rest of the paper's loop ([`crate::wall_plot::loop_line_without`] its plant).
+fn normalized_line(base: Normalized, axes: (Name, Name)) -> Result<String> {
+    let on_axis = |a: Axis| axes.0 == Name::Normalized(a) || axes.1 == Name::Normalized(a);
+    let mut parts: Vec<String> = [
+        (Axis::Alpha, "α", base.alpha),
+        (Axis::Beta, "β", base.beta),
+        (Axis::Gamma, "γ", base.gamma),
+        (Axis::Delta, "δ", base.delta),
+    ]
+    .into_iter()
+    .filter(|(a, _, _)| !on_axis(*a))
+    .map(|(_, n, v)| format!("{n} = {}", crate::output::sig(v, 4)))
+    .collect();
+    let pp = hapstab::PlantParams {
+        gamma: base.gamma,
+        delta: base.delta,
+    };
+    let rl = crate::model::ResolvedLoop {
+        lp: hapstab::model::Loop::normalized(pp, base.d)?,
+        normalized: true,
+        wall: None,
+    };
+    use crate::wall_plot::Part;
+    parts.push(crate::wall_plot::loop_line_without(&rl, &[Part::Plant]));
+    Ok(parts.join(", "))
 }
 
 /// The map of a loop's wall: K along x and B along y, converted to the family's wall units.
@@ -228,6 +259,7 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
+        loop_line: crate::wall_plot::loop_line(&rl),
         input: rl.input(None),
     })
 }
@@ -429,11 +461,12 @@ fn heatmap(x: Grid, y: Grid, v: &Values) -> Figure {
     let (xr, yr) = (&x.range, &y.range);
     let (hx, hy) = (xr.step() / 2.0, yr.step() / 2.0);
     let mut fig = Figure::new("Stability map")
+        .subtitle(&v.loop_line)
         .x_label(axis_title(x.name))
         .y_label(axis_title(y.name))
         .x_range(xr.lo - hx, xr.hi + hx)
         .y_range(yr.lo - hy, yr.hi + hy)
-        .legend(Legend::UpperRight);
+        .legend(Legend::Below);
     match &v.radius {
         None => {
             let stable = |k: usize| v.stable[k].then_some(0);

@@ -119,7 +119,7 @@ pub fn run(a: &SweepArgs) -> Result<()> {
         write_csv(path, range.param, &points)?;
     }
     let plot = match &a.plot {
-        Some(p) => Some(figure(range.param, at, &points).save(p)?),
+        Some(p) => Some(figure(range.param, at, &points, &swept_line(&rl, range.param)).save(p)?),
         None => None,
     };
     let out = SweepOut {
@@ -232,17 +232,35 @@ fn write_csv(path: &std::path::Path, param: SweepParam, points: &[SweepPoint]) -
     Ok(())
 }
 
-/// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter.
-fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
+/// The loop in words without the part that the swept parameter changes.
+fn swept_line(rl: &crate::model::ResolvedLoop, param: SweepParam) -> String {
+    use crate::wall_plot::Part;
+    let part = match param {
+        SweepParam::DelayTime => Part::Delay,
+        SweepParam::Period => Part::Period,
+        SweepParam::Cutoff | SweepParam::Window => Part::Estimator,
+        SweepParam::ForceLag => Part::Lag,
+        _ => Part::Plant,
+    };
+    crate::wall_plot::loop_line_without(rl, &[part])
+}
+
+/// K_max (stable, solid with markers) and the passive K_max (dashed) against the parameter,
+/// K on a log axis.
+fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint], subtitle: &str) -> Figure {
     // times in ms (delays and periods of a haptic loop are milliseconds)
     let (xs, unit) = match param.unit() {
         "s" => (1e3, "ms"),
         u => (1.0, u),
     };
+    // K on a log axis: the passive K_max is often a small fraction of the stable one
     let series = |f: fn(&SweepPoint) -> Option<f64>| -> Vec<(f64, f64)> {
         points
             .iter()
-            .map(|p| (p.value * xs, f(p).unwrap_or(f64::NAN)))
+            .map(|p| {
+                let k = f(p).filter(|k| *k > 0.0).map_or(f64::NAN, f64::log10);
+                (p.value * xs, k)
+            })
             .collect()
     };
     let title = match at {
@@ -251,9 +269,11 @@ fn figure(param: SweepParam, at: KmaxAt, points: &[SweepPoint]) -> Figure {
         KmaxAt::Band { lo, hi } => format!("Largest stable stiffness for {lo} ≤ B ≤ {hi} Ns/m"),
     };
     let mut f = Figure::new(title)
+        .subtitle(subtitle)
         .x_label(format!("{} ({unit})", param.name()))
-        .y_label("K_max (N/m)")
-        .legend(Legend::UpperRight);
+        .y_label("K_max (N/m, log scale)")
+        .y_log10()
+        .legend(Legend::Below);
     let stable = series(|p| p.k_max);
     f.add(
         Series::line(stable.clone())

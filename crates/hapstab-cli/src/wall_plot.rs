@@ -12,7 +12,7 @@ use num_complex::Complex64;
 
 use crate::model::ResolvedLoop;
 use crate::output::{eng, sig};
-use crate::plot::{Figure, Grid, Legend, Marker, RGBColor, Series, palette};
+use crate::plot::{Figure, Legend, Marker, RGBColor, Series, palette};
 
 /// The wall plane of a loop: physical (K, B) or the paper's normalized (α, β).
 pub struct Plane<'a> {
@@ -63,7 +63,7 @@ pub fn region_figure(plane: &Plane, r: &StableRegion, title: &str) -> Figure {
     let mut fig = Figure::new(title)
         .x_label(xl)
         .y_label(yl)
-        .legend(Legend::UpperRight);
+        .legend(Legend::Below);
     for (i, p) in r.polygons.iter().enumerate() {
         let pts = p.vertices.iter().map(|v| plane.point(v.alpha, v.beta));
         let s = Series::polygon(pts).color(palette::BLUE);
@@ -95,7 +95,23 @@ pub fn mark(
         at,
         text: format!("   {tag}"),
         color,
+        lift: false,
     });
+}
+
+/// [`mark`] with the tag written just above the point (the marker stays on it), off a line
+/// drawn through the point.
+pub fn mark_above(
+    fig: &mut Figure,
+    at: (f64, f64),
+    (marker, color): (Marker, RGBColor),
+    legend: &str,
+    tag: &str,
+) {
+    mark(fig, at, marker, color, legend, tag);
+    if let Some(a) = fig.annotations.last_mut() {
+        a.lift = true;
+    }
 }
 
 /// A horizontal dashed line at damping `y` across the figure's data (a band edge).
@@ -128,7 +144,7 @@ pub fn roots_figure(roots: &[Complex64], title: &str) -> Figure {
         .y_label("Im z")
         .x_range(-reach, reach)
         .y_range(-reach, reach)
-        .legend(Legend::UpperRight)
+        .legend(Legend::Below)
         .with(
             Series::line(circle)
                 .color(palette::BLACK)
@@ -147,7 +163,7 @@ pub fn roots_figure(roots: &[Complex64], title: &str) -> Figure {
 const TAG_ROOM: f64 = 0.12;
 
 /// Fixes the x range with [`TAG_ROOM`] added on the right when the figure has tags.
-fn room_for_tags(fig: Figure) -> Figure {
+pub fn room_for_tags(fig: Figure) -> Figure {
     if fig.annotations.is_empty() || fig.x_range.is_some() {
         return fig;
     }
@@ -155,22 +171,12 @@ fn room_for_tags(fig: Figure) -> Figure {
     fig.x_range(x0, x1 + TAG_ROOM * (x1 - x0))
 }
 
-/// Side length of each square panel of a two-panel figure (px).
-const PANEL: u32 = 800;
-
-/// Writes `fig` (or `fig` beside `second` as two square panels) to the file(s) that `path`
-/// names (SVG or PNG by its extension), naming the path on failure.
-pub fn save(fig: Figure, second: Option<Figure>, path: &Path) -> Result<Vec<PathBuf>> {
-    let fig = room_for_tags(fig);
-    let written = match second {
-        None => fig.save_as(path),
-        Some(s) => {
-            let mut g = Grid::new("", 2).panel_size(PANEL, PANEL);
-            g.push(fig).push(s);
-            g.save_as(path)
-        }
-    };
-    written.with_context(|| format!("--plot {}", path.display()))
+/// Writes `fig` to the file(s) that `path` names (SVG or PNG by its extension), naming the
+/// path on failure.
+pub fn save(fig: Figure, path: &Path) -> Result<Vec<PathBuf>> {
+    room_for_tags(fig)
+        .save_as(path)
+        .with_context(|| format!("--plot {}", path.display()))
 }
 
 /// The written files, for the text output.
@@ -182,20 +188,108 @@ pub fn files_text(files: &[PathBuf]) -> String {
         .join(" and ")
 }
 
-/// A figure title: `what`, then the sampling and delay (physical) or γ, δ, d (normalized).
-pub fn title(rl: &ResolvedLoop, what: &str) -> String {
+/// A part of the loop that [`loop_line_without`] can leave out (a figure whose axis varies
+/// it, or that compares it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// The plant (device, arm, or the effective m, b, k).
+    Plant,
+    /// The actuator lag τ.
+    Lag,
+    /// The velocity estimator.
+    Estimator,
+    /// The sampling period T.
+    Period,
+    /// The delay t_d (or d).
+    Delay,
+}
+
+/// The loop a figure shows, in one short line for its subtitle: the plant (the device's mass
+/// and the arm, or m, b, k of eq. (1), or γ, δ of the paper's normalized loop), the actuator
+/// lag, the velocity estimator, the sampling period T and the delay t_d (d when normalized),
+/// e.g. "device 0.1 kg + arm, backward difference, T = 1 ms, t_d = 0".
+pub fn loop_line(rl: &ResolvedLoop) -> String {
+    loop_line_without(rl, &[])
+}
+
+/// [`loop_line`] without the parts in `omit`.
+pub fn loop_line_without(rl: &ResolvedLoop, omit: &[Part]) -> String {
     let lp = &rl.lp;
-    match (rl.normalized, lp.paper_view()) {
-        (true, Some(pp)) => format!(
-            "{what}: γ = {}, δ = {}, d = {}",
-            sig(pp.gamma, 6),
-            sig(pp.delta, 6),
-            lp.delay.samples
-        ),
-        _ => format!(
-            "{what}: T = {} ms, t_d = {} ms",
-            sig(lp.period * 1e3, 6),
-            sig(lp.delay_time() * 1e3, 6)
-        ),
+    let keep = |p: Part| !omit.contains(&p);
+    let paper = lp.paper_view().filter(|_| rl.normalized);
+    let mut parts = Vec::new();
+    if keep(Part::Plant) {
+        parts.push(match paper {
+            Some(pp) => format!("γ = {}, δ = {}", sig(pp.gamma, 4), sig(pp.delta, 4)),
+            None => plant_words(&lp.plant),
+        });
+    }
+    if keep(Part::Lag) && lp.plant.force_lag > 0.0 {
+        parts.push(format!("lag τ = {}", eng(lp.plant.force_lag, "s", 4)));
+    }
+    if keep(Part::Estimator) {
+        parts.push(estimator_words(&lp.velocity));
+    }
+    if paper.is_some() {
+        if keep(Part::Delay) {
+            parts.push(format!("d = {}", lp.delay.samples));
+        }
+    } else {
+        if keep(Part::Period) {
+            parts.push(format!("T = {}", eng(lp.period, "s", 4)));
+        }
+        if keep(Part::Delay) {
+            let td = lp.delay_time();
+            parts.push(match td {
+                0.0 => "t_d = 0".to_string(),
+                _ => format!("t_d = {}", eng(td, "s", 4)),
+            });
+        }
+    }
+    parts.join(", ")
+}
+
+/// The plant in a few words: "device 0.1 kg + arm" (the typical arm) or "+ arm 2 kg", the
+/// effective "m = 1.1 kg, b = 7.5 Ns/m" (k when not 0), "two-mass device", or "plant P(s)".
+fn plant_words(p: &hapstab::model::Plant) -> String {
+    use hapstab::model::PlantModel as M;
+    match (&p.model, p.operator) {
+        (M::MassSpringDamper(e), Some(arm)) => {
+            let device = format!("{} kg", sig(e.mass - arm.mass, 4));
+            if arm == hapstab::params::Arm::TYPICAL {
+                format!("device {device} + arm")
+            } else {
+                format!("device {device} + arm {} kg", sig(arm.mass, 4))
+            }
+        }
+        (M::MassSpringDamper(e), None) => {
+            let mut s = format!(
+                "m = {} kg, b = {}",
+                sig(e.mass, 4),
+                eng(e.damping, "Ns/m", 4)
+            );
+            if e.stiffness != 0.0 {
+                s += &format!(", k = {}", eng(e.stiffness, "N/m", 4));
+            }
+            s
+        }
+        (M::TwoMass(t), _) if t.arm.mass > 0.0 => "two-mass device + arm".to_string(),
+        (M::TwoMass(_), _) => "two-mass device".to_string(),
+        (M::TransferFunction { .. }, _) => "plant P(s)".to_string(),
+    }
+}
+
+/// The velocity estimator in words: "backward difference", "low-pass 100 Hz", "average of
+/// 15 samples", "Butterworth 2nd order 50 Hz", "IIR filter".
+fn estimator_words(v: &hapstab::model::VelocityEstimator) -> String {
+    use hapstab::model::VelocityEstimator as V;
+    match v {
+        V::Backward => "backward difference".to_string(),
+        V::LowPass { cutoff_hz } => format!("low-pass {} Hz", sig(*cutoff_hz, 4)),
+        V::Average { samples } => format!("average of {samples} samples"),
+        V::Butterworth { order, cutoff_hz } => {
+            format!("Butterworth order {order}, {} Hz", sig(*cutoff_hz, 4))
+        }
+        V::Iir { .. } => "IIR velocity filter".to_string(),
     }
 }

@@ -146,6 +146,10 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
     }
     let dampings = a.table_damping.as_deref();
     check_budget(a, &loops)?;
+    let subtitle = match a.compare.is_empty() {
+        true => crate::wall_plot::loop_line(&loops[0].1),
+        false => format!("base loop: {}", crate::wall_plot::loop_line(&loops[0].1)),
+    };
     // a comparison analyses several loops: one step each
     let bar = crate::progress::Bar::new(loops.len(), "loops", !a.json && !a.compare.is_empty());
     let out: Vec<LoopOut> = loops
@@ -164,7 +168,11 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         write_csv(path, &out)?;
     }
-    let plot = a.plot.as_ref().map(|p| figure(&out).save(p)).transpose()?;
+    let plot = a
+        .plot
+        .as_ref()
+        .map(|p| figure(&out, &subtitle).save(p))
+        .transpose()?;
     if a.json {
         let input = ZwidthInput {
             compare: a.compare.clone(),
@@ -395,7 +403,7 @@ fn extent<'a>(polys: impl IntoIterator<Item = &'a Vec<Wall>>) -> Option<Extent> 
 /// Two panels: every loop's stable region (light) and passive region (dark) with K_max marked
 /// and the linear condition (22) of the first loop dashed; then the same zoomed onto the
 /// passive regions, which are small beside the stable ones.
-fn figure(out: &[LoopOut]) -> Grid {
+fn figure(out: &[LoopOut], subtitle: &str) -> Grid {
     let stable = extent(out.iter().flat_map(|o| o.zwidth.stable.iter()));
     let passive = extent(
         out.iter()
@@ -403,14 +411,9 @@ fn figure(out: &[LoopOut]) -> Grid {
             .map(|p| &p.vertices)
             .filter(|v| !v.is_empty()),
     );
-    let mut g = Grid::new("Z-width: stable (light) and passive (dark) walls", 2);
+    let mut g = Grid::new("Z-width: stable (light) and passive (dark) walls", 2).subtitle(subtitle);
     let whole = stable.or(passive).unwrap_or((0.0, 1.0, -1.0, 1.0));
-    g.push(panel(
-        out,
-        "all stable walls",
-        pad(whole),
-        Legend::LowerRight,
-    ));
+    g.push(panel(out, "all stable walls", pad(whole), Legend::Below));
     if let Some(p) = passive {
         let (k0, k1, b0, b1) = p;
         let (w, h) = (k1 - k0, b1 - b0);
@@ -437,10 +440,16 @@ fn panel(out: &[LoopOut], title: &str, (k0, k1, b0, b1): Extent, legend: Legend)
         .legend(legend)
         .x_range(k0, k1)
         .y_range(b0, b1);
+    let mut rings = Vec::new();
+    // the zoom shows the passive regions: the stable fills behind them are fainter
+    let stable_alpha = if legend == Legend::Hidden { 0.05 } else { 0.12 };
     for (i, o) in out.iter().enumerate() {
         let c = palette::CYCLE[i % palette::CYCLE.len()];
         for (j, poly) in o.zwidth.stable.iter().enumerate() {
-            let s = Series::polygon(points(poly)).color(c).alpha(0.12).width(2);
+            let s = Series::polygon(points(poly))
+                .color(c)
+                .alpha(stable_alpha)
+                .width(2);
             f.add(if j == 0 {
                 s.label(format!("stable: {}", o.label))
             } else {
@@ -451,14 +460,21 @@ fn panel(out: &[LoopOut], title: &str, (k0, k1, b0, b1): Extent, legend: Legend)
             f.add(
                 Series::polygon(points(&p.vertices))
                     .color(c)
-                    .alpha(0.45)
+                    .alpha(0.22)
                     .width(3)
                     .label(format!("passive: {}", o.label)),
             );
+            let mut ring = points(&p.vertices);
+            ring.extend(ring.first().copied());
+            rings.push(Series::line(ring).color(c).width(3));
         }
         if let Some(k) = o.zwidth.k_max {
             f.add(Series::scatter([(k.stiffness, k.damping)], Marker::Circle).color(c));
         }
+    }
+    // each passive region's outline over every fill, so that overlapping ones stay apart
+    for r in rings {
+        f.add(r);
     }
     if let Some(l) = out.first().and_then(|o| o.zwidth.linear) {
         let line = [b0, b1].map(|b| (l.k_at(b), b));

@@ -143,36 +143,151 @@ fn axis_map(ticks: &[(f64, f64)]) -> impl Fn(f64) -> f64 {
     move |px| (px - c0) / c1
 }
 
-/// Data coordinates of the anchor of the text `tag` in the panel whose tick labels lie in
-/// x < `panel_right` px, and the data size of one pixel along each axis.
-fn tag_position(svg: &str, tag: &str, panel_right: f64) -> ((f64, f64), (f64, f64)) {
+/// A panel's box in px: [x0, x1, y0, y1].
+type PanelBox = [f64; 4];
+
+/// The whole image.
+const WHOLE: PanelBox = [
+    f64::NEG_INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::INFINITY,
+];
+
+fn inside(b: PanelBox, (x, y): (f64, f64)) -> bool {
+    x >= b[0] && x < b[1] && y >= b[2] && y < b[3]
+}
+
+/// A panel's axes read from its tick labels: px → data maps along x and y, and the lowest
+/// x tick label's y in px (the plotting area and its markers lie above it, the legend below).
+struct Axes {
+    x_ticks: Vec<(f64, f64)>,
+    y_ticks: Vec<(f64, f64)>,
+    bottom: f64,
+}
+
+fn axes(svg: &str, panel: PanelBox) -> Axes {
     let texts = svg_texts(svg);
-    let numeric = |t: &(f64, f64, String, String)| tick_value(&t.3);
-    let x_ticks: Vec<(f64, f64)> = texts
+    let ticks = |anchor: &'static str| -> Vec<(f64, f64, f64)> {
+        texts
+            .iter()
+            .filter(|t| t.2 == anchor && inside(panel, (t.0, t.1)))
+            .filter_map(|t| tick_value(&t.3).map(|v| (v, t.0, t.1)))
+            .collect()
+    };
+    Axes {
+        x_ticks: ticks("middle").iter().map(|&(v, x, _)| (v, x)).collect(),
+        y_ticks: ticks("end").iter().map(|&(v, _, y)| (v, y)).collect(),
+        bottom: ticks("middle")
+            .iter()
+            .map(|t| t.2)
+            .fold(f64::NEG_INFINITY, f64::max),
+    }
+}
+
+impl Axes {
+    /// Data coordinates of the pixel (x, y), and the data size of one pixel on each axis.
+    fn data(&self, (x, y): (f64, f64)) -> ((f64, f64), (f64, f64)) {
+        let (fx, fy) = (axis_map(&self.x_ticks), axis_map(&self.y_ticks));
+        let px = ((fx(x + 1.0) - fx(x)).abs(), (fy(y + 1.0) - fy(y)).abs());
+        ((fx(x), fy(y)), px)
+    }
+}
+
+/// Data coordinates of the anchor of the text `tag` in `panel`, and the data size of one
+/// pixel along each axis.
+fn tag_position(svg: &str, tag: &str, panel: PanelBox) -> ((f64, f64), (f64, f64)) {
+    let texts = svg_texts(svg);
+    let hits: Vec<_> = texts
         .iter()
-        .filter(|t| t.2 == "middle" && t.0 < panel_right)
-        .filter_map(|t| numeric(t).map(|v| (v, t.0)))
+        .filter(|t| t.3 == tag && inside(panel, (t.0, t.1)))
         .collect();
-    let y_ticks: Vec<(f64, f64)> = texts
-        .iter()
-        .filter(|t| t.2 == "end" && t.0 < panel_right)
-        .filter_map(|t| numeric(t).map(|v| (v, t.1)))
-        .collect();
-    let (fx, fy) = (axis_map(&x_ticks), axis_map(&y_ticks));
-    let hits: Vec<_> = texts.iter().filter(|t| t.3 == tag).collect();
     assert_eq!(hits.len(), 1, "text '{tag}' in {texts:?}");
-    let (x, y) = (hits[0].0, hits[0].1);
-    let px = ((fx(x + 1.0) - fx(x)).abs(), (fy(y + 1.0) - fy(y)).abs());
-    ((fx(x), fy(y)), px)
+    axes(svg, panel).data((hits[0].0, hits[0].1))
 }
 
 /// Asserts that a tag lies at `want` to within 1.5 px on each axis.
-fn assert_at(svg: &str, tag: &str, panel_right: f64, want: (f64, f64)) {
-    let ((x, y), (px, py)) = tag_position(svg, tag, panel_right);
+fn assert_at(svg: &str, tag: &str, panel: PanelBox, want: (f64, f64)) {
+    let ((x, y), (px, py)) = tag_position(svg, tag, panel);
     assert!(
         (x - want.0).abs() <= 1.5 * px && (y - want.1).abs() <= 1.5 * py,
         "{tag} at ({x}, {y}), expected {want:?} (pixel {px}, {py})"
     );
+}
+
+/// The centre in px of every marker filled with `fill` (a circle's centre, a polygon's
+/// vertex mean): (x, y).
+fn markers(svg: &str, fill: &str) -> Vec<(f64, f64)> {
+    let attr = |tag: &str, name: &str| -> Option<String> {
+        let key = format!(" {name}=\"");
+        let i = tag.find(&key)? + key.len();
+        Some(tag[i..].split('"').next()?.to_string())
+    };
+    let num = |tag: &str, name: &str| attr(tag, name).and_then(|v| v.parse::<f64>().ok());
+    let mut out = Vec::new();
+    for (open, kind) in [("<circle", 0), ("<polygon", 1)] {
+        for chunk in svg.split(open).skip(1) {
+            let tag = chunk.split('>').next().unwrap_or("");
+            if attr(tag, "fill").as_deref() != Some(fill) {
+                continue;
+            }
+            if kind == 0 {
+                out.extend(num(tag, "cx").zip(num(tag, "cy")));
+            } else if let Some(pts) = attr(tag, "points") {
+                let v: Vec<(f64, f64)> = pts
+                    .split_whitespace()
+                    .filter_map(|p| p.split_once(','))
+                    .filter_map(|(x, y)| Some((x.parse().ok()?, y.parse().ok()?)))
+                    .collect();
+                let n = v.len() as f64;
+                let (sx, sy) = v.iter().fold((0.0, 0.0), |(a, b), p| (a + p.0, b + p.1));
+                out.push((sx / n, sy / n));
+            }
+        }
+    }
+    out
+}
+
+/// Asserts that the one marker filled with `fill` inside the plotting area of `panel` (not
+/// its legend swatch below the axes) lies at `want` to within 1.5 px on each axis.
+fn assert_marker_at(svg: &str, fill: &str, panel: PanelBox, want: (f64, f64)) {
+    let ax = axes(svg, panel);
+    let hits: Vec<(f64, f64)> = markers(svg, fill)
+        .into_iter()
+        .filter(|&p| inside(panel, p) && p.1 < ax.bottom)
+        .collect();
+    assert_eq!(hits.len(), 1, "markers filled {fill}: {hits:?}");
+    let ((x, y), (px, py)) = ax.data(hits[0]);
+    assert!(
+        (x - want.0).abs() <= 1.5 * px && (y - want.1).abs() <= 1.5 * py,
+        "marker {fill} at ({x}, {y}), expected {want:?} (pixel {px}, {py})"
+    );
+}
+
+/// The y in px of the text `t` (exactly one).
+fn text_y(svg: &str, t: &str) -> f64 {
+    let hits: Vec<f64> = svg_texts(svg)
+        .into_iter()
+        .filter(|x| x.3 == t)
+        .map(|x| x.1)
+        .collect();
+    assert_eq!(hits.len(), 1, "text '{t}': {hits:?}");
+    hits[0]
+}
+
+/// Okabe–Ito vermillion and bluish green, the fills of the K_max and B = 0 markers.
+const VERMILLION: &str = "#D55E00";
+const GREEN: &str = "#009E73";
+
+/// The width and height of an SVG.
+fn svg_size(svg: &str) -> (f64, f64) {
+    let head = svg.split('>').next().unwrap();
+    let get = |name: &str| -> f64 {
+        let key = format!(" {name}=\"");
+        let i = head.find(&key).unwrap() + key.len();
+        head[i..].split('"').next().unwrap().parse().unwrap()
+    };
+    (get("width"), get("height"))
 }
 
 fn is_png(path: &std::path::Path) -> bool {
@@ -203,7 +318,7 @@ fn boundary_plot_is_in_k_and_b_with_k_max_marked() {
     let fam = AffineFamily::of_loop(&lp).unwrap();
     let r = hapstab::loop_analysis::region(&lp, &fam).unwrap();
     let want = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
-    assert_at(&svg, "K_max", f64::INFINITY, want);
+    assert_at(&svg, "K_max", WHOLE, want);
     // PNG by the extension
     let png = dir.path().join("region.png");
     run_quiet(&["boundary", "--plot", png.to_str().unwrap()]);
@@ -240,12 +355,7 @@ fn boundary_plot_of_the_normalized_loop_is_in_alpha_and_beta() {
     .unwrap();
     let fam = AffineFamily::of_loop(&lp).unwrap();
     let r = hapstab::loop_analysis::region(&lp, &fam).unwrap();
-    assert_at(
-        &svg,
-        "α_max",
-        f64::INFINITY,
-        (r.alpha_max, r.beta_at_alpha_max),
-    );
+    assert_at(&svg, "α_max", WHOLE, (r.alpha_max, r.beta_at_alpha_max));
 }
 
 #[test]
@@ -272,9 +382,10 @@ fn check_plot_marks_the_wall_and_draws_the_roots() {
         assert!(svg.contains(label), "{label}");
     }
     assert!(svg.contains("unit circle"));
-    // two panels side by side: the region's ticks lie in the left half
-    let width: f64 = svg_texts(&svg).iter().map(|t| t.0).fold(0.0, f64::max);
-    assert_at(&svg, "wall", 0.5 * width.max(1600.0), (k, b));
+    // four panels, two by two: the region's ticks lie in the upper left quarter
+    let size = svg_size(&svg);
+    let region = [0.0, 0.5 * size.0, 0.0, 0.5 * size.1];
+    assert_at(&svg, "wall", region, (k, b));
     let png = dir.path().join("check.png");
     run_quiet(&[
         "check",
@@ -306,19 +417,28 @@ fn kmax_plot_marks_k_max_within_the_damping_range() {
     let fam = AffineFamily::of_loop(&lp).unwrap();
     let hi = damping_units(&lp, &fam, 300.0).unwrap();
     let best = k_max_within(&lp, &fam, 0.0, hi).unwrap().unwrap();
-    assert_at(
-        &svg,
-        "K_max",
-        f64::INFINITY,
-        fam.to_physical(best.alpha, best.beta),
-    );
+    // the markers sit at their points (K_max's circle, B = 0's triangle); tags on a damping
+    // line are lifted off it
+    let k_max_at = fam.to_physical(best.alpha, best.beta);
+    assert_marker_at(&svg, VERMILLION, WHOLE, k_max_at);
     let at0 = k_max_at_damping(&lp, &fam, 0.0).unwrap().unwrap();
-    assert_at(
-        &svg,
-        "B = 0",
-        f64::INFINITY,
-        (fam.to_physical(at0.hi, 0.0).0, 0.0),
+    let b0_at = (fam.to_physical(at0.hi, 0.0).0, 0.0);
+    assert_marker_at(&svg, GREEN, WHOLE, b0_at);
+    // the B = 0 tag is written above its point, clear of the dashed line at B = 0: its text
+    // (20 px high, drawn from its baseline up) ends above the line by at least 4 px
+    let ((_, tag_b), (_, per_px)) = tag_position(&svg, "B = 0", WHOLE);
+    assert!(
+        tag_b >= 4.0 * per_px,
+        "B = 0 tag at B = {tag_b}, pixel {per_px}"
     );
+    // K_max at B = 300 lies on the band's upper line: lifted too
+    let ((_, k_tag_b), _) = tag_position(&svg, "K_max", WHOLE);
+    if (k_max_at.1 - 300.0).abs() < 1e-6 {
+        assert!(
+            k_tag_b >= 300.0 + 4.0 * per_px,
+            "K_max tag at B = {k_tag_b}"
+        );
+    }
 }
 
 #[test]
@@ -352,6 +472,195 @@ fn map_plot_of_a_physical_loop_has_k_and_b_axes() {
     ]);
     assert_eq!(v["plot"], serde_json::json!([png.to_str().unwrap()]));
     assert!(is_png(&png) && !dir.path().join("only.svg").exists());
+}
+
+/// Runs a command with `--plot <dir>/<name>.svg` and returns the SVG.
+fn plot_svg(dir: &std::path::Path, name: &str, args: &[&str]) -> String {
+    let path = dir.join(format!("{name}.svg"));
+    let mut a = args.to_vec();
+    a.extend(["--plot", path.to_str().unwrap()]);
+    run_quiet(&a);
+    std::fs::read_to_string(&path).unwrap()
+}
+
+/// The default loop as the figures name it: the CLI's device (0.1 kg) held by the typical
+/// arm, the paper's backward difference, T = 1 ms, no delay.
+const DEFAULT_LOOP: &str = "device 0.1 kg + arm, backward difference, T = 1 ms, t_d = 0";
+
+#[test]
+fn legends_lie_below_the_axes_and_subtitles_name_the_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    let k_axis = "virtual stiffness K (N/m)";
+    let cases: [(&str, Vec<&str>, &str, Vec<&str>); 4] = [
+        (
+            "kmax",
+            vec!["kmax"],
+            k_axis,
+            vec!["stable (exact)", "damping range 0 Ns/m ≤ B ≤ ∞"],
+        ),
+        ("boundary", vec!["boundary"], k_axis, vec!["stable (exact)"]),
+        (
+            "simb",
+            vec!["simboundary", "--quantization", "3e-5", "--beta-count", "3"],
+            k_axis,
+            vec!["exact linear stable region", "simulated boundary"],
+        ),
+        (
+            "sweep",
+            vec!["sweep", "--param", "delay-time:0:0.004:5"],
+            "delay-time (ms)",
+            vec!["stable (exact)"],
+        ),
+    ];
+    for (name, args, x_title, labels) in cases {
+        let svg = plot_svg(dir.path(), name, &args);
+        // below the x-axis title, hence below every data point and tick label
+        let axis = text_y(&svg, x_title);
+        for l in labels {
+            assert!(
+                text_y(&svg, l) > axis,
+                "{name}: legend entry '{l}' not below the axes"
+            );
+        }
+        if name != "sweep" {
+            assert!(svg.contains(DEFAULT_LOOP), "{name}: no loop subtitle");
+        } else {
+            // the swept delay is left out of the loop's description
+            let want = "device 0.1 kg + arm, backward difference, T = 1 ms";
+            assert!(
+                svg_texts(&svg).iter().any(|t| t.3 == want),
+                "sweep subtitle"
+            );
+        }
+    }
+}
+
+#[test]
+fn check_plot_names_the_loop_and_zooms_on_the_wall_and_on_z_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "check",
+        "--velocity",
+        "lowpass:100",
+        "--delay-time",
+        "0.002",
+        "--no-arm",
+    ];
+    let svg = plot_svg(dir.path(), "c", &args);
+    assert!(svg.contains("m = 0.1 kg, b = 1.5 Ns/m, low-pass 100 Hz, T = 1 ms, t_d = 2 ms"));
+    let svg = plot_svg(dir.path(), "d", &["check"]);
+    assert!(svg.contains(DEFAULT_LOOP));
+    let (w, h) = svg_size(&svg);
+    let extent = |t: &[(f64, f64)]| {
+        t.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p.0), b.max(p.0))
+            })
+    };
+    // lower left: the wall zoom, its K ticks around the wall's 10 kN/m and far narrower
+    // than the whole region (K from 0 to 765 kN/m)
+    let zoom = axes(&svg, [0.0, 0.5 * w, 0.5 * h, h]);
+    let (k_lo, k_hi) = extent(&zoom.x_ticks);
+    assert!(
+        k_lo <= 10e3 && k_hi >= 10e3 && k_hi - k_lo < 100e3,
+        "{:?}",
+        zoom.x_ticks
+    );
+    let (b_lo, b_hi) = extent(&zoom.y_ticks);
+    assert!(b_lo <= 10.0 && b_hi >= 10.0 && b_hi - b_lo < 500.0);
+    // lower right: around z = 1, holding the roots of check --json within 0.5 of it
+    let z1 = axes(&svg, [0.5 * w, w, 0.5 * h, h]);
+    let (re_lo, re_hi) = extent(&z1.x_ticks);
+    let (im_lo, im_hi) = extent(&z1.y_ticks);
+    assert!(re_lo > 0.5 && re_hi < 1.5 && re_lo < 1.0 && re_hi > 1.0);
+    let v = json(&["check"]);
+    let near: Vec<(f64, f64)> = v["roots"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (f(&r[0]), f(&r[1])))
+        .filter(|r| (r.0 - 1.0).hypot(r.1) < 0.5)
+        .collect();
+    assert_eq!(near.len(), 2, "{v}");
+    for (re, im) in near {
+        let (px, py) = ((re_hi - re_lo) / 50.0, (im_hi - im_lo) / 50.0);
+        assert!(
+            re > re_lo - px && im > im_lo - py && im < im_hi + py,
+            "root {re} {im}"
+        );
+    }
+}
+
+#[test]
+fn sweep_plots_k_max_on_a_log_axis() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["sweep", "--param", "delay-time:0:0.005:6", "--no-arm"];
+    let svg = plot_svg(dir.path(), "s", &args);
+    // the y tick labels lie at equal distances per decade: y = a + b·log10(value)
+    let ax = axes(&svg, WHOLE);
+    let t: Vec<(f64, f64)> = ax.y_ticks.iter().map(|(v, y)| (v.log10(), *y)).collect();
+    assert!(t.len() >= 4, "{t:?}");
+    let (lo, hi) = (t[0].0.min(t[t.len() - 1].0), t[0].0.max(t[t.len() - 1].0));
+    assert!(hi - lo > 1.5, "less than two decades: {t:?}");
+    let slope = (t[t.len() - 1].1 - t[0].1) / (t[t.len() - 1].0 - t[0].0);
+    for (lv, y) in &t {
+        let fit = t[0].1 + slope * (lv - t[0].0);
+        assert!(
+            (y - fit).abs() <= 1.5,
+            "tick {lv} at {y}, log fit {fit}: {t:?}"
+        );
+    }
+}
+
+#[test]
+fn zwidth_outlines_every_passive_region_over_the_fills() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "zwidth",
+        "--no-arm",
+        "--compare",
+        "lowpass:100",
+        "--compare",
+        "average:15",
+    ];
+    let svg = plot_svg(dir.path(), "z", &args);
+    // after the last filled polygon (the zoom's), each loop's colour outlines its region
+    let tail = &svg[svg.rfind("<polygon").unwrap()..];
+    for c in ["#0072B2", "#D55E00", "#009E73"] {
+        let outlined = tail
+            .split("<polyline")
+            .skip(1)
+            .any(|p| p.contains(&format!("stroke=\"{c}\"")) && p.contains("stroke-width=\"3\""));
+        assert!(outlined, "no outline in {c} over the fills");
+    }
+}
+
+#[test]
+fn simulate_plot_shows_the_transient_and_the_judged_window() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = plot_svg(dir.path(), "sim", &["simulate"]);
+    assert!(svg.contains(DEFAULT_LOOP));
+    // the run's second half is judged (10 s by default)
+    assert!(svg.contains("judged window t = 5 … 10 s"), "judged window");
+    let label = svg_texts(&svg)
+        .into_iter()
+        .map(|t| t.3)
+        .find(|t| t.contains("the transient, first"))
+        .expect("transient axis label");
+    let shown: f64 = label
+        .split("first ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap();
+    // the motion decays by the spectral radius ρ per sample: it falls to 2 % of its peak
+    // after ln(0.02)/ln(ρ) samples; the panel shows about 1.3 times that
+    let rho = f(&json(&["check"])["spectral_radius"]);
+    let t2 = 0.02f64.ln() / rho.ln() * 1e-3;
+    assert!(
+        shown >= t2 && shown <= 1.5 * t2,
+        "shown {shown} s, 2 % after {t2} s"
+    );
 }
 
 // ---- progress bars ---------------------------------------------------------------------

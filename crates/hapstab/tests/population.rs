@@ -12,7 +12,13 @@ use hapstab::sweep::SweepParam;
 
 fn held_device() -> Loop {
     let plant = Plant::held_device(Device::PHANTOM_LIKE, Arm::TYPICAL).unwrap();
-    Loop::new(plant, 1e-3, Delay::samples(1).unwrap(), VelocityEstimator::Backward).unwrap()
+    Loop::new(
+        plant,
+        1e-3,
+        Delay::samples(1).unwrap(),
+        VelocityEstimator::Backward,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -25,7 +31,10 @@ fn wilson_matches_published_intervals() {
         (81, 263, 0.2553, 0.3662),
     ] {
         let [a, b] = wilson(k, n, Z95);
-        assert!((a - lo).abs() < 5e-5 && (b - hi).abs() < 5e-5, "{k}/{n}: {a} {b}");
+        assert!(
+            (a - lo).abs() < 5e-5 && (b - hi).abs() < 5e-5,
+            "{k}/{n}: {a} {b}"
+        );
     }
 }
 
@@ -69,8 +78,14 @@ fn independent_distributions_have_their_moments() {
     let pop = Population::Independent {
         params: vec![
             (SweepParam::ArmMass, Dist::parse("uniform:0.5:1.5").unwrap()),
-            (SweepParam::ArmStiffness, Dist::parse("normal:400:50").unwrap()),
-            (SweepParam::ArmDamping, Dist::parse("lognormal:5:0.3").unwrap()),
+            (
+                SweepParam::ArmStiffness,
+                Dist::parse("normal:400:50").unwrap(),
+            ),
+            (
+                SweepParam::ArmDamping,
+                Dist::parse("lognormal:5:0.3").unwrap(),
+            ),
         ],
     };
     let w = Wall {
@@ -93,8 +108,18 @@ fn independent_distributions_have_their_moments() {
 #[test]
 fn bad_input_names_the_parameter() {
     let lp = held_device();
-    assert!(Dist::parse("uniform:2:1").unwrap_err().to_string().contains("distribution"));
-    assert!(Dist::parse("gamma:1:2").unwrap_err().to_string().contains("unknown kind"));
+    assert!(
+        Dist::parse("uniform:2:1")
+            .unwrap_err()
+            .to_string()
+            .contains("distribution")
+    );
+    assert!(
+        Dist::parse("gamma:1:2")
+            .unwrap_err()
+            .to_string()
+            .contains("unknown kind")
+    );
     let e = stability_probability(&lp, &Population::SectionIv, 0.0, 10, 1, &[1.5]);
     assert!(e.unwrap_err().to_string().contains("level"));
     let e = stability_probability(&lp, &Population::SectionIv, 0.0, 0, 1, &[0.9]);

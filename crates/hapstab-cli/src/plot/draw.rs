@@ -35,9 +35,31 @@ impl Window {
 }
 
 impl Figure {
-    /// Draws the figure on `area`: the mesh, every series, the annotations, the legend.
+    /// Draws the figure on `area`: the title lines, the mesh, every series, the annotations,
+    /// the legend.
     pub(super) fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Drawn<(), DB> {
-        let mut chart = self.chart(area)?;
+        self.draw_reserving(area, 0)
+    }
+
+    /// The height in px of the legend strip below the axes on a panel `width` px wide (0
+    /// without one).
+    pub(super) fn strip_height(&self, width: u32) -> u32 {
+        self.below_layout(&self.below_entries(), width).2
+    }
+
+    /// Draws the figure with a strip of at least `strip` px kept below the axes (panels of a
+    /// grid row keep their axes aligned) for the legend.
+    pub(super) fn draw_reserving<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        strip: u32,
+    ) -> Drawn<(), DB> {
+        let body = self.draw_header(area)?;
+        let entries = self.below_entries();
+        let (w, h) = body.dim_in_pixel();
+        let strip = self.below_layout(&entries, w).2.max(strip).min(h / 2);
+        let (plot_area, legend_area) = body.split_vertically(h - strip);
+        let mut chart = self.chart(&plot_area)?;
         let ((x0, x1), (y0, y1)) = self.ranges();
         let (pw, ph) = chart.plotting_area().dim_in_pixel();
         let window = Window {
@@ -60,14 +82,33 @@ impl Figure {
             };
         }
         self.draw_annotations(&mut chart, &window.bounds)?;
-        if labelled && self.legend != Legend::Hidden {
+        if labelled && !matches!(self.legend, Legend::Hidden | Legend::Below) {
             self.draw_legend(&mut chart)?;
         }
-        Ok(())
+        self.draw_below(&legend_area, &entries)
+    }
+
+    /// The title and the subtitle, centred above the chart; returns the area below them.
+    fn draw_header<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+    ) -> Drawn<DrawingArea<DB, Shift>, DB> {
+        let width = area.dim_in_pixel().0;
+        let mut body = area.clone();
+        if !self.title.is_empty() {
+            let size = fit_font(34.0 * self.font_scale, &self.title, width);
+            body = body.titled(&self.title, (FONT, size).into_font())?;
+        }
+        if !self.subtitle.is_empty() {
+            let size = fit_font(27.0 * self.font_scale, &self.subtitle, width);
+            let style = (FONT, size).into_font().color(&RGBColor(60, 60, 60));
+            body = body.titled(&self.subtitle, style)?;
+        }
+        Ok(body)
     }
 
     /// A font size in pixels at the figure's scale.
-    fn px(&self, v: f64) -> u32 {
+    pub(super) fn px(&self, v: f64) -> u32 {
         (v * self.font_scale).round().max(1.0) as u32
     }
 
@@ -84,10 +125,6 @@ impl Figure {
             .margin_right(px(28.0))
             .x_label_area_size(px(80.0))
             .y_label_area_size(px(120.0));
-        if !self.title.is_empty() {
-            let size = fit_font(34.0 * self.font_scale, &self.title, area.dim_in_pixel().0);
-            builder.caption(&self.title, (FONT, size).into_font());
-        }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
         let linear = tick_formatter(x0, x1);
         let xfmt = |v: &f64| match self.x_log10 {
@@ -105,7 +142,7 @@ impl Figure {
                 true => ((x1 - x0).floor() as usize + 1).clamp(2, 12),
                 false => 9,
             })
-            .y_labels(9)
+            .y_labels(if self.y_log10 { 0 } else { 9 })
             .x_label_formatter(&xfmt)
             .y_label_formatter(&yfmt)
             .max_light_lines(4)
@@ -113,7 +150,39 @@ impl Figure {
             .bold_line_style(RGBColor(212, 212, 212))
             .axis_style(BLACK.stroke_width(2))
             .draw()?;
+        if self.y_log10 {
+            self.draw_log_y_ticks(&mut chart, (x0, x1), (y0, y1))?;
+        }
         Ok(chart)
+    }
+
+    /// The ticks of a log y axis (the data are log10 of the quantity): grid lines and labels
+    /// at 1, 2, 5 × 10ⁿ (only 10ⁿ over more than 4 decades, 1 … 9 × 10ⁿ within one).
+    fn draw_log_y_ticks<'a, DB: DrawingBackend + 'a>(
+        &self,
+        chart: &mut Chart<'a, DB>,
+        (x0, x1): (f64, f64),
+        (y0, y1): (f64, f64),
+    ) -> Drawn<(), DB> {
+        let ticks = log_ticks(y0, y1);
+        let font = (FONT, self.px(25.0)).into_font();
+        let style = font.color(&BLACK).pos(Pos::new(HPos::Right, VPos::Center));
+        for (v, decade) in ticks {
+            let ly = v.log10();
+            let grey = if decade { 212 } else { 236 };
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(x0, ly), (x1, ly)],
+                RGBColor(grey, grey, grey).stroke_width(1),
+            )))?;
+            let label = log_tick_label(v);
+            let gap = -(self.px(12.0) as i32);
+            chart.draw_series(std::iter::once(
+                EmptyElement::at((x0, ly))
+                    + PathElement::new(vec![(0, 0), (gap / 2, 0)], BLACK.stroke_width(1))
+                    + Text::new(label, (gap, 0), style.clone()),
+            ))?;
+        }
+        Ok(())
     }
 
     /// Every annotation whose anchor lies inside the plotting area.
@@ -123,9 +192,19 @@ impl Figure {
         bounds: &Rect,
     ) -> Drawn<(), DB> {
         let font = (FONT, self.px(25.0)).into_font();
-        for an in &self.annotations {
-            if bounds.contains(an.at) {
-                let style = font.clone().color(&an.color);
+        let lift = self.px(8.0) as i32;
+        for an in self.annotations.iter().filter(|a| bounds.contains(a.at)) {
+            let style = font.clone().color(&an.color);
+            if an.lift {
+                chart.draw_series(std::iter::once(
+                    EmptyElement::at(an.at)
+                        + Text::new(
+                            an.text.clone(),
+                            (0, -lift),
+                            style.pos(Pos::new(HPos::Left, VPos::Bottom)),
+                        ),
+                ))?;
+            } else {
                 chart.draw_series(std::iter::once(Text::new(
                     an.text.clone(),
                     an.at,
@@ -140,7 +219,7 @@ impl Figure {
     fn draw_legend<'a, DB: DrawingBackend + 'a>(&self, chart: &mut Chart<'a, DB>) -> Drawn<(), DB> {
         let pos = match self.legend {
             Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
-            Legend::UpperRight | Legend::Hidden => SeriesLabelPosition::UpperRight,
+            Legend::UpperRight | Legend::Hidden | Legend::Below => SeriesLabelPosition::UpperRight,
             Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
             Legend::LowerRight => SeriesLabelPosition::LowerRight,
         };
@@ -288,6 +367,49 @@ pub(super) fn fit_font(nominal: f64, text: &str, width: u32) -> f64 {
     nominal.min(fit).max(23.0).round()
 }
 
+/// The ticks of a log axis over log10 values lo … hi: (value, whether it is a power of
+/// ten) at 1, 2, 5 × 10ⁿ; only 10ⁿ when that gives more than 12 (every k-th decade, at most
+/// about 10), 1 … 9 × 10ⁿ when 1, 2, 5 give fewer than 3.
+fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, bool)> {
+    let pick = |mantissas: &[f64]| -> Vec<(f64, bool)> {
+        let (n0, n1) = (lo.floor() as i32, hi.ceil() as i32);
+        (n0..=n1)
+            .flat_map(|n| {
+                mantissas
+                    .iter()
+                    .map(move |&m| (m * 10f64.powi(n), m == 1.0))
+            })
+            .filter(|(v, _)| (lo..=hi).contains(&v.log10()))
+            .collect()
+    };
+    let t = pick(&[1.0, 2.0, 5.0]);
+    if t.len() > 12 {
+        // whole decades, every k-th over many of them
+        let decades = pick(&[1.0]);
+        let k = decades.len().div_ceil(10).max(1) as i32;
+        decades
+            .into_iter()
+            .filter(|(v, _)| v.log10().round() as i32 % k == 0)
+            .collect()
+    } else if t.len() < 3 {
+        pick(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
+    } else {
+        t
+    }
+}
+
+/// A log-axis tick label with its own engineering prefix: 500, 2k, 50k, 1M, 0.01.
+fn log_tick_label(v: f64) -> String {
+    let (scale, prefix) = match v {
+        v if v >= 1e12 => (1e12, "T"),
+        v if v >= 1e9 => (1e9, "G"),
+        v if v >= 1e6 => (1e6, "M"),
+        v if v >= 1e3 => (1e3, "k"),
+        _ => (1.0, ""),
+    };
+    format!("{}{prefix}", crate::output::sig(v / scale, 3))
+}
+
 /// From this magnitude of an axis on, its tick labels carry an engineering prefix shared by
 /// every tick (20k, 150k; 1.2M), so that nine fit side by side in a panel (stiffness axes in
 /// N/m reach 10⁶) and no axis mixes 20000 with 1.2e5.
@@ -312,5 +434,36 @@ fn tick_formatter(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
         } else {
             format!("{}{prefix}", crate::output::sig(*v / scale, 6))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{log_tick_label, log_ticks};
+
+    #[test]
+    fn log_ticks_at_one_two_five_per_decade() {
+        let t: Vec<f64> = log_ticks(300f64.log10(), 70e3f64.log10())
+            .into_iter()
+            .map(|(v, _)| v)
+            .collect();
+        let want = [500.0, 1e3, 2e3, 5e3, 1e4, 2e4, 5e4];
+        assert_eq!(t.len(), want.len(), "{t:?}");
+        for (a, b) in t.iter().zip(want) {
+            assert!((a / b - 1.0).abs() < 1e-12, "{t:?}");
+        }
+        let labels: Vec<String> = t.iter().map(|v| log_tick_label(*v)).collect();
+        assert_eq!(labels, ["500", "1k", "2k", "5k", "10k", "20k", "50k"]);
+        // 31 decades: whole decades only, every fourth (ceil(31 / 10)), evenly spaced
+        let many: Vec<i32> = log_ticks(-27.0, 3.0)
+            .into_iter()
+            .map(|(v, d)| {
+                assert!(d, "{v} is no power of ten");
+                v.log10().round() as i32
+            })
+            .collect();
+        assert_eq!(many, [-24, -20, -16, -12, -8, -4, 0]);
+        // within one decade: 1 … 9
+        assert_eq!(log_ticks(2.0f64.log10(), 8.5f64.log10()).len(), 7);
     }
 }

@@ -8,11 +8,14 @@ use anyhow::{Result, anyhow};
 use super::save::{Saved, save_both};
 use super::{DEFAULT_SIZE, RGBColor, Series, palette};
 
-/// Where the legend goes inside the plotting area.
+/// Where the legend goes: beneath the axes (covering no data), or inside the plotting area
+/// at a corner.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Legend {
     /// No legend.
     Hidden,
+    /// Below the axes, in as many columns as fit (see `legend`): never covers data.
+    Below,
     /// Upper left corner.
     UpperLeft,
     /// Upper right corner.
@@ -32,6 +35,9 @@ pub struct Annotation {
     pub text: String,
     /// Colour.
     pub color: RGBColor,
+    /// Written above the point (its bottom a few pixels over it) rather than centred on
+    /// it: a tag lifted off a line drawn through the point.
+    pub lift: bool,
 }
 
 /// One plot panel: title, axis labels, ranges, series, annotations and legend.
@@ -39,6 +45,8 @@ pub struct Annotation {
 pub struct Figure {
     /// Title above the plot (may be empty).
     pub title: String,
+    /// A second, smaller title line (may be empty): which loop is shown.
+    pub subtitle: String,
     /// x-axis label.
     pub x_label: String,
     /// y-axis label.
@@ -60,24 +68,41 @@ pub struct Figure {
     pub font_scale: f64,
     /// The x data are log10 of the quantity: ticks at whole decades, labelled 10^x.
     pub x_log10: bool,
+    /// The y data are log10 of the quantity (a log axis): ticks at 1, 2, 5 × 10ⁿ, labelled
+    /// with the quantity.
+    pub y_log10: bool,
 }
 
 impl Figure {
-    /// An empty figure of [`DEFAULT_SIZE`] with the legend in the upper right.
+    /// An empty figure of [`DEFAULT_SIZE`] with the legend below the axes.
     pub fn new(title: impl Into<String>) -> Self {
         Self {
             title: title.into(),
+            subtitle: String::new(),
             x_label: String::new(),
             y_label: String::new(),
             x_range: None,
             y_range: None,
             series: Vec::new(),
             annotations: Vec::new(),
-            legend: Legend::UpperRight,
+            legend: Legend::Below,
             size: DEFAULT_SIZE,
             font_scale: 1.0,
             x_log10: false,
+            y_log10: false,
         }
+    }
+
+    /// Sets the second title line.
+    pub fn subtitle(mut self, s: impl Into<String>) -> Self {
+        self.subtitle = s.into();
+        self
+    }
+
+    /// Marks the y data as log10 of the quantity (a log axis, see [`Figure::y_log10`]).
+    pub fn y_log10(mut self) -> Self {
+        self.y_log10 = true;
+        self
     }
 
     /// Marks the x data as log10 of the quantity (a log axis): ticks at whole decades,
@@ -147,6 +172,7 @@ impl Figure {
             at: (x, y),
             text: text.into(),
             color: palette::BLACK,
+            lift: false,
         });
         self
     }

@@ -7,12 +7,17 @@ use anyhow::Result;
 use super::save::{Saved, save_both};
 use super::{DEFAULT_SIZE, Figure};
 
+/// Space in px above a grid's title, so that its tallest glyphs clear the image's edge.
+pub(super) const GRID_TITLE_TOP: u32 = 8;
+
 /// A grid of panels saved as one image: `cols` columns, rows as needed, panels in reading
 /// order, each of `panel_size` px, with an optional overall title.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
     /// Overall title (may be empty).
     pub title: String,
+    /// A second, smaller overall title line (may be empty): which loop is shown.
+    pub subtitle: String,
     /// Number of columns (>= 1).
     pub cols: usize,
     /// Panels in reading order.
@@ -26,6 +31,7 @@ impl Grid {
     pub fn new(title: impl Into<String>, cols: usize) -> Self {
         Self {
             title: title.into(),
+            subtitle: String::new(),
             cols: cols.max(1),
             panels: Vec::new(),
             panel_size: DEFAULT_SIZE,
@@ -35,6 +41,12 @@ impl Grid {
     /// Sets the size of one panel in px.
     pub fn panel_size(mut self, w: u32, h: u32) -> Self {
         self.panel_size = (w, h);
+        self
+    }
+
+    /// Sets the second overall title line.
+    pub fn subtitle(mut self, s: impl Into<String>) -> Self {
+        self.subtitle = s.into();
         self
     }
 
@@ -49,7 +61,13 @@ impl Grid {
     }
 
     pub(super) fn title_height(&self) -> u32 {
-        if self.title.is_empty() { 0 } else { 56 }
+        let title = if self.title.is_empty() {
+            0
+        } else {
+            GRID_TITLE_TOP + 56
+        };
+        let subtitle = if self.subtitle.is_empty() { 0 } else { 42 };
+        title + subtitle
     }
 
     /// Writes `<stem>.svg` and `<stem>.png` (see [`Figure::save`]).

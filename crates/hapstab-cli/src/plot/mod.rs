@@ -38,6 +38,7 @@ mod clip;
 mod draw;
 mod figure;
 mod grid;
+mod legend;
 mod save;
 mod series;
 mod simplify;

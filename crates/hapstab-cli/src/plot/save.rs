@@ -61,15 +61,30 @@ impl Render for Grid {
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        let body = if self.title.is_empty() {
-            root.clone()
-        } else {
-            let size = fit_font(40.0, &self.title, root.dim_in_pixel().0);
-            root.titled(&self.title, (FONT, size).into_font())?
-        };
+        let width = root.dim_in_pixel().0;
+        let mut body = root.clone();
+        if !self.title.is_empty() {
+            let size = fit_font(40.0, &self.title, width);
+            body = body.margin(super::grid::GRID_TITLE_TOP, 0, 0, 0);
+            body = body.titled(&self.title, (FONT, size).into_font())?;
+        }
+        if !self.subtitle.is_empty() {
+            let size = fit_font(30.0, &self.subtitle, width);
+            let style = (FONT, size).into_font().color(&RGBColor(60, 60, 60));
+            body = body.titled(&self.subtitle, style)?;
+        }
         let areas = body.split_evenly((self.rows(), self.cols));
-        for (panel, area) in self.panels.iter().zip(areas.iter()) {
-            panel.draw(area)?;
+        // the panels of a row keep one legend strip height, so that their axes line up
+        let width = self.panel_size.0;
+        for (row, chunk) in self.panels.chunks(self.cols).enumerate() {
+            let strip = chunk
+                .iter()
+                .map(|p| p.strip_height(width))
+                .max()
+                .unwrap_or(0);
+            for (k, panel) in chunk.iter().enumerate() {
+                panel.draw_reserving(&areas[row * self.cols + k], strip)?;
+            }
         }
         Ok(())
     }
@@ -275,7 +290,7 @@ mod tests {
         g.push(sample_figure().x_label("right β"));
         g.push(sample_figure().x_label("third"));
         let saved = g.save(dir.path().join("grid")).unwrap();
-        check_png(&saved.png, (1200, 900 + 56));
+        check_png(&saved.png, (1200, 900 + 8 + 56));
         let svg = std::fs::read_to_string(&saved.svg).unwrap();
         for t in ["left α", "right β", "third", "Two panels"] {
             assert!(svg.contains(t), "SVG lacks {t}");

@@ -248,6 +248,7 @@ fn save_boundary_plot(
     per_unit: Option<(f64, f64)>,
     settings: &RunSettings,
     units: Units,
+    loop_line: &str,
 ) -> Result<Option<Saved>> {
     let Some(stem) = &a.plot else {
         return Ok(None);
@@ -265,6 +266,7 @@ fn save_boundary_plot(
         units,
     );
     let saved = fig
+        .subtitle(loop_line)
         .save(stem)
         .with_context(|| format!("--plot {}", stem.display()))?;
     Ok(Some(saved))
@@ -301,7 +303,16 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
         write_boundary_csv(path, &rows)?;
     }
     let per_unit = scale.filter(|_| units.physical);
-    let saved = save_boundary_plot(a, (&region, &points), &model, per_unit, &settings, units)?;
+    let line = crate::wall_plot::loop_line(&rl);
+    let saved = save_boundary_plot(
+        a,
+        (&region, &points),
+        &model,
+        per_unit,
+        &settings,
+        units,
+        &line,
+    )?;
     let out = SimboundaryOut {
         normalized: pm.filter(|_| !rl.normalized).map(|p| PaperPlant {
             gamma: p.gamma,

@@ -8,7 +8,6 @@ use hapstab::simulation::EmpiricalPoint;
 
 use super::run_args::RunSettings;
 use super::{Units, describe_effects};
-use crate::output::sig;
 use crate::plot::{Figure, Legend, Marker, Series, palette};
 
 /// The plane of the figure: N/m per unit of α (or a) and Ns/m per unit of β (or b) for a
@@ -24,22 +23,24 @@ impl Plane {
     }
 }
 
-/// Title and axis labels.
-fn labels(paper: Option<&Normalized>, plane: Plane) -> (String, &'static str, &'static str) {
-    let title = "Simulated vs exact linear boundary".to_string();
+/// Title (with the simulated effects) and axis labels.
+fn labels(
+    paper: Option<&Normalized>,
+    plane: Plane,
+    effects: &str,
+) -> (String, &'static str, &'static str) {
+    let title = match effects.strip_prefix("none") {
+        Some(_) => "Simulated vs exact linear boundary".to_string(),
+        None => format!("Simulated ({effects}) vs exact linear boundary"),
+    };
     match (paper, plane.per_unit) {
         (_, Some(_)) => (
             title,
             "virtual stiffness K (N/m)",
             "virtual damping B (Ns/m)",
         ),
-        (Some(p), None) => (
-            format!(
-                "{title} (γ = {}, δ = {}, d = {})",
-                sig(p.gamma, 3),
-                sig(p.delta, 3),
-                p.d
-            ),
+        (Some(_), None) => (
+            title,
             "virtual stiffness α = KT²/m",
             "virtual damping β = BT/m",
         ),
@@ -60,11 +61,11 @@ pub(super) fn boundary_plot(
     s: &RunSettings,
     units: Units,
 ) -> Figure {
-    let (title, xl, yl) = labels(paper, plane);
+    let (title, xl, yl) = labels(paper, plane, &describe_effects(s, units.force()));
     let mut f = Figure::new(title)
         .x_label(xl)
         .y_label(yl)
-        .legend(Legend::UpperRight);
+        .legend(Legend::Below);
     for (i, poly) in region.polygons.iter().enumerate() {
         let pts = poly
             .vertices

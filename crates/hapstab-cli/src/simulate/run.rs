@@ -41,8 +41,9 @@ pub struct SimulateArgs {
     /// of the wall).
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
-    /// Plot position and force over time, with the judged window: writes STEM.svg and
-    /// STEM.png.
+    /// Plot position and force over time, with the judged window (a decaying run: its
+    /// transient, and the envelope of |x| over the whole run on a log scale): writes STEM.svg
+    /// and STEM.png.
     #[arg(long, value_name = "STEM")]
     plot: Option<PathBuf>,
     /// Most trace rows (at most 2000000); longer runs record every n-th sample.
@@ -175,7 +176,15 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     let mut result = simulate(&cfg)?;
     let trace = result.trace.take().unwrap_or_default();
     let files = if files_wanted {
-        Some(write_files(a, &trace, &result, &cfg, &settings, units)?)
+        let line = crate::wall_plot::loop_line(&sl.rl);
+        Some(write_files(
+            a,
+            (&trace, &result),
+            &cfg,
+            &settings,
+            units,
+            &line,
+        )?)
     } else {
         None
     };
@@ -207,11 +216,11 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
 /// Writes the CSV and the plot that were asked for.
 fn write_files(
     a: &SimulateArgs,
-    trace: &Trace,
-    result: &RunResult,
+    (trace, result): (&Trace, &RunResult),
     cfg: &Config,
     settings: &RunSettings,
     units: Units,
+    loop_line: &str,
 ) -> Result<Files> {
     if let Some(csv) = &a.csv {
         write_trace_csv(csv, trace)?;
@@ -223,6 +232,7 @@ fn write_files(
             let clipped = hapstab::simulation::clip_growing_trace(cfg, result, trace)?;
             Some(
                 trace_plot(trace, clipped.as_ref(), result, cfg, settings, units)
+                    .subtitle(loop_line)
                     .save(stem)
                     .with_context(|| format!("--plot {}", stem.display()))?,
             )

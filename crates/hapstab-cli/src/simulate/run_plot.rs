@@ -1,5 +1,7 @@
 //! The figure of one run: position and wall force over time with the judged window, and a
-//! zoom on the last periods of a limit cycle.
+//! zoom on the last periods of a limit cycle. A decaying run's position and force show its
+//! transient (until it has settled), and a third panel its distance from rest on a log
+//! scale over the whole run, with the judged window.
 
 use hapstab::simulation::{ClippedTrace, Config, Contact, Outcome, RunResult, SimModel, Trace};
 
@@ -64,12 +66,43 @@ fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
     (f, format!("{p}{unit}"))
 }
 
-/// What every panel of a run's figure shares: the trace, its end time and the time axis label.
+/// What every panel of a run's figure shares: the trace, its end time, the end of the
+/// shown transient and the time axis label.
 struct Panels<'a> {
     tr: &'a Trace,
     cfg: &'a Config,
     t_end: f64,
+    t_show: f64,
     tlabel: String,
+}
+
+/// The position the run settles at: 0, or the last position when that is not within 10⁻⁶
+/// of the peak of 0 (a push against the wall).
+fn rest(x: &[f64]) -> f64 {
+    let last = x.last().copied().unwrap_or(0.0);
+    if last.abs() <= 1e-6 * max_abs(x) {
+        0.0
+    } else {
+        last
+    }
+}
+
+/// The end of a decaying run's transient: 1.3 times the last time its distance from rest
+/// exceeds 2 % of the largest, at least 50 samples, at most the run.
+fn transient_end(tr: &Trace, period: f64, t_end: f64) -> f64 {
+    let x0 = rest(&tr.position);
+    let peak = tr
+        .position
+        .iter()
+        .fold(0.0f64, |m, x| m.max((x - x0).abs()));
+    let last = tr
+        .time
+        .iter()
+        .zip(&tr.position)
+        .filter(|(_, x)| (**x - x0).abs() > 0.02 * peak)
+        .map(|(t, _)| *t)
+        .fold(0.0, f64::max);
+    (1.3 * last).max(50.0 * period).min(t_end)
 }
 
 /// The largest magnitude in `v` (0 for none).
@@ -108,12 +141,8 @@ impl Panels<'_> {
         let mut pos = Figure::new(params)
             .x_label(&self.tlabel)
             .y_label(format!("position x ({xunit})"))
-            .x_range(0.0, self.t_end)
-            .legend(if clip_note.is_some() {
-                Legend::UpperLeft
-            } else {
-                Legend::UpperRight
-            });
+            .x_range(0.0, self.t_show)
+            .legend(Legend::Below);
         let (lo, hi) = extent(tr.position.iter().chain([&xw]));
         if let Some(note) = clip_note {
             let (lo, hi) = (lo * xs, hi * xs);
@@ -174,8 +203,8 @@ impl Panels<'_> {
         let mut force = Figure::new(effects)
             .x_label(&self.tlabel)
             .y_label(flabel)
-            .x_range(0.0, t_end)
-            .legend(Legend::UpperRight);
+            .x_range(0.0, self.t_show)
+            .legend(Legend::Below);
         force.add(
             Series::line(self.series(&tr.wall_force, fs, 0.0))
                 .color(palette::VERMILLION)
@@ -209,6 +238,60 @@ impl Panels<'_> {
         force
     }
 
+    /// The distance from rest |x − x_rest| over the whole run on a log scale, with the judged
+    /// window: how the transient decays and where the verdict was judged.
+    fn envelope(&self, r: &RunResult, units: Units) -> Figure {
+        let (tr, t_end) = (self.tr, self.t_end);
+        let x0 = rest(&tr.position);
+        let (xs, xunit) = scaled_unit(max_abs(&tr.position), "m");
+        // the largest distance in each of about 500 stretches: the envelope, without the dips
+        // of every zero crossing
+        let n = tr.position.len();
+        let per = n.div_ceil(500).max(1);
+        let logs: Vec<(f64, f64)> = (0..n)
+            .step_by(per)
+            .map(|i| {
+                let j = (i + per).min(n);
+                let d = tr.position[i..j]
+                    .iter()
+                    .fold(0.0f64, |m, x| m.max((x - x0).abs()))
+                    * xs;
+                (tr.time[i], if d > 0.0 { d.log10() } else { f64::NAN })
+            })
+            .collect();
+        let what = if x0 == 0.0 { "|x|" } else { "|x − x_end|" };
+        let mut f = Figure::new(format!("Envelope of {what} over the whole run (log scale)"))
+            .x_label(format!("time t ({})", units.time()))
+            .y_label(format!("{what} ({xunit})"))
+            .x_range(0.0, t_end)
+            .y_log10()
+            .legend(Legend::Below);
+        let (lo, hi) = extent(logs.iter().map(|p| &p.1).filter(|v| v.is_finite()));
+        let period = self.cfg.model.period();
+        let (j0, j1) = (
+            r.verdict.judged_from_sample as f64 * period,
+            r.verdict.judged_to_sample as f64 * period,
+        );
+        if hi > lo {
+            let unit = units.time();
+            let t = |v: f64| sig(v, 4);
+            f.add(
+                Series::polygon([(j0, lo), (j1, lo), (j1, hi), (j0, hi)])
+                    .color(palette::GREY)
+                    .alpha(0.15)
+                    .no_outline()
+                    .label(format!("judged window t = {} … {} {unit}", t(j0), t(j1))),
+            );
+        }
+        f.add(
+            Series::line(logs)
+                .color(palette::BLUE)
+                .width(2)
+                .label(format!("largest {what} per stretch of the run")),
+        );
+        f
+    }
+
     /// A zoom on the last periods of a limit cycle (eight periods, at most a quarter of the
     /// run), with the encoder's thresholds around it under quantization.
     fn limit_cycle(&self, r: &RunResult) -> Figure {
@@ -234,7 +317,7 @@ impl Panels<'_> {
             .x_label(&self.tlabel)
             .y_label(format!("position x ({zunit})"))
             .x_range(from, t_end)
-            .legend(Legend::UpperRight);
+            .legend(Legend::Below);
         zoom.add(
             Series::line(self.series(&tr.position, zs, from))
                 .color(palette::BLUE)
@@ -299,15 +382,33 @@ pub(super) fn trace_plot(
     if clipped.is_some() {
         verdict.push_str(", trace clipped");
     }
+    let decaying = r.verdict.outcome == Outcome::Decaying;
+    let t_show = match decaying {
+        true => transient_end(tr, cfg.model.period(), t_end),
+        false => t_end,
+    };
+    let unit = units.time();
+    let tlabel = match t_show < t_end {
+        true => format!(
+            "time t ({unit}): the transient, first {} {unit} of the {} {unit} run",
+            sig(t_show, 3),
+            sig(t_end, 3)
+        ),
+        false => format!("time t ({unit})"),
+    };
     let panels = Panels {
         tr,
         cfg,
         t_end,
-        tlabel: format!("time t ({})", units.time()),
+        t_show,
+        tlabel,
     };
     let mut g = Grid::new(format!("Simulation: {verdict}"), 1).panel_size(1000, 520);
     g.push(panels.position(r, model_caption(&cfg.model, units), note));
     g.push(panels.force(s, units));
+    if t_show < t_end {
+        g.push(panels.envelope(r, units));
+    }
     if r.verdict.outcome == Outcome::LimitCycle && tr.time.len() > 16 {
         g.push(panels.limit_cycle(r));
     }
