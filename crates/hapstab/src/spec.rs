@@ -126,11 +126,11 @@ fn parse_number<T: FromStr>(text: &str, value: &str, what: &str) -> Result<T> {
     })
 }
 
-/// `butterworth:N:FC`, `bessel:N:FC` or `critically-damped:N:FC` (`word` the keyword, `body`
-/// the text after its ':').
-fn parse_named(text: &str, word: &str, body: &str) -> Result<VelocityEstimator> {
-    let Some(family) = Family::from_keyword(word) else {
-        return Err(bad_velocity(text, "is not a velocity estimator"));
+/// `butterworth:N:FC`, `bessel:N:FC` or `critically-damped:N:FC` (`body` the text after the
+/// family's keyword and ':').
+fn parse_named(text: &str, family: Family, body: Option<&str>) -> Result<VelocityEstimator> {
+    let Some(body) = body else {
+        return Err(bad_velocity(text, "needs a parameter after ':'"));
     };
     let Some((n, fc)) = body.split_once(':') else {
         return Err(bad_velocity(
@@ -168,14 +168,11 @@ impl FromStr for VelocityEstimator {
             },
             ("iir", Some(body)) => return parse_iir(text, body),
             ("backward", Some(_)) => return Err(bad_velocity(text, "takes no parameter")),
-            (word, Some(body)) if Family::from_keyword(word).is_some() => {
-                return parse_named(text, word, body);
-            }
             ("lowpass" | "average" | "iir", None) => {
                 return Err(bad_velocity(text, "needs a parameter after ':'"));
             }
-            (word, None) if Family::from_keyword(word).is_some() => {
-                return Err(bad_velocity(text, "needs a parameter after ':'"));
+            (word, body) if let Some(family) = Family::from_keyword(word) => {
+                return parse_named(text, family, body);
             }
             _ => return Err(bad_velocity(text, "is not a velocity estimator")),
         };
