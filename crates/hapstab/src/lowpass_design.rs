@@ -1,6 +1,6 @@
 //! The named digital low-pass filters of a velocity estimator — `butterworth:N:FC`,
 //! `bessel:N:FC` and `critically-damped:N:FC` — designed on one path, that of scipy's
-//! `iirfilter(N, f_c, btype='low', fs=1/T)` (and MATLAB's `butter`/`besself`+`bilinear`):
+//! `iirfilter(N, f_c, btype='low', fs=1/T)` (for Butterworth also MATLAB's `butter`):
 //!
 //! 1. the family's analog prototype (no zeros, N poles p_k, gain k) for 1 rad/s;
 //! 2. `lp2lp`: the cut-off pre-warped to ω_a = 2f_s·tan(π W_n/f_s) with scipy's
@@ -12,8 +12,8 @@
 //! step for step, so that the coefficients agree with scipy's to rounding. The prototypes:
 //!
 //! - Butterworth (scipy's `buttap`): p_m = −e^{iπm/(2N)}, m = −N+1, −N+3, …, N−1, k = 1.
-//! - Bessel (scipy's `besselap(N, norm='phase')`, see [`bessel`]): the roots of the reverse
-//!   Bessel polynomial scaled to unit product, k = 1.
+//! - Bessel (scipy's `besselap(N, norm='phase')`, the `bessel` submodule): the roots of the
+//!   reverse Bessel polynomial scaled to unit product, k = 1.
 //! - Critically damped: N equal real poles −α, α = 1/√(2^{1/N} − 1), k = α^N — the cascade of
 //!   N first-order sections (1 + s/α)^{−N} whose |H(iω)|² = (1 + ω²/α²)^{−N} is 1/2 at ω = 1,
 //!   so the cascade's −3 dB point is the cut-off (Robertson and Dowling, "Design and responses
