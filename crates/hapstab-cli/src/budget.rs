@@ -63,7 +63,9 @@ pub fn degree_drivers(args: &LoopArgs, lp: &Loop) -> Vec<Driver<'static>> {
     let taps = match &lp.velocity {
         VelocityEstimator::Backward | VelocityEstimator::LowPass { .. } => 1.0,
         VelocityEstimator::Average { samples } => *samples as f64,
-        VelocityEstimator::Butterworth { order, .. } => *order as f64 + 1.0,
+        VelocityEstimator::Butterworth { order, .. }
+        | VelocityEstimator::Bessel { order, .. }
+        | VelocityEstimator::CriticallyDamped { order, .. } => *order as f64 + 1.0,
         VelocityEstimator::Iir { b, a } => b.len().max(a.len()) as f64 - 1.0,
     };
     out.push(Driver {

@@ -428,6 +428,10 @@ pub struct LoopArgs {
     ///   butterworth:N:FC        the backward difference through a digital Butterworth
     ///                           low-pass of order N (1–8), cut-off FC Hz (MATLAB's and
     ///                           scipy's butter(N, FC, fs=1/T))
+    ///   bessel:N:FC             the same through a digital Bessel low-pass (scipy's
+    ///                           bessel(N, FC, fs=1/T), phase-normalized), N 1–8
+    ///   critically-damped:N:FC  the same through N equal real poles (no overshoot),
+    ///                           −3 dB at FC Hz, N 1–8 (all three bilinear, pre-warped)
     ///   average:N               v_k = (y_k − y_{k−N})/(N·T)
     ///   iir:b0,b1,…/a0,a1,…     v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …) · y in m/s,
     ///                           any proper discrete filter on the position (a0 ≠ 0)

@@ -19,8 +19,8 @@ pub struct SweepArgs {
     #[command(flatten)]
     lp: LoopArgs,
     /// The swept parameter as NAME:START:END:POINTS, e.g. delay-time:0:0.005:50. NAME is one
-    /// of delay-time, period (the delay time is kept), cutoff (with --velocity lowpass:FC or butterworth:N:FC),
-    /// window (with --velocity average:N), force-lag, mass, damping, stiffness (the effective
+    /// of delay-time, period (the delay time is kept), cutoff (with --velocity lowpass:FC,
+    /// butterworth:N:FC, bessel:N:FC or critically-damped:N:FC), window (with --velocity average:N), force-lag, mass, damping, stiffness (the effective
     /// m, b, k of eq. 1), motor-mass, motor-damping, handle-mass, transmission-stiffness,
     /// transmission-damping, arm-mass, arm-damping, arm-stiffness (the arm holding the device,
     /// or a two-mass device's arm).

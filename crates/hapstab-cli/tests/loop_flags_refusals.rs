@@ -245,6 +245,52 @@ fn velocity_estimator_input_is_refused_in_one_line() {
     }
 }
 
+/// A named low-pass (Butterworth, Bessel, critically damped) with an order outside 1–8, a
+/// cut-off at or above the Nyquist frequency 1/(2T), or a malformed spec is refused in one
+/// line naming --velocity, the family's parameter and the value (exit 2).
+#[test]
+fn named_lowpass_input_is_refused_in_one_line() {
+    for (family, title) in [
+        ("butterworth", "Butterworth"),
+        ("bessel", "Bessel"),
+        ("critically-damped", "critically damped"),
+    ] {
+        let order = format!("{title} order N");
+        let cutoff = format!("{title} cut-off f_c");
+        let form = format!("{family}:ORDER:FC");
+        for (spec, extra, needles) in [
+            (
+                format!("{family}:0:50"),
+                &[][..],
+                &["--velocity", &order, "0"][..],
+            ),
+            (format!("{family}:9:50"), &[], &["--velocity", &order, "9"]),
+            (
+                format!("{family}:2:500"),
+                &[],
+                &["--velocity", &cutoff, "500 Hz"],
+            ),
+            (
+                format!("{family}:2:300"),
+                &["--period", "0.002"][..],
+                &["--velocity", &cutoff, "250 Hz", "300 Hz"],
+            ),
+            (
+                format!("{family}:2:-4"),
+                &[],
+                &["--velocity", &cutoff, "-4"],
+            ),
+            (format!("{family}:50"), &[], &["--velocity", &form]),
+            (format!("{family}:2:fast"), &[], &["--velocity", "'fast'"]),
+            (format!("{family}:2.5:50"), &[], &["--velocity", "'2.5'"]),
+        ] {
+            let mut args = vec!["check", "--velocity", spec.as_str()];
+            args.extend(extra);
+            refused(&args, needles);
+        }
+    }
+}
+
 /// A transfer function that is not strictly proper, does not parse, is too long, or lacks its
 /// other half is refused in one line naming the flag.
 #[test]

@@ -23,7 +23,9 @@ pub fn check(cost: Cost, keyword: &str, what: &str, why: &str) -> PyResult<()> {
 pub fn degree_reason(lp: &Loop, fam: &AffineFamily) -> String {
     let taps = match &lp.velocity {
         VelocityEstimator::Average { samples } => *samples,
-        VelocityEstimator::Butterworth { order, .. } => order + 1,
+        VelocityEstimator::Butterworth { order, .. }
+        | VelocityEstimator::Bessel { order, .. }
+        | VelocityEstimator::CriticallyDamped { order, .. } => order + 1,
         VelocityEstimator::Iir { b, a } => b.len().max(a.len()).saturating_sub(1),
         _ => 1,
     };

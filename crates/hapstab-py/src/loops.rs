@@ -360,6 +360,10 @@ fn plant_object(py: Python<'_>, plant: &Plant) -> PyResult<Py<PyAny>> {
 ///                          f_c = FC in Hz
 ///   "butterworth:N:FC"     the backward difference through a digital Butterworth low-pass of
 ///                          order N, cut-off FC Hz (scipy's butter(N, FC, fs=1/T))
+///   "bessel:N:FC"          the same through a digital Bessel low-pass (scipy's
+///                          bessel(N, FC, fs=1/T), phase-normalized)
+///   "critically-damped:N:FC"  the same through N equal real poles, −3 dB at FC Hz (N = 1–8
+///                          for all three; bilinear with pre-warping)
 ///   "average:N"            v_k = (y_k − y_{k−N})/(N·T)
 ///   "iir:b0,b1,…/a0,a1,…"  v = (b0 + b1 z⁻¹ + …)/(a0 + a1 z⁻¹ + …)·y in m/s
 /// force_lag: actuator time constant τ in s of 1/(τs + 1) between commanded and applied

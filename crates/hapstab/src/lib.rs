@@ -36,7 +36,6 @@
 pub mod argument;
 pub mod boundary;
 pub mod bracket;
-pub mod butterworth;
 pub mod closed_loop;
 pub mod delay;
 pub mod error;
@@ -48,6 +47,7 @@ pub mod linear;
 pub mod locus;
 pub mod loop_analysis;
 pub mod loop_spec;
+pub mod lowpass_design;
 pub mod map;
 pub mod margins;
 pub mod model;

@@ -545,7 +545,9 @@ pub fn loop_degree(lp: &crate::model::Loop) -> usize {
     let lag = usize::from(lp.plant.force_lag > 0.0);
     let filter = match &lp.velocity {
         VelocityEstimator::Backward | VelocityEstimator::LowPass { .. } => 1,
-        VelocityEstimator::Butterworth { order, .. } => order + 1,
+        VelocityEstimator::Butterworth { order, .. }
+        | VelocityEstimator::Bessel { order, .. }
+        | VelocityEstimator::CriticallyDamped { order, .. } => order + 1,
         VelocityEstimator::Average { samples } => *samples,
         VelocityEstimator::Iir { b, a } => b.len().max(a.len()).saturating_sub(1),
     };

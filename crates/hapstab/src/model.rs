@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 
 pub use crate::delay::Delay;
 use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::lowpass_design::{Family, NamedLowPass};
 use crate::params::{Effective, MAX_DELAY, PlantParams};
 
 /// A two-mass haptic device: the motor-side inertia (where the actuator pushes and the
@@ -84,9 +85,25 @@ pub enum VelocityEstimator {
         samples: usize,
     },
     /// A digital Butterworth low-pass of the backward difference (MATLAB's and scipy's
-    /// `butter(N, f_c, fs = 1/T)`, bilinear with pre-warping; see [`crate::butterworth`]),
+    /// `butter(N, f_c, fs = 1/T)`, bilinear with pre-warping; see [`crate::lowpass_design`]),
     /// v = H(z)·(y_k − y_{k−1})/T.
     Butterworth {
+        /// Order N, 1 ..= 8.
+        order: usize,
+        /// Cut-off f_c in Hz, 0 < f_c < 1/(2T).
+        cutoff_hz: f64,
+    },
+    /// A digital Bessel low-pass of the backward difference (scipy's
+    /// `bessel(N, f_c, fs = 1/T)`, norm='phase'; see [`crate::lowpass_design`]).
+    Bessel {
+        /// Order N, 1 ..= 8.
+        order: usize,
+        /// Cut-off f_c in Hz, 0 < f_c < 1/(2T).
+        cutoff_hz: f64,
+    },
+    /// A digital critically damped low-pass of the backward difference: N equal real poles,
+    /// −3 dB at f_c (see [`crate::lowpass_design`]).
+    CriticallyDamped {
         /// Order N, 1 ..= 8.
         order: usize,
         /// Cut-off f_c in Hz, 0 < f_c < 1/(2T).
@@ -462,14 +479,11 @@ impl VelocityEstimator {
             VelocityEstimator::LowPass { cutoff_hz } => {
                 positive("velocity low-pass cut-off f_c", *cutoff_hz)?;
             }
-            VelocityEstimator::Butterworth { order, cutoff_hz } => {
-                positive("velocity Butterworth cut-off f_c", *cutoff_hz)?;
-                if !(1..=crate::butterworth::MAX_ORDER).contains(order) {
-                    return Err(Error::OutOfRange {
-                        name: "velocity Butterworth order N",
-                        value: *order as f64,
-                        range: "1..=8",
-                    });
+            VelocityEstimator::Butterworth { .. }
+            | VelocityEstimator::Bessel { .. }
+            | VelocityEstimator::CriticallyDamped { .. } => {
+                if let Some(f) = self.named_lowpass() {
+                    f.validated()?;
                 }
             }
             VelocityEstimator::Average { samples } => {
@@ -530,8 +544,14 @@ impl VelocityEstimator {
                 (num, den)
             }
             VelocityEstimator::Butterworth { order, cutoff_hz } => {
-                let (b, a) = crate::butterworth::velocity_filter(*order, *cutoff_hz, period);
-                VelocityEstimator::Iir { b, a }.per_sample_filter(period)
+                NamedLowPass::new(Family::Butterworth, *order, *cutoff_hz).per_sample_filter(period)
+            }
+            VelocityEstimator::Bessel { order, cutoff_hz } => {
+                NamedLowPass::new(Family::Bessel, *order, *cutoff_hz).per_sample_filter(period)
+            }
+            VelocityEstimator::CriticallyDamped { order, cutoff_hz } => {
+                NamedLowPass::new(Family::CriticallyDamped, *order, *cutoff_hz)
+                    .per_sample_filter(period)
             }
             VelocityEstimator::Iir { b, a } => {
                 let len = b.len().max(a.len());
@@ -552,18 +572,11 @@ impl VelocityEstimator {
 }
 
 impl VelocityEstimator {
-    /// Refuses a Butterworth cut-off at or beyond the Nyquist frequency 1/(2T) of the period.
+    /// Refuses a named low-pass (Butterworth, Bessel, critically damped) whose cut-off is at
+    /// or beyond the Nyquist frequency 1/(2T) of the period.
     pub fn within_nyquist(self, period: f64) -> Result<Self> {
-        if let VelocityEstimator::Butterworth { cutoff_hz, .. } = &self
-            && *cutoff_hz * 2.0 * period >= 1.0
-        {
-            return Err(Error::Invalid {
-                name: "velocity Butterworth cut-off f_c",
-                reason: format!(
-                    "must be below the Nyquist frequency 1/(2T) = {} Hz (got {cutoff_hz} Hz)",
-                    0.5 / period
-                ),
-            });
+        if let Some(f) = self.named_lowpass() {
+            f.within_nyquist(period)?;
         }
         Ok(self)
     }
@@ -577,6 +590,8 @@ impl VelocityEstimator {
             VelocityEstimator::Backward
             | VelocityEstimator::LowPass { .. }
             | VelocityEstimator::Butterworth { .. }
+            | VelocityEstimator::Bessel { .. }
+            | VelocityEstimator::CriticallyDamped { .. }
             | VelocityEstimator::Average { .. } => 0.0,
             VelocityEstimator::Iir { b, a } => {
                 let (sb, sa) = (exact_sum(b), exact_sum(a));

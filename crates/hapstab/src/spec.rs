@@ -2,7 +2,8 @@
 //! explorer, the Python package) so that the same text means the same loop everywhere.
 //!
 //! - A velocity estimator (see [`VelocityEstimator`] for the formulas):
-//!   `backward` | `lowpass:FC` (f_c in Hz) | `average:N` (N samples) |
+//!   `backward` | `lowpass:FC` (f_c in Hz) | `butterworth:N:FC` | `bessel:N:FC` |
+//!   `critically-damped:N:FC` (order N, f_c in Hz) | `average:N` (N samples) |
 //!   `iir:b0,b1,…/a0,a1,…` (coefficients in powers of z⁻¹).
 //! - A coefficient list: comma-separated numbers, e.g. the `num` and `den` of a transfer
 //!   function (highest power of s first, as MATLAB's and python-control's `tf`).
@@ -15,11 +16,12 @@ use std::fmt;
 use std::str::FromStr;
 
 use crate::error::{Error, Result, finite};
+use crate::lowpass_design::{Family, NamedLowPass};
 use crate::model::VelocityEstimator;
 
 /// The accepted forms of a velocity estimator spec, for error messages and help texts.
-pub const VELOCITY_FORMS: &str =
-    "backward, lowpass:FC, butterworth:N:FC, average:N or iir:b0,b1,…/a0,a1,…";
+pub const VELOCITY_FORMS: &str = "backward, lowpass:FC, butterworth:N:FC, bessel:N:FC, \
+     critically-damped:N:FC, average:N or iir:b0,b1,…/a0,a1,…";
 
 fn bad_velocity(text: &str, why: &str) -> Error {
     Error::Invalid {
@@ -124,11 +126,32 @@ fn parse_number<T: FromStr>(text: &str, value: &str, what: &str) -> Result<T> {
     })
 }
 
+/// `butterworth:N:FC`, `bessel:N:FC` or `critically-damped:N:FC` (`body` the text after the
+/// family's keyword and ':').
+fn parse_named(text: &str, family: Family, body: Option<&str>) -> Result<VelocityEstimator> {
+    let Some(body) = body else {
+        return Err(bad_velocity(text, "needs a parameter after ':'"));
+    };
+    let Some((n, fc)) = body.split_once(':') else {
+        return Err(bad_velocity(
+            text,
+            &format!("needs {}:ORDER:FC", family.keyword()),
+        ));
+    };
+    let f = NamedLowPass::new(
+        family,
+        parse_number(text, n, "a whole filter order")?,
+        parse_number(text, fc, "a cut-off frequency in Hz")?,
+    );
+    VelocityEstimator::from(f).validated()
+}
+
 impl FromStr for VelocityEstimator {
     type Err = Error;
 
-    /// Parses `backward`, `lowpass:FC`, `average:N` or `iir:b0,b1,…/a0,a1,…` and validates
-    /// the parameters (f_c > 0, N >= 1, a0 ≠ 0).
+    /// Parses `backward`, `lowpass:FC`, `butterworth:N:FC`, `bessel:N:FC`,
+    /// `critically-damped:N:FC`, `average:N` or `iir:b0,b1,…/a0,a1,…` and validates the
+    /// parameters (f_c > 0, 1 ≤ order ≤ 8, N >= 1, a0 ≠ 0).
     fn from_str(s: &str) -> Result<Self> {
         let text = s.trim();
         let (kind, body) = match text.split_once(':') {
@@ -143,19 +166,13 @@ impl FromStr for VelocityEstimator {
             ("average", Some(n)) => VelocityEstimator::Average {
                 samples: parse_number(text, n, "a whole number of samples")?,
             },
-            ("butterworth", Some(body)) => {
-                let Some((n, fc)) = body.split_once(':') else {
-                    return Err(bad_velocity(text, "needs butterworth:ORDER:FC"));
-                };
-                VelocityEstimator::Butterworth {
-                    order: parse_number(text, n, "a whole filter order")?,
-                    cutoff_hz: parse_number(text, fc, "a cut-off frequency in Hz")?,
-                }
-            }
             ("iir", Some(body)) => return parse_iir(text, body),
             ("backward", Some(_)) => return Err(bad_velocity(text, "takes no parameter")),
-            ("lowpass" | "average" | "iir" | "butterworth", None) => {
+            ("lowpass" | "average" | "iir", None) => {
                 return Err(bad_velocity(text, "needs a parameter after ':'"));
+            }
+            (word, body) if let Some(family) = Family::from_keyword(word) => {
+                return parse_named(text, family, body);
             }
             _ => return Err(bad_velocity(text, "is not a velocity estimator")),
         };
@@ -175,7 +192,17 @@ impl fmt::Display for VelocityEstimator {
             VelocityEstimator::LowPass { cutoff_hz } => write!(f, "lowpass:{cutoff_hz}"),
             VelocityEstimator::Average { samples } => write!(f, "average:{samples}"),
             VelocityEstimator::Butterworth { order, cutoff_hz } => {
-                write!(f, "butterworth:{order}:{cutoff_hz}")
+                write!(f, "{}:{order}:{cutoff_hz}", Family::Butterworth.keyword())
+            }
+            VelocityEstimator::Bessel { order, cutoff_hz } => {
+                write!(f, "{}:{order}:{cutoff_hz}", Family::Bessel.keyword())
+            }
+            VelocityEstimator::CriticallyDamped { order, cutoff_hz } => {
+                write!(
+                    f,
+                    "{}:{order}:{cutoff_hz}",
+                    Family::CriticallyDamped.keyword()
+                )
             }
             VelocityEstimator::Iir { b, a } => write!(f, "iir:{}/{}", join(b), join(a)),
         }
@@ -192,6 +219,27 @@ mod tests {
             ("backward", VelocityEstimator::Backward),
             ("lowpass:50", VelocityEstimator::LowPass { cutoff_hz: 50.0 }),
             (" average:15 ", VelocityEstimator::Average { samples: 15 }),
+            (
+                "butterworth:2:150",
+                VelocityEstimator::Butterworth {
+                    order: 2,
+                    cutoff_hz: 150.0,
+                },
+            ),
+            (
+                "Bessel: 4 : 62.5",
+                VelocityEstimator::Bessel {
+                    order: 4,
+                    cutoff_hz: 62.5,
+                },
+            ),
+            (
+                "critically-damped:3:0.3",
+                VelocityEstimator::CriticallyDamped {
+                    order: 3,
+                    cutoff_hz: 0.3,
+                },
+            ),
             (
                 "iir:1, -1/0.001,0.0005",
                 VelocityEstimator::Iir {
@@ -228,6 +276,15 @@ mod tests {
             ("iir:1,-1/0,1", "a0"),
             ("iir:0/1", "numerator"),
             ("iir:1/", "empty"),
+            ("bessel", "needs a parameter"),
+            ("bessel:40", "needs bessel:ORDER:FC"),
+            ("bessel:0:40", "Bessel order N"),
+            ("bessel:9:40", "Bessel order N"),
+            ("bessel:2.5:40", "'2.5'"),
+            ("critically-damped:2:-3", "critically damped cut-off f_c"),
+            ("critically-damped:x:3", "'x'"),
+            ("critically-damped:9:3", "critically damped order N"),
+            ("critically_damped:2:3", "is not a velocity estimator"),
         ] {
             let e = text.parse::<VelocityEstimator>().unwrap_err().to_string();
             assert!(e.contains(needle), "{text}: {e}");

@@ -142,19 +142,19 @@ impl SweepParam {
                 VelocityEstimator::LowPass { .. } => {
                     out.velocity = VelocityEstimator::LowPass { cutoff_hz: v };
                 }
-                VelocityEstimator::Butterworth { order, .. } => {
-                    out.velocity = VelocityEstimator::Butterworth {
-                        order,
-                        cutoff_hz: v,
-                    }
-                    .validated()?
-                    .within_nyquist(out.period)?;
-                }
                 _ => {
-                    return Err(missing(
-                        self,
-                        "a low-pass velocity estimator (lowpass:FC or butterworth:N:FC)",
-                    ));
+                    let Some(named) = out.velocity.named_lowpass() else {
+                        return Err(missing(
+                            self,
+                            "a low-pass velocity estimator (lowpass:FC, butterworth:N:FC, \
+                             bessel:N:FC or critically-damped:N:FC)",
+                        ));
+                    };
+                    let f = crate::lowpass_design::NamedLowPass {
+                        cutoff_hz: v,
+                        ..named
+                    };
+                    out.velocity = f.validated()?.within_nyquist(out.period)?.into();
                 }
             },
             SweepParam::Window => match out.velocity {

@@ -178,8 +178,10 @@ fn velocity_definition(v: &VelocityEstimator, t: f64) -> (Vec<f64>, Vec<f64>) {
             (num, vec![1.0])
         }
         VelocityEstimator::Iir { b, a } => (b.clone(), a.clone()),
-        VelocityEstimator::Butterworth { .. } => {
-            unreachable!("random_estimator draws no Butterworth filter (test_butterworth.py)")
+        VelocityEstimator::Butterworth { .. }
+        | VelocityEstimator::Bessel { .. }
+        | VelocityEstimator::CriticallyDamped { .. } => {
+            unreachable!("random_estimator draws no named low-pass (test_named_filters.py)")
         }
     }
 }

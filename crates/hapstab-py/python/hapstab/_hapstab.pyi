@@ -94,7 +94,8 @@ Plant = Union[MassSpringDamper, TwoMass, TransferFunction, Any]
 
 class Loop:
     """The loop of Fig. 3: plant, sampling period T, delay t_d = (d + λ)T, velocity estimator
-    ("backward", "lowpass:FC", "average:N", "iir:b0,b1,…/a0,a1,…") and actuator lag τ."""
+    ("backward", "lowpass:FC", "butterworth:N:FC", "bessel:N:FC", "critically-damped:N:FC",
+    "average:N", "iir:b0,b1,…/a0,a1,…") and actuator lag τ."""
 
     def __init__(
         self,
