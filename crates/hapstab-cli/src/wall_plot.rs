@@ -280,7 +280,7 @@ fn plant_words(p: &hapstab::model::Plant) -> String {
 }
 
 /// The velocity estimator in words: "backward difference", "low-pass 100 Hz", "average of
-/// 15 samples", "Butterworth 2nd order 50 Hz", "IIR filter".
+/// 15 samples", "Butterworth order 2, 50 Hz" (Bessel, critically damped alike), "IIR filter".
 fn estimator_words(v: &hapstab::model::VelocityEstimator) -> String {
     use hapstab::model::VelocityEstimator as V;
     match v {
@@ -289,6 +289,12 @@ fn estimator_words(v: &hapstab::model::VelocityEstimator) -> String {
         V::Average { samples } => format!("average of {samples} samples"),
         V::Butterworth { order, cutoff_hz } => {
             format!("Butterworth order {order}, {} Hz", sig(*cutoff_hz, 4))
+        }
+        V::Bessel { order, cutoff_hz } => {
+            format!("Bessel order {order}, {} Hz", sig(*cutoff_hz, 4))
+        }
+        V::CriticallyDamped { order, cutoff_hz } => {
+            format!("critically damped order {order}, {} Hz", sig(*cutoff_hz, 4))
         }
         V::Iir { .. } => "IIR velocity filter".to_string(),
     }
