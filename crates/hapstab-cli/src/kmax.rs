@@ -186,13 +186,17 @@ fn figure(
     let plane = Plane::of(rl, fam);
     let mut fig = wall_plot::region_figure(&plane, &r, "Largest stable stiffness K_max")
         .subtitle(wall_plot::loop_line(rl));
-    let lines: Vec<f64> = match out.wall_damping {
+    let mut lines: Vec<f64> = match out.wall_damping {
         Some(b) => vec![b],
         None => [band.lo, band.hi]
             .into_iter()
             .filter(|b| b.is_finite())
             .collect(),
     };
+    if let Some(rb) = &out.report.renderable {
+        mark_renderable(&mut fig, rb, &plane);
+        lines.push(rb.b_max);
+    }
     for (i, b) in lines.iter().enumerate() {
         let label = match out.wall_damping {
             Some(_) => "the given B".to_string(),
@@ -235,6 +239,21 @@ fn figure(
     Ok(fig)
 }
 
+/// The renderable band's top B_r dashed, and K_max over the band marked above it.
+fn mark_renderable(fig: &mut crate::plot::Figure, rb: &RenderableBand, plane: &Plane) {
+    let label = format!("renderable band 0 ≤ B ≤ {}", eng(rb.b_max, "Ns/m", 6));
+    wall_plot::damping_line(fig, rb.b_max, Some(label.as_str()));
+    if let (Some(k), Some(b)) = (rb.k_max, rb.b_at_k_max) {
+        wall_plot::mark_above(
+            fig,
+            (k, b),
+            (Marker::Square, palette::PURPLE),
+            &format!("K_max over the renderable band: {}", plane.describe((k, b))),
+            "renderable",
+        );
+    }
+}
+
 fn band_text(band: DampingRange) -> String {
     let hi = if band.hi.is_finite() {
         eng(band.hi, "Ns/m", 6)
@@ -274,6 +293,27 @@ fn query(a: &KmaxArgs) -> Result<KmaxQuery> {
     })
 }
 
+/// The first flag beyond the paper's loop that is given, as typed (`--velocity`, …).
+fn first_loop_flag(lp: &LoopArgs) -> Option<&'static str> {
+    [
+        (lp.plant_num.is_some(), "--plant-num"),
+        (lp.plant_den.is_some(), "--plant-den"),
+        (lp.motor_mass.is_some(), "--motor-mass"),
+        (lp.motor_damping.is_some(), "--motor-damping"),
+        (lp.handle_mass.is_some(), "--handle-mass"),
+        (
+            lp.transmission_stiffness.is_some(),
+            "--transmission-stiffness",
+        ),
+        (lp.transmission_damping.is_some(), "--transmission-damping"),
+        (lp.force_lag.is_some(), "--force-lag"),
+        (lp.velocity.is_some(), "--velocity"),
+        (lp.plant.loop_file.is_some(), "--loop"),
+    ]
+    .into_iter()
+    .find_map(|(given, flag)| given.then_some(flag))
+}
+
 /// Runs `hapstab kmax`.
 pub fn run(a: &KmaxArgs) -> Result<()> {
     if a.robust && !a.boxes.is_empty() {
@@ -285,9 +325,9 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         return crate::robust_box::run(&a.lp, &a.boxes, a.wall_damping, opts, a.json);
     }
     if a.robust {
-        if a.lp.any_loop_flag() || a.lp.plant.loop_file.is_some() {
+        if let Some(flag) = first_loop_flag(&a.lp) {
             bail!(
-                "kmax --robust without --box is the paper's loop over a box of its plant; \
+                "--robust without --box cannot be used with {flag} (it takes the paper's loop): \
                  for this loop give the box as --box NAME:LO:HI"
             );
         }

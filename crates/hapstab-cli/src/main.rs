@@ -21,6 +21,7 @@ mod passivity;
 mod passivity_quantized;
 mod plot;
 mod population;
+mod population_plot;
 mod progress;
 mod ranges;
 mod robust;

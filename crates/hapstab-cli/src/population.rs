@@ -45,6 +45,10 @@ pub struct PopulationArgs {
     /// Write the curve K, P(stable), Wilson's interval to FILE (CSV).
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
+    /// Draw P(stable) against K (with Wilson's band) and 1 − P(stable) on a log scale with
+    /// the levels' K marked: STEM.svg and STEM.png (the curve; not with --wall-stiffness).
+    #[arg(long, value_name = "STEM", conflicts_with = "wall_stiffness")]
+    plot: Option<PathBuf>,
     /// Write each operator's drawn parameters and stable K interval to FILE (CSV).
     #[arg(long, value_name = "FILE")]
     samples_csv: Option<PathBuf>,
@@ -67,6 +71,9 @@ struct PopulationOut<'a, R: Serialize> {
     input: PopulationInput<'a>,
     #[serde(flatten)]
     report: &'a R,
+    /// Files written by --plot.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    plot: Vec<PathBuf>,
 }
 
 #[derive(Serialize)]
@@ -74,7 +81,6 @@ struct PopulationInput<'a> {
     #[serde(flatten)]
     lp: LoopInput,
     population: &'a Population,
-    levels: &'a [f64],
 }
 
 /// Runs `hapstab population`.
@@ -100,7 +106,6 @@ pub fn run(a: &PopulationArgs) -> Result<()> {
     let input = PopulationInput {
         lp: rl.input(None),
         population: &pop,
-        levels: &a.levels,
     };
     if let Some(k) = a.wall_stiffness {
         let wall = hapstab::params::Wall {
@@ -117,30 +122,58 @@ pub fn run(a: &PopulationArgs) -> Result<()> {
             write_samples(path, &r.param_names, &r.draws, &flags, ["stable", "_"])?;
         }
         if a.json {
-            return print_json(&PopulationOut { input, report: &r });
+            return print_json(&PopulationOut {
+                input,
+                report: &r,
+                plot: Vec::new(),
+            });
         }
         print_loop_and_population(&rl, &pop, r.samples, r.seed);
         print_wall(&r);
         return Ok(());
     }
-    let r = stability_probability(&rl.lp, &pop, a.wall_damping, a.samples, a.seed, &a.levels)?;
+    run_curve(a, &rl, &pop, input)
+}
+
+/// The curve against K: CSV, samples, plot, then JSON or text.
+fn run_curve(
+    a: &PopulationArgs,
+    rl: &crate::model::ResolvedLoop,
+    pop: &Population,
+    input: PopulationInput<'_>,
+) -> Result<()> {
+    let r = stability_probability(&rl.lp, pop, a.wall_damping, a.samples, a.seed, &a.levels)?;
     if let Some(path) = &a.csv {
         write_curve(path, &r)?;
     }
     if let Some(path) = &a.samples_csv {
-        write_samples(
-            path,
-            &r.param_names,
-            &r.draws,
-            &r.intervals,
-            ["k_lo", "k_hi"],
-        )?;
+        let names = ["k_lo", "k_hi"];
+        write_samples(path, &r.param_names, &r.draws, &r.intervals, names)?;
     }
+    let plot = match &a.plot {
+        Some(stem) => Some(
+            crate::population_plot::figure(&r, &crate::wall_plot::loop_line(rl))
+                .save(stem)
+                .with_context(|| format!("--plot {}", stem.display()))?,
+        ),
+        None => None,
+    };
     if a.json {
-        return print_json(&PopulationOut { input, report: &r });
+        return print_json(&PopulationOut {
+            input,
+            report: &r,
+            plot: plot.map_or(Vec::new(), |p| vec![p.svg, p.png]),
+        });
     }
-    print_loop_and_population(&rl, &pop, r.samples, r.seed);
+    print_loop_and_population(rl, pop, r.samples, r.seed);
     print_levels(&r);
+    if let Some(p) = plot {
+        println!(
+            "plot written to {} and {}",
+            p.svg.display(),
+            p.png.display()
+        );
+    }
     Ok(())
 }
 

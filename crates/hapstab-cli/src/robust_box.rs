@@ -18,16 +18,7 @@ pub fn parse_side(s: &str) -> Result<BoxSide, String> {
             "expected NAME:LO:HI, e.g. arm-stiffness:0:2000 (got '{s}')"
         ));
     };
-    let param = SweepParam::ALL
-        .into_iter()
-        .find(|p| p.name() == name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = SweepParam::ALL.iter().map(|p| p.name()).collect();
-            format!(
-                "unknown parameter '{name}' in '{s}' (one of {})",
-                names.join(", ")
-            )
-        })?;
+    let param: SweepParam = name.parse().map_err(|e| format!("{e} (in '{s}')"))?;
     let num = |t: &str| -> Result<f64, String> {
         t.trim()
             .parse::<f64>()

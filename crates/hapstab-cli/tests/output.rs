@@ -129,7 +129,7 @@ fn json_cases() -> Vec<JsonCase> {
 /// A command, its arguments and the top-level keys its `--json` must print.
 type JsonCase = (&'static str, Vec<&'static str>, Vec<&'static str>);
 
-/// The verdicts and stiffness limits of [`json_cases`]: check and kmax.
+/// The verdicts and stiffness limits of [`json_cases`]: check, kmax and population.
 fn verdict_cases() -> Vec<JsonCase> {
     let results_of_check = vec![
         "stable",
@@ -172,6 +172,11 @@ fn verdict_cases() -> Vec<JsonCase> {
                 "worst_plant",
                 "k_linear_worst",
             ],
+        ),
+        (
+            "population",
+            vec!["population", "--samples", "200"],
+            vec!["samples", "k", "probability", "levels", "param_names"],
         ),
     ]
 }
@@ -252,8 +257,7 @@ fn region_cases() -> Vec<JsonCase> {
     ]
 }
 
-/// The rest of [`json_cases`]: passivity, Z-width, sweeps, the loop's tables, simulations,
-/// the frequency-response plots and the paper.
+/// The rest of [`json_cases`]: passivity to the paper.
 fn more_cases() -> Vec<JsonCase> {
     vec![
         (
@@ -337,8 +341,7 @@ fn more_cases() -> Vec<JsonCase> {
     ]
 }
 
-/// True when the JSON text holds the number -0 (written "-0.0" or "-0"), as opposed
-/// to a negative number such as -0.05.
+/// True when the JSON text holds the number -0 ("-0.0" or "-0"), not e.g. -0.05.
 fn has_negative_zero(text: &str) -> bool {
     text.match_indices("-0").any(|(i, _)| {
         let rest = text[i + 2..].trim_start_matches(['.', '0']);

@@ -82,7 +82,7 @@ fn a_bad_box_is_one_line() {
         (&["kmax", "--box", "mass:1:2"][..], "--robust"),
         (
             &["kmax", "--robust", "--velocity", "lowpass:100"][..],
-            "give the box as --box",
+            "--robust without --box cannot be used with --velocity",
         ),
     ] {
         let out = hapstab().args(args).output().unwrap();

@@ -1,7 +1,7 @@
 """Named low-pass velocity estimators against scipy: `butterworth:N:FC`, `bessel:N:FC` and
 `critically-damped:N:FC` are the `iir:` filter a user would build by hand — scipy's design
 convolved with the backward difference (1 − z⁻¹)/T — to 1e-12 in the discrete loop, and equal
-to it in K_max and in the passivity figure, for every order 1–4 and a few cut-offs and
+to it in K_max and in the passivity figure (1e-12 alike), for every order 1–4 and a few cut-offs and
 periods. The references: scipy's `butter(N, FC, fs=1/T)` and `bessel(N, FC, fs=1/T)`
 (norm='phase'), and for the critically damped filter an independent construction of N equal
 analog poles at −ω_a/√(2^{1/N} − 1), ω_a = (2/T)·tan(π·FC·T), through scipy's `bilinear_zpk`
@@ -72,9 +72,9 @@ def test_named_filter_equals_the_hand_made_iir(family, order, fc, period):
     named, iir = loops(family, order, fc, period)
     assert_same_discrete_loop(named, iir)
     kn, ki = hs.kmax(named, wall_damping=2.0).k_max, hs.kmax(iir, wall_damping=2.0).k_max
-    assert abs(kn - ki) <= 1e-11 * ki, (kn, ki)
+    assert abs(kn - ki) <= REL * ki, (kn, ki)
     pn, pi = hs.passivity(named, 0.3 * kn, 2.0), hs.passivity(iir, 0.3 * kn, 2.0)
-    assert abs(pn.b_required - pi.b_required) <= 1e-11 * pi.b_required
+    assert abs(pn.b_required - pi.b_required) <= REL * pi.b_required
 
 
 @pytest.mark.parametrize("family", FAMILIES)
