@@ -194,15 +194,19 @@ fn figure(
             .collect(),
     };
     if let Some(rb) = &out.report.renderable {
-        mark_renderable(&mut fig, rb, &plane);
         lines.push(rb.b_max);
     }
-    for (i, b) in lines.iter().enumerate() {
+    let band_lines = lines.len() - usize::from(out.report.renderable.is_some());
+    for (i, b) in lines[..band_lines].iter().enumerate() {
         let label = match out.wall_damping {
             Some(_) => "the given B".to_string(),
             None => format!("damping range {}", band_text(band)),
         };
         wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
+    }
+    // the renderable band's top after the band's lines (each spans the ranges drawn so far)
+    if let Some(rb) = &out.report.renderable {
+        mark_renderable(&mut fig, rb, &plane);
     }
     // a tag on a damping line is lifted off it (the marker stays at its point)
     let on_line = |b: f64| {
@@ -249,7 +253,7 @@ fn mark_renderable(fig: &mut crate::plot::Figure, rb: &RenderableBand, plane: &P
             (k, b),
             (Marker::Square, palette::PURPLE),
             &format!("K_max over the renderable band: {}", plane.describe((k, b))),
-            "renderable",
+            "",
         );
     }
 }

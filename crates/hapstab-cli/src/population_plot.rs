@@ -32,17 +32,17 @@ fn probability_panel(r: &StabilityProbability) -> Figure {
         .y_range(0.0, 1.02)
         .legend(Legend::Below);
     f.add(
-        Series::line(curve(&r.k, &r.probability, |p| p))
-            .color(palette::BLUE)
-            .width(2)
-            .label("P(stable): operators whose stable K interval holds K"),
-    );
-    f.add(
         Series::dashed(curve(&r.k, &r.probability_lo, |p| p))
             .color(palette::SKY)
             .label("95 % interval (Wilson)"),
     );
     f.add(Series::dashed(curve(&r.k, &r.probability_hi, |p| p)).color(palette::SKY));
+    f.add(
+        Series::line(curve(&r.k, &r.probability, |p| p))
+            .color(palette::BLUE)
+            .width(2)
+            .label("P(stable): operators whose stable K interval holds K"),
+    );
     f
 }
 
@@ -56,17 +56,17 @@ fn failure_panel(r: &StabilityProbability) -> Figure {
         .y_log10()
         .legend(Legend::Below);
     f.add(
-        Series::line(curve(&r.k, &r.probability, log))
-            .color(palette::VERMILLION)
-            .width(2)
-            .label("1 − P(stable)"),
-    );
-    f.add(
         Series::dashed(curve(&r.k, &r.probability_hi, log))
             .color(palette::ORANGE)
             .label("95 % interval (Wilson)"),
     );
     f.add(Series::dashed(curve(&r.k, &r.probability_lo, log)).color(palette::ORANGE));
+    f.add(
+        Series::line(curve(&r.k, &r.probability, log))
+            .color(palette::VERMILLION)
+            .width(2)
+            .label("1 − P(stable)"),
+    );
     let markers = [Marker::Circle, Marker::Square, Marker::Triangle];
     for (i, l) in r.levels.iter().enumerate() {
         let Some(k) = l.k else { continue };
