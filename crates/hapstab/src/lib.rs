@@ -66,6 +66,7 @@ pub mod robust;
 pub mod schur_cohn;
 pub mod simulation;
 pub mod spec;
+mod splitmix;
 pub mod stability;
 pub mod sweep;
 pub mod verdict;

@@ -23,6 +23,7 @@ use crate::error::{Error, Result};
 use crate::kmax::{KmaxQuery, kmax};
 use crate::model::Loop;
 use crate::ranges::RatioLimits;
+use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
 
 /// The default range of the arm mass m_H in kg (the typical arm's 1 kg within it).
@@ -239,20 +240,9 @@ pub fn wilson(k: usize, n: usize, z: f64) -> [f64; 2] {
     [(centre - half).max(0.0), (centre + half).min(1.0)]
 }
 
-/// SplitMix64 (Steele, Lea & Flood 2014): sample i's uniforms come from seed + i alone, so
-/// a draw does not depend on the threads.
+/// Sample i's uniforms: its own SplitMix stream, so a draw does not depend on the threads.
 fn uniforms(seed: u64, i: usize, count: usize) -> Vec<f64> {
-    let mut s = seed ^ (i as u64).wrapping_mul(0xD1B5_4A32_D192_ED03);
-    (0..count)
-        .map(|_| {
-            s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = s;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^= z >> 31;
-            (z >> 11) as f64 / (1u64 << 53) as f64
-        })
-        .collect()
+    SplitMix::stream(seed, i).point(count)
 }
 
 /// The names and values of sample i.

@@ -29,6 +29,7 @@ use crate::kmax::{KmaxQuery, kmax};
 use crate::loop_analysis::wall_units;
 use crate::model::Loop;
 use crate::params::Wall;
+use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
 use crate::verdict::{Verdict, decide};
 
@@ -180,24 +181,6 @@ fn evaluate(lp: &Loop, sides: &[BoxSide], b: f64, u: Vec<f64>) -> Result<Eval> {
         u,
         interval: r.k_interval,
     })
-}
-
-/// SplitMix64 (Steele, Lea & Flood, OOPSLA 2014): the seeded uniform stream of the samples.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn point(&mut self, n: usize) -> Vec<f64> {
-        (0..n).map(|_| self.next_f64()).collect()
-    }
 }
 
 /// Stage 1: corners, centre and seeded uniform samples, evaluated in parallel.
