@@ -246,3 +246,32 @@ fn physical_passive_region_counts_the_devices_own_damping() {
     assert!(j["passive_with_arm"].is_null(), "{j}");
     assert!((a_max(&j["passive"]) - 2.0 * 1.5e-3 / 0.1).abs() < 1e-15);
 }
+
+/// The region's K_max at B = 0, over the renderable band and over B ≥ 0 are `hapstab kmax`'s,
+/// bit for bit, for the paper's loop in physical units and for a loop beyond it.
+#[test]
+fn region_carries_the_kmax_of_the_command_line() {
+    let s = Server::start(&[]);
+    for (query, flags) in [
+        (
+            "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&delay_time=0.001",
+            vec!["kmax", "--delay", "1"],
+        ),
+        (
+            "mode=physical&device_mass=0.1&device_damping=1.5&arm_mass=1&arm_damping=6&arm_stiffness=350&period=0.001&delay_time=0&estimator=lowpass:100",
+            vec!["kmax", "--velocity", "lowpass:100"],
+        ),
+    ] {
+        let r = s.get(&format!("/api/region?{query}"));
+        assert_eq!(r.status, 200, "{}", r.body);
+        let api = &r.json()["kmax"];
+        let cli = hapstab_json(&flags);
+        for key in ["k_max", "b_at_k_max", "k_max_at_zero_damping"] {
+            assert_eq!(api[key], cli[key], "{query}: {key}");
+        }
+        assert_eq!(api["renderable"], cli["renderable"], "{query}");
+    }
+    // normalized mode has no physical K_max
+    let r = s.get("/api/region?gamma=0.001&delta=0.015&d=1");
+    assert!(r.json()["kmax"].is_null());
+}

@@ -5,12 +5,13 @@
 use std::time::Instant;
 
 use hapstab::boundary::AlphaBeta;
+use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
 use hapstab::linear::linear_alpha_limit;
 use hapstab::loop_analysis;
 use hapstab::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
 use hapstab::region::{EdgeKind, stable_region};
-use hapstab::{Loop, PolyFamily};
+use hapstab::{AffineFamily, Loop, PolyFamily};
 use serde::Serialize;
 
 use super::PlantOut;
@@ -122,8 +123,33 @@ pub struct RegionOut {
     /// operator only.
     pub passive_with_arm: Option<PassiveOut>,
     pub robust: Option<RobustOut>,
+    /// Physical mode and loops beyond the paper's: K_max at B = 0, over the renderable band
+    /// and over B ≥ 0 in N/m and Ns/m (the library's answer, as `hapstab kmax --json`).
+    pub kmax: Option<KmaxReport>,
     pub warnings: Vec<String>,
     pub server_ms: Timing,
+}
+
+/// The design K_max answer of a loop (`hapstab kmax` without a damping).
+fn design_kmax(lp: &Loop, fam: &AffineFamily) -> Result<KmaxReport, ApiError> {
+    kmax(lp, fam, KmaxQuery::Design(NoiseModel::default())).map_err(lib_error)
+}
+
+/// The paper's loop of a physical query: the device held by the arm (eq. 1), as the
+/// command line forms it.
+fn paper_loop(p: &PhysicalSpec, d: usize) -> Result<Loop, ApiError> {
+    let device = hapstab::Device {
+        mass: p.device_mass,
+        damping: p.device_damping,
+    };
+    let arm = hapstab::Arm {
+        mass: p.arm_mass,
+        damping: p.arm_damping,
+        stiffness: p.arm_stiffness,
+    };
+    let plant = hapstab::Plant::held_device(device, arm).map_err(lib_error)?;
+    let delay = hapstab::Delay::samples(d).map_err(lib_error)?;
+    Loop::new(plant, p.period, delay, hapstab::VelocityEstimator::Backward).map_err(lib_error)
 }
 
 /// Estimated cost of the nominal part of `/api/region`: the exact polygons and, when they
@@ -218,6 +244,7 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
         passive,
         passive_with_arm,
         robust: None,
+        kmax: Some(design_kmax(&g.lp, &g.family)?),
         warnings: Vec::new(),
         server_ms: Timing {
             region: ms,
@@ -294,6 +321,14 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         None => None,
     };
     let t_robust = t1.elapsed().as_secs_f64() * 1e3;
+    let kmax = match &spec.physical {
+        Some(p) => {
+            let lp = paper_loop(p, spec.d)?;
+            let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
+            Some(design_kmax(&lp, &fam)?)
+        }
+        None => None,
+    };
     Ok(RegionOut {
         params: PlantOut::from(spec),
         physical: spec.physical,
@@ -303,6 +338,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         passive,
         passive_with_arm,
         robust,
+        kmax,
         warnings,
         server_ms: Timing {
             region: t_region,
