@@ -254,6 +254,38 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
     })
 }
 
+/// The robustly stable region over the query's γ range (Section VIII).
+fn robust_out(
+    rr: super::region_request::RobustReq,
+    delta: f64,
+    d: usize,
+) -> Result<RobustOut, ApiError> {
+    let opts = RobustOptions {
+        gamma_samples: rr.gamma_samples,
+        beta_samples: rr.beta_samples,
+        refine_gamma: rr.refine,
+        refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
+    };
+    let r = robust_region(delta, d, rr.lo, rr.hi, opts).map_err(lib_error)?;
+    Ok(RobustOut {
+        gamma_lo: r.gamma_lo,
+        gamma_hi: r.gamma_hi,
+        arm_stiffness_lo: rr.arm_stiffness.map(|k| k[0]),
+        arm_stiffness_hi: rr.arm_stiffness.map(|k| k[1]),
+        gamma_samples: rr.gamma_samples,
+        beta_samples: rr.beta_samples,
+        refined: rr.refine,
+        method: "hapstab::nyquist::robust_region: intersection of exact per-β stable α-intervals over uniform γ samples",
+        polygon: r.polygon.iter().map(ab).collect(),
+        alpha_max: r.alpha_max,
+        beta_at_alpha_max: r.beta_at_alpha_max,
+        area: r.area,
+        empty: r.empty,
+        multiple_intervals: r.multiple_intervals,
+        degenerate_gammas: r.degenerate_gammas,
+    })
+}
+
 /// Computes the answer of `/api/region`.
 pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     if let Some(g) = &req.spec.general {
@@ -291,44 +323,20 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     });
     let (passive, passive_with_arm) = passive_regions(spec)?;
     let t1 = Instant::now();
-    let robust = match req.robust {
-        Some(rr) => {
-            let opts = RobustOptions {
-                gamma_samples: rr.gamma_samples,
-                beta_samples: rr.beta_samples,
-                refine_gamma: rr.refine,
-                refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
-            };
-            let r = robust_region(delta, spec.d, rr.lo, rr.hi, opts).map_err(lib_error)?;
-            Some(RobustOut {
-                gamma_lo: r.gamma_lo,
-                gamma_hi: r.gamma_hi,
-                arm_stiffness_lo: rr.arm_stiffness.map(|k| k[0]),
-                arm_stiffness_hi: rr.arm_stiffness.map(|k| k[1]),
-                gamma_samples: rr.gamma_samples,
-                beta_samples: rr.beta_samples,
-                refined: rr.refine,
-                method: "hapstab::nyquist::robust_region: intersection of exact per-β stable α-intervals over uniform γ samples",
-                polygon: r.polygon.iter().map(ab).collect(),
-                alpha_max: r.alpha_max,
-                beta_at_alpha_max: r.beta_at_alpha_max,
-                area: r.area,
-                empty: r.empty,
-                multiple_intervals: r.multiple_intervals,
-                degenerate_gammas: r.degenerate_gammas,
-            })
-        }
-        None => None,
-    };
+    let robust = req
+        .robust
+        .map(|rr| robust_out(rr, delta, spec.d))
+        .transpose()?;
     let t_robust = t1.elapsed().as_secs_f64() * 1e3;
-    let kmax = match &spec.physical {
-        Some(p) => {
+    let kmax = spec
+        .physical
+        .as_ref()
+        .map(|p| -> Result<KmaxReport, ApiError> {
             let lp = paper_loop(p, spec.d)?;
             let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
-            Some(design_kmax(&lp, &fam)?)
-        }
-        None => None,
-    };
+            design_kmax(&lp, &fam)
+        })
+        .transpose()?;
     Ok(RegionOut {
         params: PlantOut::from(spec),
         physical: spec.physical,
