@@ -201,7 +201,7 @@ pub fn wall_probability(
         });
     }
     let params = param_list(pop);
-    loop_of(lp, &params, &draw(pop, seed, 0))?;
+    applies(lp, pop, &params, seed)?;
     let draws: Vec<Vec<f64>> = (0..samples).map(|i| draw(pop, seed, i)).collect();
     let verdicts: Vec<bool> = draws
         .par_iter()
@@ -288,6 +288,22 @@ fn loop_of(lp: &Loop, params: &[SweepParam], values: &[f64]) -> Result<Loop> {
         .try_fold(lp.clone(), |l, (p, &v)| p.apply(&l, v))
 }
 
+/// Every drawn parameter must apply to this loop before the draw; the default population
+/// needs a loop with an arm.
+fn applies(lp: &Loop, pop: &Population, params: &[SweepParam], seed: u64) -> Result<()> {
+    match (loop_of(lp, params, &draw(pop, seed, 0)), pop) {
+        (Ok(_), _) => Ok(()),
+        (Err(e), Population::SectionIv) => Err(Error::Invalid {
+            name: "population",
+            reason: format!(
+                "of Section IV draws the arm's m_H, b_H and k_H, which this loop cannot take \
+                 ({e}); give the distributions of its own parameters instead"
+            ),
+        }),
+        (Err(e), _) => Err(e),
+    }
+}
+
 /// One operator's stable K interval at B in N/m (NaN, NaN where none is).
 fn interval(lp: &Loop, params: &[SweepParam], values: &[f64], b: f64) -> Result<[f64; 2]> {
     let l = loop_of(lp, params, values)?;
@@ -314,7 +330,7 @@ pub fn stability_probability(
     check(pop, b, samples, levels)?;
     let params = param_list(pop);
     // every parameter must apply to this loop before the draw
-    loop_of(lp, &params, &draw(pop, seed, 0))?;
+    applies(lp, pop, &params, seed)?;
     let draws: Vec<Vec<f64>> = (0..samples).map(|i| draw(pop, seed, i)).collect();
     let intervals: Vec<[f64; 2]> = draws
         .par_iter()

@@ -124,4 +124,18 @@ fn bad_input_names_the_parameter() {
     assert!(e.unwrap_err().to_string().contains("level"));
     let e = stability_probability(&lp, &Population::SectionIv, 0.0, 0, 1, &[0.9]);
     assert!(e.unwrap_err().to_string().contains("samples"));
+    // a device without an arm cannot take the default population of arms
+    let bare = Plant::mass_spring_damper(hapstab::Effective::new(0.1, 1.5, 0.0).unwrap()).unwrap();
+    let bare = Loop::new(
+        bare,
+        1e-3,
+        Delay::samples(0).unwrap(),
+        VelocityEstimator::Backward,
+    );
+    let e = stability_probability(&bare.unwrap(), &Population::SectionIv, 0.0, 10, 1, &[0.9]);
+    assert!(
+        e.unwrap_err()
+            .to_string()
+            .contains("population of Section IV draws the arm")
+    );
 }
