@@ -97,11 +97,7 @@ pub fn run(a: &PopulationArgs) -> Result<()> {
         }
     };
     let fam = hapstab::AffineFamily::of_loop(&rl.lp)?;
-    let one = hapstab::limits::interval_cost(fam.degree());
-    let cost = hapstab::limits::Cost {
-        seconds: 4.0 * one.seconds * a.samples as f64,
-        memory: 96.0 * a.samples as f64,
-    };
+    let cost = hapstab::limits::population_cost(fam.degree(), a.samples);
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "the population")?;
     let input = PopulationInput {
         lp: rl.input(None),

@@ -164,15 +164,13 @@ fn query(
             let d = NoiseModel::default();
             let dx = position_resolution.unwrap_or(d.position_resolution);
             let f = force_noise.unwrap_or(d.force_noise);
-            for (name, v) in [("position_resolution", dx), ("force_noise", f)] {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(bad(
-                        name,
-                        format!("must be a positive finite number (got {v})"),
-                    ));
-                }
-            }
-            Ok(KmaxQuery::Design(NoiseModel::new(dx, f).py()?))
+            let keywords = [
+                ("position resolution", "position_resolution"),
+                ("force noise", "force_noise"),
+            ];
+            Ok(KmaxQuery::Design(
+                NoiseModel::new(dx, f).py_with(&keywords)?,
+            ))
         }
     }
 }

@@ -140,11 +140,7 @@ pub fn stability_probability(
     let pop = population(distributions)?;
     let b = finite("wall_damping", wall_damping)?;
     let fam = r#loop.family()?;
-    let one = hapstab::limits::interval_cost(fam.degree());
-    let cost = hapstab::limits::Cost {
-        seconds: 4.0 * one.seconds * samples as f64,
-        memory: 96.0 * samples as f64,
-    };
+    let cost = hapstab::limits::population_cost(fam.degree(), samples);
     crate::budget::check_loop(cost, &r#loop.lp, &fam, "the population")?;
     let lp = &r#loop.lp;
     let own = [

@@ -433,6 +433,16 @@ pub fn robust_box_cost(n: usize, params: usize, opts: &crate::robust::RobustOpti
     }
 }
 
+/// Cost of P(stable) over `samples` operators ([`crate::population`]) for p(z) of degree n:
+/// each operator one exact stable interval with its discretization (counted as three more),
+/// and the draws and intervals kept.
+pub fn population_cost(n: usize, samples: usize) -> Cost {
+    Cost {
+        seconds: 4.0 * interval_cost(n).seconds * samples as f64,
+        memory: 96.0 * samples as f64,
+    }
+}
+
 /// Cost of the stability margins of one stable wall ([`crate::margins::margins`]) for p(z)
 /// of degree n whose parts without the plant's pure delay have degree `core`: the phase
 /// margin and the two gain margins scan [`MARGIN_GRID_PER_DEGREE`]·(n + 1) frequencies, each

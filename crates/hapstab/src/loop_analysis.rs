@@ -72,10 +72,21 @@ pub fn k_max_within(
     b_lo: f64,
     b_hi: f64,
 ) -> Result<Option<ConfirmedMax>> {
-    let r = region(lp, fam)?;
+    k_max_within_region(lp, fam, &region(lp, fam)?, b_lo, b_hi)
+}
+
+/// [`k_max_within`] on the loop's region already computed ([`region`]), for several bands of
+/// one loop.
+pub fn k_max_within_region(
+    lp: &Loop,
+    fam: &AffineFamily,
+    r: &StableRegion,
+    b_lo: f64,
+    b_hi: f64,
+) -> Result<Option<ConfirmedMax>> {
     match paper_family(lp)? {
-        Some(pf) => alpha_max_within(&pf, &r, b_lo, b_hi),
-        None => alpha_max_within(fam, &r, b_lo, b_hi),
+        Some(pf) => alpha_max_within(&pf, r, b_lo, b_hi),
+        None => alpha_max_within(fam, r, b_lo, b_hi),
     }
 }
 
