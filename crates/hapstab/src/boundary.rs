@@ -22,6 +22,7 @@ use rayon::prelude::*;
 use crate::bracket::sign_change;
 use serde::Serialize;
 
+use crate::cayley::CayleyFamily;
 use crate::closed_loop::AffineFamily;
 
 /// A point of the wall plane in wall units (a, b); for the paper's loop (α, β).
@@ -160,11 +161,19 @@ pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<AlphaBeta> {
     (p.alpha.is_finite() && p.beta.is_finite()).then_some(p)
 }
 
-/// da/dθ along the curve, analytically (for the largest stable stiffness on an arc).
+/// da/dθ along the curve, analytically (for the largest stable stiffness on an arc); near
+/// z = 1 in the shifted variable.
 pub fn dalpha_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
     let z = Complex64::from_polar(1.0, theta);
     let iz = Complex64::i() * z;
-    let [(p0, d0), (pk, dk), (pb, db)] = fam.parts_with_derivative(z);
+    // near z = 1 from the shifted form (w = e^{iθ} − 1 without cancellation), as the curve
+    // itself is evaluated there: the z-coefficients place no stationary point at θ ≪ 1
+    let [(p0, d0), (pk, dk), (pb, db)] = if theta < crate::closed_loop::SHIFTED_THETA {
+        let h = (0.5 * theta).sin();
+        fam.parts_shifted_with_derivative(Complex64::new(-2.0 * h * h, theta.sin()))
+    } else {
+        fam.parts_with_derivative(z)
+    };
     let (d0, dk, db) = (iz * d0, iz * dk, iz * db);
     let f = (p0 * pb.conj()).im;
     let g = (pk.conj() * pb).im;
@@ -228,7 +237,7 @@ pub struct LineCrossing {
 
 /// Im(Q conj D) with Q = P0 + from·(PK, PB), D = dir·(PK, PB) at z = e^{iθ} (the shifted
 /// form near z = 1): zero where a real t puts a root there; and that t = −Re(Q conj D)/|D|².
-fn crossing_function(fam: &AffineFamily, line: &WallLine, theta: f64) -> (f64, f64) {
+pub(crate) fn crossing_function(fam: &AffineFamily, line: &WallLine, theta: f64) -> (f64, f64) {
     crossing_from_parts(fam.parts_on_circle(theta), line)
 }
 
@@ -245,7 +254,7 @@ fn crossing_from_parts(
 }
 
 /// d/dθ of Im(Q conj D) at z = e^{iθ} (d/dθ = iz·d/dz), from the shifted form near z = 1.
-fn crossing_slope(fam: &AffineFamily, line: &WallLine, theta: f64) -> f64 {
+pub(crate) fn crossing_slope(fam: &AffineFamily, line: &WallLine, theta: f64) -> f64 {
     let z = Complex64::from_polar(1.0, theta);
     let parts = if theta < crate::closed_loop::SHIFTED_THETA {
         let h = (0.5 * theta).sin();
@@ -290,7 +299,7 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
 }
 
 /// The t on a root line where the wall line meets it (None when parallel).
-fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
+pub(crate) fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
     let t = -l.value(line.from) / (line.dir.alpha * l.pk + line.dir.beta * l.pb);
     t.is_finite().then_some(t)
 }
@@ -302,6 +311,15 @@ fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
 /// is located and, if it crosses zero, both zeros on either side of it are kept (two
 /// crossings closer than a sample, as a thin region of a lightly damped loop makes them).
 pub fn line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> {
+    match CayleyFamily::new(fam) {
+        Some(cf) => crate::line_decomposition::line_crossings(fam, &cf, line),
+        None => scanned_line_crossings(fam, line),
+    }
+}
+
+/// [`line_crossings`] from the θ scan alone (the method for loops above
+/// [`crate::cayley::MAX_DEGREE`], and the independent check of the Cayley crossings).
+pub fn scanned_line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCrossing> {
     let ts = scan_thetas(fam);
     let fs: Vec<f64> = ts
         .iter()
@@ -485,7 +503,10 @@ pub fn stable_alpha_intervals_tabulated(
 
 /// The stable intervals of t on a wall line (see [`stable_alpha_intervals`], Section V).
 pub fn stable_line_intervals(fam: &AffineFamily, line: &WallLine) -> Vec<Interval> {
-    stable_between(fam, line, &line_crossings(fam, line))
+    match CayleyFamily::new(fam) {
+        Some(cf) => crate::line_decomposition::stable_intervals(fam, &cf, line),
+        None => stable_between(fam, line, &line_crossings(fam, line)),
+    }
 }
 
 /// The stable intervals of t on a wall line from its crossings (as returned by
@@ -561,13 +582,11 @@ mod tests {
             let table = CircleTable::new(&pf);
             for b in [-0.3, 0.0, 0.01, 0.4, 1.5] {
                 let line = WallLine::stiffness_axis(b);
-                assert_eq!(
-                    line_crossings_tabulated(&pf, &table, &line),
-                    line_crossings(&pf, &line)
-                );
+                let scanned = scanned_line_crossings(&pf, &line);
+                assert_eq!(line_crossings_tabulated(&pf, &table, &line), scanned);
                 assert_eq!(
                     stable_alpha_intervals_tabulated(&pf, &table, b),
-                    stable_alpha_intervals(&pf, b)
+                    stable_between(&pf, &line, &scanned)
                 );
             }
         }
