@@ -19,11 +19,9 @@ use serde::Serialize;
 use crate::boundary::Interval;
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
-use crate::loop_analysis::{
-    damping_units, k_max_at_damping, k_max_within_region, linear_k, region,
-};
+use crate::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
 use crate::model::Loop;
-use crate::region::{ConfirmedMax, StableRegion};
+use crate::region::ConfirmedMax;
 
 /// Default position resolution Δ at the handle, in m (10 µm: a desktop haptic device's
 /// encoder step referred to the handle).
@@ -202,21 +200,11 @@ pub fn renderable_band(
     fam: &AffineFamily,
     noise: NoiseModel,
 ) -> Result<Option<RenderableBand>> {
-    band_over(lp, fam, &region(lp, fam)?, noise)
-}
-
-/// [`renderable_band`] on the loop's region already computed.
-fn band_over(
-    lp: &Loop,
-    fam: &AffineFamily,
-    r: &StableRegion,
-    noise: NoiseModel,
-) -> Result<Option<RenderableBand>> {
     let Some(gain) = velocity_noise_gain(lp) else {
         return Ok(None);
     };
     let b_max = noise.force_noise * 12f64.sqrt() / (noise.position_resolution * gain);
-    let best = k_max_within_region(lp, fam, r, 0.0, damping_units(lp, fam, b_max)?)?;
+    let best = k_max_within(lp, fam, 0.0, damping_units(lp, fam, b_max)?)?;
     let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
     Ok(Some(RenderableBand {
         noise,
@@ -234,12 +222,10 @@ fn band_over(
 pub fn kmax(lp: &Loop, fam: &AffineFamily, query: KmaxQuery) -> Result<KmaxReport> {
     match query {
         KmaxQuery::AtDamping(b) => at_damping(lp, fam, b),
-        KmaxQuery::Band { lo, hi } => within(lp, fam, &region(lp, fam)?, lo, hi),
+        KmaxQuery::Band { lo, hi } => within(lp, fam, lo, hi),
         KmaxQuery::Design(noise) => {
-            // one region for both bands
-            let r = region(lp, fam)?;
-            let mut report = within(lp, fam, &r, 0.0, f64::INFINITY)?;
-            report.renderable = band_over(lp, fam, &r, noise)?;
+            let mut report = within(lp, fam, 0.0, f64::INFINITY)?;
+            report.renderable = renderable_band(lp, fam, noise)?;
             Ok(report)
         }
     }
@@ -275,7 +261,7 @@ fn at_damping(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<KmaxReport> {
     })
 }
 
-fn within(lp: &Loop, fam: &AffineFamily, r: &StableRegion, lo: f64, hi: f64) -> Result<KmaxReport> {
+fn within(lp: &Loop, fam: &AffineFamily, lo: f64, hi: f64) -> Result<KmaxReport> {
     let units = |b: f64| -> Result<f64> {
         if b.is_finite() {
             damping_units(lp, fam, b)
@@ -283,7 +269,7 @@ fn within(lp: &Loop, fam: &AffineFamily, r: &StableRegion, lo: f64, hi: f64) -> 
             Ok(b)
         }
     };
-    let best: Option<ConfirmedMax> = k_max_within_region(lp, fam, r, units(lo)?, units(hi)?)?;
+    let best: Option<ConfirmedMax> = k_max_within(lp, fam, units(lo)?, units(hi)?)?;
     let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
     let at_zero = k_max_at_damping(lp, fam, 0.0)?;
     let supremum = best.filter(|p| !p.attained);

@@ -12,6 +12,7 @@
 use crate::boundary::{Interval, stable_alpha_intervals};
 use crate::closed_loop::{AffineFamily, PolyFamily};
 use crate::error::Result;
+use crate::kmax_band::{BandMax, k_max_band};
 use crate::model::{Loop, PlantModel};
 use crate::params::{Physical, Sampling, Wall};
 use crate::region::{ConfirmedMax, StableRegion, alpha_max_within, stable_region};
@@ -62,17 +63,26 @@ pub fn k_max_at_damping(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<Option<
 }
 
 /// K_max with the damping restricted to the band b_lo ≤ b ≤ b_hi (wall units; either end may
-/// be infinite), and the damping that reaches it: the region's α_max when its damping lies in
-/// the band, else the best of the region's arcs and the exact intervals on the band's edges
-/// ([`alpha_max_within`]), confirmed by the exact intervals and the verdict beside it (a
-/// supremum says so and where it is approached). None when nothing in the band is stable.
+/// be infinite), and the damping that reaches it, confirmed by the exact intervals and the
+/// verdict beside it (a supremum says so and where it is approached): from the
+/// D-decomposition's candidates without the region's polygon ([`k_max_band`]), and from the
+/// region ([`alpha_max_within`]) where those do not settle it. None when nothing in the band
+/// is stable.
 pub fn k_max_within(
     lp: &Loop,
     fam: &AffineFamily,
     b_lo: f64,
     b_hi: f64,
 ) -> Result<Option<ConfirmedMax>> {
-    k_max_within_region(lp, fam, &region(lp, fam)?, b_lo, b_hi)
+    let fast = match paper_family(lp)? {
+        Some(pf) => k_max_band(&pf, b_lo, b_hi),
+        None => k_max_band(fam, b_lo, b_hi),
+    };
+    match fast {
+        BandMax::Max(m) => Ok(Some(m)),
+        BandMax::NoneStable => Ok(None),
+        BandMax::Undecided => k_max_within_region(lp, fam, &region(lp, fam)?, b_lo, b_hi),
+    }
 }
 
 /// [`k_max_within`] on the loop's region already computed ([`region`]), for several bands of

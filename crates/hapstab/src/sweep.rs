@@ -11,6 +11,7 @@ use serde::Serialize;
 use crate::boundary::stable_alpha_intervals;
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite};
+use crate::kmax_band::{BandMax, k_max_band};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
 use crate::params::{Arm, Effective};
 use crate::passivity::{
@@ -476,20 +477,27 @@ fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
                 .reduce(f64::max)
                 .map(|a| (a, beta))
         }
-        KmaxAt::Overall => {
-            let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
-            r.alpha_max
-                .is_finite()
-                .then_some((r.alpha_max, r.beta_at_alpha_max))
-        }
+        KmaxAt::Overall => band_kmax(&fam, f64::NEG_INFINITY, f64::INFINITY)?,
         KmaxAt::Band { lo, hi } => {
-            let r = stable_region_with(&fam, SWEEP_REL_TOL)?;
             let (_, b0) = fam.to_units(0.0, lo);
             let (_, b1) = fam.to_units(0.0, hi);
-            alpha_max_within(&fam, &r, b0, b1)?.map(|p| (p.alpha, p.beta))
+            band_kmax(&fam, b0, b1)?
         }
     };
     Ok(best.map(|(a, b)| fam.to_physical(a, b)))
+}
+
+/// K_max over a damping band in wall units and its damping: from the D-decomposition's
+/// candidates ([`k_max_band`]), else from the region at the sweep's tolerance.
+fn band_kmax(fam: &AffineFamily, b0: f64, b1: f64) -> Result<Option<(f64, f64)>> {
+    Ok(match k_max_band(fam, b0, b1) {
+        BandMax::Max(p) => Some((p.alpha, p.beta)),
+        BandMax::NoneStable => None,
+        BandMax::Undecided => {
+            let r = stable_region_with(fam, SWEEP_REL_TOL)?;
+            alpha_max_within(fam, &r, b0, b1)?.map(|p| (p.alpha, p.beta))
+        }
+    })
 }
 
 /// The largest passive K for a device damping b under the same damping constraint; the
