@@ -20,7 +20,8 @@
 //! ([`crate::region::alpha_max_within`]).
 
 use crate::boundary::{
-    AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, minus_one_line, plus_one_line,
+    AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, dalpha_dtheta, minus_one_line,
+    plus_one_line,
 };
 use crate::cayley::CayleyFamily;
 use crate::closed_loop::AffineFamily;
@@ -57,58 +58,177 @@ pub enum BandMax {
     Undecided,
 }
 
-/// K_max over b_lo ≤ b ≤ b_hi (wall units; b_hi may be +∞) from the D-decomposition's
-/// candidates (module doc).
+/// K_max over b_lo ≤ b ≤ b_hi (wall units; either end may be infinite) from the
+/// D-decomposition's candidates (module doc).
 pub fn k_max_band(fam: &AffineFamily, b_lo: f64, b_hi: f64) -> BandMax {
     let Some(cf) = CayleyFamily::new(fam) else {
         return BandMax::Undecided;
     };
-    let inside = |b: f64| b >= b_lo && b <= b_hi;
-    let mut edges: Vec<AlphaBeta> = Vec::new();
-    for b in [b_lo, b_hi].into_iter().filter(|b| b.is_finite()) {
-        if let Some(a) = top(fam, &cf, b) {
-            edges.push(AlphaBeta { alpha: a, beta: b });
-        }
+    let band = (b_lo, b_hi);
+    match start(fam, &cf, band) {
+        Start::Found(found) => ascend(fam, &cf, found, band),
+        Start::NoneStable => BandMax::NoneStable,
+        Start::Undecided => BandMax::Undecided,
     }
-    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, &cf)
+}
+
+/// Where the ascent starts.
+enum Start {
+    Found(Found),
+    NoneStable,
+    Undecided,
+}
+
+/// The highest top on the band's edges (or at B = 0 in a band without edges), else the
+/// highest candidate of the curve that the region reaches.
+fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Start {
+    let mut dampings: Vec<f64> = [b_lo, b_hi].into_iter().filter(|b| b.is_finite()).collect();
+    if dampings.is_empty() {
+        dampings.push(0.0);
+    }
+    let edge = dampings
         .into_iter()
-        .filter(|p| inside(p.beta) && p.alpha.is_finite())
-        .collect();
-    cands.sort_by(|p, q| q.alpha.total_cmp(&p.alpha));
-    let best = edges.into_iter().max_by(|p, q| p.alpha.total_cmp(&q.alpha));
-    let Some(found) = highest_candidate(fam, &cf, &cands, best, (b_lo, b_hi)) else {
-        return if cands.is_empty() {
-            BandMax::NoneStable
-        } else {
-            BandMax::Undecided
-        };
-    };
-    let mut found = found;
+        .filter_map(|b| top(fam, cf, b).map(|a| AlphaBeta { alpha: a, beta: b }))
+        .max_by(|p, q| p.alpha.total_cmp(&q.alpha));
+    if let Some(p) = edge {
+        return Start::Found(Found {
+            alpha: p.alpha,
+            beta: p.beta,
+        });
+    }
+    let cands = sorted_candidates(fam, cf, (b_lo, b_hi));
+    match highest_candidate(fam, cf, &cands, None, (b_lo, b_hi)) {
+        Some(f) => Start::Found(f),
+        None if cands.is_empty() => Start::NoneStable,
+        None => Start::Undecided,
+    }
+}
+
+/// From a stable top upward, cap by cap: the certificate's stable damping interval above the
+/// current answer is a cap of the region, whose top ([`cap_top`]) is the next answer once the
+/// point test confirms it; where a cap's top is not found or not confirmed, the curve's
+/// candidates above the current answer ([`highest_candidate`]) give the next.
+fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f64)) -> BandMax {
+    let mut cands: Option<Vec<AlphaBeta>> = None;
     for _ in 0..CAP_ROUNDS {
-        match certificate(fam, &cf, found.alpha, (b_lo, b_hi)) {
+        let cap = match certificate(fam, cf, found.alpha, band) {
             Certificate::Holds => {
-                return confirmed(fam, found, (b_lo, b_hi))
-                    .map_or(BandMax::Undecided, BandMax::Max);
+                return confirmed(fam, found, band).map_or(BandMax::Undecided, BandMax::Max);
             }
-            Certificate::Other => return BandMax::Undecided,
-            Certificate::Cap { alpha, ends } => {
-                let Some(c) = cap_corner(fam, alpha, ends) else {
-                    return BandMax::Undecided;
-                };
-                match top(fam, &cf, c.beta) {
-                    Some(a) if a >= c.alpha - ATTAINED_REL * c.alpha.abs() => {
-                        found = Found {
-                            alpha: a,
-                            beta: c.beta,
-                            attained: true,
-                        };
-                    }
-                    _ => return BandMax::Undecided,
-                }
-            }
+            Certificate::Other => None,
+            Certificate::Cap { alpha, ends } => cap_top(fam, alpha, ends),
+        };
+        let inside = |b: f64| b >= band.0 && b <= band.1;
+        let next = cap
+            .filter(|c| c.alpha > found.alpha && inside(c.beta))
+            .map(|c| Found {
+                alpha: c.alpha,
+                beta: c.beta,
+            })
+            .filter(|&f| attained(fam, f))
+            .or_else(|| {
+                let list = cands.get_or_insert_with(|| sorted_candidates(fam, cf, band));
+                highest_candidate(fam, cf, list, Some(found), band)
+                    .filter(|f| f.alpha > found.alpha)
+            });
+        match next {
+            Some(f) => found = f,
+            None => return BandMax::Undecided,
         }
     }
     BandMax::Undecided
+}
+
+/// The point test finds the wall just below a top stable and the one just above not.
+fn attained(fam: &AffineFamily, f: Found) -> bool {
+    let delta = CONFIRM_REL * f.alpha.abs();
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    let mut inside = |a: f64| inside_unit_circle(fam, a, f.beta, &mut coeffs) == Some(true);
+    delta > 0.0 && inside(f.alpha - delta) && !inside(f.alpha + delta)
+}
+
+/// The curve's candidates inside the band, highest first.
+fn sorted_candidates(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    (b_lo, b_hi): (f64, f64),
+) -> Vec<AlphaBeta> {
+    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf)
+        .into_iter()
+        .filter(|p| p.beta >= b_lo && p.beta <= b_hi && p.alpha.is_finite())
+        .collect();
+    cands.sort_by(|p, q| q.alpha.total_cmp(&p.alpha));
+    cands
+}
+
+/// The top of a cap whose ends at stiffness a lie at angles θ1, θ2 (0 or π on the z = ±1
+/// lines): the smooth top of one arc, the corner where two arcs meet, where an arc meets a
+/// line, or where the two lines meet.
+fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Option<AlphaBeta> {
+    let on_curve = |t: f64| t > 0.0 && t < std::f64::consts::PI;
+    let line_at = |t: f64| {
+        if t == 0.0 {
+            plus_one_line(fam)
+        } else {
+            minus_one_line(fam)
+        }
+    };
+    let [(b1, t1), (b2, t2)] = ends;
+    match (on_curve(t1), on_curve(t2)) {
+        (true, true) => smooth_top(fam, a, (b1, b2), (t1, t2)).or_else(|| cap_corner(fam, a, ends)),
+        (true, false) => arc_meets_line(fam, a, t1, &line_at(t2)?),
+        (false, true) => arc_meets_line(fam, a, t2, &line_at(t1)?),
+        (false, false) => lines_meet(&line_at(t1)?, &line_at(t2)?),
+    }
+}
+
+/// Samples of a(θ) between a cap's ends that must all lie above its level for the cap to be
+/// one arc's smooth top.
+const ARC_SAMPLES: usize = 8;
+
+/// The cap's top where one arc of the curve runs from one end over a stationary point of a
+/// to the other, staying above the cap's level: da/dθ = 0 by Brent's method between the ends.
+fn smooth_top(
+    fam: &AffineFamily,
+    a: f64,
+    (b1, b2): (f64, f64),
+    (t1, t2): (f64, f64),
+) -> Option<AlphaBeta> {
+    let (lo, hi) = (t1.min(t2), t1.max(t2));
+    let slope = |t: f64| dalpha_dtheta(fam, t);
+    if !(slope(lo) > 0.0 && slope(hi) < 0.0) {
+        return None;
+    }
+    let above = (1..ARC_SAMPLES).all(|j| {
+        let t = lo + (hi - lo) * j as f64 / ARC_SAMPLES as f64;
+        curve_point(fam, t).is_some_and(|p| p.alpha >= a)
+    });
+    if !above {
+        return None;
+    }
+    let p = curve_point(fam, crate::bracket::sign_change(lo, hi, slope))?;
+    (p.alpha >= a && p.beta >= b1.min(b2) && p.beta <= b1.max(b2)).then_some(p)
+}
+
+/// Where the arc through θ at stiffness a meets a z = ±1 line, by the secant method on the
+/// line's value along the curve.
+fn arc_meets_line(fam: &AffineFamily, a: f64, theta: f64, l: &RootLine) -> Option<AlphaBeta> {
+    let value = |t: f64| curve_point(fam, t).map(|p| l.value(p));
+    let h = 1e-6 * theta.min(std::f64::consts::PI - theta);
+    let (mut t0, mut t1) = (theta, theta + h);
+    let (mut v0, mut v1) = (value(t0)?, value(t1)?);
+    for _ in 0..CAP_STEPS {
+        let t2 = t1 - v1 * (t1 - t0) / (v1 - v0);
+        if !(t2 > 0.0 && t2 < std::f64::consts::PI) {
+            return None;
+        }
+        (t0, v0) = (t1, v1);
+        (t1, v1) = (t2, value(t2)?);
+        if (t1 - t0).abs() <= SETTLED * t1 || v1 == 0.0 {
+            return curve_point(fam, t1).filter(|p| p.alpha >= a);
+        }
+    }
+    None
 }
 
 /// Caps closed before the search gives up (each a corner where the curve crosses itself
@@ -211,28 +331,23 @@ fn highest(ivs: &[Interval]) -> Option<f64> {
         .reduce(f64::max)
 }
 
-/// A found top: the wall and whether the stable intervals at its damping reach it.
+/// A found top of the region (attained, or a corner it closes on).
 #[derive(Debug, Clone, Copy)]
 struct Found {
     alpha: f64,
     beta: f64,
-    attained: bool,
 }
 
-/// The highest of the edges' tops and the candidates that the region reaches (attained) or
-/// closes on (a supremum), taking candidates from the highest down.
+/// The highest of a floor (a top found already) and the candidates that the region reaches
+/// (attained) or closes on (a supremum), taking candidates from the highest down.
 fn highest_candidate(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     cands: &[AlphaBeta],
-    edge: Option<AlphaBeta>,
+    floor: Option<Found>,
     band: (f64, f64),
 ) -> Option<Found> {
-    let mut best = edge.map(|p| Found {
-        alpha: p.alpha,
-        beta: p.beta,
-        attained: true,
-    });
+    let mut best = floor;
     let mut coeffs = vec![0.0; fam.degree() + 1];
     for c in cands {
         if best.is_some_and(|b| c.alpha <= b.alpha) {
@@ -246,7 +361,6 @@ fn highest_candidate(
             best = Some(Found {
                 alpha: a,
                 beta: c.beta,
-                attained: true,
             });
         }
         if at.is_some_and(|a| a >= c.alpha - ATTAINED_REL * c.alpha.abs()) {
@@ -256,7 +370,6 @@ fn highest_candidate(
             return Some(Found {
                 alpha: c.alpha,
                 beta: c.beta,
-                attained: false,
             });
         }
     }
@@ -288,10 +401,10 @@ fn closes_on(fam: &AffineFamily, cf: &CayleyFamily, c: AlphaBeta, band: (f64, f6
 enum Certificate {
     /// No stable wall: K_max is certified.
     Holds,
-    /// A stable damping interval whose ends lie on the complex-pair curve (angles θ at its
-    /// ends): a cap of the region above, closing where its two arcs meet.
+    /// One stable damping interval inside the band (its ends' dampings and angles θ, 0 or π
+    /// on the z = ±1 lines): a cap of the region above, closing at its top.
     Cap { alpha: f64, ends: [(f64, f64); 2] },
-    /// A stable interval reaching the band's edge or a z = ±1 line: not settled here.
+    /// Several stable intervals, or one reaching past the band's edges: not settled here.
     Other,
 }
 
@@ -313,14 +426,14 @@ fn certificate(
             beta: 1.0,
         },
     };
-    let on_curve = |t: f64| t > 0.0 && t < std::f64::consts::PI;
+    let known = |t: f64| (0.0..=std::f64::consts::PI).contains(&t);
     let hits: Vec<(Interval, [f64; 2])> = stable_intervals_with_angles(fam, cf, &axis)
         .into_iter()
         .filter(|(iv, _)| iv.lo < hi && iv.hi > lo)
         .collect();
     match hits.as_slice() {
         [] => Certificate::Holds,
-        [(iv, [t0, t1])] if iv.lo >= lo && iv.hi <= hi && on_curve(*t0) && on_curve(*t1) => {
+        [(iv, [t0, t1])] if iv.lo >= lo && iv.hi <= hi && known(*t0) && known(*t1) => {
             Certificate::Cap {
                 alpha: above,
                 ends: [(iv.lo, *t0), (iv.hi, *t1)],
@@ -334,26 +447,20 @@ fn certificate(
 /// (not inside) an attained top, the supremum's stable neighbour found by
 /// [`confirm_max`].
 fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<ConfirmedMax> {
+    if attained(fam, f) {
+        return Some(ConfirmedMax {
+            alpha: f.alpha,
+            beta: f.beta,
+            attained: true,
+            beta_stable: f.beta,
+            alpha_stable: f.alpha - CONFIRM_REL * f.alpha.abs(),
+        });
+    }
     let cand = AlphaBeta {
         alpha: f.alpha,
         beta: f.beta,
     };
-    let scale = f.alpha.abs().max(f.beta.abs());
-    if f.attained {
-        let delta = CONFIRM_REL * f.alpha.abs();
-        let mut coeffs = vec![0.0; fam.degree() + 1];
-        let mut inside = |a: f64| inside_unit_circle(fam, a, f.beta, &mut coeffs) == Some(true);
-        if delta > 0.0 && inside(f.alpha - delta) && !inside(f.alpha + delta) {
-            return Some(ConfirmedMax {
-                alpha: f.alpha,
-                beta: f.beta,
-                attained: true,
-                beta_stable: f.beta,
-                alpha_stable: f.alpha - delta,
-            });
-        }
-    }
-    confirm_max(fam, cand, band, scale)
+    confirm_max(fam, cand, band, f.alpha.abs().max(f.beta.abs()))
 }
 
 /// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered.
