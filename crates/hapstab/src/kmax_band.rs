@@ -29,7 +29,6 @@ use crate::line_decomposition::{stable_intervals, stable_intervals_with_angles};
 use crate::poly;
 use crate::real_roots::positive_roots;
 use crate::region::{ConfirmedMax, confirm_max};
-use crate::verdict::inside_unit_circle;
 
 /// Relative distance of the walls beside K_max that the point test must find inside (below)
 /// and not inside (above): the region's confirmation distance.
@@ -88,12 +87,13 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
     }
     let edge = dampings
         .into_iter()
-        .filter_map(|b| top(fam, cf, b).map(|a| AlphaBeta { alpha: a, beta: b }))
-        .max_by(|p, q| p.alpha.total_cmp(&q.alpha));
-    if let Some(p) = edge {
+        .filter_map(|b| top_interval(fam, cf, b).map(|iv| (iv, b)))
+        .max_by(|p, q| p.0.hi.total_cmp(&q.0.hi));
+    if let Some((iv, b)) = edge {
         return Start::Found(Found {
-            alpha: p.alpha,
-            beta: p.beta,
+            alpha: iv.hi,
+            beta: b,
+            exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
         });
     }
     let cands = sorted_candidates(fam, cf, (b_lo, b_hi));
@@ -121,11 +121,12 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
         let inside = |b: f64| b >= band.0 && b <= band.1;
         let next = cap
             .filter(|c| c.alpha > found.alpha && inside(c.beta))
-            .map(|c| Found {
-                alpha: c.alpha,
-                beta: c.beta,
+            .and_then(|c| exact_top(fam, cf, c.alpha, c.beta).map(|a| (a, c.beta)))
+            .map(|(alpha, beta)| Found {
+                alpha,
+                beta,
+                exact: true,
             })
-            .filter(|&f| attained(fam, f))
             .or_else(|| {
                 let list = cands.get_or_insert_with(|| sorted_candidates(fam, cf, band));
                 highest_candidate(fam, cf, list, Some(found), band)
@@ -137,14 +138,6 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
         }
     }
     BandMax::Undecided
-}
-
-/// The point test finds the wall just below a top stable and the one just above not.
-fn attained(fam: &AffineFamily, f: Found) -> bool {
-    let delta = CONFIRM_REL * f.alpha.abs();
-    let mut coeffs = vec![0.0; fam.degree() + 1];
-    let mut inside = |a: f64| inside_unit_circle(fam, a, f.beta, &mut coeffs) == Some(true);
-    delta > 0.0 && inside(f.alpha - delta) && !inside(f.alpha + delta)
 }
 
 /// The curve's candidates inside the band, highest first.
@@ -289,23 +282,19 @@ const DAMPING_HALVINGS: usize = 40;
 /// method on a(θ) = a with slopes from central differences.
 fn arc_at(fam: &AffineFamily, theta: f64, a: f64) -> Option<(f64, f64, f64)> {
     use std::f64::consts::PI;
-    let slopes = |t: f64| -> Option<(f64, f64)> {
-        let h = 1e-6 * t.min(PI - t);
-        let (p, q) = (curve_point(fam, t - h)?, curve_point(fam, t + h)?);
-        Some((
-            (q.alpha - p.alpha) / (2.0 * h),
-            (q.beta - p.beta) / (2.0 * h),
-        ))
-    };
     let mut th = theta;
     let mut last = f64::INFINITY;
-    for _ in 0..CAP_STEPS {
+    for _ in 0..ARC_STEPS {
         let p = curve_point(fam, th)?;
-        let (da, db) = slopes(th)?;
+        // forward differences: a relative error of 1e-7 in the slope keeps Newton's
+        // convergence at a ratio of 1e-7 per step
+        let h = SLOPE_STEP * th.min(PI - th);
+        let q = curve_point(fam, th + h)?;
+        let (da, db) = ((q.alpha - p.alpha) / h, (q.beta - p.beta) / h);
         let step = (p.alpha - a) / da;
         let next = th - step;
-        if !(next > 0.0 && next < PI) {
-            return None;
+        if !(next > 0.0 && next < PI) || step.abs() > last {
+            return None; // off the arc, or diverging: the arc does not reach a
         }
         // settled: a step at the rounding of a(θ), or one that no longer shrinks near it
         if step.abs() <= SETTLED * th || (step.abs() >= 0.5 * last && step.abs() <= NEAR * th) {
@@ -318,24 +307,44 @@ fn arc_at(fam: &AffineFamily, theta: f64, a: f64) -> Option<(f64, f64, f64)> {
     None
 }
 
+/// Newton steps at most on a point of an arc (quadratic convergence from a nearby angle
+/// needs a handful; more means the arc does not reach the stiffness).
+const ARC_STEPS: usize = 20;
+
+/// Relative step of the forward differences of the curve in θ.
+const SLOPE_STEP: f64 = 1e-7;
+
 /// The highest end of the stable stiffness intervals at damping b (None when none is stable
 /// or the highest is unbounded).
 fn top(fam: &AffineFamily, cf: &CayleyFamily, b: f64) -> Option<f64> {
-    highest(&stable_intervals(fam, cf, &WallLine::stiffness_axis(b)))
+    top_interval(fam, cf, b).map(|iv| iv.hi)
 }
 
-fn highest(ivs: &[Interval]) -> Option<f64> {
-    ivs.iter()
-        .map(|iv| iv.hi)
-        .filter(|h| h.is_finite())
-        .reduce(f64::max)
+/// The stable stiffness interval at damping b with the highest finite end.
+fn top_interval(fam: &AffineFamily, cf: &CayleyFamily, b: f64) -> Option<Interval> {
+    stable_intervals(fam, cf, &WallLine::stiffness_axis(b))
+        .into_iter()
+        .filter(|iv| iv.hi.is_finite())
+        .max_by(|x, y| x.hi.total_cmp(&y.hi))
 }
 
-/// A found top of the region (attained, or a corner it closes on).
+/// A top at damping b that the exact stable intervals there reach: their highest end within
+/// [`ATTAINED_REL`] of a, in an interval holding a·(1 − [`CONFIRM_REL`]) (the wall the
+/// answer reports stable). The exact end, or None.
+fn exact_top(fam: &AffineFamily, cf: &CayleyFamily, a: f64, b: f64) -> Option<f64> {
+    let iv = top_interval(fam, cf, b)?;
+    let reach = (iv.hi - a).abs() <= ATTAINED_REL * a.abs();
+    (reach && iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs()).then_some(iv.hi)
+}
+
+/// A found top of the region.
 #[derive(Debug, Clone, Copy)]
 struct Found {
     alpha: f64,
     beta: f64,
+    /// The top of the exact stable interval at `beta` (see [`exact_top`]); false for a
+    /// corner that the region only closes on (a supremum).
+    exact: bool,
 }
 
 /// The highest of a floor (a top found already) and the candidates that the region reaches
@@ -356,11 +365,13 @@ fn highest_candidate(
         if surely_outside(fam, *c, &mut coeffs) {
             continue;
         }
-        let at = top(fam, cf, c.beta);
-        if let Some(a) = at.filter(|&a| best.is_none_or(|b| a > b.alpha)) {
+        let iv = top_interval(fam, cf, c.beta);
+        let at = iv.map(|iv| iv.hi);
+        if let Some(iv) = iv.filter(|iv| best.is_none_or(|b| iv.hi > b.alpha)) {
             best = Some(Found {
-                alpha: a,
+                alpha: iv.hi,
                 beta: c.beta,
+                exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
             });
         }
         if at.is_some_and(|a| a >= c.alpha - ATTAINED_REL * c.alpha.abs()) {
@@ -370,6 +381,7 @@ fn highest_candidate(
             return Some(Found {
                 alpha: c.alpha,
                 beta: c.beta,
+                exact: false,
             });
         }
     }
@@ -447,7 +459,7 @@ fn certificate(
 /// (not inside) an attained top, the supremum's stable neighbour found by
 /// [`confirm_max`].
 fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<ConfirmedMax> {
-    if attained(fam, f) {
+    if f.exact {
         return Some(ConfirmedMax {
             alpha: f.alpha,
             beta: f.beta,
