@@ -165,6 +165,38 @@ fn check_box(lp: &Loop, sides: &[BoxSide]) -> Result<()> {
     Ok(())
 }
 
+/// The largest degree of p(z) over the box, for pricing a robust search
+/// ([`crate::limits::robust_box_cost`]) before it runs: the loop's own degree plus, for each
+/// side, the most its ends add to it, with the delay time and the period taken together at
+/// their four corners (the delay in samples is t_d/T). The degree is a sum of the plant's
+/// order (with an actuator lag), the velocity filter's length and the delay, so adding each
+/// side's increase bounds it from above. Fails, naming the parameter, where an end is not a
+/// valid loop.
+pub fn box_degree(lp: &Loop, sides: &[BoxSide]) -> Result<usize> {
+    let degree = |l: &Loop| -> Result<usize> { Ok(AffineFamily::of_loop(l)?.degree()) };
+    let nominal = degree(lp)?;
+    let is_delay = |s: &&BoxSide| matches!(s.param, SweepParam::DelayTime | SweepParam::Period);
+    let mut delay_loops = vec![lp.clone()];
+    for s in sides.iter().filter(is_delay) {
+        delay_loops = delay_loops
+            .iter()
+            .flat_map(|l| [s.lo, s.hi].map(|v| s.param.apply(l, v)))
+            .collect::<Result<_>>()?;
+    }
+    let mut most = nominal;
+    for l in &delay_loops {
+        most = most.max(degree(l)?);
+    }
+    for s in sides.iter().filter(|s| !is_delay(s)) {
+        let ends = [
+            degree(&s.param.apply(lp, s.lo)?)?,
+            degree(&s.param.apply(lp, s.hi)?)?,
+        ];
+        most += ends[0].max(ends[1]).saturating_sub(nominal);
+    }
+    Ok(most)
+}
+
 /// The loop at unit coordinates u of the box.
 fn loop_at(lp: &Loop, sides: &[BoxSide], u: &[f64]) -> Result<Loop> {
     sides.iter().zip(u).try_fold(lp.clone(), |l, (s, &x)| {
