@@ -127,7 +127,7 @@ pub fn export(req: &ExportReq) -> Result<(&'static str, String, String), ApiErro
     );
     Ok(match req.format {
         Format::Json => {
-            let body = serde_json::to_string_pretty(&JsonExport {
+            let body = crate::output::json_text(&JsonExport {
                 region: &out,
                 point: pt.as_ref(),
                 view,

@@ -355,9 +355,17 @@ where
     }
 }
 
-/// A JSON answer with a Server-Timing header.
+/// A JSON answer with a Server-Timing header; numbers as the command line writes them (−0
+/// as 0).
 fn json_timed<T: Serialize>(v: &T, ms: f64) -> Response {
-    let mut resp = axum::Json(v).into_response();
+    let mut resp = match crate::output::json_compact(v) {
+        Ok(body) => ([(header::CONTENT_TYPE, "application/json")], body).into_response(),
+        Err(e) => ApiError::status(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("internal error: JSON encoding failed ({e})"),
+        )
+        .into_response(),
+    };
     if let Ok(h) = HeaderValue::from_str(&format!("compute;dur={ms:.3}")) {
         resp.headers_mut().insert("server-timing", h);
     }
