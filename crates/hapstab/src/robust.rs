@@ -111,7 +111,8 @@ pub struct RobustKmax {
     pub worst_plant: Vec<ParamValue>,
     /// Plants whose exact stable interval was computed (samples and refinement).
     pub plants_evaluated: usize,
-    /// Plants verified stable at K_max·(1 − 1e-6) by the verdict alone.
+    /// Plants verified stable at K_max·(1 − 1e-6) by the verdict alone (0 where some plant of
+    /// the box has no stable K at B: there is no K_max to verify).
     pub plants_verified: usize,
     /// Plants the verification found not stable there and folded into the search.
     pub verification_found: usize,
@@ -317,12 +318,14 @@ pub fn robust_kmax(
     }
     let mut rng = SplitMix(opts.seed ^ 0x005E_ED0F_7E57);
     let plants: Vec<Vec<f64>> = (0..opts.verify).map(|_| rng.point(sides.len())).collect();
-    let mut found = 0;
+    let (mut found, mut verified) = (0, 0);
     for _ in 0..VERIFY_ROUNDS {
         let k = worst(&evals, 1)[0].hi();
         if !k.is_finite() {
             break;
         }
+        // no plant is verified where some plant has no stable K at all
+        verified = opts.verify;
         let wall = Wall {
             stiffness: k - VERIFY_MARGIN * k.abs(),
             damping: b,
@@ -337,7 +340,7 @@ pub fn robust_kmax(
         }
         evals.extend(bad);
     }
-    Ok(report(sides, b, nominal.k_max, &evals, opts.verify, found))
+    Ok(report(sides, b, nominal.k_max, &evals, verified, found))
 }
 
 /// The worst plant and the robust interval from every evaluation.

@@ -16,13 +16,16 @@
     const row = document.createElement("div");
     row.className = "row box-row";
     const sel = document.createElement("select");
-    for (const p of BOX.params) {
+    // a name the list does not hold (a link's, before /api/limits answers) is kept: the server
+    // names it if it is wrong
+    const known = BOX.params.some((p) => p.name === name);
+    for (const p of known || !name ? BOX.params : BOX.params.concat([{ name: name, unit: "?" }])) {
       const o = document.createElement("option");
       o.value = p.name;
       o.textContent = p.name + " [" + p.unit + "]";
       sel.appendChild(o);
     }
-    sel.value = BOX.params.some((p) => p.name === name) ? name : BOX.params[0].name;
+    sel.value = name || BOX.params[0].name;
     sel.className = "box-param";
     const span = document.createElement("span");
     span.className = "box-range";
