@@ -112,9 +112,13 @@
     const set = (id, a) => { for (const k in a) $(id).setAttribute(k, a[k]); };
     set("rk-line", { x1: x0, y1: y, x2: x1, y2: y });
     $("rk-dot").setAttribute("d", "M" + x1 + "," + (y - 7) + "L" + (x1 + 7) + "," + y + "L" + x1 + "," + (y + 7) + "L" + (x1 - 7) + "," + y + "Z");
-    const lab = $("rk-label"), right = x1 > PLOT.x + PLOT.w - 170;
+    // the label beside the marker, on the side where it fits inside the plot, else centred
+    const lab = $("rk-label");
     lab.textContent = "robust K_max = " + eng(r.k_max, "N/m", 6);
-    set("rk-label", { x: right ? x1 - 10 : x1 + 10, y: Math.min(PLOT.y + PLOT.h - 6, y + 20), "text-anchor": right ? "end" : "start" });
+    const w = lab.getComputedTextLength ? lab.getComputedTextLength() : 180, right = PLOT.x + PLOT.w - 4;
+    const [x, anchor] = x1 + 10 + w <= right ? [x1 + 10, "start"] : x1 - 10 - w >= PLOT.x + 4 ? [x1 - 10, "end"]
+      : [Math.max(PLOT.x + 4 + w / 2, Math.min(right - w / 2, x1)), "middle"];
+    set("rk-label", { x: x, y: Math.min(PLOT.y + PLOT.h - 6, y + 20), "text-anchor": anchor });
   }
   // The command line's text under the region: its label column (box, robust, nominal,
   // checked; blank for a continued item) beside each line's text.
