@@ -133,7 +133,8 @@ pub struct RegionOut {
     /// With `box=…`: the robust K_max over the box at `wall_damping`, the keys of
     /// `hapstab kmax --robust --box … --json`.
     pub robust_kmax: Option<RobustBoxAnswer>,
-    /// The command line's text of `robust_kmax`, a line per item (what was checked last).
+    /// The command line's text of `robust_kmax`, a line per item, the last one saying what was
+    /// checked.
     pub robust_kmax_text: Option<Vec<String>>,
     pub warnings: Vec<String>,
     pub server_ms: Timing,
