@@ -3,7 +3,7 @@
 use std::io;
 
 use serde::Serialize;
-use serde_json::ser::{Formatter, PrettyFormatter};
+use serde_json::ser::{CompactFormatter, Formatter, PrettyFormatter};
 
 /// Prints a value as pretty JSON on stdout: shortest round-trip floats, and a negative zero
 /// written as 0 (its sign carries no information in any result).
@@ -15,14 +15,22 @@ pub fn print_json<T: Serialize>(v: &T) -> anyhow::Result<()> {
 /// The pretty JSON text of a value as [`print_json`] writes it.
 pub fn json_text<T: Serialize>(v: &T) -> anyhow::Result<String> {
     let mut bytes = Vec::new();
-    let mut ser = serde_json::Serializer::with_formatter(&mut bytes, Clean::default());
+    let mut ser = serde_json::Serializer::with_formatter(&mut bytes, Clean(PrettyFormatter::new()));
     v.serialize(&mut ser)?;
     Ok(String::from_utf8(bytes)?)
 }
 
-/// serde_json's pretty formatter with −0 written as 0.
-#[derive(Default)]
-struct Clean(PrettyFormatter<'static>);
+/// The compact JSON text of a value (the explorer's answers): shortest round-trip floats and
+/// −0 written as 0, as [`print_json`] writes them.
+pub fn json_compact<T: Serialize>(v: &T) -> serde_json::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    let mut ser = serde_json::Serializer::with_formatter(&mut bytes, Clean(CompactFormatter));
+    v.serialize(&mut ser)?;
+    Ok(bytes)
+}
+
+/// A serde_json formatter (pretty or compact) with −0 written as 0.
+struct Clean<F>(F);
 
 /// Delegates a formatter method to the pretty formatter.
 macro_rules! delegate {
@@ -33,7 +41,7 @@ macro_rules! delegate {
     )*};
 }
 
-impl Formatter for Clean {
+impl<F: Formatter> Formatter for Clean<F> {
     delegate!(
         begin_array,
         end_array,

@@ -2,7 +2,8 @@
 //! parameters ([`hapstab::robust::robust_kmax`]), as text or JSON.
 
 use anyhow::{Result, bail};
-use hapstab::AffineFamily;
+use hapstab::Loop;
+use hapstab::limits::Cost;
 use hapstab::robust::{BoxSide, RobustKmax, RobustOptions, robust_kmax};
 use hapstab::sweep::SweepParam;
 use serde::Serialize;
@@ -33,23 +34,59 @@ pub fn parse_side(s: &str) -> Result<BoxSide, String> {
     Ok(BoxSide { param, lo, hi })
 }
 
-/// The JSON answer: the loop and the box echoed, then the library's report.
-#[derive(Serialize)]
-struct RobustOut<'a> {
-    input: RobustInput<'a>,
+/// The answer of `kmax --robust --box … --json`, and the explorer's `robust_kmax` (the same
+/// keys): the loop and the box echoed under `input`, then the library's report.
+#[derive(Debug, Clone, Serialize)]
+pub struct RobustBoxAnswer {
+    /// The loop, the box and the search's settings.
+    pub input: RobustBoxInput,
+    /// The library's report.
     #[serde(flatten)]
-    report: &'a RobustKmax,
+    pub report: RobustKmax,
 }
 
-#[derive(Serialize)]
-struct RobustInput<'a> {
+/// The inputs of a robust K_max over a box.
+#[derive(Debug, Clone, Serialize)]
+pub struct RobustBoxInput {
+    /// The loop (SI units) and its delay time.
     #[serde(flatten)]
-    lp: LoopInput,
+    pub lp: LoopInput,
+    /// The box's sides.
     #[serde(rename = "box")]
-    sides: &'a [BoxSide],
-    samples: usize,
-    verify: usize,
-    seed: u64,
+    pub sides: Vec<BoxSide>,
+    /// Uniform samples of the box.
+    pub samples: usize,
+    /// Random plants verified.
+    pub verify: usize,
+    /// Seed of the samples and of the verification plants.
+    pub seed: u64,
+}
+
+/// Estimated cost of the robust K_max of `lp` over the box: the library's estimate at the
+/// largest degree of p(z) over the box.
+pub fn cost(lp: &Loop, sides: &[BoxSide], opts: &RobustOptions) -> hapstab::Result<Cost> {
+    let n = hapstab::robust::box_degree(lp, sides)?;
+    Ok(hapstab::limits::robust_box_cost(n, sides.len(), opts))
+}
+
+/// The robust K_max of a physical loop over the box at damping B (Ns/m), with its inputs.
+pub fn answer(
+    lp: &Loop,
+    sides: &[BoxSide],
+    b: f64,
+    opts: RobustOptions,
+) -> hapstab::Result<RobustBoxAnswer> {
+    let report = robust_kmax(lp, sides, b, &opts)?;
+    Ok(RobustBoxAnswer {
+        input: RobustBoxInput {
+            lp: LoopInput::new(lp, false, None),
+            sides: sides.to_vec(),
+            samples: opts.samples,
+            verify: opts.verify,
+            seed: opts.seed,
+        },
+        report,
+    })
 }
 
 /// Runs the robust K_max of the resolved loop over the box at damping B (default 0).
@@ -65,38 +102,33 @@ pub fn run(
         bail!("kmax --robust --box works in physical units");
     }
     let b = wall_damping.unwrap_or(0.0);
-    let fam = AffineFamily::of_loop(&rl.lp)?;
-    let n = fam.degree();
-    let cost = hapstab::limits::robust_box_cost(n, sides.len(), &opts);
+    let cost = cost(&rl.lp, sides, &opts)?;
     crate::budget::check_loop(args, &rl.lp, cost, "the robust K_max")?;
-    let report = robust_kmax(&rl.lp, sides, b, &opts)?;
+    let out = answer(&rl.lp, sides, b, opts)?;
     if json {
-        return print_json(&RobustOut {
-            input: RobustInput {
-                lp: rl.input(None),
-                sides,
-                samples: opts.samples,
-                verify: opts.verify,
-                seed: opts.seed,
-            },
-            report: &report,
-        });
+        return print_json(&out);
     }
     for line in describe_loop(&rl.lp) {
         println!("{line}");
     }
-    print_text(sides, &report);
+    for line in text_lines(sides, &out.report) {
+        println!("{line}");
+    }
     Ok(())
 }
 
-fn value(v: f64, unit: &str) -> String {
+/// A value in its unit: engineering notation, a window in samples as a plain count.
+pub fn value(v: f64, unit: &str) -> String {
     match unit {
         "samples" => format!("{v} samples"),
         u => eng(v, u, 6),
     }
 }
 
-fn print_text(sides: &[BoxSide], r: &RobustKmax) {
+/// The text of a robust K_max over a box, a line per item: the box, the robust K_max and
+/// its interval, the worst plant, the nominal K_max and what was checked (the guarantee).
+/// The command line prints it; the explorer shows it beside its overlay.
+pub fn text_lines(sides: &[BoxSide], r: &RobustKmax) -> Vec<String> {
     let box_text: Vec<String> = sides
         .iter()
         .map(|s| {
@@ -109,30 +141,30 @@ fn print_text(sides: &[BoxSide], r: &RobustKmax) {
             )
         })
         .collect();
-    println!("box       {}", box_text.join(", "));
+    let mut out = vec![format!("box       {}", box_text.join(", "))];
     let worst: Vec<String> = r
         .worst_plant
         .iter()
         .map(|p| format!("{} = {}", p.param, value(p.value, p.unit)))
         .collect();
     let bt = eng(r.wall_damping, "Ns/m", 6);
-    match (r.k_max, r.k_min) {
-        (Some(k), Some(lo)) => println!(
+    out.push(match (r.k_max, r.k_min) {
+        (Some(k), Some(lo)) => format!(
             "robust    K_max = {} at B = {bt}: stable for {} < K < {} for every plant checked",
             eng(k, "N/m", 6),
             eng(lo, "N/m", 6),
             eng(k, "N/m", 6)
         ),
-        _ => println!("robust    no stiffness is stable at B = {bt} for every plant of the box"),
-    }
-    println!("          limited by {}", worst.join(", "));
+        _ => format!("robust    no stiffness is stable at B = {bt} for every plant of the box"),
+    });
+    out.push(format!("          limited by {}", worst.join(", ")));
     if let Some(k) = r.k_max_nominal {
-        println!(
+        out.push(format!(
             "nominal   K_max = {} for the loop as given",
             eng(k, "N/m", 6)
-        );
+        ));
     }
-    println!(
+    out.push(format!(
         "checked   {} plants solved exactly (corners, centre, samples, compass refinement), \
          {} random plants verified by the verdict at K_max·(1 − 1e-6){}",
         r.plants_evaluated,
@@ -142,5 +174,6 @@ fn print_text(sides: &[BoxSide], r: &RobustKmax) {
         } else {
             String::new()
         }
-    );
+    ));
+    out
 }

@@ -112,9 +112,11 @@ pub fn robust_kmax(
         seed,
     };
     let fam = r#loop.family()?;
-    let cost = hapstab::limits::robust_box_cost(fam.degree(), sides.len(), &opts);
-    crate::budget::check_loop(cost, &r#loop.lp, &fam, "the robust K_max")?;
     let lp = &r#loop.lp;
+    let n = hapstab::robust::box_degree(lp, &sides)
+        .py_with(&[("box", "bounds"), ("sweep parameter", "bounds")])?;
+    let cost = hapstab::limits::robust_box_cost(n, sides.len(), &opts);
+    crate::budget::check_loop(cost, lp, &fam, "the robust K_max")?;
     let r = py
         .detach(|| hapstab::robust::robust_kmax(lp, &sides, b, &opts))
         .py_with(&[("box", "bounds"), ("sweep parameter", "bounds")])?;

@@ -417,7 +417,9 @@ pub fn interval_cost(n: usize) -> Cost {
 
 /// Cost of a robust K_max over a box ([`crate::robust::robust_kmax`]) for p(z) of degree n:
 /// each sampled, refined and folded-in plant one exact stable interval (the discretization
-/// counted as three more), each verified plant one point test.
+/// counted as three more), each verified plant one point test. n is the largest degree over
+/// the box ([`crate::robust::box_degree`]), not the given loop's alone: a box over the delay
+/// or the period changes it.
 pub fn robust_box_cost(n: usize, params: usize, opts: &crate::robust::RobustOptions) -> Cost {
     use crate::robust::{MAX_CORNER_PARAMS, REFINE_BUDGET, REFINE_STARTS, VERIFY_ROUNDS};
     let corners = if params <= MAX_CORNER_PARAMS {

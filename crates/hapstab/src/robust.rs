@@ -111,7 +111,8 @@ pub struct RobustKmax {
     pub worst_plant: Vec<ParamValue>,
     /// Plants whose exact stable interval was computed (samples and refinement).
     pub plants_evaluated: usize,
-    /// Plants verified stable at K_max·(1 − 1e-6) by the verdict alone.
+    /// Plants verified stable at K_max·(1 − 1e-6) by the verdict alone (0 where some plant of
+    /// the box has no stable K at B: there is no K_max to verify).
     pub plants_verified: usize,
     /// Plants the verification found not stable there and folded into the search.
     pub verification_found: usize,
@@ -163,6 +164,38 @@ fn check_box(lp: &Loop, sides: &[BoxSide]) -> Result<()> {
         s.param.apply(lp, s.hi)?;
     }
     Ok(())
+}
+
+/// The largest degree of p(z) over the box, for pricing a robust search
+/// ([`crate::limits::robust_box_cost`]) before it runs: the loop's own degree plus, for each
+/// side, the most its ends add to it, with the delay time and the period taken together at
+/// their four corners (the delay in samples is t_d/T). The degree is a sum of the plant's
+/// order (with an actuator lag), the velocity filter's length and the delay, so adding each
+/// side's increase bounds it from above. Fails, naming the parameter, where an end is not a
+/// valid loop.
+pub fn box_degree(lp: &Loop, sides: &[BoxSide]) -> Result<usize> {
+    let degree = |l: &Loop| -> Result<usize> { Ok(AffineFamily::of_loop(l)?.degree()) };
+    let nominal = degree(lp)?;
+    let is_delay = |s: &&BoxSide| matches!(s.param, SweepParam::DelayTime | SweepParam::Period);
+    let mut delay_loops = vec![lp.clone()];
+    for s in sides.iter().filter(is_delay) {
+        delay_loops = delay_loops
+            .iter()
+            .flat_map(|l| [s.lo, s.hi].map(|v| s.param.apply(l, v)))
+            .collect::<Result<_>>()?;
+    }
+    let mut most = nominal;
+    for l in &delay_loops {
+        most = most.max(degree(l)?);
+    }
+    for s in sides.iter().filter(|s| !is_delay(s)) {
+        let ends = [
+            degree(&s.param.apply(lp, s.lo)?)?,
+            degree(&s.param.apply(lp, s.hi)?)?,
+        ];
+        most += ends[0].max(ends[1]).saturating_sub(nominal);
+    }
+    Ok(most)
 }
 
 /// The loop at unit coordinates u of the box.
@@ -285,12 +318,14 @@ pub fn robust_kmax(
     }
     let mut rng = SplitMix(opts.seed ^ 0x005E_ED0F_7E57);
     let plants: Vec<Vec<f64>> = (0..opts.verify).map(|_| rng.point(sides.len())).collect();
-    let mut found = 0;
+    let (mut found, mut verified) = (0, 0);
     for _ in 0..VERIFY_ROUNDS {
         let k = worst(&evals, 1)[0].hi();
         if !k.is_finite() {
             break;
         }
+        // no plant is verified where some plant has no stable K at all
+        verified = opts.verify;
         let wall = Wall {
             stiffness: k - VERIFY_MARGIN * k.abs(),
             damping: b,
@@ -305,7 +340,7 @@ pub fn robust_kmax(
         }
         evals.extend(bad);
     }
-    Ok(report(sides, b, nominal.k_max, &evals, opts.verify, found))
+    Ok(report(sides, b, nominal.k_max, &evals, verified, found))
 }
 
 /// The worst plant and the robust interval from every evaluation.

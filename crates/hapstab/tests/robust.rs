@@ -169,3 +169,30 @@ fn a_bad_box_is_refused_naming_it() {
         assert!(e.contains(needle), "{e}");
     }
 }
+
+/// The degree that prices a search is the largest over the box: p(z) of the one-mass loop
+/// with the backward difference has degree d + 3 (d samples of delay), one more with an
+/// actuator lag; t_d and T are taken together (d = t_d/T).
+#[test]
+fn box_degree_is_the_largest_over_the_box() {
+    use hapstab::robust::box_degree;
+    let lp = one_mass(1.1, 7.5, 350.0);
+    let arm = [
+        side(SweepParam::Mass, 0.2, 2.0),
+        side(SweepParam::Stiffness, 0.0, 2e3),
+    ];
+    assert_eq!(box_degree(&lp, &arm).unwrap(), 3);
+    let delay = [side(SweepParam::DelayTime, 0.0, 0.004)];
+    assert_eq!(box_degree(&lp, &delay).unwrap(), 4 + 3);
+    let both = [
+        side(SweepParam::DelayTime, 0.0, 0.004),
+        side(SweepParam::Period, 0.0005, 0.001),
+    ];
+    assert_eq!(box_degree(&lp, &both).unwrap(), 8 + 3);
+    let lag = [
+        side(SweepParam::ForceLag, 0.0, 0.001),
+        side(SweepParam::DelayTime, 0.0, 0.002),
+    ];
+    assert_eq!(box_degree(&lp, &lag).unwrap(), 2 + 3 + 1);
+    assert!(box_degree(&lp, &[side(SweepParam::Cutoff, 10.0, 100.0)]).is_err());
+}

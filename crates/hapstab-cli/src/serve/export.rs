@@ -127,7 +127,7 @@ pub fn export(req: &ExportReq) -> Result<(&'static str, String, String), ApiErro
     );
     Ok(match req.format {
         Format::Json => {
-            let body = serde_json::to_string_pretty(&JsonExport {
+            let body = crate::output::json_text(&JsonExport {
                 region: &out,
                 point: pt.as_ref(),
                 view,
@@ -180,6 +180,9 @@ pub fn auto_view(out: &RegionOut, pt: Option<&PointOut>) -> [f64; 4] {
     if let Some(p) = pt {
         add(p.params.alpha, p.params.beta);
     }
+    for v in robust_kmax_segment(out).iter().flatten() {
+        add(v[0], v[1]);
+    }
     if !b[0].is_finite() {
         let g = out.params.gamma;
         return [-g - 0.1, 1.0, -0.5, 1.0];
@@ -195,6 +198,18 @@ pub fn auto_view(out: &RegionOut, pt: Option<&PointOut>) -> [f64; 4] {
         b[2] - 0.08 * h,
         b[3] + 0.08 * h,
     ]
+}
+
+/// The robust K_max over a box as a segment in the page's units: from (K_min, B) to
+/// (K_max, B) as (α, β); None without a box or where no K is stable for every plant.
+fn robust_kmax_segment(out: &RegionOut) -> Option<[[f64; 2]; 2]> {
+    let r = &out.robust_kmax.as_ref()?.report;
+    let ph = out.physical.as_ref()?;
+    let b = r.wall_damping / ph.b_per_beta;
+    Some([
+        [r.k_min? / ph.k_per_alpha, b],
+        [r.k_max? / ph.k_per_alpha, b],
+    ])
 }
 
 fn kb(out: &RegionOut, a: f64, b: f64) -> (String, String) {
@@ -247,6 +262,9 @@ fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
         for (i, v) in r.polygon.iter().enumerate() {
             row("robust", 0, i, v[0], v[1]);
         }
+    }
+    for (i, v) in robust_kmax_segment(out).iter().flatten().enumerate() {
+        row("robust_kmax", 0, i, v[0], v[1]);
     }
     if let Some(p) = pt {
         row("point", 0, 0, p.params.alpha, p.params.beta);
@@ -534,6 +552,17 @@ fn svg_lines(s: &mut String, out: &RegionOut, f: &Frame, view: [f64; 4]) {
             mt + ph
         );
     }
+    if let Some([lo, hi]) = robust_kmax_segment(out) {
+        let (x0, x1, y) = (f.px(lo[0]), f.px(hi[0]), f.py(hi[1]));
+        let _ = writeln!(
+            s,
+            "<g class=\"robust-kmax\" stroke=\"#a87b00\" stroke-width=\"3\"><line x1=\"{x0:.2}\" y1=\"{y:.2}\" x2=\"{x1:.2}\" y2=\"{y:.2}\"/><path d=\"M{x1:.2},{:.2}L{:.2},{y:.2}L{x1:.2},{:.2}L{:.2},{y:.2}Z\" fill=\"#f0b400\" stroke-width=\"1.5\"/></g>",
+            y - 7.0,
+            x1 + 7.0,
+            y + 7.0,
+            x1 - 7.0
+        );
+    }
     let am = out.region.alpha_max;
     if am.is_finite() {
         let (x, y) = (f.px(am), f.py(out.region.beta_at_alpha_max));
@@ -597,6 +626,20 @@ fn legend_items(out: &RegionOut, pt: Option<&PointOut>) -> Vec<(String, &'static
             _ => format!("γ ∈ [{}, {}]", sig(r.gamma_lo, 4), sig(r.gamma_hi, 4)),
         };
         items.push((format!("robust region, {range}"), "#f0b400"));
+    }
+    if let Some(r) = out.robust_kmax.as_ref().map(|r| &r.report) {
+        let text = match r.k_max {
+            Some(k) => format!(
+                "robust K_max = {} at B = {} over the box",
+                eng(k, "N/m", 6),
+                eng(r.wall_damping, "Ns/m", 4)
+            ),
+            None => format!(
+                "no K stable for the whole box at B = {}",
+                eng(r.wall_damping, "Ns/m", 4)
+            ),
+        };
+        items.push((text, "#a87b00"));
     }
     if let Some(p) = pt {
         items.push((

@@ -39,6 +39,10 @@ pub const DEFAULT_ROBUST_BETA_SAMPLES: usize = 64;
 pub const MAX_ROBUST_D: usize = 50;
 /// Robust region: rounds of adaptive β refinement of the outline.
 pub const ROBUST_REFINE_BETA_ROUNDS: usize = 2;
+/// Robust K_max over a box: largest uniform samples and verified plants (the estimated
+/// cost refuses most requests before these).
+pub const MAX_BOX_SAMPLES: usize = 100_000;
+pub const MAX_BOX_VERIFY: usize = 1_000_000;
 /// Simulation: samples.
 pub const MIN_SIM_SAMPLES: usize = 10;
 pub const MAX_SIM_SAMPLES: usize = 20_000;
@@ -90,6 +94,13 @@ pub const MAX_BODY_BYTES: usize = 1024;
 /// so that the client reads the refusal instead of a reset.
 pub const DRAIN_BYTES: u64 = 1 << 20;
 
+/// A parameter of a robust K_max box.
+#[derive(Serialize)]
+pub struct BoxParam {
+    pub name: &'static str,
+    pub unit: &'static str,
+}
+
 /// The limits as JSON (`GET /api/limits`).
 #[derive(Serialize)]
 pub struct Limits {
@@ -108,6 +119,11 @@ pub struct Limits {
     pub robust_beta_samples: [usize; 2],
     pub robust_d_max: usize,
     pub robust_refine_beta_rounds: usize,
+    /// The parameters a robust K_max box may range over (`sweep --param`'s names) and
+    /// their units.
+    pub robust_box_params: Vec<BoxParam>,
+    pub robust_box_samples: [usize; 2],
+    pub robust_box_verify: [usize; 2],
     pub sim_samples: [usize; 2],
     pub sim_horizon_samples: usize,
     pub sim_trace_points_max: usize,
@@ -148,6 +164,15 @@ pub fn limits() -> Limits {
         robust_beta_samples: [MIN_ROBUST_BETA_SAMPLES, MAX_ROBUST_BETA_SAMPLES],
         robust_d_max: MAX_ROBUST_D,
         robust_refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
+        robust_box_params: hapstab::sweep::SweepParam::ALL
+            .iter()
+            .map(|p| BoxParam {
+                name: p.name(),
+                unit: p.unit(),
+            })
+            .collect(),
+        robust_box_samples: [0, MAX_BOX_SAMPLES],
+        robust_box_verify: [0, MAX_BOX_VERIFY],
         sim_samples: [MIN_SIM_SAMPLES, MAX_SIM_SAMPLES],
         sim_horizon_samples: SIM_HORIZON,
         sim_trace_points_max: MAX_TRACE_POINTS,

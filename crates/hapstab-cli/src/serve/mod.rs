@@ -7,7 +7,7 @@
 //! |---|---|
 //! | `GET /` | the page |
 //! | `GET /api/limits` | the limits below |
-//! | `GET /api/region` | exact stable region (Section V), α_max, linear condition (23), passive region (28, d = 0), optional robust region over a γ range, or in physical mode over the arm's stiffness k_H (Section VIII) |
+//! | `GET /api/region` | exact stable region (Section V), α_max, linear condition (23), passive region (28, d = 0), optional robust region over a γ range, or in physical mode over the arm's stiffness k_H (Section VIII); with `box=NAME:LO:HI,…` (physical units, any loop) the robust K_max over that box at `wall_damping`, as `hapstab kmax --robust --box … --json` |
 //! | `GET /api/point` | verdict, spectral radius and roots of p(z) at one (α, β) |
 //! | `GET /api/simulate` | a short simulated wall contact at one (α, β) |
 //! | `GET /api/export` | the current view as SVG, CSV or JSON |
@@ -55,8 +55,14 @@ use tower_http::timeout::TimeoutLayer;
 
 use query::{ApiError, Params};
 
-/// The page, embedded at build time.
-const INDEX_HTML: &str = include_str!("../../assets/serve/index.html");
+/// The page, embedded at build time: index.html with the robust K_max overlay's script
+/// inlined at its marker (one self-contained page; the script is kept in its own file).
+static INDEX_HTML: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+    include_str!("../../assets/serve/index.html").replace(
+        "/*@robust_kmax.js*/",
+        include_str!("../../assets/serve/robust_kmax.js"),
+    )
+});
 
 /// Arguments of `hapstab serve`.
 #[derive(Args, Debug)]
@@ -264,7 +270,7 @@ async fn index() -> Response {
                 "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data: blob:; connect-src 'self'; base-uri 'none'; form-action 'none'",
             ),
         ],
-        INDEX_HTML,
+        INDEX_HTML.as_str(),
     )
         .into_response()
 }
@@ -349,9 +355,17 @@ where
     }
 }
 
-/// A JSON answer with a Server-Timing header.
+/// A JSON answer with a Server-Timing header; numbers as the command line writes them (−0
+/// as 0).
 fn json_timed<T: Serialize>(v: &T, ms: f64) -> Response {
-    let mut resp = axum::Json(v).into_response();
+    let mut resp = match crate::output::json_compact(v) {
+        Ok(body) => ([(header::CONTENT_TYPE, "application/json")], body).into_response(),
+        Err(e) => ApiError::status(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("internal error: JSON encoding failed ({e})"),
+        )
+        .into_response(),
+    };
     if let Ok(h) = HeaderValue::from_str(&format!("compute;dur={ms:.3}")) {
         resp.headers_mut().insert("server-timing", h);
     }

@@ -3,7 +3,7 @@
 
 //!
 //! One endpoint per file: `/api/region` in `region` (its request in `region_request`, the
-//! passive triangles it draws in `passive`), `/api/point` in `point` (the clicked wall's margins and passivity in `wall_analyses`) and `/api/simulate` in
+//! passive triangles it draws in `passive`, the robust K_max over a box in `robust_box`), `/api/point` in `point` (the clicked wall's margins and passivity in `wall_analyses`) and `/api/simulate` in
 //! `simulation`. The budget check and the plant of an answer, which all share, are here.
 
 use serde::Serialize;
@@ -15,6 +15,7 @@ mod passive;
 mod point;
 mod region;
 mod region_request;
+mod robust_box;
 mod simulation;
 pub mod wall_analyses;
 

@@ -17,6 +17,8 @@ use serde::Serialize;
 use super::PlantOut;
 use super::passive::{PassiveOut, passive_regions};
 use super::region_request::RegionReq;
+use super::robust_box::{RobustBoxOut, robust_box_out};
+use crate::robust_box::RobustBoxAnswer;
 use crate::serve::limits::*;
 use crate::serve::query::{ApiError, GeneralLoop, PhysicalSpec, fmt, lib_error};
 use crate::serve::simplify::simplify_polygon;
@@ -101,6 +103,8 @@ pub struct RobustOut {
 pub struct Timing {
     pub region: f64,
     pub robust: f64,
+    /// The robust K_max over a box.
+    pub robust_kmax: f64,
     pub total: f64,
 }
 
@@ -126,6 +130,12 @@ pub struct RegionOut {
     /// Physical mode and loops beyond the paper's: K_max at B = 0, over the renderable band
     /// and over B ≥ 0 in N/m and Ns/m (the library's answer, as `hapstab kmax --json`).
     pub kmax: Option<KmaxReport>,
+    /// With `box=…`: the robust K_max over the box at `wall_damping`, the keys of
+    /// `hapstab kmax --robust --box … --json`.
+    pub robust_kmax: Option<RobustBoxAnswer>,
+    /// The command line's text of `robust_kmax`, a line per item, the last one saying what was
+    /// checked.
+    pub robust_kmax_text: Option<Vec<String>>,
     pub warnings: Vec<String>,
     pub server_ms: Timing,
 }
@@ -235,6 +245,7 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
     let region = region_json(&r, req.tol);
     let (passive, passive_with_arm) = passive_regions(&req.spec)?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (rk, t_rk) = robust_kmax(req)?;
     Ok(RegionOut {
         params: PlantOut::from(&req.spec),
         physical: req.spec.physical,
@@ -245,11 +256,14 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
         passive_with_arm,
         robust: None,
         kmax: Some(design_kmax(&g.lp, &g.family)?),
+        robust_kmax_text: rk.as_ref().map(|r| r.text.clone()),
+        robust_kmax: rk.map(|r| r.answer),
         warnings: Vec::new(),
         server_ms: Timing {
             region: ms,
             robust: 0.0,
-            total: ms,
+            robust_kmax: t_rk,
+            total: t0.elapsed().as_secs_f64() * 1e3,
         },
     })
 }
@@ -284,6 +298,13 @@ fn robust_out(
         multiple_intervals: r.multiple_intervals,
         degenerate_gammas: r.degenerate_gammas,
     })
+}
+
+/// The robust K_max over the request's box, if any, and its time in ms.
+fn robust_kmax(req: &RegionReq) -> Result<(Option<RobustBoxOut>, f64), ApiError> {
+    let t = Instant::now();
+    let out = req.robust_kmax.as_ref().map(robust_box_out).transpose()?;
+    Ok((out, t.elapsed().as_secs_f64() * 1e3))
 }
 
 /// Computes the answer of `/api/region`.
@@ -337,6 +358,7 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
             design_kmax(&lp, &fam)
         })
         .transpose()?;
+    let (rk, t_rk) = robust_kmax(req)?;
     Ok(RegionOut {
         params: PlantOut::from(spec),
         physical: spec.physical,
@@ -347,10 +369,13 @@ pub fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         passive_with_arm,
         robust,
         kmax,
+        robust_kmax_text: rk.as_ref().map(|r| r.text.clone()),
+        robust_kmax: rk.map(|r| r.answer),
         warnings,
         server_ms: Timing {
             region: t_region,
             robust: t_robust,
+            robust_kmax: t_rk,
             total: t0.elapsed().as_secs_f64() * 1e3,
         },
     })

@@ -4,6 +4,7 @@
 use hapstab::params::{Effective, PlantParams};
 
 use super::region::{nominal_region_cost, robust_cost};
+use super::robust_box::{ROBUST_BOX_NAMES, RobustBoxReq, parse_robust_box};
 use super::within_budget;
 use crate::serve::limits::*;
 use crate::serve::query::{ApiError, Params, PlantSpec, clip, fmt, lib_error, plant_spec};
@@ -24,6 +25,7 @@ pub fn region_names() -> Vec<&'static str> {
     let mut v: Vec<&str> = crate::serve::query::PLANT_PARAMS.to_vec();
     v.extend(["tol", "robust"]);
     v.extend(ROBUST_NAMES);
+    v.extend(ROBUST_BOX_NAMES);
     v
 }
 
@@ -33,6 +35,8 @@ pub struct RegionReq {
     pub spec: PlantSpec,
     pub tol: f64,
     pub robust: Option<RobustReq>,
+    /// The robust K_max over a box of the loop's parameters (`box=…`).
+    pub robust_kmax: Option<RobustBoxReq>,
 }
 
 /// A robust-region request over γ ∈ [lo, hi].
@@ -65,7 +69,13 @@ pub fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
     };
     let nominal = nominal_region_cost(spec.cost_d());
     within_budget(nominal, "the exact region", "d", &spec.d.to_string())?;
-    Ok(RegionReq { spec, tol, robust })
+    let robust_kmax = parse_robust_box(p, &spec)?;
+    Ok(RegionReq {
+        spec,
+        tol,
+        robust,
+        robust_kmax,
+    })
 }
 
 /// The robust part of a region request (robust=1): its γ range, grid and refinement.
