@@ -25,7 +25,7 @@ use crate::boundary::{
 };
 use crate::cayley::CayleyFamily;
 use crate::closed_loop::AffineFamily;
-use crate::line_decomposition::{stable_intervals, stable_intervals_with_angles};
+use crate::line_decomposition::{located_crossings, stable_intervals, stable_intervals_located};
 use crate::poly;
 use crate::real_roots::positive_roots;
 use crate::region::{ConfirmedMax, confirm_max};
@@ -112,9 +112,15 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
     let mut cands: Option<Vec<AlphaBeta>> = None;
     for _ in 0..CAP_ROUNDS {
         let cap = match certificate(fam, cf, found.alpha, band) {
-            Certificate::Holds => {
-                return confirmed(fam, found, band).map_or(BandMax::Undecided, BandMax::Max);
-            }
+            Certificate::Holds(thetas) => match separate_component(fam, cf, found, thetas, band) {
+                Some(f) => {
+                    found = f;
+                    continue;
+                }
+                None => {
+                    return confirmed(fam, found, band).map_or(BandMax::Undecided, BandMax::Max);
+                }
+            },
             Certificate::Other => None,
             Certificate::Cap { alpha, ends } => cap_top(fam, alpha, ends),
         };
@@ -411,8 +417,9 @@ fn closes_on(fam: &AffineFamily, cf: &CayleyFamily, c: AlphaBeta, band: (f64, f6
 
 /// What the damping axis at a stiffness just above K_max holds inside the band.
 enum Certificate {
-    /// No stable wall: K_max is certified.
-    Holds,
+    /// No stable wall: K_max is certified on the level, whose crossings' angles θ are kept
+    /// for [`separate_component`].
+    Holds(Vec<f64>),
     /// One stable damping interval inside the band (its ends' dampings and angles θ, 0 or π
     /// on the z = ±1 lines): a cap of the region above, closing at its top.
     Cap { alpha: f64, ends: [(f64, f64); 2] },
@@ -428,23 +435,15 @@ fn certificate(
     (lo, hi): (f64, f64),
 ) -> Certificate {
     let above = alpha + CERTIFY_REL * alpha.abs().max(f64::MIN_POSITIVE);
-    let axis = WallLine {
-        from: AlphaBeta {
-            alpha: above,
-            beta: 0.0,
-        },
-        dir: AlphaBeta {
-            alpha: 0.0,
-            beta: 1.0,
-        },
-    };
+    let axis = damping_axis(above);
     let known = |t: f64| (0.0..=std::f64::consts::PI).contains(&t);
-    let hits: Vec<(Interval, [f64; 2])> = stable_intervals_with_angles(fam, cf, &axis)
+    let located = located_crossings(fam, cf, &axis);
+    let hits: Vec<(Interval, [f64; 2])> = stable_intervals_located(fam, &axis, &located)
         .into_iter()
         .filter(|(iv, _)| iv.lo < hi && iv.hi > lo)
         .collect();
     match hits.as_slice() {
-        [] => Certificate::Holds,
+        [] => Certificate::Holds(located.iter().map(|c| c.theta).collect()),
         [(iv, [t0, t1])] if iv.lo >= lo && iv.hi <= hi && known(*t0) && known(*t1) => {
             Certificate::Cap {
                 alpha: above,
@@ -452,6 +451,68 @@ fn certificate(
             }
         }
         _ => Certificate::Other,
+    }
+}
+
+/// Samples of a(θ) on each arc of the curve between consecutive crossings of the
+/// certificate's level.
+const HUMP_SAMPLES: usize = 12;
+
+/// A part of the stable region above the answer that does not reach down to it (a separate
+/// component): the curve rises above the answer's level a* only on arcs between consecutive
+/// angles at which it crosses that level (the damping axis's crossings at a*), and such a
+/// component is bounded by them; on each such hump the first sampled point that may lie on
+/// the region's boundary (no root surely outside) has its exact stable intervals tested at
+/// its damping. The first top found above a*, or None.
+fn separate_component(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    found: Found,
+    level_thetas: Vec<f64>,
+    (lo, hi): (f64, f64),
+) -> Option<Found> {
+    use std::f64::consts::PI;
+    let level = found.alpha + CERTIFY_REL * found.alpha.abs().max(f64::MIN_POSITIVE);
+    let mut thetas: Vec<f64> = level_thetas
+        .into_iter()
+        .filter(|&t| t > 0.0 && t < PI)
+        .collect();
+    thetas.push(0.0);
+    thetas.push(PI);
+    thetas.sort_by(f64::total_cmp);
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    for w in thetas.windows(2) {
+        let step = (w[1] - w[0]) / (HUMP_SAMPLES + 1) as f64;
+        // the first sample above the level that may lie on the boundary, inside the band
+        let on_hump = (1..=HUMP_SAMPLES)
+            .filter_map(|j| curve_point(fam, w[0] + step * j as f64))
+            .find(|p| {
+                p.alpha > level
+                    && p.alpha.is_finite()
+                    && p.beta >= lo
+                    && p.beta <= hi
+                    && !surely_outside(fam, *p, &mut coeffs)
+            });
+        let Some(p) = on_hump else { continue };
+        if let Some(iv) = top_interval(fam, cf, p.beta).filter(|iv| iv.hi > level) {
+            return Some(Found {
+                alpha: iv.hi,
+                beta: p.beta,
+                exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
+            });
+        }
+    }
+    None
+}
+
+/// The damping axis at stiffness a.
+fn damping_axis(alpha: f64) -> WallLine {
+    WallLine {
+        from: AlphaBeta { alpha, beta: 0.0 },
+        dir: AlphaBeta {
+            alpha: 0.0,
+            beta: 1.0,
+        },
     }
 }
 

@@ -32,7 +32,11 @@ const POLISH_REACH: f64 = 1e-6;
 
 /// The crossings of a wall line with t from the transformed parts (not polished): the
 /// z = ±1 lines exactly, the complex pairs to the Cayley polynomial's precision. Sorted by t.
-fn located_crossings(fam: &AffineFamily, cf: &CayleyFamily, line: &WallLine) -> Vec<LineCrossing> {
+pub(crate) fn located_crossings(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    line: &WallLine,
+) -> Vec<LineCrossing> {
     let mut out: Vec<LineCrossing> = Vec::new();
     for (l, theta) in [(plus_one_line(fam), 0.0), (minus_one_line(fam), PI)] {
         if let Some(t) = l.and_then(|l| root_line_t(&l, line)) {
@@ -116,8 +120,17 @@ pub fn stable_intervals_with_angles(
     cf: &CayleyFamily,
     line: &WallLine,
 ) -> Vec<(Interval, [f64; 2])> {
-    let located = located_crossings(fam, cf, line);
-    let rough = stable_between(fam, line, &located);
+    stable_intervals_located(fam, line, &located_crossings(fam, cf, line))
+}
+
+/// [`stable_intervals_with_angles`] from the line's located crossings
+/// ([`located_crossings`]), computed once for several uses.
+pub(crate) fn stable_intervals_located(
+    fam: &AffineFamily,
+    line: &WallLine,
+    located: &[LineCrossing],
+) -> Vec<(Interval, [f64; 2])> {
+    let rough = stable_between(fam, line, located);
     let polish = |x: f64| -> (f64, f64) {
         if !x.is_finite() {
             return (x, f64::NAN);
