@@ -502,6 +502,43 @@ fn separate_component(
             });
         }
     }
+    corner_above(fam, cf, level, (lo, hi), &mut coeffs)
+}
+
+/// A component above the level whose top is a corner on a z = ±1 line (a wedge between a
+/// line and the curve or the other line): the highest such corner inside the band that the
+/// region reaches or closes on.
+fn corner_above(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    level: f64,
+    band: (f64, f64),
+    coeffs: &mut [f64],
+) -> Option<Found> {
+    let mut corners: Vec<AlphaBeta> = line_corners(fam, cf)
+        .into_iter()
+        .filter(|c| c.alpha > level && c.alpha.is_finite() && c.beta >= band.0 && c.beta <= band.1)
+        .collect();
+    corners.sort_by(|p, q| q.alpha.total_cmp(&p.alpha));
+    for c in corners {
+        if surely_outside(fam, c, coeffs) {
+            continue;
+        }
+        if let Some(iv) = top_interval(fam, cf, c.beta).filter(|iv| iv.hi > level) {
+            return Some(Found {
+                alpha: iv.hi,
+                beta: c.beta,
+                exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
+            });
+        }
+        if closes_on(fam, cf, c, band) {
+            return Some(Found {
+                alpha: c.alpha,
+                beta: c.beta,
+                exact: false,
+            });
+        }
+    }
     None
 }
 
@@ -538,7 +575,7 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
 
 /// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered.
 fn curve_candidates(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
-    let (a1, a2, b1) = (&cf.p0_pb, &cf.pb_pk, &poly_neg(&cf.p0_pk));
+    let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
     let mut out: Vec<AlphaBeta> = Vec::new();
     let stationary = poly::add_scaled(
         &poly::mul(&derivative(a1), a2),
@@ -550,6 +587,15 @@ fn curve_candidates(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
             .into_iter()
             .filter_map(|u| curve_point(fam, angle(u))),
     );
+    out.extend(line_corners(fam, cf));
+    out
+}
+
+/// The corners on the z = ±1 lines (item 3 of the module doc): where the curve meets each
+/// line, where the lines meet, and the curve's ends.
+fn line_corners(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
+    let (a1, a2, b1) = (&cf.p0_pb, &cf.pb_pk, &poly_neg(&cf.p0_pk));
+    let mut out: Vec<AlphaBeta> = Vec::new();
     let lines: Vec<RootLine> = [plus_one_line(fam), minus_one_line(fam)]
         .into_iter()
         .flatten()
