@@ -1,23 +1,33 @@
 //! K_max over a damping band without the region's polygon: the largest stable stiffness a
-//! with b_lo ≤ b ≤ b_hi, from the finite candidate set of the D-decomposition (Section V).
+//! with b_lo ≤ b ≤ b_hi (Section V's D-decomposition, without tracing the region).
 //!
-//! The top of the stable region within the band is reached at
-//! 1. the band's edges: the highest stable interval's end at b_lo and at b_hi;
-//! 2. a stationary point of a along the complex-pair curve (a smooth top);
-//! 3. a corner where the curve meets the z = 1 or z = −1 line, where the two lines meet, or
-//!    where the curve ends on a line (a double root at z = ±1).
+//! The top of the stable region within the band is reached at the band's edges, at a
+//! stationary point of a along the complex-pair curve (a smooth top), at a corner where the
+//! curve crosses itself, meets the z = 1 or z = −1 line or ends on one, or where the two lines
+//! meet. The search climbs from the bottom of that list:
+//! 1. **Start**: the highest end of the exact stable stiffness intervals on the band's edges
+//!    (at B = 0 in a band without edges), from [`crate::line_decomposition`].
+//! 2. **Certificate**: the damping axis at a stiffness just above the answer holds no stable
+//!    wall inside the band.
+//! 3. **Caps**: where it holds one, that stable damping interval is a cap of the region
+//!    above the answer; its ends lie on arcs of the curve or on the lines, and its top is one
+//!    arc's smooth maximum (da/dθ = 0 between the ends), the corner where the two arcs meet
+//!    (Newton's method on the two arcs), an arc meeting a line, or the lines meeting. A top
+//!    that the exact stable intervals at its damping reach is the next answer; back to 2.
+//! 4. **Separate components**: once the certificate holds, a component of the region above
+//!    the answer that does not reach down to its level is bounded by arcs of the curve above
+//!    that level (between the level's crossings) or has its top at a corner on a line; a
+//!    sampled point of such an arc, or such a corner, that may lie on the region's boundary
+//!    has the exact stable intervals at its damping tested.
 //!
-//! On the curve a(u) = [P0, PB]/[PB, PK] and b(u) = −[P0, PK]/[PB, PK] in u = tan²(θ/2)
+//! Where a cap's top is not found, the curve's candidates are taken from the highest down:
+//! on the curve a(u) = [P0, PB]/[PB, PK] and b(u) = −[P0, PK]/[PB, PK] in u = tan²(θ/2)
 //! ([`crate::cayley`]), so the stationary points are the positive roots of
-//! [P0, PB]′·[PB, PK] − [P0, PB]·[PB, PK]′ and the curve meets the line
-//! p0 + a·pk + b·pb = 0 at the roots of p0·[PB, PK] + pk·[P0, PB] − pb·[P0, PK]. Each candidate
-//! inside the band is taken from the highest down: the exact stable intervals at its damping
-//! ([`crate::line_decomposition`]) give the attained top there; a candidate above that top is
-//! a corner only touched by the region (a supremum) when the intervals beside its damping
-//! close on it. The answer is then certified: at a stiffness just above it the damping axis
-//! has no stable wall inside the band. A certificate that fails — a top that the candidates
-//! miss, such as a corner where the curve crosses itself — leaves the answer to the region
-//! ([`crate::region::alpha_max_within`]).
+//! [P0, PB]′·[PB, PK] − [P0, PB]·[PB, PK]′ and the curve meets the line p0 + a·pk + b·pb = 0
+//! at the roots of p0·[PB, PK] + pk·[P0, PB] − pb·[P0, PK]; a candidate above the top of the
+//! exact intervals at its damping is a corner only touched by the region (a supremum) when
+//! the intervals beside its damping close on it. What none of this settles is
+//! [`BandMax::Undecided`], and the region decides it ([`crate::region::alpha_max_within`]).
 
 use crate::boundary::{
     AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, dalpha_dtheta, minus_one_line,
@@ -96,7 +106,7 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
             exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
         });
     }
-    let cands = sorted_candidates(fam, cf, (b_lo, b_hi));
+    let cands = sorted_candidates(fam, cf, (b_lo, b_hi), f64::NEG_INFINITY);
     match highest_candidate(fam, cf, &cands, None, (b_lo, b_hi)) {
         Some(f) => Start::Found(f),
         None if cands.is_empty() => Start::NoneStable,
@@ -134,7 +144,8 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
                 exact: true,
             })
             .or_else(|| {
-                let list = cands.get_or_insert_with(|| sorted_candidates(fam, cf, band));
+                let list =
+                    cands.get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha));
                 highest_candidate(fam, cf, list, Some(found), band)
                     .filter(|f| f.alpha > found.alpha)
             });
@@ -146,13 +157,19 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
     BandMax::Undecided
 }
 
-/// The curve's candidates inside the band, highest first.
+/// The curve's candidates inside the band above `floor`, highest first.
 fn sorted_candidates(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     (b_lo, b_hi): (f64, f64),
+    floor: f64,
 ) -> Vec<AlphaBeta> {
-    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf)
+    // located candidates far below the floor or outside the band are not polished
+    let keep = |p: AlphaBeta| {
+        let slack = CORNER_REACH * p.alpha.abs().max(p.beta.abs());
+        p.alpha > floor - slack && p.beta >= b_lo - slack && p.beta <= b_hi + slack
+    };
+    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf, &keep)
         .into_iter()
         .filter(|p| p.beta >= b_lo && p.beta <= b_hi && p.alpha.is_finite())
         .collect();
@@ -463,7 +480,8 @@ const HUMP_SAMPLES: usize = 12;
 /// angles at which it crosses that level (the damping axis's crossings at a*), and such a
 /// component is bounded by them; on each such hump the first sampled point that may lie on
 /// the region's boundary (no root surely outside) has its exact stable intervals tested at
-/// its damping. The first top found above a*, or None.
+/// its damping; then the curve's stationary points and corners above a* (an island's
+/// extremes), as [`highest_candidate`] takes them. The first top found above a*, or None.
 fn separate_component(
     fam: &AffineFamily,
     cf: &CayleyFamily,
@@ -502,44 +520,10 @@ fn separate_component(
             });
         }
     }
-    corner_above(fam, cf, level, (lo, hi), &mut coeffs)
-}
-
-/// A component above the level whose top is a corner on a z = ±1 line (a wedge between a
-/// line and the curve or the other line): the highest such corner inside the band that the
-/// region reaches or closes on.
-fn corner_above(
-    fam: &AffineFamily,
-    cf: &CayleyFamily,
-    level: f64,
-    band: (f64, f64),
-    coeffs: &mut [f64],
-) -> Option<Found> {
-    let mut corners: Vec<AlphaBeta> = line_corners(fam, cf)
-        .into_iter()
-        .filter(|c| c.alpha > level && c.alpha.is_finite() && c.beta >= band.0 && c.beta <= band.1)
-        .collect();
-    corners.sort_by(|p, q| q.alpha.total_cmp(&p.alpha));
-    for c in corners {
-        if surely_outside(fam, c, coeffs) {
-            continue;
-        }
-        if let Some(iv) = top_interval(fam, cf, c.beta).filter(|iv| iv.hi > level) {
-            return Some(Found {
-                alpha: iv.hi,
-                beta: c.beta,
-                exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
-            });
-        }
-        if closes_on(fam, cf, c, band) {
-            return Some(Found {
-                alpha: c.alpha,
-                beta: c.beta,
-                exact: false,
-            });
-        }
-    }
-    None
+    // an island whose boundary the samples miss: its top, bottom or sides are among the
+    // curve's stationary points and corners
+    let cands = sorted_candidates(fam, cf, (lo, hi), level);
+    highest_candidate(fam, cf, &cands, Some(found), (lo, hi)).filter(|f| f.alpha > level)
 }
 
 /// The damping axis at stiffness a.
@@ -574,7 +558,11 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
 }
 
 /// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered.
-fn curve_candidates(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
+fn curve_candidates(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    keep: &dyn Fn(AlphaBeta) -> bool,
+) -> Vec<AlphaBeta> {
     let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
     let mut out: Vec<AlphaBeta> = Vec::new();
     let stationary = poly::add_scaled(
@@ -587,13 +575,17 @@ fn curve_candidates(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
             .into_iter()
             .filter_map(|u| curve_point(fam, angle(u))),
     );
-    out.extend(line_corners(fam, cf));
+    out.extend(line_corners(fam, cf, keep));
     out
 }
 
 /// The corners on the z = ±1 lines (item 3 of the module doc): where the curve meets each
 /// line, where the lines meet, and the curve's ends.
-fn line_corners(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
+fn line_corners(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    keep: &dyn Fn(AlphaBeta) -> bool,
+) -> Vec<AlphaBeta> {
     let (a1, a2, b1) = (&cf.p0_pb, &cf.pb_pk, &poly_neg(&cf.p0_pk));
     let mut out: Vec<AlphaBeta> = Vec::new();
     let lines: Vec<RootLine> = [plus_one_line(fam), minus_one_line(fam)]
@@ -605,7 +597,7 @@ fn line_corners(fam: &AffineFamily, cf: &CayleyFamily) -> Vec<AlphaBeta> {
         out.extend(
             positive_roots(&meet)
                 .into_iter()
-                .filter_map(|u| corner_on_line(fam, l, angle(u))),
+                .filter_map(|u| corner_on_line(fam, l, angle(u), keep)),
         );
     }
     if let [l1, l2] = lines.as_slice() {
@@ -625,8 +617,17 @@ fn angle(u: f64) -> f64 {
 }
 
 /// The curve's point where it meets the line, polished in θ where the line's value changes
-/// sign within [`CORNER_REACH`] of the located angle.
-fn corner_on_line(fam: &AffineFamily, l: &RootLine, theta: f64) -> Option<AlphaBeta> {
+/// sign within [`CORNER_REACH`] of the located angle; None for a located point that `keep`
+/// rejects.
+fn corner_on_line(
+    fam: &AffineFamily,
+    l: &RootLine,
+    theta: f64,
+    keep: &dyn Fn(AlphaBeta) -> bool,
+) -> Option<AlphaBeta> {
+    if !keep(curve_point(fam, theta)?) {
+        return None;
+    }
     let value = |t: f64| curve_point(fam, t).map_or(f64::NAN, |p| l.value(p));
     let (t0, t1) = (
         theta * (1.0 - CORNER_REACH),
