@@ -176,7 +176,7 @@ mod tests {
             let n = pf.degree() as i32;
             for theta in [1e-6, 0.01, 0.7, 1.5, 2.9, 3.1] {
                 let (p0, pk, pb) = pf.parts_on_circle(theta);
-                let w = (0.5 * theta as f64).tan();
+                let w = (0.5 * theta).tan();
                 let u = w * w;
                 // |1 − iω|^{2N} = (1 + u)^N
                 let scale = w / (1.0 + u).powi(n);

@@ -95,7 +95,7 @@ fn polished(fam: &AffineFamily, line: &WallLine, c: LineCrossing) -> LineCrossin
 pub fn line_crossings(fam: &AffineFamily, cf: &CayleyFamily, line: &WallLine) -> Vec<LineCrossing> {
     let mut out: Vec<LineCrossing> = located_crossings(fam, cf, line)
         .into_iter()
-        .map(|c| polished(fam, &line, c))
+        .map(|c| polished(fam, line, c))
         .collect();
     out.sort_by(|a, b| a.t.total_cmp(&b.t));
     out.dedup_by(|a, b| (a.t - b.t).abs() <= 1e-15 * a.t.abs().max(b.t.abs()));

@@ -176,7 +176,10 @@ mod tests {
         // K_max comes without the polygon)
         let p = k_max_within(&lp, &fam, 0.0, 2.0 * b_star).unwrap().unwrap();
         let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
-        assert!(close(p.alpha, r.alpha_max) && close(p.beta, b_star), "{p:?} vs {r:?}");
+        assert!(
+            close(p.alpha, r.alpha_max) && close(p.beta, b_star),
+            "{p:?} vs {r:?}"
+        );
         // a band below it is limited by its upper edge, where K_max at that damping holds
         let p = k_max_within(&lp, &fam, 0.0, 0.5 * b_star).unwrap().unwrap();
         let at_edge = k_max_at_damping(&lp, &fam, 0.5 * b_star).unwrap().unwrap();
