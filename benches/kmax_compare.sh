@@ -15,7 +15,7 @@ fi
 cargo build --release -p hapstab-cli >/dev/null 2>&1
 out=target/kmax-compare; rm -rf "$out"; mkdir -p "$out"
 for r in $(seq 1 "$runs"); do
-  RAYON_NUM_THREADS=1 cargo bench -p hapstab --bench kmax -- --noplot >/dev/null 2>&1
+  RAYON_NUM_THREADS=1 cargo bench -p hapstab --bench kmax -- --noplot --warm-up-time 1 --measurement-time 2 >/dev/null 2>&1
   for f in target/criterion/kmax/*/*/new/estimates.json; do
     id=$(echo "$f" | sed 's|target/criterion/kmax/||; s|/new/estimates.json||; s|/|.|')
     python3 -c "import json;print(json.load(open('$f'))['median']['point_estimate'])" >> "$out/$id"
