@@ -1,0 +1,223 @@
+//! hapstab::identify on recordings made by an independent simulator
+//! (benches/baseline/identify_data.py, numpy/scipy only): every parameter within 2 % of the
+//! simulator's truth at 40 dB SNR and inside its 95 % interval; bad data refused naming the
+//! column or the problem.
+
+use std::path::PathBuf;
+
+use hapstab::identify::{
+    Columns, Fixed, IdentifyError, ModelKind, ModelSpec, Record, identify, stiffness_limit,
+};
+use hapstab::model::VelocityEstimator;
+
+fn fixture(name: &str) -> (Record, serde_json::Value) {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/identify");
+    let csv = std::fs::read_to_string(dir.join(format!("{name}.csv"))).unwrap();
+    let truth = std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap();
+    (
+        Record::from_csv(&csv, &Columns::default()).unwrap(),
+        serde_json::from_str(&truth).unwrap(),
+    )
+}
+
+fn spec(model: &str, fixed: &[(&str, f64)], delay_time: f64) -> ModelSpec {
+    let fixed = fixed
+        .iter()
+        .map(|(n, v)| Fixed {
+            name: (*n).into(),
+            value: *v,
+        })
+        .collect();
+    ModelSpec::new(ModelKind::parse(model).unwrap(), fixed, delay_time, 0.0).unwrap()
+}
+
+/// Every parameter named in `truth` within `tol` relative and inside its 95 % interval.
+fn recovers(name: &str, model: &str, fixed: &[(&str, f64)], truth: &[(&str, f64)], tol: f64) {
+    let (rec, meta) = fixture(name);
+    let delay = meta["delay"].as_f64().unwrap() * rec.period;
+    let id = identify(&rec, &spec(model, fixed, delay)).unwrap();
+    for (p, want) in truth {
+        let e = id.parameter(p).unwrap();
+        let rel = (e.value - want).abs() / want.abs();
+        let [lo, hi] = e.ci95.unwrap();
+        println!(
+            "{name} {p}: {} (truth {want}, rel {rel:.2e}, CI [{lo}, {hi}])",
+            e.value
+        );
+        assert!(rel < tol, "{name} {p}: {} vs {want} ({rel:.3e})", e.value);
+        assert!(
+            lo <= *want && *want <= hi,
+            "{name} {p}: {want} outside [{lo}, {hi}]"
+        );
+    }
+    // the NRMSE of a right model is the noise's share of the position: 10^(−SNR/20)
+    let snr = meta["snr_db"].as_f64().unwrap();
+    let nrmse_bound = 1.5 * 10f64.powf(-snr / 20.0) + 0.01;
+    assert!(id.fit.nrmse < nrmse_bound, "{name}: NRMSE {}", id.fit.nrmse);
+}
+
+#[test]
+fn mass_spring_damper_from_a_chirp_at_40_db() {
+    let t = [("mass", 0.6), ("damping", 7.5), ("stiffness", 350.0)];
+    recovers("msd_chirp_40db", "mass-spring-damper", &[], &t, 0.02);
+}
+
+#[test]
+fn held_device_arm_from_a_prbs_at_40_db() {
+    let fixed = [("device-mass", 0.1), ("device-damping", 1.5)];
+    let t = [
+        ("arm-mass", 1.0),
+        ("arm-damping", 6.0),
+        ("arm-stiffness", 350.0),
+    ];
+    recovers("held_prbs_40db", "mass-spring-damper", &fixed, &t, 0.02);
+}
+
+#[test]
+fn two_mass_device_from_a_chirp_at_40_db() {
+    let t = [
+        ("motor-mass", 0.3),
+        ("motor-damping", 2.0),
+        ("handle-mass", 0.1),
+        ("transmission-stiffness", 2300.0),
+        ("transmission-damping", 1.0),
+    ];
+    recovers("two_mass_chirp_40db", "two-mass", &[], &t, 0.02);
+}
+
+#[test]
+fn third_order_transfer_function_from_a_chirp_at_40_db() {
+    let t = [
+        ("b0", 2000.0),
+        ("a2", 60.0),
+        ("a1", 4000.0),
+        ("a0", 20000.0),
+    ];
+    recovers("tf3_chirp_40db", "tf:0/3", &[], &t, 0.02);
+}
+
+#[test]
+fn mass_spring_damper_behind_a_delay_at_20_db() {
+    let t = [("mass", 0.6), ("damping", 7.5), ("stiffness", 350.0)];
+    recovers("msd_prbs_20db_delay1", "mass-spring-damper", &[], &t, 0.05);
+}
+
+#[test]
+fn the_consequence_brackets_the_true_k_max() {
+    let (rec, _) = fixture("msd_chirp_40db");
+    let id = identify(&rec, &spec("mass-spring-damper", &[], 0.0)).unwrap();
+    let lim = stiffness_limit(&id, &VelocityEstimator::Backward, 200, 1).unwrap();
+    let truth = {
+        let lp = hapstab::Loop::paper(hapstab::Effective::new(0.6, 7.5, 350.0).unwrap(), 1e-3, 0)
+            .unwrap();
+        let fam = hapstab::AffineFamily::of_loop(&lp).unwrap();
+        hapstab::kmax::kmax(&lp, &fam, hapstab::kmax::KmaxQuery::AtDamping(0.0))
+            .unwrap()
+            .k_max
+            .unwrap()
+    };
+    let [lo, hi] = lim.spread.unwrap();
+    println!(
+        "K_max {:?} spread [{lo}, {hi}] truth {truth} robust {:?}",
+        lim.k_max,
+        lim.robust.as_ref().map(|r| r.k_max)
+    );
+    assert!(lo <= truth && truth <= hi);
+    let robust = lim.robust.unwrap().k_max.unwrap();
+    assert!(robust <= truth * (1.0 + 1e-9));
+}
+
+fn refused(time: Vec<f64>, force: Vec<f64>, position: Vec<f64>) -> String {
+    Record::new(time, force, position, &Columns::default())
+        .err()
+        .expect("refused")
+        .to_string()
+}
+
+fn uniform(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let t: Vec<f64> = (0..n).map(|k| k as f64 * 1e-3).collect();
+    let f: Vec<f64> = (0..n).map(|k| (k as f64 * 0.1).sin()).collect();
+    (t, f, vec![0.0; n])
+}
+
+#[test]
+fn bad_data_is_refused_naming_the_column() {
+    let (t, f, x) = uniform(100);
+    let mut tu = t.clone();
+    tu.swap(10, 11);
+    assert!(refused(tu, f.clone(), x.clone()).contains("column 'time': not increasing"));
+    let mut tj = t.clone();
+    tj[50] += 4e-4;
+    assert!(refused(tj, f.clone(), x.clone()).contains("column 'time': not uniformly sampled"));
+    let mut fnan = f.clone();
+    fnan[3] = f64::NAN;
+    assert!(refused(t.clone(), fnan, x.clone()).contains("column 'force': sample 4 is NaN"));
+    let e = refused(t.clone(), vec![1.0; 100], x.clone());
+    assert!(e.contains("column 'force': constant"), "{e}");
+    let e = refused(t[..5].to_vec(), f[..5].to_vec(), x[..5].to_vec());
+    assert!(e.contains("5 samples: too few"), "{e}");
+    let csv = "time,force\n0,1\n";
+    let e = Record::from_csv(csv, &Columns::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("column 'position': not in the header"), "{e}");
+    let csv = "time,force,position\n0,1,x\n";
+    let e = Record::from_csv(csv, &Columns::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("column 'position': line 2: 'x' is not a number"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_model_that_cannot_fit_is_reported_not_returned() {
+    // the position is noise unrelated to the force
+    let n = 2000;
+    let t: Vec<f64> = (0..n).map(|k| k as f64 * 1e-3).collect();
+    let f: Vec<f64> = (0..n).map(|k| ((k / 20) % 2) as f64 * 2.0 - 1.0).collect();
+    let mut s = 12345u64;
+    let x: Vec<f64> = (0..n)
+        .map(|_| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-3
+        })
+        .collect();
+    let rec = Record::new(t, f, x, &Columns::default()).unwrap();
+    let e = identify(&rec, &spec("mass-spring-damper", &[], 0.0))
+        .err()
+        .unwrap();
+    assert!(matches!(e, IdentifyError::NoFit(_)), "{e}");
+}
+
+#[test]
+fn unknown_or_bad_held_parameters_are_named() {
+    let e = ModelSpec::new(
+        ModelKind::MassSpringDamper,
+        vec![Fixed {
+            name: "spring".into(),
+            value: 1.0,
+        }],
+        0.0,
+        0.0,
+    )
+    .err()
+    .unwrap()
+    .to_string();
+    assert!(
+        e.starts_with("parameter 'spring': not a parameter of mass-spring-damper"),
+        "{e}"
+    );
+    let e = ModelSpec::new(ModelKind::HeldDevice, vec![], 0.0, 0.0)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.starts_with("parameter 'device-mass'"), "{e}");
+    let e = ModelKind::parse("tf:3/2").err().unwrap().to_string();
+    assert!(e.contains("strictly proper"), "{e}");
+}
