@@ -1,0 +1,173 @@
+//! `hapstab identify`: the plant from a recording of commanded force and measured position,
+//! with standard errors and 95 % intervals, the fit and residual tests, the identified loop
+//! as a loop file, and K_max at B = 0 with its uncertainty. Every number is the library's
+//! ([`hapstab::identify`]); this module parses, calls and renders.
+
+mod plot;
+mod text;
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use hapstab::identify::{
+    Columns, Fixed, Identification, ModelKind, ModelSpec, Record, StiffnessLimit, identify,
+    stiffness_limit,
+};
+use hapstab::model::{Loop, VelocityEstimator};
+use serde::Serialize;
+
+use crate::output::print_json;
+use crate::plot::Saved;
+
+/// Fit a plant model to a recording of force and position, then answer with K_max.
+#[derive(Args, Debug, Clone)]
+pub struct IdentifyArgs {
+    /// CSV recording with a header line: time (s), commanded force (N), measured position (m),
+    /// uniformly sampled at the loop's period (the mean time step is taken as T)
+    #[arg(long, value_name = "FILE")]
+    pub data: PathBuf,
+    /// Model: mass-spring-damper (m, b, k; device alone, or device + arm with
+    /// --fix device-mass=… --fix device-damping=…), held-device, two-mass, or tf:N/D (a
+    /// transfer function of numerator order N and denominator order D, monic denominator)
+    #[arg(long, default_value = "mass-spring-damper")]
+    pub model: String,
+    /// The time, force and position column names in the header
+    #[arg(long, value_name = "T,F,X", default_value = "time,force,position")]
+    pub columns: String,
+    /// Hold a parameter at a known value (repeatable), e.g. --fix device-mass=0.1
+    #[arg(long = "fix", value_name = "NAME=VALUE")]
+    pub fix: Vec<String>,
+    /// Known delay of the force in whole samples
+    #[arg(long, conflicts_with = "delay_time")]
+    pub delay: Option<usize>,
+    /// Known delay of the force in s (any fraction of a sample)
+    #[arg(long)]
+    pub delay_time: Option<f64>,
+    /// Known actuator lag τ in s (a first-order lag between commanded and applied force)
+    #[arg(long, default_value_t = 0.0)]
+    pub force_lag: f64,
+    /// Velocity estimator of the wall rendered on the identified plant (for K_max and the
+    /// loop file), as --velocity of the other commands
+    #[arg(long, default_value = "backward")]
+    pub velocity: VelocityEstimator,
+    /// Loops drawn from the parameters' covariance for K_max's spread
+    #[arg(long, default_value_t = hapstab::identify::consequence::DEFAULT_DRAWS)]
+    pub draws: usize,
+    /// Seed of the drawn loops and of the robust search
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Write the identified loop as a loop file for --loop
+    #[arg(long, value_name = "FILE")]
+    pub write_loop: Option<PathBuf>,
+    /// Figure of measured and model position and the residuals (FILE.svg and FILE.png)
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// One JSON object instead of text
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The command's settings as echoed under `input`.
+#[derive(Serialize)]
+struct Input<'a> {
+    data: &'a PathBuf,
+    model: String,
+    columns: &'a str,
+    fixed: &'a [Fixed],
+    delay_time: f64,
+    force_lag: f64,
+    velocity: &'a VelocityEstimator,
+    draws: usize,
+    seed: u64,
+}
+
+/// The JSON report.
+#[derive(Serialize)]
+struct Report<'a> {
+    input: Input<'a>,
+    #[serde(flatten)]
+    identification: &'a Identification,
+    k_max_at_zero_damping: &'a StiffnessLimit,
+    #[serde(rename = "loop")]
+    lp: &'a Loop,
+    loop_file: Option<&'a PathBuf>,
+    plot: Option<Saved>,
+}
+
+/// The recording, checked.
+fn load(args: &IdentifyArgs) -> Result<Record> {
+    let text = std::fs::read_to_string(&args.data)
+        .with_context(|| format!("--data '{}': cannot read", args.data.display()))?;
+    let columns = Columns::parse(&args.columns)?;
+    Record::from_csv(&text, &columns).with_context(|| format!("--data '{}'", args.data.display()))
+}
+
+/// The model spec from the flags (the delay in s at the recording's period).
+fn spec(args: &IdentifyArgs, period: f64) -> Result<ModelSpec> {
+    let kind = ModelKind::parse(&args.model)?;
+    let fixed = args
+        .fix
+        .iter()
+        .map(|f| Fixed::parse(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let delay_time = match (args.delay, args.delay_time) {
+        (Some(d), _) => d as f64 * period,
+        (None, Some(t)) => t,
+        (None, None) => 0.0,
+    };
+    Ok(ModelSpec::new(kind, fixed, delay_time, args.force_lag)?)
+}
+
+/// Writes the identified loop as a loop file (`{"loop": …}`, as `--loop` reads it).
+fn write_loop(path: &PathBuf, lp: &Loop) -> Result<()> {
+    #[derive(Serialize)]
+    struct File<'a> {
+        #[serde(rename = "loop")]
+        lp: &'a Loop,
+    }
+    let text = crate::output::json_text(&File { lp })?;
+    std::fs::write(path, text + "\n")
+        .with_context(|| format!("--write-loop '{}': cannot write", path.display()))
+}
+
+/// Runs `hapstab identify`.
+pub fn run(args: &IdentifyArgs) -> Result<()> {
+    if args.draws == 0 {
+        bail!("--draws: must be at least 1");
+    }
+    let record = load(args)?;
+    let spec = spec(args, record.period)?;
+    let id = identify(&record, &spec)?;
+    let lp = id.to_loop(args.velocity.clone())?;
+    let limit = stiffness_limit(&id, &args.velocity, args.draws, args.seed)?;
+    if let Some(path) = &args.write_loop {
+        write_loop(path, &lp)?;
+    }
+    let saved = match &args.plot {
+        Some(path) => Some(plot::figure(&record, &id, &lp).save(path)?),
+        None => None,
+    };
+    if args.json {
+        return print_json(&Report {
+            input: Input {
+                data: &args.data,
+                model: id.model.clone(),
+                columns: &args.columns,
+                fixed: &spec.fixed,
+                delay_time: spec.delay_time,
+                force_lag: spec.force_lag,
+                velocity: &args.velocity,
+                draws: args.draws,
+                seed: args.seed,
+            },
+            identification: &id,
+            k_max_at_zero_damping: &limit,
+            lp: &lp,
+            loop_file: args.write_loop.as_ref(),
+            plot: saved,
+        });
+    }
+    text::print(&id, &limit, &lp, args, saved.as_ref());
+    Ok(())
+}
