@@ -50,10 +50,17 @@ fn recovers(name: &str, model: &str, fixed: &[(&str, f64)], truth: &[(&str, f64)
             "{name} {p}: {want} outside [{lo}, {hi}]"
         );
     }
-    // the NRMSE of a right model is the noise's share of the position: 10^(−SNR/20)
+    // a right model leaves the noise: σ = RMS·10^(−SNR/20) and the quantization's q²/12
     let snr = meta["snr_db"].as_f64().unwrap();
-    let nrmse_bound = 1.5 * 10f64.powf(-snr / 20.0) + 0.01;
-    assert!(id.fit.nrmse < nrmse_bound, "{name}: NRMSE {}", id.fit.nrmse);
+    let sd = meta["clean_rms"].as_f64().unwrap() * 10f64.powf(-snr / 20.0);
+    let q = meta["quantization"].as_f64().unwrap();
+    let noise = (sd * sd + q * q / 12.0).sqrt();
+    let rms = id.fit.residual_rms;
+    assert!(
+        (rms / noise - 1.0).abs() < 0.05,
+        "{name}: residual RMS {rms} vs noise {noise}"
+    );
+    assert!(id.whiteness.passes, "{name}: {:?}", id.whiteness);
 }
 
 #[test]
