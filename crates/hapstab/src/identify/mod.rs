@@ -8,7 +8,8 @@
 //! 2. **start** ([`arx`]): a linear least-squares estimate of the continuous transfer function
 //!    through a state-variable filter, mapped to the model's parameters;
 //! 3. **refine** ([`output_error`]): output error by Levenberg–Marquardt, positive parameters
-//!    as logarithms, the position offset estimated beside them;
+//!    as logarithms, the position offset estimated beside them, from each start in turn until
+//!    one leaves residuals that pass the tests of step 4 (else the lowest cost is kept);
 //! 4. **assess** ([`uncertainty`]): standard errors and 95 % intervals from the Jacobian, the
 //!    NRMSE, the residuals' whiteness and their cross-correlation with the force;
 //! 5. **consequence** ([`consequence`]): K_max at B = 0 of the identified loop, its spread
@@ -149,8 +150,10 @@ pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
     })
 }
 
-/// The output-error optimum with the smallest cost over every start (the first refusal when
-/// none converges), with the start it came from.
+/// The output-error optimum from the starts in their order (module doc step 3): the first
+/// whose residuals pass both residual tests is taken at once (the model explains the data,
+/// and another start would only find the same optimum); otherwise the one with the smallest
+/// cost; the first refusal when none converges.
 fn best_refinement(record: &Record, spec: &ModelSpec) -> IdResult<(arx::Start, output_error::Fit)> {
     let mut best: Option<(f64, arx::Start, output_error::Fit)> = None;
     let mut first_error = None;
@@ -158,8 +161,12 @@ fn best_refinement(record: &Record, spec: &ModelSpec) -> IdResult<(arx::Start, o
         match output_error::refine(record, spec, &start) {
             Ok(fit) => {
                 let cost = fit.cost(&record.position);
+                let explains = residuals_pass(record, &fit);
                 if best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
                     best = Some((cost, start, fit));
+                }
+                if explains {
+                    break;
                 }
             }
             Err(e) => {
@@ -172,6 +179,18 @@ fn best_refinement(record: &Record, spec: &ModelSpec) -> IdResult<(arx::Start, o
         (None, Some(e)) => Err(e),
         (None, None) => Err(IdentifyError::NoFit("no start to refine".into())),
     }
+}
+
+/// True when a fit's residuals pass the whiteness and the cross-correlation tests.
+fn residuals_pass(record: &Record, fit: &output_error::Fit) -> bool {
+    let e: Vec<f64> = record
+        .position
+        .iter()
+        .zip(&fit.predicted)
+        .map(|(m, p)| m - p)
+        .collect();
+    uncertainty::whiteness(&e, uncertainty::TEST_LAGS).passes
+        && uncertainty::cross_correlation(&e, &record.force, uncertainty::TEST_LAGS).passes
 }
 
 impl Identification {
