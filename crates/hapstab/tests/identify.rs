@@ -136,8 +136,7 @@ fn the_consequence_brackets_the_true_k_max() {
 
 fn refused(time: Vec<f64>, force: Vec<f64>, position: Vec<f64>) -> String {
     Record::new(time, force, position, &Columns::default())
-        .err()
-        .expect("refused")
+        .expect_err("refused")
         .to_string()
 }
 

@@ -85,7 +85,7 @@ pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
     }
     let (start, fit) = best_refinement(record, spec)?;
     let quality = uncertainty::quality(&record.position, &fit.predicted);
-    if !(quality.nrmse <= uncertainty::MAX_NRMSE) {
+    if quality.nrmse.is_nan() || quality.nrmse > uncertainty::MAX_NRMSE {
         return Err(IdentifyError::NoFit(format!(
             "{} explains only {:.1} % of the position (NRMSE {:.3} > {})",
             spec.kind.name(),
@@ -101,30 +101,7 @@ pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
         .map(|(m, p)| m - p)
         .collect();
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let params = spec.kind.params();
-    let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
-    names.push("position offset".into());
-    let cov = uncertainty::covariance(&fit, ss, &names)?;
-    let mut estimates: Vec<Estimate> = params
-        .iter()
-        .enumerate()
-        .map(|(i, p)| Estimate {
-            name: p.name.clone(),
-            unit: p.unit.clone(),
-            value: fit.values[i],
-            fixed: true,
-            standard_error: None,
-            ci95: None,
-        })
-        .collect();
-    for (k, &i) in free.iter().enumerate() {
-        let p = &params[i];
-        estimates[i] =
-            uncertainty::estimate(&p.name, &p.unit, fit.coords[k], fit.x[k], cov[(k, k)]);
-    }
-    let o = free.len();
-    let offset =
-        uncertainty::estimate("position offset", "m", fit.coords[o], fit.x[o], cov[(o, o)]);
+    let (estimates, offset, cov) = estimates(spec, &fit, ss)?;
     Ok(Identification {
         model: spec.kind.name(),
         parameters: estimates,
@@ -142,12 +119,47 @@ pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
         start: start.values,
         evaluations: fit.evaluations,
         predicted: fit.predicted.clone(),
-        covariance: (0..cov.nrows())
-            .map(|a| (0..cov.ncols()).map(|b| cov[(a, b)]).collect())
-            .collect(),
+        covariance: cov,
         optimum: fit,
         spec: spec.clone(),
     })
+}
+
+/// The estimates of every parameter (held ones marked), the offset's, and the covariance
+/// of the optimiser's coordinates (module doc step 4).
+fn estimates(
+    spec: &ModelSpec,
+    fit: &output_error::Fit,
+    residual_ss: f64,
+) -> IdResult<(Vec<Estimate>, Estimate, Vec<Vec<f64>>)> {
+    let free = spec.free();
+    let params = spec.kind.params();
+    let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
+    names.push("position offset".into());
+    let cov = uncertainty::covariance(fit, residual_ss, &names)?;
+    let mut out: Vec<Estimate> = params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Estimate {
+            name: p.name.clone(),
+            unit: p.unit.clone(),
+            value: fit.values[i],
+            fixed: true,
+            standard_error: None,
+            ci95: None,
+        })
+        .collect();
+    for (k, &i) in free.iter().enumerate() {
+        let p = &params[i];
+        out[i] = uncertainty::estimate(&p.name, &p.unit, fit.coords[k], fit.x[k], cov[(k, k)]);
+    }
+    let o = free.len();
+    let offset =
+        uncertainty::estimate("position offset", "m", fit.coords[o], fit.x[o], cov[(o, o)]);
+    let cov = (0..cov.nrows())
+        .map(|a| (0..cov.ncols()).map(|b| cov[(a, b)]).collect())
+        .collect();
+    Ok((out, offset, cov))
 }
 
 /// The output-error optimum from the starts in their order (module doc step 3): the first
