@@ -142,8 +142,11 @@ impl ModelKind {
                 num_order,
                 den_order,
             } => {
+                // P in m/N: b_j·s^j and a_i·s^i weigh as s^D, so b_j is in m/N·s^{j−D}
+                // and a_i in s^{i−D}
+                let d = *den_order as i64;
                 let mut v: Vec<ParamInfo> = (0..=*num_order)
-                    .map(|i| p(&format!("b{i}"), &format!("m/(N·s^{i})"), Real))
+                    .map(|j| p(&format!("b{j}"), &format!("m/N·s^{}", j as i64 - d), Real))
                     .collect();
                 v.extend((0..*den_order).map(|i| {
                     p(
