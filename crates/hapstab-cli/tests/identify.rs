@@ -149,3 +149,67 @@ fn bad_data_and_flags_are_one_line_naming_the_problem() {
         "{e}"
     );
 }
+
+#[test]
+fn a_simulated_log_of_the_default_loop_gives_back_its_arm() {
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("run.csv");
+    let log = log.to_str().unwrap();
+    let out = hapstab()
+        .args([
+            "simulate",
+            "--identification-log",
+            log,
+            "--excitation",
+            "prbs:20",
+        ])
+        .args([
+            "--excitation-amplitude",
+            "2",
+            "--log-snr",
+            "40",
+            "--quantization",
+            "1e-5",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = json(&[
+        "identify",
+        "--data",
+        log,
+        "--fix",
+        "device-mass=0.1",
+        "--fix",
+        "device-damping=1.5",
+        "--draws",
+        "20",
+    ]);
+    // the default arm (README): m_H = 1 kg, b_H = 6 Ns/m, k_H = 350 N/m
+    for (p, truth) in out["parameters"].as_array().unwrap()[2..]
+        .iter()
+        .zip([1.0, 6.0, 350.0])
+    {
+        assert!((f(&p["value"]) / truth - 1.0).abs() < 0.02, "{p}");
+    }
+    let e = refused(&[
+        "simulate",
+        "--identification-log",
+        log,
+        "--excitation",
+        "sine",
+    ]);
+    assert!(e.contains("'--excitation"), "{e}");
+    let e = refused(&[
+        "simulate",
+        "--identification-log",
+        log,
+        "--log-samples",
+        "1",
+    ]);
+    assert!(e.contains("--log-samples"), "{e}");
+}

@@ -19,6 +19,7 @@ pub mod arx;
 pub mod consequence;
 pub mod data;
 pub mod error;
+pub mod excitation;
 pub mod model;
 pub mod output_error;
 pub mod response;
