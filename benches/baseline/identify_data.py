@@ -21,6 +21,11 @@ Models (--model):
 Inputs (--input): chirp (linear sweep f0..f1 Hz), prbs (maximum-length sequence, each bit held
 --hold samples), step.
 
+With --frequency-response, writes instead the sampled plant's frequency response
+H(e^{jωT}) = C (e^{jωT} I − Φ)⁻¹ Γ e^{−jωTd} at --points log-spaced frequencies from --f0 to
+--f1 Hz, with Gaussian errors of --db-noise dB and --deg-noise degrees: a CSV with the header
+frequency,magnitude_db,phase_deg.
+
 Writes a CSV with the header time,force,position (shortest round-trip decimals) and, beside
 it, FILE.json with the truth (model, parameters, settings).
 
@@ -127,6 +132,29 @@ def measured(y, snr_db, quantization, seed):
     return out
 
 
+def write_frequency_response(args, phi, gamma, c, p, tf_num, tf_den):
+    """The sampled plant's response with dB and degree errors (module doc)."""
+    f = np.geomspace(args.f0, args.f1, args.points)
+    z = np.exp(2j * np.pi * f * args.period)
+    n = phi.shape[0]
+    h = np.array([c @ np.linalg.solve(zi * np.eye(n) - phi, gamma) * zi ** (-args.delay)
+                  for zi in z])
+    rng = np.random.default_rng(args.seed + 104729)
+    db = 20 * np.log10(np.abs(h)) + rng.normal(0.0, args.db_noise, f.size)
+    deg = np.degrees(np.angle(h)) + rng.normal(0.0, args.deg_noise, f.size)
+    with open(args.out, "w") as out:
+        out.write("frequency,magnitude_db,phase_deg\n")
+        for row in zip(f, db, deg):
+            out.write(",".join(repr(float(v)) for v in row) + "\n")
+    truth = {"model": args.model, "params": p, "num": list(map(float, tf_num)),
+             "den": list(map(float, tf_den)), "period": args.period, "delay": args.delay,
+             "db_noise": args.db_noise, "deg_noise": args.deg_noise, "seed": args.seed,
+             "points": args.points}
+    with open(args.out.rsplit(".", 1)[0] + ".json", "w") as out:
+        json.dump(truth, out, indent=1)
+    return 0
+
+
 def parse_params(model, items):
     p = {}
     for item in items:
@@ -155,6 +183,10 @@ def main(argv=None):
     ap.add_argument("--snr", type=float, default=None, help="dB; none for no noise")
     ap.add_argument("--quantization", type=float, default=0.0, help="m")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--frequency-response", action="store_true")
+    ap.add_argument("--points", type=int, default=60)
+    ap.add_argument("--db-noise", type=float, default=0.0)
+    ap.add_argument("--deg-noise", type=float, default=0.0)
     ap.add_argument("--out", required=True)
     args = ap.parse_args(argv)
     p = parse_params(args.model, args.param)
@@ -164,6 +196,8 @@ def main(argv=None):
         den = [float(x) for x in args.den.split(",")]
     tf_num, tf_den = plant_tf(args.model, p, num, den)
     phi, gamma, c = sampled(tf_num, tf_den, args.period)
+    if args.frequency_response:
+        return write_frequency_response(args, phi, gamma, c, p, tf_num, tf_den)
     force = force_signal(
         args.input, args.samples, args.period, args.amplitude, args.seed, args.f0, args.f1, args.hold
     )

@@ -191,7 +191,7 @@ pub fn identify(
         fit_percent: id.fit.fit_percent,
         residual_rms: id.fit.residual_rms,
         whiteness_passes: id.whiteness.passes,
-        cross_correlation_passes: id.cross_correlation.passes,
+        cross_correlation_passes: id.cross_correlation.as_ref().is_some_and(|t| t.passes),
         predicted: PyArray1::from_slice(py, &id.predicted).unbind(),
         k_max: lim.k_max,
         k_max_spread: lim.spread.map(|[a, b]| (a, b)),

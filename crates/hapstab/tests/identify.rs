@@ -227,3 +227,38 @@ fn unknown_or_bad_held_parameters_are_named() {
     let e = ModelKind::parse("tf:3/2").err().unwrap().to_string();
     assert!(e.contains("strictly proper"), "{e}");
 }
+
+#[test]
+fn third_order_tf_from_a_frequency_response_with_tenth_db_and_degree_errors() {
+    use hapstab::identify::frequency::FrequencyRecord;
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/identify");
+    let csv = std::fs::read_to_string(dir.join("tf3_freqresp_0.1db_1deg.csv")).unwrap();
+    let rec = FrequencyRecord::from_csv(&csv, 1e-3).unwrap();
+    let id = hapstab::identify::identify_frequency(&rec, &spec("tf:0/3", &[], 0.0)).unwrap();
+    for (p, want) in [
+        ("b0", 2000.0),
+        ("a2", 60.0),
+        ("a1", 4000.0),
+        ("a0", 20000.0),
+    ] {
+        let e = id.parameter(p).unwrap();
+        let [lo, hi] = e.ci95.unwrap();
+        println!("{p}: {} (truth {want}, CI [{lo}, {hi}])", e.value);
+        assert!((e.value / want - 1.0).abs() < 0.01, "{p}: {}", e.value);
+        assert!(lo <= want && want <= hi, "{p}: {want} outside [{lo}, {hi}]");
+    }
+    assert!(id.whiteness.passes);
+    let e = FrequencyRecord::from_csv("frequency,magnitude_db,phase_deg\n600,-20,-30\n", 1e-3)
+        .expect_err("above Nyquist");
+    assert!(
+        e.to_string()
+            .starts_with("column 'frequency': row 1: 600 Hz"),
+        "{e}"
+    );
+    let e = FrequencyRecord::from_csv("frequency,gain\n1,2\n", 1e-3).expect_err("no columns");
+    assert!(
+        e.to_string()
+            .contains("magnitude_db and phase_deg, or real and imag"),
+        "{e}"
+    );
+}

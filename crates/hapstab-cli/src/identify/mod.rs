@@ -10,9 +10,10 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use hapstab::identify::frequency::FrequencyRecord;
 use hapstab::identify::{
     Columns, Fixed, Identification, ModelKind, ModelSpec, Record, StiffnessLimit, identify,
-    stiffness_limit,
+    identify_frequency, stiffness_limit,
 };
 use hapstab::model::{Loop, VelocityEstimator};
 use serde::Serialize;
@@ -25,8 +26,20 @@ use crate::plot::Saved;
 pub struct IdentifyArgs {
     /// CSV recording with a header line: time (s), commanded force (N), measured position (m),
     /// uniformly sampled at the loop's period (the mean time step is taken as T)
+    #[arg(
+        long,
+        value_name = "FILE",
+        required_unless_present = "frequency_data",
+        conflicts_with = "frequency_data"
+    )]
+    pub data: Option<PathBuf>,
+    /// A measured frequency response instead: CSV with columns frequency (Hz) and
+    /// magnitude_db, phase_deg, or real, imag (m/N), measured on a loop of period --period
     #[arg(long, value_name = "FILE")]
-    pub data: PathBuf,
+    pub frequency_data: Option<PathBuf>,
+    /// Sampling period T in s of the loop a frequency response was measured on
+    #[arg(long, default_value_t = 1e-3, requires = "frequency_data")]
+    pub period: f64,
     /// Model: mass-spring-damper (m, b, k; device alone, or device + arm with
     /// --fix device-mass=… --fix device-damping=…), held-device, two-mass, or tf:N/D (a
     /// transfer function of numerator order N and denominator order D, monic denominator)
@@ -71,7 +84,10 @@ pub struct IdentifyArgs {
 /// The command's settings as echoed under `input`.
 #[derive(Serialize)]
 struct Input<'a> {
-    data: &'a PathBuf,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    data: Option<&'a PathBuf>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    frequency_data: Option<&'a PathBuf>,
     model: String,
     columns: &'a str,
     fixed: &'a [Fixed],
@@ -95,12 +111,41 @@ struct Report<'a> {
     plot: Option<Saved>,
 }
 
-/// The recording, checked.
-fn load(args: &IdentifyArgs) -> Result<Record> {
-    let text = std::fs::read_to_string(&args.data)
-        .with_context(|| format!("--data '{}': cannot read", args.data.display()))?;
+/// The data a fit reads: a time recording or a frequency response.
+enum Data {
+    Time(Record),
+    Frequency(FrequencyRecord),
+}
+
+impl Data {
+    fn period(&self) -> f64 {
+        match self {
+            Data::Time(r) => r.period,
+            Data::Frequency(r) => r.period,
+        }
+    }
+}
+
+/// The recording or the frequency response, checked.
+fn load(args: &IdentifyArgs) -> Result<Data> {
+    let read = |flag: &str, path: &PathBuf| {
+        std::fs::read_to_string(path)
+            .with_context(|| format!("{flag} '{}': cannot read", path.display()))
+    };
+    if let Some(path) = &args.frequency_data {
+        let text = read("--frequency-data", path)?;
+        let rec = FrequencyRecord::from_csv(&text, args.period)
+            .with_context(|| format!("--frequency-data '{}'", path.display()))?;
+        return Ok(Data::Frequency(rec));
+    }
+    let Some(path) = &args.data else {
+        bail!("--data: give a recording (or --frequency-data)");
+    };
+    let text = read("--data", path)?;
     let columns = Columns::parse(&args.columns)?;
-    Record::from_csv(&text, &columns).with_context(|| format!("--data '{}'", args.data.display()))
+    let rec = Record::from_csv(&text, &columns)
+        .with_context(|| format!("--data '{}'", path.display()))?;
+    Ok(Data::Time(rec))
 }
 
 /// The model spec from the flags (the delay in s at the recording's period).
@@ -136,22 +181,29 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
     if args.draws == 0 {
         bail!("--draws: must be at least 1");
     }
-    let record = load(args)?;
-    let spec = spec(args, record.period)?;
-    let id = identify(&record, &spec)?;
+    let data = load(args)?;
+    let spec = spec(args, data.period())?;
+    let id = match &data {
+        Data::Time(r) => identify(r, &spec)?,
+        Data::Frequency(r) => identify_frequency(r, &spec)?,
+    };
     let lp = id.to_loop(args.velocity.clone())?;
     let limit = stiffness_limit(&id, &args.velocity, args.draws, args.seed)?;
     if let Some(path) = &args.write_loop {
         write_loop(path, &lp)?;
     }
     let saved = match &args.plot {
-        Some(path) => Some(plot::figure(&record, &id, &lp).save(path)?),
+        Some(path) => Some(match &data {
+            Data::Time(r) => plot::figure(r, &id, &lp).save(path)?,
+            Data::Frequency(r) => plot::bode(r, &id, &lp).save(path)?,
+        }),
         None => None,
     };
     if args.json {
         return print_json(&Report {
             input: Input {
-                data: &args.data,
+                data: args.data.as_ref(),
+                frequency_data: args.frequency_data.as_ref(),
                 model: id.model.clone(),
                 columns: &args.columns,
                 fixed: &spec.fixed,

@@ -1,6 +1,7 @@
 //! The figure of `hapstab identify`: measured and model position over time, and the
 //! residuals below them.
 
+use hapstab::identify::frequency::FrequencyRecord;
 use hapstab::identify::{Identification, Record};
 use hapstab::model::Loop;
 
@@ -91,4 +92,65 @@ fn caption(lp: &Loop) -> String {
         sig(lp.period, 4),
         sig(lp.delay_time(), 4)
     )
+}
+
+/// The Bode figure of a frequency-response fit: measured and model magnitude (dB) and phase
+/// (degrees, unwrapped) against frequency on a log axis.
+pub fn bode(rec: &FrequencyRecord, id: &Identification, lp: &Loop) -> Grid {
+    let f: Vec<f64> = rec.frequency_hz.iter().map(|f| f.log10()).collect();
+    let db = |h: &[num_complex::Complex64]| -> Vec<f64> {
+        h.iter().map(|z| 20.0 * z.norm().log10()).collect()
+    };
+    let phase = |h: &[num_complex::Complex64]| -> Vec<f64> {
+        let mut out: Vec<f64> = Vec::with_capacity(h.len());
+        for z in h {
+            let mut p = z.arg().to_degrees();
+            if let Some(prev) = out.last() {
+                p += 360.0 * ((prev - p) / 360.0).round();
+            }
+            out.push(p);
+        }
+        out
+    };
+    let panel = |title: &str, y: &str, meas: Vec<f64>, model: Vec<f64>| {
+        let mut fig = Figure::new(title)
+            .x_label("frequency (Hz)")
+            .y_label(y)
+            .x_log10()
+            .legend(Legend::Below);
+        fig.add(
+            Series::scatter(f.iter().copied().zip(meas), crate::plot::Marker::Circle)
+                .color(palette::GREY)
+                .label("measured"),
+        );
+        fig.add(
+            Series::line(f.iter().copied().zip(model))
+                .color(palette::VERMILLION)
+                .label("model (exact sampled response)"),
+        );
+        fig
+    };
+    let mut g = Grid::new(
+        format!(
+            "Identification: {} (fit {} %)",
+            id.model,
+            sig(id.fit.fit_percent, 4)
+        ),
+        1,
+    )
+    .panel_size(1000, 460)
+    .subtitle(caption(lp));
+    g.push(panel(
+        "Magnitude",
+        "magnitude (dB re 1 m/N)",
+        db(&rec.response),
+        db(&id.predicted_response),
+    ));
+    g.push(panel(
+        "Phase",
+        "phase (°)",
+        phase(&rec.response),
+        phase(&id.predicted_response),
+    ));
+    g
 }

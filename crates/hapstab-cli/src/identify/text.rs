@@ -73,6 +73,36 @@ fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
     out
 }
 
+/// The model, the data and the fit in two lines.
+fn header(id: &Identification) {
+    let lag = if id.force_lag > 0.0 {
+        format!(", force lag τ = {}", eng(id.force_lag, "s", DIGITS))
+    } else {
+        String::new()
+    };
+    let (what, residual) = if id.data == "time" {
+        ("samples", eng(id.fit.residual_rms, "m", 3))
+    } else {
+        (
+            "frequencies",
+            format!("{} Np/rad (ln Ĥ/H)", sig(id.fit.residual_rms, 3)),
+        )
+    };
+    println!(
+        "model     {}, {} {what} at T = {}, t_d = {}{lag}",
+        id.model,
+        id.fit.samples,
+        eng(id.period, "s", DIGITS),
+        eng(id.delay_time, "s", DIGITS),
+    );
+    println!(
+        "fit       {} % (NRMSE {}), residual RMS {residual}, {} evaluations",
+        sig(id.fit.fit_percent, 4),
+        sig(id.fit.nrmse, 3),
+        id.evaluations
+    );
+}
+
 /// Prints the report.
 pub fn print(
     id: &Identification,
@@ -81,35 +111,14 @@ pub fn print(
     args: &IdentifyArgs,
     saved: Option<&Saved>,
 ) {
-    println!(
-        "model     {}, {} samples at T = {}, t_d = {}{}",
-        id.model,
-        id.fit.samples,
-        eng(id.period, "s", DIGITS),
-        eng(id.delay_time, "s", DIGITS),
-        if id.force_lag > 0.0 {
-            format!(", force lag τ = {}", eng(id.force_lag, "s", DIGITS))
-        } else {
-            String::new()
-        }
-    );
-    println!(
-        "fit       {} % (NRMSE {}), residual RMS {}, {} evaluations",
-        sig(id.fit.fit_percent, 4),
-        sig(id.fit.nrmse, 3),
-        eng(id.fit.residual_rms, "m", 3),
-        id.evaluations
-    );
+    header(id);
     println!();
     println!(
         "  {:<24} {:<16} {:<14} 95 % interval",
         "parameter", "estimate", "std. error"
     );
-    for e in id
-        .parameters
-        .iter()
-        .chain(std::iter::once(&id.position_offset))
-    {
+    let offset = (id.data == "time").then_some(&id.position_offset);
+    for e in id.parameters.iter().chain(offset) {
         println!("{}", row(e));
     }
     println!();
@@ -117,14 +126,12 @@ pub fn print(
         "{}",
         test_line("residuals white", &id.whiteness, "Ljung–Box Q")
     );
-    println!(
-        "{}",
-        test_line(
-            "residuals uncorrelated with the force",
-            &id.cross_correlation,
-            "S"
-        )
-    );
+    if let Some(t) = &id.cross_correlation {
+        println!(
+            "{}",
+            test_line("residuals uncorrelated with the force", t, "S")
+        );
+    }
     println!();
     for l in k_max_lines(lim) {
         println!("{l}");

@@ -55,13 +55,13 @@ pub struct Start {
 
 /// The continuous structure the regression fits: orders, and whether the plant integrates
 /// (a_0 = 0: a free mass).
-struct Structure {
-    num: usize,
-    den: usize,
-    integrates: bool,
+pub(crate) struct Structure {
+    pub(crate) num: usize,
+    pub(crate) den: usize,
+    pub(crate) integrates: bool,
 }
 
-fn structure(spec: &ModelSpec) -> Structure {
+pub(crate) fn structure(spec: &ModelSpec) -> Structure {
     let held_zero = |name: &str| {
         let params = spec.kind.params();
         params
@@ -259,7 +259,7 @@ fn least_squares(cols: &[Vec<f64>], target: &DVector<f64>) -> Option<Vec<f64>> {
 
 /// The model's parameters from the monic transfer function (a, b) (module doc step 3);
 /// None when they are not finite.
-fn to_physical(spec: &ModelSpec, a: &[f64], b: &[f64]) -> Option<Vec<f64>> {
+pub(crate) fn to_physical(spec: &ModelSpec, a: &[f64], b: &[f64]) -> Option<Vec<f64>> {
     let raw = match spec.kind {
         ModelKind::MassSpringDamper => {
             let m = 1.0 / b[0];

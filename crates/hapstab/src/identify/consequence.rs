@@ -96,7 +96,7 @@ fn drawn_k_max(
     draws: usize,
     seed: u64,
 ) -> Vec<f64> {
-    let p = id.optimum.coords.len() - 1; // the offset does not move K_max
+    let p = id.spec.free().len(); // the offset, if any, comes last and does not move K_max
     let cov = DMatrix::from_fn(p, p, |a, b| id.covariance[a][b]);
     let Some(chol) = cov.cholesky() else {
         return Vec::new();

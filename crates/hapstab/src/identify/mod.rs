@@ -20,6 +20,7 @@ pub mod consequence;
 pub mod data;
 pub mod error;
 pub mod excitation;
+pub mod frequency;
 pub mod model;
 pub mod output_error;
 pub mod response;
@@ -40,6 +41,9 @@ use crate::model::{Loop, VelocityEstimator};
 pub struct Identification {
     /// The model fitted (`mass-spring-damper`, `held-device`, `two-mass`, `tf:N/D`).
     pub model: String,
+    /// What was fitted: `time` (a recording; residuals in m) or `frequency` (a frequency
+    /// response; residuals as ln(Ĥ/H), nepers and radians).
+    pub data: &'static str,
     /// Every parameter of the model, held ones marked.
     pub parameters: Vec<Estimate>,
     /// The position the device rests at, y_0 in m.
@@ -55,14 +59,19 @@ pub struct Identification {
     /// Ljung–Box test of the residuals.
     pub whiteness: CorrelationTest,
     /// Cross-correlation test of the residuals against the force.
-    pub cross_correlation: CorrelationTest,
+    /// Cross-correlation test of the residuals against the force (None for a frequency
+    /// response).
+    pub cross_correlation: Option<CorrelationTest>,
     /// The linear least-squares start, every parameter.
     pub start: Vec<f64>,
     /// Residual evaluations of the output-error fit.
     pub evaluations: usize,
-    /// The model's response ŷ_k in m.
+    /// The model's response ŷ_k in m (time-domain data).
     #[serde(skip)]
     pub predicted: Vec<f64>,
+    /// The model's response Ĥ(e^{jωT}) in m/N at the measured frequencies (frequency data).
+    #[serde(skip)]
+    pub predicted_response: Vec<num_complex::Complex64>,
     /// The covariance of the optimiser's coordinates (free parameters, then the offset).
     #[serde(skip)]
     pub(crate) covariance: Vec<Vec<f64>>,
@@ -102,65 +111,94 @@ pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
         .map(|(m, p)| m - p)
         .collect();
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let (estimates, offset, cov) = estimates(spec, &fit, ss)?;
+    let est = estimates(spec, &fit, ss, true)?;
+    let offset = est
+        .offset
+        .unwrap_or_else(|| held("position offset", "m", 0.0));
     Ok(Identification {
         model: spec.kind.name(),
-        parameters: estimates,
+        data: "time",
+        parameters: est.parameters,
         position_offset: offset,
         period: record.period,
         delay_time: spec.delay_time,
         force_lag: spec.force_lag,
         fit: quality,
         whiteness: uncertainty::whiteness(&residuals, uncertainty::TEST_LAGS),
-        cross_correlation: uncertainty::cross_correlation(
+        cross_correlation: Some(uncertainty::cross_correlation(
             &residuals,
             &record.force,
             uncertainty::TEST_LAGS,
-        ),
+        )),
         start: start.values,
         evaluations: fit.evaluations,
         predicted: fit.predicted.clone(),
-        covariance: cov,
+        predicted_response: Vec::new(),
+        covariance: est.covariance,
         optimum: fit,
         spec: spec.clone(),
     })
 }
 
-/// The estimates of every parameter (held ones marked), the offset's, and the covariance
-/// of the optimiser's coordinates (module doc step 4).
+/// The estimates of a fit and the covariance they come from.
+struct Estimates {
+    /// Every parameter, held ones marked.
+    parameters: Vec<Estimate>,
+    /// The position offset, when the fit has one.
+    offset: Option<Estimate>,
+    /// The covariance of the optimiser's coordinates.
+    covariance: Vec<Vec<f64>>,
+}
+
+/// A held value as an estimate.
+fn held(name: &str, unit: &str, value: f64) -> Estimate {
+    Estimate {
+        name: name.into(),
+        unit: unit.into(),
+        value,
+        fixed: true,
+        standard_error: None,
+        ci95: None,
+    }
+}
+
+/// The estimates of every parameter (held ones marked), the offset's when the fit has one
+/// (its last coordinate), and the covariance of the optimiser's coordinates (module doc
+/// step 4).
 fn estimates(
     spec: &ModelSpec,
     fit: &output_error::Fit,
     residual_ss: f64,
-) -> IdResult<(Vec<Estimate>, Estimate, Vec<Vec<f64>>)> {
+    with_offset: bool,
+) -> IdResult<Estimates> {
     let free = spec.free();
     let params = spec.kind.params();
     let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
-    names.push("position offset".into());
-    let cov = uncertainty::covariance(fit, residual_ss, &names)?;
+    if with_offset {
+        names.push("position offset".into());
+    }
+    let cov = uncertainty::covariance(&fit.jacobian, residual_ss, &names)?;
     let mut out: Vec<Estimate> = params
         .iter()
         .enumerate()
-        .map(|(i, p)| Estimate {
-            name: p.name.clone(),
-            unit: p.unit.clone(),
-            value: fit.values[i],
-            fixed: true,
-            standard_error: None,
-            ci95: None,
-        })
+        .map(|(i, p)| held(&p.name, &p.unit, fit.values[i]))
         .collect();
     for (k, &i) in free.iter().enumerate() {
         let p = &params[i];
         out[i] = uncertainty::estimate(&p.name, &p.unit, fit.coords[k], fit.x[k], cov[(k, k)]);
     }
     let o = free.len();
-    let offset =
-        uncertainty::estimate("position offset", "m", fit.coords[o], fit.x[o], cov[(o, o)]);
+    let offset = with_offset.then(|| {
+        uncertainty::estimate("position offset", "m", fit.coords[o], fit.x[o], cov[(o, o)])
+    });
     let cov = (0..cov.nrows())
         .map(|a| (0..cov.ncols()).map(|b| cov[(a, b)]).collect())
         .collect();
-    Ok((out, offset, cov))
+    Ok(Estimates {
+        parameters: out,
+        offset,
+        covariance: cov,
+    })
 }
 
 /// The output-error optimum from the starts in their order (module doc step 3): the first
@@ -204,6 +242,73 @@ fn residuals_pass(record: &Record, fit: &output_error::Fit) -> bool {
         .collect();
     uncertainty::whiteness(&e, uncertainty::TEST_LAGS).passes
         && uncertainty::cross_correlation(&e, &record.force, uncertainty::TEST_LAGS).passes
+}
+
+/// Identifies the plant of `spec` from a measured frequency response ([`frequency`]'s
+/// steps): Levy's start, logarithmic least squares on the exact sampled response, the
+/// estimates with their intervals, the fit (NRMSE ‖Ĥ − H‖/‖H‖, the residual RMS in nepers
+/// and radians) and the whiteness of the residuals over frequency.
+pub fn identify_frequency(
+    rec: &frequency::FrequencyRecord,
+    spec: &ModelSpec,
+) -> IdResult<Identification> {
+    let free = spec.free();
+    if 2 * rec.frequency_hz.len() <= free.len() {
+        return Err(IdentifyError::Data(format!(
+            "{} frequencies: fewer than the {} parameters to fit",
+            rec.frequency_hz.len(),
+            free.len()
+        )));
+    }
+    let start = frequency::levy_start(rec, spec)?;
+    let (problem, evaluations) = frequency::refine(rec, spec, &start)?;
+    let x = problem.x.as_slice().to_vec();
+    let no_fit = || IdentifyError::NoFit("the fitted parameters make no valid loop".into());
+    let response = problem.predict(&x).ok_or_else(no_fit)?;
+    let residuals = problem.log_residuals(&x).ok_or_else(no_fit)?;
+    let fit = output_error::Fit {
+        values: problem.values(&x),
+        offset: 0.0,
+        predicted: Vec::new(),
+        jacobian: problem.jacobian_columns(&x).ok_or_else(no_fit)?,
+        x,
+        coords: problem.coords.clone(),
+        evaluations,
+    };
+    let ss: f64 = residuals.iter().map(|e| e * e).sum();
+    let est = estimates(spec, &fit, ss, false)?;
+    let err: f64 = response
+        .iter()
+        .zip(&rec.response)
+        .map(|(p, m)| (p - m).norm_sqr())
+        .sum();
+    let size: f64 = rec.response.iter().map(|m| m.norm_sqr()).sum();
+    let nrmse = (err / size).sqrt();
+    let magnitude: Vec<f64> = residuals.iter().step_by(2).copied().collect();
+    Ok(Identification {
+        model: spec.kind.name(),
+        data: "frequency",
+        parameters: est.parameters,
+        position_offset: held("position offset", "m", 0.0),
+        period: rec.period,
+        delay_time: spec.delay_time,
+        force_lag: spec.force_lag,
+        fit: FitQuality {
+            nrmse,
+            fit_percent: 100.0 * (1.0 - nrmse),
+            residual_rms: (ss / residuals.len() as f64).sqrt(),
+            samples: rec.frequency_hz.len(),
+        },
+        whiteness: uncertainty::whiteness(&magnitude, uncertainty::TEST_LAGS),
+        cross_correlation: None,
+        start,
+        evaluations,
+        predicted: Vec::new(),
+        predicted_response: response,
+        covariance: est.covariance,
+        optimum: fit,
+        spec: spec.clone(),
+    })
 }
 
 impl Identification {

@@ -16,7 +16,7 @@ use nalgebra::DMatrix;
 use serde::Serialize;
 
 use super::error::{IdResult, IdentifyError};
-use super::output_error::{Coord, Fit};
+use super::output_error::Coord;
 
 /// The standard normal's 97.5 % quantile: a two-sided 95 % interval.
 pub const Z_95: f64 = 1.959_963_984_540_054;
@@ -74,16 +74,19 @@ pub struct CorrelationTest {
 /// The covariance of the optimiser's coordinates, σ²(JᵀJ)⁻¹ (module doc), computed on the
 /// Jacobian scaled to unit columns; refused when JᵀJ is singular (the recording does not
 /// tell the parameters apart), naming the coordinate with the least information.
-pub fn covariance(fit: &Fit, residual_ss: f64, names: &[String]) -> IdResult<DMatrix<f64>> {
-    let n = fit.jacobian.first().map_or(0, Vec::len);
-    let p = fit.jacobian.len();
+pub fn covariance(
+    jacobian: &[Vec<f64>],
+    residual_ss: f64,
+    names: &[String],
+) -> IdResult<DMatrix<f64>> {
+    let n = jacobian.first().map_or(0, Vec::len);
+    let p = jacobian.len();
     if n <= p {
         return Err(IdentifyError::Data(format!(
             "{n} samples: fewer than the {p} parameters fitted and the offset"
         )));
     }
-    let norms: Vec<f64> = fit
-        .jacobian
+    let norms: Vec<f64> = jacobian
         .iter()
         .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
         .collect();
@@ -94,9 +97,9 @@ pub fn covariance(fit: &Fit, residual_ss: f64, names: &[String]) -> IdResult<DMa
         )));
     }
     let jtj = DMatrix::from_fn(p, p, |a, b| {
-        fit.jacobian[a]
+        jacobian[a]
             .iter()
-            .zip(&fit.jacobian[b])
+            .zip(&jacobian[b])
             .map(|(x, y)| x * y)
             .sum::<f64>()
             / (norms[a] * norms[b])
