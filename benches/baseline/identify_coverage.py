@@ -36,6 +36,23 @@ CASES = {
         ["--device-mass", "0.1", "--device-damping", "1.5", "--arm-mass", "1",
          "--arm-damping", "6", "--arm-stiffness", "350"],
     ),
+    "two-mass": (
+        ["--model", "two-mass", "--param", "J=0.3", "--param", "b_m=2", "--param", "m_h=0.1",
+         "--param", "k_t=2300", "--param", "b_t=1", "--input", "chirp", "--f0", "5",
+         "--f1", "80", "--amplitude", "2"],
+        ["--model", "two-mass"],
+        {"motor-mass": 0.3, "motor-damping": 2.0, "handle-mass": 0.1,
+         "transmission-stiffness": 2300.0, "transmission-damping": 1.0},
+        ["--motor-mass", "0.3", "--motor-damping", "2", "--handle-mass", "0.1",
+         "--transmission-stiffness", "2300", "--transmission-damping", "1", "--no-arm"],
+    ),
+    "tf3": (
+        ["--model", "tf", "--num", "2000", "--den", "1,60,4000,20000", "--input", "prbs",
+         "--hold", "10"],
+        ["--model", "tf:0/3"],
+        {"b0": 2000.0, "a0": 20000.0, "a1": 4000.0, "a2": 60.0},
+        ["--plant-num", "2000", "--plant-den", "1,60,4000,20000"],
+    ),
 }
 
 
