@@ -60,7 +60,9 @@ fn recovers(name: &str, model: &str, fixed: &[(&str, f64)], truth: &[(&str, f64)
         (rms / noise - 1.0).abs() < 0.05,
         "{name}: residual RMS {rms} vs noise {noise}"
     );
-    assert!(id.whiteness.passes, "{name}: {:?}", id.whiteness);
+    // a right model's residuals are white: the Ljung–Box Q below χ²(20)'s 99.9 % quantile
+    // (45.31; the 95 % test the report prints fails one right model in twenty by design)
+    assert!(id.whiteness.statistic < 45.31, "{name}: {:?}", id.whiteness);
 }
 
 #[test]
@@ -101,6 +103,28 @@ fn third_order_transfer_function_from_a_chirp_at_40_db() {
         ("a0", 20000.0),
     ];
     recovers("tf3_chirp_40db", "tf:0/3", &[], &t, 0.02);
+}
+
+#[test]
+fn third_order_transfer_function_from_a_prbs_at_40_db() {
+    let t = [
+        ("b0", 2000.0),
+        ("a2", 60.0),
+        ("a1", 4000.0),
+        ("a0", 20000.0),
+    ];
+    recovers("tf3_prbs_40db", "tf:0/3", &[], &t, 0.02);
+}
+
+#[test]
+fn held_device_arm_from_a_chirp_at_20_db() {
+    let fixed = [("device-mass", 0.1), ("device-damping", 1.5)];
+    let t = [
+        ("arm-mass", 1.0),
+        ("arm-damping", 6.0),
+        ("arm-stiffness", 350.0),
+    ];
+    recovers("held_chirp_20db", "mass-spring-damper", &fixed, &t, 0.05);
 }
 
 #[test]
