@@ -286,3 +286,30 @@ fn third_order_tf_from_a_frequency_response_with_tenth_db_and_degree_errors() {
         "{e}"
     );
 }
+
+#[test]
+fn two_runs_of_one_plant_are_fitted_together() {
+    let (chirp, _) = fixture("msd_chirp_40db");
+    let (prbs, _) = fixture("msd_prbs_40db");
+    let s = spec("mass-spring-damper", &[], 0.0);
+    let both = hapstab::identify::identify_runs(&[chirp.clone(), prbs], &s).unwrap();
+    let one = identify(&chirp, &s).unwrap();
+    assert_eq!(both.runs.len(), 2);
+    assert_eq!(both.position_offsets.len(), 2);
+    for (p, want) in [("mass", 0.6), ("damping", 7.5), ("stiffness", 350.0)] {
+        let (b, o) = (both.parameter(p).unwrap(), one.parameter(p).unwrap());
+        let [lo, hi] = b.ci95.unwrap();
+        assert!(
+            (b.value / want - 1.0).abs() < 0.02 && lo <= want && want <= hi,
+            "{p}: {b:?}"
+        );
+        // twice the data: a narrower interval
+        assert!(b.standard_error.unwrap() < o.standard_error.unwrap(), "{p}");
+    }
+    let mut other = chirp.clone();
+    other.period *= 2.0;
+    let e = hapstab::identify::identify_runs(&[chirp, other], &s)
+        .expect_err("periods differ")
+        .to_string();
+    assert!(e.starts_with("data: run 2: sampled at T = 0.002 s"), "{e}");
+}

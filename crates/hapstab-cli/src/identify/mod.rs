@@ -12,8 +12,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use hapstab::identify::frequency::FrequencyRecord;
 use hapstab::identify::{
-    Columns, Fixed, Identification, ModelKind, ModelSpec, Record, StiffnessLimit, identify,
-    identify_frequency, stiffness_limit,
+    Columns, Fixed, Identification, ModelKind, ModelSpec, Record, StiffnessLimit,
+    identify_frequency, identify_runs, stiffness_limit,
 };
 use hapstab::model::{Loop, VelocityEstimator};
 use serde::Serialize;
@@ -25,14 +25,15 @@ use crate::plot::Saved;
 #[derive(Args, Debug, Clone)]
 pub struct IdentifyArgs {
     /// CSV recording with a header line: time (s), commanded force (N), measured position (m),
-    /// uniformly sampled at the loop's period (the mean time step is taken as T)
+    /// uniformly sampled at the loop's period (the mean time step is taken as T); repeat it
+    /// for several runs of the same plant, fitted together
     #[arg(
         long,
         value_name = "FILE",
         required_unless_present = "frequency_data",
         conflicts_with = "frequency_data"
     )]
-    pub data: Option<PathBuf>,
+    pub data: Vec<PathBuf>,
     /// A measured frequency response instead: CSV with columns frequency (Hz) and
     /// magnitude_db, phase_deg, or real, imag (m/N), measured on a loop of period --period
     #[arg(long, value_name = "FILE")]
@@ -84,8 +85,8 @@ pub struct IdentifyArgs {
 /// The command's settings as echoed under `input`.
 #[derive(Serialize)]
 struct Input<'a> {
-    #[serde(skip_serializing_if = "Option::is_none")]
-    data: Option<&'a PathBuf>,
+    #[serde(skip_serializing_if = "<[PathBuf]>::is_empty")]
+    data: &'a [PathBuf],
     #[serde(skip_serializing_if = "Option::is_none")]
     frequency_data: Option<&'a PathBuf>,
     model: String,
@@ -113,14 +114,14 @@ struct Report<'a> {
 
 /// The data a fit reads: a time recording or a frequency response.
 enum Data {
-    Time(Record),
+    Time(Vec<Record>),
     Frequency(FrequencyRecord),
 }
 
 impl Data {
     fn period(&self) -> f64 {
         match self {
-            Data::Time(r) => r.period,
+            Data::Time(r) => r[0].period,
             Data::Frequency(r) => r.period,
         }
     }
@@ -138,14 +139,20 @@ fn load(args: &IdentifyArgs) -> Result<Data> {
             .with_context(|| format!("--frequency-data '{}'", path.display()))?;
         return Ok(Data::Frequency(rec));
     }
-    let Some(path) = &args.data else {
+    if args.data.is_empty() {
         bail!("--data: give a recording (or --frequency-data)");
-    };
-    let text = read("--data", path)?;
+    }
     let columns = Columns::parse(&args.columns)?;
-    let rec = Record::from_csv(&text, &columns)
-        .with_context(|| format!("--data '{}'", path.display()))?;
-    Ok(Data::Time(rec))
+    let runs = args
+        .data
+        .iter()
+        .map(|path| {
+            let text = read("--data", path)?;
+            Record::from_csv(&text, &columns)
+                .with_context(|| format!("--data '{}'", path.display()))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Data::Time(runs))
 }
 
 /// The model spec from the flags (the delay in s at the recording's period).
@@ -184,7 +191,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
     let data = load(args)?;
     let spec = spec(args, data.period())?;
     let id = match &data {
-        Data::Time(r) => identify(r, &spec)?,
+        Data::Time(r) => identify_runs(r, &spec)?,
         Data::Frequency(r) => identify_frequency(r, &spec)?,
     };
     let lp = id.to_loop(args.velocity.clone())?;
@@ -194,7 +201,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
     }
     let saved = match &args.plot {
         Some(path) => Some(match &data {
-            Data::Time(r) => plot::figure(r, &id, &lp).save(path)?,
+            Data::Time(r) => plot::figure(&r[0], &id, &lp).save(path)?,
             Data::Frequency(r) => plot::bode(r, &id, &lp).save(path)?,
         }),
         None => None,
@@ -202,7 +209,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
     if args.json {
         return print_json(&Report {
             input: Input {
-                data: args.data.as_ref(),
+                data: &args.data,
                 frequency_data: args.frequency_data.as_ref(),
                 model: id.model.clone(),
                 columns: &args.columns,

@@ -117,9 +117,26 @@ pub fn print(
         "  {:<24} {:<16} {:<14} 95 % interval",
         "parameter", "estimate", "std. error"
     );
-    let offset = (id.data == "time").then_some(&id.position_offset);
-    for e in id.parameters.iter().chain(offset) {
+    for e in &id.parameters {
         println!("{}", row(e));
+    }
+    for (i, e) in id.position_offsets.iter().enumerate() {
+        let mut e = e.clone();
+        if id.position_offsets.len() > 1 {
+            e.name = format!("offset of run {}", i + 1);
+        }
+        println!("{}", row(&e));
+    }
+    if id.runs.len() > 1 {
+        for (i, q) in id.runs.iter().enumerate() {
+            println!(
+                "  run {:<20} fit {} % (NRMSE {}), residual RMS {}",
+                i + 1,
+                sig(q.fit_percent, 4),
+                sig(q.nrmse, 3),
+                eng(q.residual_rms, "m", 3)
+            );
+        }
     }
     println!();
     println!(

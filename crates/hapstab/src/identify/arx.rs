@@ -126,7 +126,11 @@ pub fn initial_estimates(record: &Record, spec: &ModelSpec) -> IdResult<Vec<Star
 }
 
 /// The sum of squared output errors of a start and its best offset (the mean residual).
-fn output_error(record: &Record, spec: &ModelSpec, values: &[f64]) -> Option<(f64, f64)> {
+pub(crate) fn output_error(
+    record: &Record,
+    spec: &ModelSpec,
+    values: &[f64],
+) -> Option<(f64, f64)> {
     let lp = spec
         .to_loop(values, record.period, VelocityEstimator::Backward)
         .ok()?;

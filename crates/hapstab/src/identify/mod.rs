@@ -46,16 +46,20 @@ pub struct Identification {
     pub data: &'static str,
     /// Every parameter of the model, held ones marked.
     pub parameters: Vec<Estimate>,
-    /// The position the device rests at, y_0 in m.
+    /// The position the device rests at, y_0 in m (in the first run).
     pub position_offset: Estimate,
+    /// The position offset of each run.
+    pub position_offsets: Vec<Estimate>,
     /// The sampling period T in s (the recording's).
     pub period: f64,
     /// The delay t_d in s and the actuator lag τ in s the model was fitted with.
     pub delay_time: f64,
     /// The actuator lag τ in s.
     pub force_lag: f64,
-    /// NRMSE, fit %, residual RMS.
+    /// NRMSE, fit %, residual RMS over every run.
     pub fit: FitQuality,
+    /// NRMSE, fit %, residual RMS of each run (none for a frequency response).
+    pub runs: Vec<FitQuality>,
     /// Ljung–Box test of the residuals.
     pub whiteness: CorrelationTest,
     /// Cross-correlation test of the residuals against the force.
@@ -85,49 +89,107 @@ pub struct Identification {
 
 /// Identifies the plant of `spec` from a recording (module doc's steps 1–4).
 pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
-    let free = spec.free();
-    if record.len() <= free.len() + 1 {
-        return Err(IdentifyError::Data(format!(
-            "{} samples: fewer than the {} parameters to fit",
-            record.len(),
-            free.len() + 1
-        )));
+    identify_runs(std::slice::from_ref(record), spec)
+}
+
+/// The runs of a fit laid end to end: positions and forces, and where each run starts.
+struct Runs {
+    position: Vec<f64>,
+    force: Vec<f64>,
+    bounds: Vec<std::ops::Range<usize>>,
+}
+
+impl Runs {
+    /// The runs, refused when they are none or their periods differ (naming the run).
+    fn new(records: &[Record], free: usize) -> IdResult<Self> {
+        let Some(first) = records.first() else {
+            return Err(IdentifyError::Data("no run to identify".into()));
+        };
+        let mut runs = Runs {
+            position: Vec::new(),
+            force: Vec::new(),
+            bounds: Vec::new(),
+        };
+        for (i, r) in records.iter().enumerate() {
+            if (r.period - first.period).abs() > data::UNIFORM_TOLERANCE * first.period {
+                return Err(IdentifyError::Data(format!(
+                    "run {}: sampled at T = {} s, run 1 at {} s",
+                    i + 1,
+                    r.period,
+                    first.period
+                )));
+            }
+            let at = runs.position.len();
+            runs.position.extend(&r.position);
+            runs.force.extend(&r.force);
+            runs.bounds.push(at..runs.position.len());
+        }
+        if runs.position.len() <= free + records.len() {
+            return Err(IdentifyError::Data(format!(
+                "{} samples: fewer than the {} parameters to fit",
+                runs.position.len(),
+                free + records.len()
+            )));
+        }
+        Ok(runs)
     }
-    let (start, fit) = best_refinement(record, spec)?;
-    let quality = uncertainty::quality(&record.position, &fit.predicted);
-    if quality.nrmse.is_nan() || quality.nrmse > uncertainty::MAX_NRMSE {
+
+    /// Each run's fit quality.
+    fn qualities(&self, predicted: &[f64]) -> Vec<FitQuality> {
+        self.bounds
+            .iter()
+            .map(|b| uncertainty::quality(&self.position[b.clone()], &predicted[b.clone()]))
+            .collect()
+    }
+}
+
+/// Identifies the plant of `spec` from several runs of it (module doc's steps 1–4): one
+/// parameter vector, one position offset per run, every run's residuals in one fit.
+pub fn identify_runs(records: &[Record], spec: &ModelSpec) -> IdResult<Identification> {
+    let runs = Runs::new(records, spec.free().len())?;
+    let (start, fit) = best_refinement(records, &runs, spec)?;
+    let per_run = runs.qualities(&fit.predicted);
+    if let Some((i, q)) = per_run
+        .iter()
+        .enumerate()
+        .find(|(_, q)| q.nrmse.is_nan() || q.nrmse > uncertainty::MAX_NRMSE)
+    {
+        let run = if records.len() > 1 {
+            format!(" of run {}", i + 1)
+        } else {
+            String::new()
+        };
         return Err(IdentifyError::NoFit(format!(
-            "{} explains only {:.1} % of the position (NRMSE {:.3} > {})",
+            "{} explains only {:.1} % of the position{run} (NRMSE {:.3} > {})",
             spec.kind.name(),
-            quality.fit_percent.max(0.0),
-            quality.nrmse,
+            q.fit_percent.max(0.0),
+            q.nrmse,
             uncertainty::MAX_NRMSE
         )));
     }
-    let residuals: Vec<f64> = record
+    let residuals: Vec<f64> = runs
         .position
         .iter()
         .zip(&fit.predicted)
         .map(|(m, p)| m - p)
         .collect();
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let est = estimates(spec, &fit, ss, true)?;
-    let offset = est
-        .offset
-        .unwrap_or_else(|| held("position offset", "m", 0.0));
+    let est = estimates(spec, &fit, ss, records.len())?;
     Ok(Identification {
         model: spec.kind.name(),
         data: "time",
         parameters: est.parameters,
-        position_offset: offset,
-        period: record.period,
+        position_offset: est.offsets[0].clone(),
+        position_offsets: est.offsets,
+        period: records[0].period,
         delay_time: spec.delay_time,
         force_lag: spec.force_lag,
-        fit: quality,
+        fit: uncertainty::quality(&runs.position, &fit.predicted),
+        runs: per_run,
         whiteness: uncertainty::whiteness(&residuals, uncertainty::TEST_LAGS),
         cross_correlation: Some(uncertainty::cross_correlation(
             &residuals,
-            &record.force,
+            &runs.force,
             uncertainty::TEST_LAGS,
         )),
         start: start.values,
@@ -144,8 +206,8 @@ pub fn identify(record: &Record, spec: &ModelSpec) -> IdResult<Identification> {
 struct Estimates {
     /// Every parameter, held ones marked.
     parameters: Vec<Estimate>,
-    /// The position offset, when the fit has one.
-    offset: Option<Estimate>,
+    /// The position offset of each run (none for a frequency response).
+    offsets: Vec<Estimate>,
     /// The covariance of the optimiser's coordinates.
     covariance: Vec<Vec<f64>>,
 }
@@ -162,21 +224,18 @@ fn held(name: &str, unit: &str, value: f64) -> Estimate {
     }
 }
 
-/// The estimates of every parameter (held ones marked), the offset's when the fit has one
-/// (its last coordinate), and the covariance of the optimiser's coordinates (module doc
-/// step 4).
+/// The estimates of every parameter (held ones marked), the `offsets` runs' offsets (the
+/// last coordinates), and the covariance of the optimiser's coordinates (module doc step 4).
 fn estimates(
     spec: &ModelSpec,
     fit: &output_error::Fit,
     residual_ss: f64,
-    with_offset: bool,
+    offsets: usize,
 ) -> IdResult<Estimates> {
     let free = spec.free();
     let params = spec.kind.params();
     let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
-    if with_offset {
-        names.push("position offset".into());
-    }
+    names.extend((1..=offsets).map(|r| format!("position offset of run {r}")));
     let cov = uncertainty::covariance(&fit.jacobian, residual_ss, &names)?;
     let mut out: Vec<Estimate> = params
         .iter()
@@ -187,32 +246,42 @@ fn estimates(
         let p = &params[i];
         out[i] = uncertainty::estimate(&p.name, &p.unit, fit.coords[k], fit.x[k], cov[(k, k)]);
     }
-    let o = free.len();
-    let offset = with_offset.then(|| {
-        uncertainty::estimate("position offset", "m", fit.coords[o], fit.x[o], cov[(o, o)])
-    });
+    let offsets = (free.len()..free.len() + offsets)
+        .map(|o| {
+            uncertainty::estimate("position offset", "m", fit.coords[o], fit.x[o], cov[(o, o)])
+        })
+        .collect();
     let cov = (0..cov.nrows())
         .map(|a| (0..cov.ncols()).map(|b| cov[(a, b)]).collect())
         .collect();
     Ok(Estimates {
         parameters: out,
-        offset,
+        offsets,
         covariance: cov,
     })
 }
 
-/// The output-error optimum from the starts in their order (module doc step 3): the first
-/// whose residuals pass both residual tests is taken at once (the model explains the data,
-/// and another start would only find the same optimum); otherwise the one with the smallest
+/// The output-error optimum from the starts in their order (module doc step 3; the starts
+/// from the first run, every run's offset from its own mean residual): the first whose
+/// residuals pass both residual tests is taken at once (the model explains the data, and
+/// another start would only find the same optimum); otherwise the one with the smallest
 /// cost; the first refusal when none converges.
-fn best_refinement(record: &Record, spec: &ModelSpec) -> IdResult<(arx::Start, output_error::Fit)> {
+fn best_refinement(
+    records: &[Record],
+    runs: &Runs,
+    spec: &ModelSpec,
+) -> IdResult<(arx::Start, output_error::Fit)> {
     let mut best: Option<(f64, arx::Start, output_error::Fit)> = None;
     let mut first_error = None;
-    for start in arx::initial_estimates(record, spec)? {
-        match output_error::refine(record, spec, &start) {
+    for start in arx::initial_estimates(&records[0], spec)? {
+        let offsets: Vec<f64> = records
+            .iter()
+            .map(|r| arx::output_error(r, spec, &start.values).map_or(0.0, |(_, o)| o))
+            .collect();
+        match output_error::refine(records, spec, &start, &offsets) {
             Ok(fit) => {
-                let cost = fit.cost(&record.position);
-                let explains = residuals_pass(record, &fit);
+                let cost = fit.cost(&runs.position);
+                let explains = residuals_pass(runs, &fit);
                 if best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
                     best = Some((cost, start, fit));
                 }
@@ -233,15 +302,15 @@ fn best_refinement(record: &Record, spec: &ModelSpec) -> IdResult<(arx::Start, o
 }
 
 /// True when a fit's residuals pass the whiteness and the cross-correlation tests.
-fn residuals_pass(record: &Record, fit: &output_error::Fit) -> bool {
-    let e: Vec<f64> = record
+fn residuals_pass(runs: &Runs, fit: &output_error::Fit) -> bool {
+    let e: Vec<f64> = runs
         .position
         .iter()
         .zip(&fit.predicted)
         .map(|(m, p)| m - p)
         .collect();
     uncertainty::whiteness(&e, uncertainty::TEST_LAGS).passes
-        && uncertainty::cross_correlation(&e, &record.force, uncertainty::TEST_LAGS).passes
+        && uncertainty::cross_correlation(&e, &runs.force, uncertainty::TEST_LAGS).passes
 }
 
 /// Identifies the plant of `spec` from a measured frequency response ([`frequency`]'s
@@ -268,7 +337,7 @@ pub fn identify_frequency(
     let residuals = problem.log_residuals(&x).ok_or_else(no_fit)?;
     let fit = output_error::Fit {
         values: problem.values(&x),
-        offset: 0.0,
+        offsets: Vec::new(),
         predicted: Vec::new(),
         jacobian: problem.jacobian_columns(&x).ok_or_else(no_fit)?,
         x,
@@ -276,7 +345,7 @@ pub fn identify_frequency(
         evaluations,
     };
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let est = estimates(spec, &fit, ss, false)?;
+    let est = estimates(spec, &fit, ss, 0)?;
     let err: f64 = response
         .iter()
         .zip(&rec.response)
@@ -290,6 +359,7 @@ pub fn identify_frequency(
         data: "frequency",
         parameters: est.parameters,
         position_offset: held("position offset", "m", 0.0),
+        position_offsets: Vec::new(),
         period: rec.period,
         delay_time: spec.delay_time,
         force_lag: spec.force_lag,
@@ -299,6 +369,7 @@ pub fn identify_frequency(
             residual_rms: (ss / residuals.len() as f64).sqrt(),
             samples: rec.frequency_hz.len(),
         },
+        runs: Vec::new(),
         whiteness: uncertainty::whiteness(&magnitude, uncertainty::TEST_LAGS),
         cross_correlation: None,
         start,

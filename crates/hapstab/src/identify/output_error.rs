@@ -4,9 +4,12 @@
 //! Mathematics 630, 1978, as the `levenberg-marquardt` crate implements it — the algorithm
 //! of scipy's `least_squares(method='lm')`).
 //!
+//! Several runs of the same plant are fitted together: one parameter vector, one position
+//! offset per run, the residuals of every run in one least-squares problem.
+//!
 //! The optimiser moves a coordinate per free parameter: ln θ for a positive one (so every
-//! step stays physical), θ/s for a real one (s its starting magnitude), and the position
-//! offset y_0 in units of the position's RMS. The Jacobian is the central difference of the
+//! step stays physical), θ/s for a real one (s its starting magnitude), and each run's
+//! position offset y_0 in units of the positions' RMS. The Jacobian is the central difference of the
 //! response in these coordinates with step [`DIFF_STEP`]; a trial parameter vector that no
 //! loop accepts gets a residual far above any fit's, so the trust region shrinks away from it.
 
@@ -73,11 +76,11 @@ impl Coord {
 pub struct Fit {
     /// Every parameter of the model (held ones at their values).
     pub values: Vec<f64>,
-    /// The position offset y_0 in m.
-    pub offset: f64,
-    /// The model's response ŷ_k in m, offset included.
+    /// The position offset y_0 of each run in m.
+    pub offsets: Vec<f64>,
+    /// The model's response ŷ_k in m, offsets included, the runs one after the other.
     pub predicted: Vec<f64>,
-    /// The optimiser's coordinates at the optimum, free parameters then the offset.
+    /// The optimiser's coordinates at the optimum, free parameters then the runs' offsets.
     pub x: Vec<f64>,
     /// Their kinds.
     pub coords: Vec<Coord>,
@@ -100,7 +103,8 @@ impl Fit {
 
 /// The output-error problem for the optimiser.
 struct Problem<'a> {
-    record: &'a Record,
+    records: &'a [Record],
+    measured: Vec<f64>,
     spec: &'a ModelSpec,
     free: Vec<usize>,
     base: Vec<f64>,
@@ -111,22 +115,22 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
-    /// ŷ(x) in m, offset included; None when no loop accepts the parameters.
+    /// ŷ(x) in m of every run, offsets included; None when no loop accepts the parameters.
     fn predict(&self, x: &[f64]) -> Option<Vec<f64>> {
         let mut v = self.base.clone();
         for (k, &i) in self.free.iter().enumerate() {
             v[i] = self.coords[k].value(x[k]);
         }
-        let offset = self.coords[self.free.len()].value(x[self.free.len()]);
         let lp = self
             .spec
-            .to_loop(&v, self.record.period, VelocityEstimator::Backward)
+            .to_loop(&v, self.records[0].period, VelocityEstimator::Backward)
             .ok()?;
-        let mut y = SampledModel::of_loop(&lp)
-            .ok()?
-            .simulate(&self.record.force);
-        for s in y.iter_mut() {
-            *s += offset;
+        let model = SampledModel::of_loop(&lp).ok()?;
+        let mut y = Vec::with_capacity(self.measured.len());
+        for (r, rec) in self.records.iter().enumerate() {
+            let o = self.free.len() + r;
+            let offset = self.coords[o].value(x[o]);
+            y.extend(model.simulate(&rec.force).into_iter().map(|s| s + offset));
         }
         y.iter().all(|s| s.is_finite()).then_some(y)
     }
@@ -162,7 +166,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         self.x.copy_from(x);
         self.residuals = self.predict(x.as_slice()).map(|y| {
             y.iter()
-                .zip(&self.record.position)
+                .zip(&self.measured)
                 .map(|(s, m)| (m - s) * self.weight)
                 .collect()
         });
@@ -175,22 +179,22 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     fn residuals(&self) -> Option<DVector<f64>> {
         Some(match &self.residuals {
             Some(r) => DVector::from_column_slice(r),
-            None => DVector::from_element(self.record.len(), REJECTED),
+            None => DVector::from_element(self.measured.len(), REJECTED),
         })
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
         let cols = self.jacobian_columns(self.x.as_slice())?;
-        let n = self.record.len();
+        let n = self.measured.len();
         Some(DMatrix::from_fn(n, cols.len(), |i, j| {
             -cols[j][i] * self.weight
         }))
     }
 }
 
-/// The coordinates of the free parameters (module doc) and of the offset, scaled by the
-/// position's RMS `scale`.
-fn coords(spec: &ModelSpec, free: &[usize], start: &Start, scale: f64) -> Vec<Coord> {
+/// The coordinates of the free parameters (module doc) and of the `runs` offsets, scaled by
+/// the positions' RMS `scale`.
+fn coords(spec: &ModelSpec, free: &[usize], start: &Start, scale: f64, runs: usize) -> Vec<Coord> {
     let params = spec.kind.params();
     let mut c: Vec<Coord> = free
         .iter()
@@ -203,26 +207,36 @@ fn coords(spec: &ModelSpec, free: &[usize], start: &Start, scale: f64) -> Vec<Co
             }),
         })
         .collect();
-    c.push(Coord::Linear(scale));
+    c.extend(std::iter::repeat_n(Coord::Linear(scale), runs));
     c
 }
 
-/// Refines a start by output error (module doc); refused when the optimiser fails or a
-/// parameter runs off to zero or infinity.
-pub fn refine(record: &Record, spec: &ModelSpec, start: &Start) -> IdResult<Fit> {
+/// Refines a start by output error over every run (module doc); `offsets` are the runs'
+/// starting offsets. Refused when the optimiser fails or a parameter runs off to zero or
+/// infinity.
+pub fn refine(
+    records: &[Record],
+    spec: &ModelSpec,
+    start: &Start,
+    offsets: &[f64],
+) -> IdResult<Fit> {
     let free = spec.free();
-    let n = record.len() as f64;
-    let rms = (record.position.iter().map(|y| y * y).sum::<f64>() / n).sqrt();
+    let measured: Vec<f64> = records
+        .iter()
+        .flat_map(|r| r.position.iter().copied())
+        .collect();
+    let rms = (measured.iter().map(|y| y * y).sum::<f64>() / measured.len() as f64).sqrt();
     let scale = if rms > 0.0 { rms } else { 1.0 };
-    let coords = coords(spec, &free, start, scale);
+    let coords = coords(spec, &free, start, scale, records.len());
     let mut x0: Vec<f64> = free
         .iter()
         .zip(&coords)
         .map(|(&i, c)| c.coordinate(start.values[i]))
         .collect();
-    x0.push(coords[free.len()].coordinate(start.offset));
+    x0.extend(offsets.iter().map(|o| o / scale));
     let mut problem = Problem {
-        record,
+        records,
+        measured,
         spec,
         free: free.clone(),
         base: start.values.clone(),
@@ -269,7 +283,9 @@ fn finish(p: &Problem, spec: &ModelSpec, evaluations: usize) -> IdResult<Fit> {
         IdentifyError::NoFit("the fit sits at the edge of the valid loops".into())
     })?;
     Ok(Fit {
-        offset: p.coords[p.free.len()].value(x[p.free.len()]),
+        offsets: (p.free.len()..x.len())
+            .map(|o| p.coords[o].value(x[o]))
+            .collect(),
         values,
         predicted,
         x,
