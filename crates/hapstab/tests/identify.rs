@@ -313,3 +313,26 @@ fn two_runs_of_one_plant_are_fitted_together() {
         .to_string();
     assert!(e.starts_with("data: run 2: sampled at T = 0.002 s"), "{e}");
 }
+
+#[test]
+fn the_residual_bootstrap_agrees_with_the_jacobian_intervals() {
+    let (rec, _) = fixture("msd_chirp_40db");
+    let id = identify(&rec, &spec("mass-spring-damper", &[], 0.0)).unwrap();
+    let boot = hapstab::identify::bootstrap::bootstrap(&[rec], &id, 200, 1).unwrap();
+    assert_eq!(boot.converged, 200);
+    for (b, want) in boot.parameters.iter().zip([0.6, 7.5, 350.0]) {
+        let [lo, hi] = b.ci95;
+        let [jlo, jhi] = id.parameter(&b.name).unwrap().ci95.unwrap();
+        println!(
+            "{}: bootstrap [{lo}, {hi}], Jacobian [{jlo}, {jhi}]",
+            b.name
+        );
+        assert!(lo <= want && want <= hi, "{}", b.name);
+        let ratio = (hi - lo) / (jhi - jlo);
+        assert!(
+            (0.7..1.3).contains(&ratio),
+            "{}: width ratio {ratio}",
+            b.name
+        );
+    }
+}

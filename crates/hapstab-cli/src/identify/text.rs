@@ -168,3 +168,20 @@ pub fn print(
         println!("plot              {}, {}", s.svg.display(), s.png.display());
     }
 }
+
+/// Prints the bootstrap's intervals beside the Jacobian's.
+pub fn print_bootstrap(id: &Identification, b: &hapstab::identify::bootstrap::Bootstrap) {
+    println!(
+        "bootstrap         95 % intervals from {} of {} residual-resampled refits:",
+        b.converged, b.replicates
+    );
+    for p in &b.parameters {
+        let unit = id.parameter(&p.name).map_or("", |e| e.unit.as_str());
+        println!(
+            "  {:<24} [{}, {}]",
+            p.name,
+            value(p.ci95[0], unit, DIGITS),
+            value(p.ci95[1], unit, DIGITS)
+        );
+    }
+}

@@ -16,6 +16,7 @@
 //!    over the parameters' covariance and the robust K_max over their 95 % box.
 
 pub mod arx;
+pub mod bootstrap;
 pub mod consequence;
 pub mod data;
 pub mod error;
