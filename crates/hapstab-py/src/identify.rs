@@ -57,6 +57,8 @@ pub struct PyIdentification {
     pub k_max_spread: Option<(f64, f64)>,
     /// Robust K_max over the parameters' 95 % box, N/m (None for a transfer function).
     pub k_max_robust: Option<f64>,
+    /// The smallest and largest K_max over the parameters' 95 % box, N/m.
+    pub k_max_box_range: Option<(f64, f64)>,
     /// The identified loop.
     pub fitted_loop: Py<PyLoop>,
 }
@@ -195,6 +197,7 @@ pub fn identify(
         predicted: PyArray1::from_slice(py, &id.predicted).unbind(),
         k_max: lim.k_max,
         k_max_spread: lim.spread.map(|[a, b]| (a, b)),
+        k_max_box_range: lim.box_range.map(|[a, b]| (a, b)),
         k_max_robust: lim.robust.and_then(|r| r.k_max),
         fitted_loop: Py::new(
             py,

@@ -109,7 +109,7 @@ results! {
     "Identification" => PyIdentification { model, names, units, values, standard_errors,
         ci_low, ci_high, fixed, position_offset, period, nrmse, fit_percent, residual_rms,
         whiteness_passes, cross_correlation_passes, predicted, k_max, k_max_spread,
-        k_max_robust, fitted_loop },
+        k_max_robust, k_max_box_range, fitted_loop },
     "ZWidth" => PyZWidth { stable, stable_area, k_max, b_at_k_max, k_max_nonnegative_damping,
         device_damping, passive, k_max_passive_with_arm, passive_inside_stable, linear,
         table_damping, table_k_max, table_k_min, table_k_max_passive, table_k_linear },

@@ -58,6 +58,13 @@ fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
             lim.valid_draws
         ));
     }
+    if let Some([lo, hi]) = lim.box_range {
+        out.push(format!(
+            "  over the box    [{}, {}]: K_max over the parameters' 95 % box",
+            eng(lo, "N/m", DIGITS),
+            eng(hi, "N/m", DIGITS)
+        ));
+    }
     if let Some(r) = &lim.robust {
         let worst: Vec<String> = r
             .worst_plant

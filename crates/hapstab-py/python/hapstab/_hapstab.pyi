@@ -267,6 +267,7 @@ class Identification:
     k_max: Optional[float]
     k_max_spread: Optional[Tuple[float, float]]
     k_max_robust: Optional[float]
+    k_max_box_range: Optional[Tuple[float, float]]
     fitted_loop: Loop
 
 class RobustKmax:

@@ -6,7 +6,13 @@
 //!   101:2008, *Propagation of distributions using a Monte Carlo method*);
 //! - the **robust** K_max over the parameters' 95 % confidence box ([`crate::robust`]): the
 //!   stiffness stable for every plant whose parameters lie inside their intervals, for the
-//!   models whose parameters are loop parameters (not a transfer function's coefficients).
+//!   models whose parameters are loop parameters (not a transfer function's coefficients);
+//! - the **range over the box**: the smallest and largest K_max of the loops at the box's
+//!   corners (up to [`MAX_CORNER_PARAMS`] free parameters), the smallest lowered to the
+//!   robust K_max. The box is a few standard errors wide, where K_max is close to linear in
+//!   the parameters, so its extremes lie at corners; the range is at least as wide as the
+//!   linearised 95 % interval of K_max (Σ|∂K/∂θ_i|·1.96σ_i ≥ 1.96·√(gᵀΣg)) and wider when
+//!   the parameters are correlated: a conservative interval.
 
 use nalgebra::DMatrix;
 use rayon::prelude::*;
@@ -19,6 +25,9 @@ use crate::kmax::{KmaxQuery, kmax};
 use crate::model::VelocityEstimator;
 use crate::robust::{BoxSide, RobustKmax, RobustOptions, robust_kmax};
 use crate::splitmix::SplitMix;
+
+/// Free parameters beyond which the range over the box is not formed (2^8 = 256 corners).
+pub const MAX_CORNER_PARAMS: usize = 8;
 
 /// Loops drawn for the spread by default: the 2.5 % quantile of 400 draws rests on 10 of
 /// them, enough for two significant digits.
@@ -38,6 +47,9 @@ pub struct StiffnessLimit {
     pub valid_draws: usize,
     /// The robust K_max over the parameters' 95 % box (None for a transfer function).
     pub robust: Option<RobustKmax>,
+    /// The smallest and largest K_max over the 95 % box (module doc), N/m; None beyond
+    /// [`MAX_CORNER_PARAMS`] free parameters or when a corner has no stable stiffness.
+    pub box_range: Option<[f64; 2]>,
 }
 
 /// K_max at B = 0 of one loop in N/m.
@@ -79,12 +91,17 @@ pub fn stiffness_limit(
         };
         Some(robust_kmax(&lp, &sides, 0.0, &opts)?)
     };
+    let box_range = corner_range(id, velocity).map(|[lo, hi]| {
+        let robust_lo = robust.as_ref().and_then(|r| r.k_max).unwrap_or(lo);
+        [lo.min(robust_lo), hi]
+    });
     Ok(StiffnessLimit {
         k_max,
         spread,
         draws,
         valid_draws: samples.len(),
         robust,
+        box_range,
     })
 }
 
@@ -117,6 +134,32 @@ fn drawn_k_max(
             k_max_at_zero(&lp).ok().map(|k| k.unwrap_or(0.0).max(0.0))
         })
         .collect()
+}
+
+/// The smallest and largest K_max at B = 0 over the corners of the 95 % box.
+fn corner_range(id: &Identification, velocity: &VelocityEstimator) -> Option<[f64; 2]> {
+    let free = id.spec.free();
+    if free.len() > MAX_CORNER_PARAMS {
+        return None;
+    }
+    let base: Vec<f64> = id.parameters.iter().map(|e| e.value).collect();
+    let ks: Vec<Option<f64>> = (0..1usize << free.len())
+        .into_par_iter()
+        .map(|mask| {
+            let mut v = base.clone();
+            for (bit, &i) in free.iter().enumerate() {
+                let [lo, hi] = id.parameters[i].ci95?;
+                v[i] = if mask >> bit & 1 == 1 { hi } else { lo };
+            }
+            let lp = id.spec.to_loop(&v, id.period, velocity.clone()).ok()?;
+            k_max_at_zero(&lp).ok().flatten()
+        })
+        .collect();
+    let ks: Option<Vec<f64>> = ks.into_iter().collect();
+    let ks = ks?;
+    let lo = ks.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = ks.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    Some([lo, hi])
 }
 
 /// A standard normal deviate (Box–Muller).
