@@ -6,6 +6,7 @@ naming the keyword; the result pickles."""
 import json
 import pickle
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -65,3 +66,15 @@ def test_bad_data_names_the_keyword():
     bad("model: parameter 'model'", t, f, x, model="three-mass")
     rng = np.random.default_rng(1)
     bad("model: the model cannot fit", t, f, rng.normal(0, 1e-3, t.size))
+
+
+def test_scipy_least_squares_on_the_same_problem_agrees(hapstab_cli):
+    """benches/baseline/identify_least_squares.py: scipy's least_squares on the output-error
+    problem built without hapstab gives the parameters of `hapstab identify` to 1e-6."""
+    pytest.importorskip("scipy")
+    script = Path(__file__).resolve().parents[3] / "benches" / "baseline" / "identify_least_squares.py"
+    runs = [str(FIXTURES / f"{n}.csv") for n in ("msd_chirp_40db", "held_prbs_40db")]
+    out = subprocess.run([sys.executable, str(script), "--hapstab", str(hapstab_cli), *runs],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "largest relative difference" in out.stdout
