@@ -336,3 +336,51 @@ fn the_residual_bootstrap_agrees_with_the_jacobian_intervals() {
         );
     }
 }
+
+#[test]
+fn the_delay_is_fitted_from_the_independent_simulator_s_two_samples() {
+    let (rec, _) = fixture("msd_prbs_40db_delay2");
+    let s = spec("mass-spring-damper", &[], 0.0).fitting_timing(true, false);
+    let id = identify(&rec, &s).unwrap();
+    let d = id.parameter("delay-time").unwrap();
+    let [lo, hi] = d.ci95.unwrap();
+    assert!(
+        (d.value / 2e-3 - 1.0).abs() < 0.02 && lo <= 2e-3 && 2e-3 <= hi,
+        "{d:?}"
+    );
+    assert_eq!(id.delay_time, d.value);
+    for (p, want) in [("mass", 0.6), ("damping", 7.5), ("stiffness", 350.0)] {
+        assert!(
+            (id.parameter(p).unwrap().value / want - 1.0).abs() < 0.02,
+            "{p}"
+        );
+    }
+}
+
+#[test]
+fn the_actuator_lag_is_fitted_from_a_simulated_log() {
+    use hapstab::identify::excitation::{Excitation, force, measured_position};
+    let lp = hapstab::Loop::new(
+        hapstab::Plant::held_device(hapstab::Device::PHANTOM_LIKE, hapstab::Arm::TYPICAL)
+            .unwrap()
+            .with_force_lag(2e-3)
+            .unwrap(),
+        1e-3,
+        hapstab::Delay::samples(0).unwrap(),
+        VelocityEstimator::Backward,
+    )
+    .unwrap();
+    let f = force(Excitation::Chirp { f0: 0.5, f1: 60.0 }, 1.0, 6000, 1e-3, 1);
+    let y = measured_position(&lp, &f, Some(40.0), 1e-5, 1).unwrap();
+    let t: Vec<f64> = (0..f.len()).map(|k| k as f64 * 1e-3).collect();
+    let rec = Record::new(t, f, y, &Columns::default()).unwrap();
+    let fixed = [("device-mass", 0.1), ("device-damping", 1.5)];
+    let s = spec("mass-spring-damper", &fixed, 0.0).fitting_timing(false, true);
+    let id = identify(&rec, &s).unwrap();
+    let tau = id.parameter("force-lag").unwrap();
+    let [lo, hi] = tau.ci95.unwrap();
+    assert!(
+        (tau.value / 2e-3 - 1.0).abs() < 0.02 && lo <= 2e-3 && 2e-3 <= hi,
+        "{tau:?}"
+    );
+}

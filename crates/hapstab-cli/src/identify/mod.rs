@@ -62,6 +62,13 @@ pub struct IdentifyArgs {
     /// Known actuator lag τ in s (a first-order lag between commanded and applied force)
     #[arg(long, default_value_t = 0.0)]
     pub force_lag: f64,
+    /// Fit the delay too (any fraction of a sample), from --delay/--delay-time (at least a
+    /// quarter sample)
+    #[arg(long)]
+    pub fit_delay: bool,
+    /// Fit the actuator lag τ too, from --force-lag (half a sample when it is 0)
+    #[arg(long)]
+    pub fit_force_lag: bool,
     /// Velocity estimator of the wall rendered on the identified plant (for K_max and the
     /// loop file), as --velocity of the other commands
     #[arg(long, default_value = "backward")]
@@ -175,7 +182,8 @@ fn spec(args: &IdentifyArgs, period: f64) -> Result<ModelSpec> {
         (None, Some(t)) => t,
         (None, None) => 0.0,
     };
-    Ok(ModelSpec::new(kind, fixed, delay_time, args.force_lag)?)
+    Ok(ModelSpec::new(kind, fixed, delay_time, args.force_lag)?
+        .fitting_timing(args.fit_delay, args.fit_force_lag))
 }
 
 /// Writes the identified loop as a loop file (`{"loop": …}`, as `--loop` reads it).

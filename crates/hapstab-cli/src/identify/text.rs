@@ -16,7 +16,7 @@ const DIGITS: usize = 6;
 /// digits for a transfer function's coefficients.
 fn value(x: f64, unit: &str, digits: usize) -> String {
     match unit {
-        "kg" | "Ns/m" | "N/m" | "m" => eng(x, unit, digits),
+        "kg" | "Ns/m" | "N/m" | "m" | "s" => eng(x, unit, digits),
         _ => format!("{} {unit}", sig(x, digits)),
     }
 }

@@ -107,9 +107,10 @@ pub fn initial_estimates(record: &Record, spec: &ModelSpec) -> IdResult<Vec<Star
         let Some((a, b)) = regress(record, spec, &st, lambda) else {
             continue;
         };
-        let Some(values) = to_physical(spec, &a, &b) else {
+        let Some(mut values) = to_physical(spec, &a, &b) else {
             continue;
         };
+        values.extend(spec.timing_start(record.period));
         let Some((cost, offset)) = output_error(record, spec, &values) else {
             continue;
         };
@@ -286,7 +287,7 @@ pub(crate) fn to_physical(spec: &ModelSpec, a: &[f64], b: &[f64]) -> Option<Vec<
         ModelKind::TwoMass => two_mass(a, b),
         ModelKind::TransferFunction { .. } => b.iter().chain(a).copied().collect(),
     };
-    let params = spec.kind.params();
+    let params = spec.params();
     let values: Vec<f64> = raw
         .iter()
         .enumerate()

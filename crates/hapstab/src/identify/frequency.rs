@@ -206,9 +206,11 @@ pub fn levy_start(rec: &FrequencyRecord, spec: &ModelSpec) -> IdResult<Vec<f64>>
     }
     let na = st.den - first_a;
     let coef_b: Vec<f64> = (0..=st.num).map(|j| sol[na + j]).collect();
-    to_physical(spec, &coef_a, &coef_b).ok_or_else(|| {
+    let mut values = to_physical(spec, &coef_a, &coef_b).ok_or_else(|| {
         IdentifyError::NoFit("Levy's linear fit gives no physical plant to start from".into())
-    })
+    })?;
+    values.extend(spec.timing_start(rec.period));
+    Ok(values)
 }
 
 /// The logarithmic least-squares problem for the optimiser.
@@ -316,7 +318,7 @@ pub(crate) fn refine<'a>(
     start: &[f64],
 ) -> IdResult<(FreqProblem<'a>, usize)> {
     let free = spec.free();
-    let params = spec.kind.params();
+    let params = spec.params();
     let coords: Vec<Coord> = free
         .iter()
         .map(|&i| match params[i].domain {

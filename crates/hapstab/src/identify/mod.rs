@@ -176,6 +176,7 @@ pub fn identify_runs(records: &[Record], spec: &ModelSpec) -> IdResult<Identific
         .collect();
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
     let est = estimates(spec, &fit, ss, records.len())?;
+    let (delay_time, force_lag) = timing(spec, &est.parameters);
     Ok(Identification {
         model: spec.kind.name(),
         data: "time",
@@ -183,8 +184,8 @@ pub fn identify_runs(records: &[Record], spec: &ModelSpec) -> IdResult<Identific
         position_offset: est.offsets[0].clone(),
         position_offsets: est.offsets,
         period: records[0].period,
-        delay_time: spec.delay_time,
-        force_lag: spec.force_lag,
+        delay_time,
+        force_lag,
         fit: uncertainty::quality(&runs.position, &fit.predicted),
         runs: per_run,
         whiteness: uncertainty::whiteness(&residuals, uncertainty::TEST_LAGS),
@@ -234,7 +235,7 @@ fn estimates(
     offsets: usize,
 ) -> IdResult<Estimates> {
     let free = spec.free();
-    let params = spec.kind.params();
+    let params = spec.params();
     let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
     names.extend((1..=offsets).map(|r| format!("position offset of run {r}")));
     let cov = uncertainty::covariance(&fit.jacobian, residual_ss, &names)?;
@@ -347,6 +348,7 @@ pub fn identify_frequency(
     };
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
     let est = estimates(spec, &fit, ss, 0)?;
+    let (delay_time, force_lag) = timing(spec, &est.parameters);
     let err: f64 = response
         .iter()
         .zip(&rec.response)
@@ -362,8 +364,8 @@ pub fn identify_frequency(
         position_offset: held("position offset", "m", 0.0),
         position_offsets: Vec::new(),
         period: rec.period,
-        delay_time: spec.delay_time,
-        force_lag: spec.force_lag,
+        delay_time,
+        force_lag,
         fit: FitQuality {
             nrmse,
             fit_percent: 100.0 * (1.0 - nrmse),
@@ -381,6 +383,21 @@ pub fn identify_frequency(
         optimum: fit,
         spec: spec.clone(),
     })
+}
+
+/// The delay and the lag a fit ends with: the fitted values when they were fitted, the
+/// given ones otherwise.
+fn timing(spec: &ModelSpec, parameters: &[Estimate]) -> (f64, f64) {
+    let fitted = |name: &str, given: f64| {
+        parameters
+            .iter()
+            .find(|p| p.name == name)
+            .map_or(given, |p| p.value)
+    };
+    (
+        fitted("delay-time", spec.delay_time),
+        fitted("force-lag", spec.force_lag),
+    )
 }
 
 impl Identification {

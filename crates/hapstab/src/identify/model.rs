@@ -249,6 +249,12 @@ pub struct ModelSpec {
     pub delay_time: f64,
     /// The actuator lag τ in s (0 for none).
     pub force_lag: f64,
+    /// True when the delay is fitted (`delay-time`, after the model's parameters), the
+    /// given `delay_time` its start.
+    pub fit_delay: bool,
+    /// True when the actuator lag is fitted (`force-lag`, last), the given `force_lag` its
+    /// start.
+    pub fit_force_lag: bool,
 }
 
 impl ModelSpec {
@@ -313,18 +319,65 @@ impl ModelSpec {
             fixed,
             delay_time,
             force_lag,
+            fit_delay: false,
+            fit_force_lag: false,
         })
+    }
+
+    /// The same spec with the delay and/or the actuator lag fitted too (both positive, as
+    /// their logarithms; the exact sampled model is smooth in a fractional delay).
+    pub fn fitting_timing(self, delay: bool, force_lag: bool) -> Self {
+        ModelSpec {
+            fit_delay: delay,
+            fit_force_lag: force_lag,
+            ..self
+        }
+    }
+
+    /// Every parameter fitted or held: the model's, then `delay-time` and `force-lag` when
+    /// they are fitted.
+    pub fn params(&self) -> Vec<ParamInfo> {
+        let mut p = self.kind.params();
+        let timing = |name: &str| ParamInfo {
+            name: name.into(),
+            unit: "s".into(),
+            domain: Domain::Positive,
+        };
+        if self.fit_delay {
+            p.push(timing("delay-time"));
+        }
+        if self.fit_force_lag {
+            p.push(timing("force-lag"));
+        }
+        p
+    }
+
+    /// The starting values of the fitted timing parameters at period T: the given delay
+    /// (at least a quarter sample) and lag (half a sample when none is given).
+    pub fn timing_start(&self, period: f64) -> Vec<f64> {
+        let mut v = Vec::new();
+        if self.fit_delay {
+            v.push(self.delay_time.max(0.25 * period));
+        }
+        if self.fit_force_lag {
+            v.push(if self.force_lag > 0.0 {
+                self.force_lag
+            } else {
+                0.5 * period
+            });
+        }
+        v
     }
 
     /// The held value of parameter `i`, if it is held.
     pub fn held(&self, i: usize) -> Option<f64> {
-        let name = &self.kind.params()[i].name;
+        let name = &self.params()[i].name;
         self.fixed.iter().find(|f| &f.name == name).map(|f| f.value)
     }
 
     /// Indices of the parameters that are fitted.
     pub fn free(&self) -> Vec<usize> {
-        (0..self.kind.params().len())
+        (0..self.params().len())
             .filter(|&i| self.held(i).is_none())
             .collect()
     }
@@ -337,10 +390,21 @@ impl ModelSpec {
         period: f64,
         velocity: VelocityEstimator,
     ) -> crate::Result<Loop> {
+        let mut at = self.kind.params().len();
+        let mut next = |fitted: bool, given: f64| {
+            if fitted {
+                at += 1;
+                v[at - 1]
+            } else {
+                given
+            }
+        };
+        let delay = next(self.fit_delay, self.delay_time);
+        let lag = next(self.fit_force_lag, self.force_lag);
         Loop::new(
-            self.kind.plant(v, self.force_lag)?,
+            self.kind.plant(v, lag)?,
             period,
-            Delay::from_time(self.delay_time, period)?,
+            Delay::from_time(delay, period)?,
             velocity,
         )
     }

@@ -195,7 +195,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
 /// The coordinates of the free parameters (module doc) and of the `runs` offsets, scaled by
 /// the positions' RMS `scale`.
 fn coords(spec: &ModelSpec, free: &[usize], start: &Start, scale: f64, runs: usize) -> Vec<Coord> {
-    let params = spec.kind.params();
+    let params = spec.params();
     let mut c: Vec<Coord> = free
         .iter()
         .map(|&i| match params[i].domain {
@@ -265,7 +265,7 @@ pub fn refine(
 /// The fit at the optimiser's last point, checked to be a physical plant.
 fn finish(p: &Problem, spec: &ModelSpec, evaluations: usize) -> IdResult<Fit> {
     let x = p.x.as_slice().to_vec();
-    let params = spec.kind.params();
+    let params = spec.params();
     let mut values = p.base.clone();
     for (k, &i) in p.free.iter().enumerate() {
         values[i] = p.coords[k].value(x[k]);
