@@ -103,6 +103,26 @@ fn array(v: &Bound<'_, PyAny>, kw: &str) -> PyResult<Vec<f64>> {
     Ok(a.as_array().to_vec())
 }
 
+/// The recording from the three arrays, named `t`, `force`, `position` in its errors.
+fn recording(
+    t: &Bound<'_, PyAny>,
+    force: &Bound<'_, PyAny>,
+    position: &Bound<'_, PyAny>,
+) -> PyResult<Record> {
+    let columns = Columns {
+        time: "t".into(),
+        force: "force".into(),
+        position: "position".into(),
+    };
+    Record::new(
+        array(t, "t")?,
+        array(force, "force")?,
+        array(position, "position")?,
+        &columns,
+    )
+    .map_err(to_py)
+}
+
 fn held(fixed: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Fixed>> {
     let Some(d) = fixed else {
         return Ok(Vec::new());
@@ -121,12 +141,14 @@ fn held(fixed: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Fixed>> {
 /// Fits `model` ("mass-spring-damper", "held-device", "two-mass" or "tf:N/D") to a
 /// recording: time `t` in s (uniform), commanded `force` in N, measured `position` in m;
 /// `fixed` = {name: value} holds parameters (e.g. {"device-mass": 0.1}); `delay` (s) and
-/// `force_lag` (s) are known parts of the loop; K_max at B = 0 is for the wall's `velocity`
+/// `force_lag` (s) are known parts of the loop, or the starts of their fit with `fit_delay`,
+/// `fit_force_lag`; K_max at B = 0 is for the wall's `velocity`
 /// estimator, its spread over `draws` loops drawn with `seed`. The numbers of
 /// `hapstab identify --json`.
 #[pyfunction]
 #[pyo3(signature = (t, force, position, *, model = "mass-spring-damper", fixed = None,
-                    delay = 0.0, force_lag = 0.0, velocity = "backward", draws = 400, seed = 1))]
+                    delay = 0.0, force_lag = 0.0, fit_delay = false, fit_force_lag = false,
+                    velocity = "backward", draws = 400, seed = 1))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify(
     py: Python<'_>,
@@ -137,22 +159,13 @@ pub fn identify(
     fixed: Option<&Bound<'_, PyDict>>,
     delay: f64,
     force_lag: f64,
+    fit_delay: bool,
+    fit_force_lag: bool,
     velocity: &str,
     draws: usize,
     seed: u64,
 ) -> PyResult<PyIdentification> {
-    let columns = Columns {
-        time: "t".into(),
-        force: "force".into(),
-        position: "position".into(),
-    };
-    let record = Record::new(
-        array(t, "t")?,
-        array(force, "force")?,
-        array(position, "position")?,
-        &columns,
-    )
-    .map_err(to_py)?;
+    let record = recording(t, force, position)?;
     let kind = ModelKind::parse(model).map_err(to_py)?;
     let spec = ModelSpec::new(
         kind,
@@ -160,7 +173,8 @@ pub fn identify(
         finite("delay", delay)?,
         finite("force_lag", force_lag)?,
     )
-    .map_err(to_py)?;
+    .map_err(to_py)?
+    .fitting_timing(fit_delay, fit_force_lag);
     let velocity: VelocityEstimator = velocity
         .parse()
         .map_err(|e: hapstab::Error| bad("velocity", e))?;

@@ -78,3 +78,10 @@ def test_scipy_least_squares_on_the_same_problem_agrees(hapstab_cli):
                          capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
     assert "largest relative difference" in out.stdout
+
+
+def test_the_delay_is_fitted():
+    t, f, x = recording("msd_prbs_40db_delay2")
+    r = hs.identify(t, f, x, fit_delay=True, draws=20)
+    assert r.names[-1] == "delay-time"
+    assert abs(r.values[-1] / 2e-3 - 1) < 0.02 and r.ci_low[-1] <= 2e-3 <= r.ci_high[-1]

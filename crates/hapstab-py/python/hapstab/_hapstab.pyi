@@ -602,6 +602,8 @@ def identify(
     fixed: Optional[Dict[str, float]] = None,
     delay: float = 0.0,
     force_lag: float = 0.0,
+    fit_delay: bool = False,
+    fit_force_lag: bool = False,
     velocity: str = "backward",
     draws: int = 400,
     seed: int = 1,
