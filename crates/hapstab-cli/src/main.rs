@@ -8,6 +8,7 @@ mod check_plot;
 mod discretize;
 mod freq_figures;
 mod freq_plots;
+mod identify;
 mod kmax;
 mod linear;
 mod locus;
@@ -81,6 +82,8 @@ enum Command {
     Ranges(ranges::RangesArgs),
     /// The exact discrete loop as coefficients: plant H(z) with its delay, velocity filter V(z), p(z)
     Discretize(discretize::DiscretizeArgs),
+    /// The plant from a recording of force and position, with its uncertainty and K_max
+    Identify(identify::IdentifyArgs),
     /// Time-domain simulation with nonlinear effects: verdict, and on request a CSV trace and plot
     Simulate(simulate::SimulateArgs),
     /// Empirical stability boundary of a nonlinear setting by simulation
@@ -94,6 +97,7 @@ enum Command {
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Simulate(a) => simulate::run_simulate(&a),
+        Command::Identify(a) => identify::run(&a),
         Command::Simboundary(a) => simulate::run_simboundary(&a),
         Command::Check(a) => check::run(&a),
         Command::Discretize(a) => discretize::run(&a),

@@ -10,6 +10,7 @@ mod budget;
 mod discretize;
 mod errors;
 mod freqresp;
+mod identify;
 mod kmax;
 mod linear;
 mod locus;
@@ -60,6 +61,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<zwidth::PyZWidth>()?;
     m.add_class::<linear::PyLinearCondition>()?;
     m.add_class::<nyquist::PyNyquistRegions>()?;
+    m.add_class::<identify::PyIdentification>()?;
     m.add_function(wrap_pyfunction!(analysis::check, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::region, m)?)?;
     m.add_function(wrap_pyfunction!(kmax::kmax, m)?)?;
@@ -76,6 +78,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(zwidth::zwidth, m)?)?;
     m.add_function(wrap_pyfunction!(linear::linear_condition, m)?)?;
     m.add_function(wrap_pyfunction!(nyquist::nyquist_regions, m)?)?;
+    m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_rebuild, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_result_fields, m)?)?;
     Ok(())

@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use crate::analysis::{PyCheck, PyEdge, PyRegion};
 use crate::discretize::PyDiscretization;
 use crate::freqresp::{PyFrequencyResponse, PyMark};
+use crate::identify::PyIdentification;
 use crate::kmax::{PyKmax, PyRenderableBand};
 use crate::linear::PyLinearCondition;
 use crate::locus::PyRootLocus;
@@ -105,6 +106,10 @@ results! {
         sweep_beta_max, sweep_area, sweep_empty, sweep_degenerate, robust_polygon,
         robust_alpha_max, robust_beta_at_alpha_max, robust_area, robust_gamma_hi,
         passive_polygon, passive_area, passive_inside_robust, passive_applies },
+    "Identification" => PyIdentification { model, names, units, values, standard_errors,
+        ci_low, ci_high, fixed, position_offset, period, nrmse, fit_percent, residual_rms,
+        whiteness_passes, cross_correlation_passes, predicted, k_max, k_max_spread,
+        k_max_robust, k_max_box_range, fitted_loop },
     "ZWidth" => PyZWidth { stable, stable_area, k_max, b_at_k_max, k_max_nonnegative_damping,
         device_damping, passive, k_max_passive_with_arm, passive_inside_stable, linear,
         table_damping, table_k_max, table_k_min, table_k_max_passive, table_k_linear },

@@ -4,6 +4,7 @@ version."""
 
 import math
 import pickle
+from pathlib import Path
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
@@ -42,6 +43,10 @@ def test_version():
     assert hs.__version__ == "0.1.0"
 
 
+IDENTIFY_RUN = (Path(__file__).resolve().parents[2] / "hapstab" / "tests" / "fixtures"
+                / "identify" / "msd_chirp_40db.csv")
+
+
 def results(lp, wall):
     """One of every result type for a loop and a stable wall of it."""
     grid_k, grid_b = np.linspace(0.0, 2.0 * wall[0], 5), np.linspace(0.0, 2.0 * wall[1], 4)
@@ -58,6 +63,7 @@ def results(lp, wall):
                                  wall_stiffness=wall[0], wall_damping=wall[1], samples=20),
         hs.stability_probability(lp, distributions={"period": "uniform:1e-3:2e-3"},
                                  wall_damping=wall[1], samples=20),
+        hs.identify(*np.loadtxt(IDENTIFY_RUN, delimiter=",", skiprows=1).T, draws=20),
     ]
 
 

@@ -23,6 +23,7 @@
 //! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
 //! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
 //! | [`sweep`] | K_max against a parameter of the loop |
+//! | [`identify`] | beyond the paper: the plant from a recording of force and position, with its uncertainty |
 //!
 //! ```
 //! use hapstab::{Normalized, Analysis, Verdict};
@@ -42,6 +43,7 @@ pub mod delay;
 pub mod error;
 pub mod extremum;
 pub mod freqresp;
+pub mod identify;
 pub mod kmax;
 pub mod kmax_band;
 pub mod limits;

@@ -21,6 +21,7 @@ use crate::output::sig;
 mod boundary;
 mod boundary_plot;
 mod boundary_text;
+mod log;
 mod run;
 mod run_args;
 mod run_plot;

@@ -37,6 +37,8 @@ pub struct SimulateArgs {
     wall: WallArgs,
     #[command(flatten)]
     run: RunArgs,
+    #[command(flatten)]
+    log: super::log::LogArgs,
     /// Write the trace as CSV with columns t, x, v, F (F: wall force, positive pushing out
     /// of the wall).
     #[arg(long, value_name = "FILE")]
@@ -168,6 +170,9 @@ impl SimLoop {
 pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     check_simulate_args(a)?;
     let sl = SimLoop::resolve(&a.lp, &a.wall, &a.run)?;
+    if a.log.identification_log.is_some() {
+        return super::log::run(&a.log, &sl.rl.lp, a.run.quantization, a.json);
+    }
     let units = sl.units();
     let (mut cfg, settings) = a.run.config(sl.model.clone(), units.physical)?;
     let files_wanted = a.csv.is_some() || a.plot.is_some();

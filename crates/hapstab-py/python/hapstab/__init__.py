@@ -34,6 +34,9 @@ and answers from the same Rust engine as the `hapstab` command line:
 - zwidth: the Z-width, stable and passive regions with K_max against the damping.
 - linear_condition: the paper's linear condition (22)-(23) and the smallest damping at
   which it errs by a given fraction of the exact boundary (eq. 24, Fig. 7).
+- identify: the plant from arrays of time, commanded force and measured position (a
+  mass-spring-damper, a device held by an arm, a two-mass device or any transfer function),
+  with standard errors, 95 % intervals and K_max at B = 0 with its uncertainty.
 - nyquist_regions: Section VIII in normalized units: the stable regions as gamma sweeps up
   to the Nyquist frequency, the robustly stable region, Colgate's passive region inside it.
 
@@ -50,6 +53,7 @@ from ._hapstab import (
     Discretization,
     Edge,
     FrequencyResponse,
+    Identification,
     Kmax,
     RenderableBand,
     RobustKmax,
@@ -78,6 +82,7 @@ from ._hapstab import _rebuild, _result_fields
 from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
 from ._hapstab import frequency_response as _frequency_response
+from ._hapstab import identify as _identify
 from ._hapstab import kmax as _kmax
 from ._hapstab import linear_condition as _linear_condition
 from ._hapstab import margins as _margins
@@ -158,6 +163,7 @@ def _named(fn):
 check = _named(_check)
 discretize = _named(_discretize)
 frequency_response = _named(_frequency_response)
+identify = _named(_identify)
 kmax = _named(_kmax)
 linear_condition = _named(_linear_condition)
 margins = _named(_margins)
@@ -178,6 +184,7 @@ __all__ = [
     "Discretization",
     "Edge",
     "FrequencyResponse",
+    "Identification",
     "Kmax",
     "RenderableBand",
     "RobustKmax",
@@ -203,6 +210,7 @@ __all__ = [
     "check",
     "discretize",
     "frequency_response",
+    "identify",
     "kmax",
     "linear_condition",
     "margins",

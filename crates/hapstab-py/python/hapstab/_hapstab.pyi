@@ -245,6 +245,31 @@ class RenderableBand:
     b_at_k_max: Optional[float]
     k_max_attained: Optional[bool]
 
+class Identification:
+    """A plant identified from a recording (hapstab identify)."""
+
+    model: str
+    names: List[str]
+    units: List[str]
+    values: Float64Array
+    standard_errors: Float64Array
+    ci_low: Float64Array
+    ci_high: Float64Array
+    fixed: List[bool]
+    position_offset: float
+    period: float
+    nrmse: float
+    fit_percent: float
+    residual_rms: float
+    whiteness_passes: bool
+    cross_correlation_passes: bool
+    predicted: Float64Array
+    k_max: Optional[float]
+    k_max_spread: Optional[Tuple[float, float]]
+    k_max_robust: Optional[float]
+    k_max_box_range: Optional[Tuple[float, float]]
+    fitted_loop: Loop
+
 class RobustKmax:
     """Robust K_max over a box of loop parameters (hapstab kmax --robust --box)."""
 
@@ -567,6 +592,24 @@ def kmax(
 ) -> Kmax:
     """K_max in N/m: at a damping B, over a band of B, or (without either) over B >= 0
     beside K_max at B = 0 and over the renderable band."""
+
+def identify(
+    t: ArrayLike,
+    force: ArrayLike,
+    position: ArrayLike,
+    *,
+    model: str = "mass-spring-damper",
+    fixed: Optional[Dict[str, float]] = None,
+    delay: float = 0.0,
+    force_lag: float = 0.0,
+    fit_delay: bool = False,
+    fit_force_lag: bool = False,
+    velocity: str = "backward",
+    draws: int = 400,
+    seed: int = 1,
+) -> Identification:
+    """The plant from a recording of time (s), commanded force (N) and measured position (m),
+    with standard errors, 95 % intervals and K_max at B = 0 with its uncertainty."""
 
 def robust_kmax(
     loop: Loop,
