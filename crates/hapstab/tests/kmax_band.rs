@@ -8,7 +8,8 @@
 //! region's polygon misses a top (its K_max lower than the candidates'), the θ scan's exact
 //! interval at the higher answer's damping must reach it and the point test confirm it.
 //!
-//! `cargo test --release -p hapstab --test kmax_band -- --ignored` runs the 10⁴-loop version.
+//! `cargo test --release -p hapstab --test kmax_band -- --ignored` runs the version that
+//! compares 10⁴ loops.
 
 mod common;
 
@@ -166,9 +167,9 @@ fn kmax_without_the_polygon_equals_the_region_and_the_scan() {
 }
 
 #[test]
-#[ignore = "10⁴ loops: a few minutes in release"]
+#[ignore = "1.3·10⁴ loops (10⁴ compared): a few minutes in release"]
 fn kmax_without_the_polygon_on_ten_thousand_loops() {
-    let (compared, undecided) = run(0x6b6d_6179, 10_000);
+    let (compared, undecided) = run(0x6b6d_6179, 13_000);
     eprintln!("compared {compared}, undecided {undecided}");
-    assert!(compared >= 6_000);
+    assert!(compared >= 10_000, "{compared} compared");
 }
