@@ -286,6 +286,28 @@ fn more_cases() -> Vec<JsonCase> {
             vec!["plant", "velocity", "characteristic"],
         ),
         (
+            "identify",
+            vec![
+                "identify",
+                "--data",
+                concat!(
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/../hapstab/tests/fixtures/identify/msd_chirp_40db.csv"
+                ),
+                "--draws",
+                "20",
+            ],
+            vec![
+                "model",
+                "source",
+                "parameters",
+                "fit",
+                "whiteness",
+                "k_max_at_zero_damping",
+                "loop",
+            ],
+        ),
+        (
             "simulate",
             vec!["simulate", "--duration", "0.1"],
             vec![
