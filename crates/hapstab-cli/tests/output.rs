@@ -123,7 +123,39 @@ const NO_JSON: &[(&str, &str)] = &[(
 /// Small, fast runs of every command with `--json`, and the top-level keys that each must
 /// print (README, "JSON output"). `{dir}` is a temporary folder.
 fn json_cases() -> Vec<JsonCase> {
-    [verdict_cases(), region_cases(), more_cases()].concat()
+    [
+        verdict_cases(),
+        region_cases(),
+        more_cases(),
+        identify_cases(),
+    ]
+    .concat()
+}
+
+/// `identify` on a recording of the independent simulator (benches/baseline/identify_data.py).
+fn identify_cases() -> Vec<JsonCase> {
+    vec![(
+        "identify",
+        vec![
+            "identify",
+            "--data",
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../hapstab/tests/fixtures/identify/msd_chirp_40db.csv"
+            ),
+            "--draws",
+            "20",
+        ],
+        vec![
+            "model",
+            "source",
+            "parameters",
+            "fit",
+            "whiteness",
+            "k_max_at_zero_damping",
+            "loop",
+        ],
+    )]
 }
 
 /// A command, its arguments and the top-level keys its `--json` must print.

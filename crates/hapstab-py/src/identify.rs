@@ -2,10 +2,13 @@
 //! `hapstab identify --json` gives it ([`hapstab::identify`]); bad data or a model that
 //! cannot fit raise `ValueError` naming the keyword argument.
 
+use hapstab::identify::frequency::FrequencyRecord;
 use hapstab::identify::{
-    Columns, Fixed, IdentifyError, ModelKind, ModelSpec, Record, identify as fit, stiffness_limit,
+    Columns, Fixed, Identification, IdentifyError, ModelKind, ModelSpec, Record, StiffnessLimit,
+    identify as fit, identify_frequency as identify_frequency_lib, stiffness_limit,
 };
 use hapstab::model::VelocityEstimator;
+use num_complex::Complex64;
 use numpy::{AllowTypeChange, PyArray1, PyArrayLike1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -188,6 +191,16 @@ pub fn identify(
             Ok::<_, IdentifyError>((id, lim))
         })
         .map_err(to_py)?;
+    result(py, &id, &lim, velocity)
+}
+
+/// The Python result of an identification and its K_max.
+fn result(
+    py: Python<'_>,
+    id: &Identification,
+    lim: &StiffnessLimit,
+    velocity: VelocityEstimator,
+) -> PyResult<PyIdentification> {
     let lp = id.to_loop(velocity).py()?;
     let col = |f: &dyn Fn(&hapstab::identify::Estimate) -> f64| {
         PyArray1::from_vec(py, id.parameters.iter().map(f).collect()).unbind()
@@ -212,7 +225,7 @@ pub fn identify(
         k_max: lim.k_max,
         k_max_spread: lim.spread.map(|[a, b]| (a, b)),
         k_max_box_range: lim.box_range.map(|[a, b]| (a, b)),
-        k_max_robust: lim.robust.and_then(|r| r.k_max),
+        k_max_robust: lim.robust.as_ref().and_then(|r| r.k_max),
         fitted_loop: Py::new(
             py,
             PyLoop {
@@ -221,4 +234,67 @@ pub fn identify(
             },
         )?,
     })
+}
+
+/// Fits `model` to a measured frequency response: `frequency_hz` (increasing, below the
+/// Nyquist frequency of `period`) and the complex `response` in m/N, by the logarithmic
+/// least squares of `hapstab identify --frequency-data` on the exact sampled response; the
+/// other keywords as `identify`'s.
+#[pyfunction]
+#[pyo3(signature = (frequency_hz, response, *, period = 1e-3, model = "mass-spring-damper",
+                    fixed = None, delay = 0.0, force_lag = 0.0, fit_delay = false,
+                    fit_force_lag = false, velocity = "backward", draws = 400, seed = 1))]
+#[allow(clippy::too_many_arguments)]
+pub fn identify_frequency(
+    py: Python<'_>,
+    frequency_hz: &Bound<'_, PyAny>,
+    response: &Bound<'_, PyAny>,
+    period: f64,
+    model: &str,
+    fixed: Option<&Bound<'_, PyDict>>,
+    delay: f64,
+    force_lag: f64,
+    fit_delay: bool,
+    fit_force_lag: bool,
+    velocity: &str,
+    draws: usize,
+    seed: u64,
+) -> PyResult<PyIdentification> {
+    let h: PyArrayLike1<'_, Complex64, AllowTypeChange> = response
+        .extract()
+        .map_err(|_| bad("response", "must be a 1-D array of complex numbers"))?;
+    let rec = FrequencyRecord::new(
+        array(frequency_hz, "frequency_hz")?,
+        h.as_array().to_vec(),
+        period,
+    )
+    .map_err(|e| match e {
+        IdentifyError::Column { column, reason } if column == "frequency" => {
+            bad("frequency_hz", reason)
+        }
+        other => to_py(other),
+    })?;
+    let kind = ModelKind::parse(model).map_err(to_py)?;
+    let spec = ModelSpec::new(
+        kind,
+        held(fixed)?,
+        finite("delay", delay)?,
+        finite("force_lag", force_lag)?,
+    )
+    .map_err(to_py)?
+    .fitting_timing(fit_delay, fit_force_lag);
+    let velocity: VelocityEstimator = velocity
+        .parse()
+        .map_err(|e: hapstab::Error| bad("velocity", e))?;
+    if draws == 0 {
+        return Err(bad("draws", "must be at least 1"));
+    }
+    let (id, lim) = py
+        .detach(|| {
+            let id = identify_frequency_lib(&rec, &spec)?;
+            let lim = stiffness_limit(&id, &velocity, draws, seed)?;
+            Ok::<_, IdentifyError>((id, lim))
+        })
+        .map_err(to_py)?;
+    result(py, &id, &lim, velocity)
 }

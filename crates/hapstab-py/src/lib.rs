@@ -79,6 +79,7 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(linear::linear_condition, m)?)?;
     m.add_function(wrap_pyfunction!(nyquist::nyquist_regions, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
+    m.add_function(wrap_pyfunction!(identify::identify_frequency, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_rebuild, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_result_fields, m)?)?;
     Ok(())

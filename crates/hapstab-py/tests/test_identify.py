@@ -85,3 +85,20 @@ def test_the_delay_is_fitted():
     r = hs.identify(t, f, x, fit_delay=True, draws=20)
     assert r.names[-1] == "delay-time"
     assert abs(r.values[-1] / 2e-3 - 1) < 0.02 and r.ci_low[-1] <= 2e-3 <= r.ci_high[-1]
+
+
+def test_a_frequency_response_gives_the_command_line_s_tf(hapstab_cli):
+    f, db, deg = np.loadtxt(FIXTURES / "tf3_freqresp_0.1db_1deg.csv", delimiter=",", skiprows=1).T
+    h = 10 ** (db / 20) * np.exp(1j * np.radians(deg))
+    r = hs.identify_frequency(f, h, period=1e-3, model="tf:0/3", draws=20)
+    truth = dict(zip(["b0", "a0", "a1", "a2"], [2000.0, 20000.0, 4000.0, 60.0]))
+    for name, v in zip(r.names, r.values):
+        assert abs(v / truth[name] - 1) < 0.01, name
+    out = subprocess.run([hapstab_cli, "identify", "--frequency-data",
+                          str(FIXTURES / "tf3_freqresp_0.1db_1deg.csv"), "--model", "tf:0/3",
+                          "--draws", "20", "--json"], capture_output=True, text=True, check=True)
+    cli = json.loads(out.stdout)
+    assert list(r.values) == pytest.approx([p["value"] for p in cli["parameters"]], rel=1e-9)
+    with pytest.raises(ValueError) as e:
+        hs.identify_frequency(f * 10, h, period=1e-3, model="tf:0/3")
+    assert str(e.value).startswith("frequency_hz: row"), str(e.value)

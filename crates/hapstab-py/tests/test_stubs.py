@@ -23,7 +23,7 @@ def test_functions_match_their_stubs():
     funcs = {n.name: n for n in stub_tree().body if isinstance(n, ast.FunctionDef)}
     assert set(funcs) == {
         "check", "region", "kmax", "stability_map", "discretize", "simulate", "passivity", "margins",
-        "frequency_response", "root_locus", "robust_kmax", "identify", "stability_probability", "sweep", "zwidth", "linear_condition", "nyquist_regions",
+        "frequency_response", "root_locus", "robust_kmax", "identify", "identify_frequency", "stability_probability", "sweep", "zwidth", "linear_condition", "nyquist_regions",
     }
     for name, node in funcs.items():
         sig = inspect.signature(getattr(hs, name))

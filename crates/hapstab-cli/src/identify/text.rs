@@ -87,7 +87,7 @@ fn header(id: &Identification) {
     } else {
         String::new()
     };
-    let (what, residual) = if id.data == "time" {
+    let (what, residual) = if id.source == "time" {
         ("samples", eng(id.fit.residual_rms, "m", 3))
     } else {
         (

@@ -43,18 +43,25 @@ pub struct LogArgs {
     pub log_seed: u64,
 }
 
+/// The log's settings as echoed under `input`.
 #[derive(Serialize)]
-struct LogOut<'a> {
-    identification_log: &'a PathBuf,
-    samples: usize,
-    period: f64,
+struct LogInput<'a> {
+    #[serde(rename = "loop")]
+    lp: &'a Loop,
     excitation: Excitation,
     amplitude: f64,
+    samples: usize,
     snr_db: Option<f64>,
     quantization: Option<f64>,
     seed: u64,
-    #[serde(rename = "loop")]
-    lp: &'a Loop,
+}
+
+/// The JSON report: the settings and the file written with its position's RMS.
+#[derive(Serialize)]
+struct LogOut<'a> {
+    input: LogInput<'a>,
+    identification_log: &'a PathBuf,
+    position_rms: f64,
 }
 
 /// Writes the log of `a` for the loop `lp` (module doc), with quantization `q` in m.
@@ -93,16 +100,19 @@ pub fn run(a: &LogArgs, lp: &Loop, q: Option<f64>, json: bool) -> Result<()> {
     std::fs::write(path, text)
         .with_context(|| format!("--identification-log '{}': cannot write", path.display()))?;
     if json {
+        let rms = (y.iter().map(|v| v * v).sum::<f64>() / y.len() as f64).sqrt();
         return print_json(&LogOut {
+            input: LogInput {
+                lp,
+                excitation: a.excitation,
+                amplitude: a.excitation_amplitude,
+                samples: a.log_samples,
+                snr_db: a.log_snr,
+                quantization: q,
+                seed: a.log_seed,
+            },
             identification_log: path,
-            samples: a.log_samples,
-            period: lp.period,
-            excitation: a.excitation,
-            amplitude: a.excitation_amplitude,
-            snr_db: a.log_snr,
-            quantization: q,
-            seed: a.log_seed,
-            lp,
+            position_rms: rms,
         });
     }
     println!(

@@ -36,7 +36,8 @@ and answers from the same Rust engine as the `hapstab` command line:
   which it errs by a given fraction of the exact boundary (eq. 24, Fig. 7).
 - identify: the plant from arrays of time, commanded force and measured position (a
   mass-spring-damper, a device held by an arm, a two-mass device or any transfer function),
-  with standard errors, 95 % intervals and K_max at B = 0 with its uncertainty.
+  with standard errors, 95 % intervals and K_max at B = 0 with its uncertainty;
+  identify_frequency: the same from a measured frequency response.
 - nyquist_regions: Section VIII in normalized units: the stable regions as gamma sweeps up
   to the Nyquist frequency, the robustly stable region, Colgate's passive region inside it.
 
@@ -83,6 +84,7 @@ from ._hapstab import check as _check
 from ._hapstab import discretize as _discretize
 from ._hapstab import frequency_response as _frequency_response
 from ._hapstab import identify as _identify
+from ._hapstab import identify_frequency as _identify_frequency
 from ._hapstab import kmax as _kmax
 from ._hapstab import linear_condition as _linear_condition
 from ._hapstab import margins as _margins
@@ -164,6 +166,7 @@ check = _named(_check)
 discretize = _named(_discretize)
 frequency_response = _named(_frequency_response)
 identify = _named(_identify)
+identify_frequency = _named(_identify_frequency)
 kmax = _named(_kmax)
 linear_condition = _named(_linear_condition)
 margins = _named(_margins)
@@ -211,6 +214,7 @@ __all__ = [
     "discretize",
     "frequency_response",
     "identify",
+    "identify_frequency",
     "kmax",
     "linear_condition",
     "margins",

@@ -611,6 +611,24 @@ def identify(
     """The plant from a recording of time (s), commanded force (N) and measured position (m),
     with standard errors, 95 % intervals and K_max at B = 0 with its uncertainty."""
 
+def identify_frequency(
+    frequency_hz: ArrayLike,
+    response: ArrayLike,
+    *,
+    period: float = 1e-3,
+    model: str = "mass-spring-damper",
+    fixed: Optional[Dict[str, float]] = None,
+    delay: float = 0.0,
+    force_lag: float = 0.0,
+    fit_delay: bool = False,
+    fit_force_lag: bool = False,
+    velocity: str = "backward",
+    draws: int = 400,
+    seed: int = 1,
+) -> Identification:
+    """The plant from a measured frequency response (Hz, complex m/N) on a loop of period T,
+    by logarithmic least squares on the exact sampled response."""
+
 def robust_kmax(
     loop: Loop,
     bounds: Dict[str, Tuple[float, float]],

@@ -44,7 +44,7 @@ pub fn bootstrap(
     replicates: usize,
     seed: u64,
 ) -> IdResult<Bootstrap> {
-    if id.data != "time" {
+    if id.source != "time" {
         return Err(IdentifyError::Data(
             "the bootstrap resamples the residuals of a time recording".into(),
         ));

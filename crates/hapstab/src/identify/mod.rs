@@ -44,7 +44,7 @@ pub struct Identification {
     pub model: String,
     /// What was fitted: `time` (a recording; residuals in m) or `frequency` (a frequency
     /// response; residuals as ln(Ĥ/H), nepers and radians).
-    pub data: &'static str,
+    pub source: &'static str,
     /// Every parameter of the model, held ones marked.
     pub parameters: Vec<Estimate>,
     /// The position the device rests at, y_0 in m (in the first run).
@@ -53,9 +53,12 @@ pub struct Identification {
     pub position_offsets: Vec<Estimate>,
     /// The sampling period T in s (the recording's).
     pub period: f64,
-    /// The delay t_d in s and the actuator lag τ in s the model was fitted with.
+    /// The delay t_d in s of the identified loop (the fitted one with `delay-time` among the
+    /// parameters, else the given one; in JSON as the loop's).
+    #[serde(skip)]
     pub delay_time: f64,
-    /// The actuator lag τ in s.
+    /// The actuator lag τ in s of the identified loop (fitted or given, as the delay).
+    #[serde(skip)]
     pub force_lag: f64,
     /// NRMSE, fit %, residual RMS over every run.
     pub fit: FitQuality,
@@ -179,7 +182,7 @@ pub fn identify_runs(records: &[Record], spec: &ModelSpec) -> IdResult<Identific
     let (delay_time, force_lag) = timing(spec, &est.parameters);
     Ok(Identification {
         model: spec.kind.name(),
-        data: "time",
+        source: "time",
         parameters: est.parameters,
         position_offset: est.offsets[0].clone(),
         position_offsets: est.offsets,
@@ -359,7 +362,7 @@ pub fn identify_frequency(
     let magnitude: Vec<f64> = residuals.iter().step_by(2).copied().collect();
     Ok(Identification {
         model: spec.kind.name(),
-        data: "frequency",
+        source: "frequency",
         parameters: est.parameters,
         position_offset: held("position offset", "m", 0.0),
         position_offsets: Vec::new(),
