@@ -18,38 +18,18 @@ use hapstab::AffineFamily;
 use hapstab::boundary::{WallLine, scanned_line_crossings, stable_alpha_intervals, stable_between};
 use hapstab::kmax::{KmaxQuery, kmax};
 use hapstab::kmax_band::k_max_band;
-use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
-use hapstab::params::Arm;
+use hapstab::model::Delay;
 use hapstab::region::{alpha_max_within, stable_region};
 
-/// The general loop of the region benchmark with d samples of delay.
-fn general_loop(d: usize) -> Loop {
-    let plant = Plant::new(
-        PlantModel::TwoMass(TwoMass {
-            motor_mass: 0.05,
-            motor_damping: 0.5,
-            handle_mass: 0.05,
-            transmission_stiffness: 2e4,
-            transmission_damping: 2.0,
-            arm: Arm::TYPICAL,
-        }),
-        2e-4,
-    )
-    .expect("valid plant");
-    Loop::new(
-        plant,
-        1e-3,
-        Delay::samples(d).expect("valid delay"),
-        VelocityEstimator::LowPass { cutoff_hz: 200.0 },
-    )
-    .expect("valid loop")
-}
+#[path = "common/general_loop.rs"]
+mod common;
+use common::general_loop;
 
 fn bench_kmax(c: &mut Criterion) {
     let mut g = c.benchmark_group("kmax");
     g.sample_size(30);
     for d in [0usize, 1, 10] {
-        let lp = general_loop(d);
+        let lp = general_loop(Delay::samples(d).expect("valid delay"));
         let fam = AffineFamily::of_loop(&lp).expect("family");
         let (_, b) = fam.to_units(0.0, 5.0);
         g.bench_with_input(BenchmarkId::new("at_damping", d), &fam, |bch, fam| {

@@ -7,9 +7,12 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
-use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
-use hapstab::params::Arm;
+use hapstab::model::Delay;
 use hapstab::{AffineFamily, Normalized};
+
+#[path = "common/general_loop.rs"]
+mod common;
+use common::general_loop;
 
 /// The grid used by both this bench and the numpy baseline: α ∈ [−0.05, 1/(d+1/2)],
 /// β ∈ [−0.05, 2/(d+1/2)^{1/2}], 1000 × 1000 points.
@@ -46,24 +49,7 @@ fn bench_map(c: &mut Criterion) {
             })
         });
     }
-    let lp = Loop::new(
-        Plant::new(
-            PlantModel::TwoMass(TwoMass {
-                motor_mass: 0.05,
-                motor_damping: 0.5,
-                handle_mass: 0.05,
-                transmission_stiffness: 2e4,
-                transmission_damping: 2.0,
-                arm: Arm::TYPICAL,
-            }),
-            2e-4,
-        )
-        .expect("valid plant"),
-        1e-3,
-        Delay::samples(1).expect("valid"),
-        VelocityEstimator::LowPass { cutoff_hz: 200.0 },
-    )
-    .expect("valid loop");
+    let lp = general_loop(Delay::samples(1).expect("valid"));
     let fam = AffineFamily::of_loop(&lp).expect("family");
     let (x, y) = general_map(&fam);
     g.bench_function("general_loop_order5_d1", |b| {

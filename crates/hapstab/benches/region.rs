@@ -10,33 +10,13 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
-use hapstab::params::Arm;
+use hapstab::model::Delay;
 use hapstab::region::stable_region;
 use hapstab::{AffineFamily, PlantParams, PolyFamily};
 
-/// The general loop of the benchmark (order 5 with the lag state).
-pub fn general_loop(delay: Delay) -> Loop {
-    let plant = Plant::new(
-        PlantModel::TwoMass(TwoMass {
-            motor_mass: 0.05,
-            motor_damping: 0.5,
-            handle_mass: 0.05,
-            transmission_stiffness: 2e4,
-            transmission_damping: 2.0,
-            arm: Arm::TYPICAL,
-        }),
-        2e-4,
-    )
-    .expect("valid plant");
-    Loop::new(
-        plant,
-        1e-3,
-        delay,
-        VelocityEstimator::LowPass { cutoff_hz: 200.0 },
-    )
-    .expect("valid loop")
-}
+#[path = "common/general_loop.rs"]
+mod common;
+use common::general_loop;
 
 fn bench_region(c: &mut Criterion) {
     let mut g = c.benchmark_group("region");

@@ -28,7 +28,7 @@ use num_complex::Complex64;
 use super::arx::{structure, to_physical};
 use super::error::{IdResult, IdentifyError};
 use super::model::{Domain, ModelSpec};
-use super::output_error::{Coord, DIFF_STEP, TOLERANCE};
+use super::output_error::{Coord, TOLERANCE, central_jacobian};
 use crate::model::{Loop, VelocityEstimator};
 use crate::poly;
 use crate::zoh::DiscreteLoop;
@@ -263,22 +263,7 @@ impl FreqProblem<'_> {
 
     /// ∂r/∂x_j by central differences.
     pub(crate) fn jacobian_columns(&self, x: &[f64]) -> Option<Vec<Vec<f64>>> {
-        (0..x.len())
-            .map(|j| {
-                let at = |h: f64| {
-                    let mut xp = x.to_vec();
-                    xp[j] += h;
-                    self.log_residuals(&xp)
-                };
-                let (p, m) = (at(DIFF_STEP)?, at(-DIFF_STEP)?);
-                Some(
-                    p.iter()
-                        .zip(&m)
-                        .map(|(a, b)| (a - b) / (2.0 * DIFF_STEP))
-                        .collect(),
-                )
-            })
-            .collect()
+        central_jacobian(x, |xp| self.log_residuals(xp))
     }
 }
 

@@ -29,6 +29,31 @@ use crate::model::VelocityEstimator;
 /// both far below the parameters' statistical uncertainty.
 pub const DIFF_STEP: f64 = 1e-5;
 
+/// ∂f/∂x_j for every j by central differences with step [`DIFF_STEP`] in the fitted
+/// coordinates, the columns in parallel; None where f fails at a trial point.
+pub(crate) fn central_jacobian(
+    x: &[f64],
+    f: impl Fn(&[f64]) -> Option<Vec<f64>> + Sync,
+) -> Option<Vec<Vec<f64>>> {
+    (0..x.len())
+        .into_par_iter()
+        .map(|j| {
+            let at = |h: f64| {
+                let mut xp = x.to_vec();
+                xp[j] += h;
+                f(&xp)
+            };
+            let (plus, minus) = (at(DIFF_STEP)?, at(-DIFF_STEP)?);
+            Some(
+                plus.iter()
+                    .zip(&minus)
+                    .map(|(p, m)| (p - m) / (2.0 * DIFF_STEP))
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
 /// Relative tolerance on the cost and on the coordinates at which the fit stops: ten times
 /// below the agreement asked of an independent optimiser on the same cost (10⁻⁶ relative).
 pub const TOLERANCE: f64 = 1e-12;
@@ -137,23 +162,7 @@ impl Problem<'_> {
 
     /// ∂ŷ/∂x_j by central differences (module doc), in parallel over j.
     fn jacobian_columns(&self, x: &[f64]) -> Option<Vec<Vec<f64>>> {
-        (0..x.len())
-            .into_par_iter()
-            .map(|j| {
-                let at = |h: f64| {
-                    let mut xp = x.to_vec();
-                    xp[j] += h;
-                    self.predict(&xp)
-                };
-                let (plus, minus) = (at(DIFF_STEP)?, at(-DIFF_STEP)?);
-                Some(
-                    plus.iter()
-                        .zip(&minus)
-                        .map(|(p, m)| (p - m) / (2.0 * DIFF_STEP))
-                        .collect(),
-                )
-            })
-            .collect()
+        central_jacobian(x, |xp| self.predict(xp))
     }
 }
 
