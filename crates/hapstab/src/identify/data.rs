@@ -125,49 +125,16 @@ impl Record {
     /// Reads comma-separated text with a header line naming the columns (lines starting
     /// with `#` and blank lines are skipped), then checks it as [`Record::new`].
     pub fn from_csv(text: &str, columns: &Columns) -> IdResult<Self> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let Some((_, header)) = lines.next() else {
-            return Err(IdentifyError::Data("empty: no header line".into()));
-        };
-        let names: Vec<&str> = header
-            .split(',')
-            .map(|h| h.trim().trim_matches('"'))
-            .collect();
-        let find = |want: &str| {
-            names.iter().position(|h| *h == want).ok_or_else(|| {
-                column(
-                    want,
-                    format!("not in the header (it has: {})", names.join(", ")),
-                )
-            })
-        };
+        let table = CsvText::parse(text)?;
+        let find = |want: &str| table.index(want).ok_or_else(|| table.missing(want));
         let idx = [
             find(&columns.time)?,
             find(&columns.force)?,
             find(&columns.position)?,
         ];
-        let mut cols: [Vec<f64>; 3] = Default::default();
-        for (line_no, line) in lines {
-            let cells: Vec<&str> = line.split(',').collect();
-            for ((&i, col), name) in idx.iter().zip(cols.iter_mut()).zip([
-                &columns.time,
-                &columns.force,
-                &columns.position,
-            ]) {
-                let cell = cells.get(i).map(|c| c.trim()).unwrap_or("");
-                let v = cell.parse::<f64>().map_err(|_| {
-                    column(
-                        name,
-                        format!("line {}: '{cell}' is not a number", line_no + 1),
-                    )
-                })?;
-                col.push(v);
-            }
-        }
-        let [t, f, x] = cols;
+        let mut cols = table.columns(&idx)?.into_iter();
+        let mut next = || cols.next().unwrap_or_default();
+        let (t, f, x) = (next(), next(), next());
         Record::new(t, f, x, columns)
     }
 
@@ -179,6 +146,69 @@ impl Record {
     /// True when there are no samples (never, for a checked record).
     pub fn is_empty(&self) -> bool {
         self.time.is_empty()
+    }
+}
+
+/// Comma-separated text with a header line naming its columns; blank lines and lines
+/// starting with `#` are skipped (the recordings and frequency responses `identify` reads).
+pub(crate) struct CsvText<'a> {
+    /// The header's names, trimmed and unquoted.
+    names: Vec<&'a str>,
+    /// The data lines with their line numbers (from 0).
+    lines: Vec<(usize, &'a str)>,
+}
+
+impl<'a> CsvText<'a> {
+    /// Splits off the header; an error when there is none.
+    pub(crate) fn parse(text: &'a str) -> IdResult<Self> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+        let Some((_, header)) = lines.next() else {
+            return Err(IdentifyError::Data("empty: no header line".into()));
+        };
+        let names = header
+            .split(',')
+            .map(|h| h.trim().trim_matches('"'))
+            .collect();
+        Ok(Self {
+            names,
+            lines: lines.collect(),
+        })
+    }
+
+    /// The position of a column in the header.
+    pub(crate) fn index(&self, want: &str) -> Option<usize> {
+        self.names.iter().position(|h| *h == want)
+    }
+
+    /// The error of a column missing from the header, listing the header.
+    pub(crate) fn missing(&self, want: &str) -> IdentifyError {
+        column(
+            want,
+            format!("not in the header (it has: {})", self.names.join(", ")),
+        )
+    }
+
+    /// The columns at `idx` as numbers; a cell that is not one is an error naming its column
+    /// and line.
+    pub(crate) fn columns(&self, idx: &[usize]) -> IdResult<Vec<Vec<f64>>> {
+        let mut cols = vec![Vec::with_capacity(self.lines.len()); idx.len()];
+        for &(line_no, line) in &self.lines {
+            let cells: Vec<&str> = line.split(',').collect();
+            for (&i, col) in idx.iter().zip(cols.iter_mut()) {
+                let cell = cells.get(i).map_or("", |c| c.trim());
+                let v = cell.parse::<f64>().map_err(|_| {
+                    column(
+                        self.names[i],
+                        format!("line {}: '{cell}' is not a number", line_no + 1),
+                    )
+                })?;
+                col.push(v);
+            }
+        }
+        Ok(cols)
     }
 }
 

@@ -26,6 +26,7 @@ use nalgebra_lm::{DMatrix, DVector, Dyn, Owned};
 use num_complex::Complex64;
 
 use super::arx::{structure, to_physical};
+use super::data::CsvText;
 use super::error::{IdResult, IdentifyError};
 use super::model::{Domain, ModelSpec};
 use super::output_error::{Coord, TOLERANCE, central_jacobian};
@@ -102,25 +103,16 @@ impl FrequencyRecord {
     /// Reads CSV with a header naming `frequency` and either `magnitude_db` and `phase_deg`
     /// or `real` and `imag` (in m/N); lines starting with `#` are skipped.
     pub fn from_csv(text: &str, period: f64) -> IdResult<Self> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-        let Some((_, header)) = lines.next() else {
-            return Err(IdentifyError::Data("empty: no header line".into()));
-        };
-        let names: Vec<&str> = header
-            .split(',')
-            .map(|h| h.trim().trim_matches('"'))
-            .collect();
-        let at = |n: &str| names.iter().position(|h| *h == n);
-        let f = at("frequency").ok_or_else(|| {
-            column(
-                "frequency",
-                format!("not in the header (it has: {})", names.join(", ")),
-            )
-        })?;
-        let (a, b, polar) = match (at("magnitude_db"), at("phase_deg"), at("real"), at("imag")) {
+        let table = CsvText::parse(text)?;
+        let f = table
+            .index("frequency")
+            .ok_or_else(|| table.missing("frequency"))?;
+        let (a, b, polar) = match (
+            table.index("magnitude_db"),
+            table.index("phase_deg"),
+            table.index("real"),
+            table.index("imag"),
+        ) {
             (Some(m), Some(p), _, _) => (m, p, true),
             (_, _, Some(r), Some(i)) => (r, i, false),
             _ => {
@@ -129,27 +121,19 @@ impl FrequencyRecord {
                 ));
             }
         };
-        let (mut freq, mut resp) = (Vec::new(), Vec::new());
-        for (line_no, line) in lines {
-            let cells: Vec<&str> = line.split(',').collect();
-            let get = |i: usize| {
-                let cell = cells.get(i).map_or("", |c| c.trim());
-                cell.parse::<f64>().map_err(|_| {
-                    column(
-                        names[i],
-                        format!("line {}: '{cell}' is not a number", line_no + 1),
-                    )
-                })
-            };
-            let (x, y) = (get(a)?, get(b)?);
-            freq.push(get(f)?);
-            resp.push(if polar {
-                Complex64::from_polar(10f64.powf(x / 20.0), y.to_radians())
-            } else {
-                Complex64::new(x, y)
-            });
-        }
-        Self::new(freq, resp, period)
+        let cols = table.columns(&[f, a, b])?;
+        let resp = cols[1]
+            .iter()
+            .zip(&cols[2])
+            .map(|(&x, &y)| {
+                if polar {
+                    Complex64::from_polar(10f64.powf(x / 20.0), y.to_radians())
+                } else {
+                    Complex64::new(x, y)
+                }
+            })
+            .collect();
+        Self::new(cols[0].clone(), resp, period)
     }
 }
 
