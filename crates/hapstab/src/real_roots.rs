@@ -22,6 +22,10 @@ const MAX_STEPS: usize = 200;
 /// this one, is below the double's rounding).
 const NEWTON_DONE: f64 = 1e-9;
 
+/// The same for a derivative's roots, which only end the next level's brackets: after a step
+/// of 1e-6 the error is of order 1e-12 relative, far below any sign test's resolution.
+const BRACKET_DONE: f64 = 1e-6;
+
 /// A bracket is bisected geometrically (at √(lo·hi)) while hi/lo exceeds this ratio: a root
 /// at 1e-17 in a bracket reaching 1 is then found in a few dozen steps instead of 60
 /// arithmetic halvings that never reach it.
@@ -46,12 +50,18 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
         chain.push(derivative(top));
     }
     let mut roots: Vec<f64> = Vec::new();
-    for q in chain.iter().rev() {
+    for (level, q) in chain.iter().enumerate().rev() {
         let mut ends = Vec::with_capacity(roots.len() + 2);
         ends.push(lo);
         ends.extend(roots.iter().copied().filter(|&r| r > lo && r < hi));
         ends.push(hi);
-        roots = roots_between_ends(q, &ends);
+        // a derivative's roots only bound the next level's brackets
+        let done = if level == 0 {
+            NEWTON_DONE
+        } else {
+            BRACKET_DONE
+        };
+        roots = roots_between_ends(q, &ends, done);
         roots.dedup();
     }
     roots
@@ -145,6 +155,8 @@ struct Bracket {
     lo_positive: bool,
     /// The current iterate.
     x: f64,
+    /// Relative Newton step below which the root is taken.
+    done_rel: f64,
     /// The previous step's length (rtsafe's halving rule).
     last_step: f64,
     done: bool,
@@ -153,7 +165,7 @@ struct Bracket {
 impl Bracket {
     /// The bracket [lo, hi] with p(lo) = flo, p(hi) = fhi of opposite signs, started at the
     /// secant point where it is narrow and at its geometric middle where it spans decades.
-    fn new((lo, flo): (f64, f64), (hi, fhi): (f64, f64)) -> Self {
+    fn new((lo, flo): (f64, f64), (hi, fhi): (f64, f64), done_rel: f64) -> Self {
         let x = if wide(lo, hi) {
             middle(lo, hi)
         } else {
@@ -164,6 +176,7 @@ impl Bracket {
             hi,
             lo_positive: flo > 0.0,
             x,
+            done_rel,
             last_step: hi - lo,
             done: false,
         }
@@ -190,7 +203,7 @@ impl Bracket {
         let newton = x - step;
         let (lo, hi) = (self.lo, self.hi);
         // quadratic convergence: the error after a step of 1e-9 is below rounding
-        if step.abs() <= NEWTON_DONE * x.abs() {
+        if step.abs() <= self.done_rel * x.abs() {
             self.done = true;
             self.x = newton.clamp(lo, hi);
             return;
@@ -221,7 +234,7 @@ fn middle(lo: f64, hi: f64) -> f64 {
 
 /// The roots of p between consecutive `ends` (increasing, p monotone between them): one where
 /// the sign changes, refined by safeguarded Newton steps taken for every bracket at once.
-fn roots_between_ends(p: &[f64], ends: &[f64]) -> Vec<f64> {
+fn roots_between_ends(p: &[f64], ends: &[f64], done_rel: f64) -> Vec<f64> {
     let (mut v, mut d) = (Vec::new(), Vec::new());
     eval_many(p, ends, &mut v, &mut d);
     let mut roots = Vec::new();
@@ -231,27 +244,26 @@ fn roots_between_ends(p: &[f64], ends: &[f64]) -> Vec<f64> {
         if flo == 0.0 {
             roots.push(ends[i - 1]);
         } else if fhi != 0.0 && (flo > 0.0) != (fhi > 0.0) {
-            brackets.push(Bracket::new((ends[i - 1], flo), (ends[i], fhi)));
+            brackets.push(Bracket::new((ends[i - 1], flo), (ends[i], fhi), done_rel));
         }
     }
     if v.last() == Some(&0.0) {
         roots.extend(ends.last());
     }
     let mut xs = Vec::with_capacity(brackets.len());
+    let mut active: Vec<usize> = (0..brackets.len()).collect();
     for _ in 0..MAX_STEPS {
-        xs.clear();
-        xs.extend(brackets.iter().map(|b| b.x));
-        eval_many(p, &xs, &mut v, &mut d);
-        let mut busy = false;
-        for (b, (&vi, &di)) in brackets.iter_mut().zip(v.iter().zip(&d)) {
-            if !b.done {
-                b.step(vi, di);
-                busy |= !b.done;
-            }
-        }
-        if !busy {
+        if active.is_empty() {
             break;
         }
+        // only the brackets still iterating are evaluated
+        xs.clear();
+        xs.extend(active.iter().map(|&i| brackets[i].x));
+        eval_many(p, &xs, &mut v, &mut d);
+        for (&i, (&vi, &di)) in active.iter().zip(v.iter().zip(&d)) {
+            brackets[i].step(vi, di);
+        }
+        active.retain(|&i| !brackets[i].done);
     }
     roots.extend(brackets.iter().map(|b| b.x.clamp(b.lo, b.hi)));
     roots.sort_by(f64::total_cmp);
