@@ -537,9 +537,9 @@ fn damping_axis(alpha: f64) -> WallLine {
     }
 }
 
-/// The found top as the region confirms it: the point test just below (inside) and above
-/// (not inside) an attained top, the supremum's stable neighbour found by
-/// [`confirm_max`].
+/// The found top as the region reports it: an exact top (the exact stable interval at its
+/// damping reaches it, holding K_max·(1 − 1e-6)) is attained; a corner the region only closes
+/// on gets its supremum's stable neighbour from [`confirm_max`].
 fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<ConfirmedMax> {
     if f.exact {
         return Some(ConfirmedMax {
