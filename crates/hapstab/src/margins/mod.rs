@@ -206,6 +206,11 @@ fn margins_of_stable(
     fam: &AffineFamily,
     wall: Wall,
 ) -> Result<Margins> {
+    if rayon::current_thread_index().is_none() {
+        // enter the thread pool once, not at every join below (each entry from outside
+        // wakes a worker and waits on it)
+        return rayon::join(|| margins_of_stable(lp, dl, fam, wall), || ()).0;
+    }
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     // the fraction loop's own part is built while the loop's grid is found; then the
     // frequency response's margins and the delay margin run side by side
