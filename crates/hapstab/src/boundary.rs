@@ -509,9 +509,18 @@ pub fn stable_line_intervals(fam: &AffineFamily, line: &WallLine) -> Vec<Interva
     }
 }
 
+/// A gap between crossings narrower than this (relative to its ends) is one double crossing
+/// split by rounding — a tangency, or a corner of the region on the line: every wall inside it
+/// has a root within rounding of the circle, so it counts as stable only where the Schur–Cohn
+/// recursion is sure of it, and the argument principle (a hundred times the cost, and no
+/// better at that distance) is not asked. What it could add to or take from an interval is
+/// far below the confirmation distance of any reported end.
+const SLIVER_REL: f64 = 1e-12;
+
 /// The stable intervals of t on a wall line from its crossings (as returned by
 /// [`line_crossings`], sorted by t): one test of the roots inside the circle in each gap
-/// ([`crate::verdict::inside_unit_circle`]), merged into intervals.
+/// ([`crate::verdict::inside_unit_circle`]; the recursion alone in a sliver, see
+/// [`SLIVER_REL`]), merged into intervals.
 /// Every finite interval end is one of the crossings' t, exactly.
 pub fn stable_between(
     fam: &AffineFamily,
@@ -524,6 +533,7 @@ pub fn stable_between(
     }
     let scale = xs.iter().fold(1e-3_f64, |m, x| m.max(x.abs()));
     let mut coeffs = vec![0.0; fam.degree() + 1];
+    let mut sliver = coeffs.clone();
     // A gap holds a constant number of roots inside the circle: it is classified by that
     // count, not by one wall's banded verdict (a gap thinner than the marginal band is still
     // stable where its roots are inside).
@@ -541,7 +551,16 @@ pub fn stable_between(
         push(f64::NEG_INFINITY, first, &mut out);
     }
     for w in xs.windows(2) {
-        if stable_at(0.5 * (w[0] + w[1])) {
+        let mid = 0.5 * (w[0] + w[1]);
+        let stable = if w[1] - w[0] <= SLIVER_REL * w[0].abs().max(w[1].abs()) {
+            let p = line.at(mid);
+            fam.coefficients_into(p.alpha, p.beta, &mut sliver);
+            let sc = crate::schur_cohn::schur_cohn(&sliver, 1.0, 0.0);
+            sc.sure && sc.stable
+        } else {
+            stable_at(mid)
+        };
+        if stable {
             push(w[0], w[1], &mut out);
         }
     }

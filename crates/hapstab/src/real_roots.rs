@@ -3,8 +3,12 @@
 //! root there, found where its sign changes; the roots of p′ come the same way from p″, down
 //! to a linear polynomial (Collins & Loos, "Real zeros of polynomials", in *Computer Algebra*,
 //! Springer 1983, §4; the classical isolation by Rolle's theorem). Each bracketed root is
-//! refined by Newton's method safeguarded by bisection (Press et al., *Numerical Recipes*,
-//! 3rd ed., §9.4 `rtsafe`), bisecting geometrically while a bracket spans decades.
+//! refined by Laguerre's method safeguarded by bisection (Press et al., *Numerical Recipes*,
+//! 3rd ed., §9.5 for Laguerre's step, §9.4 `rtsafe` for the safeguard; for a polynomial whose
+//! roots are all real Laguerre's step converges cubically from any start toward the nearest
+//! root, where Newton's crawls across a cluster of roots), bisecting geometrically while a
+//! bracket spans decades. Below x = 1 the iteration runs on p, above on the reversed
+//! polynomial in y = 1/x (the same roots inverted), so that no power of a large x overflows.
 //!
 //! The roots are sought within the Fujiwara bounds of p's root moduli (Fujiwara 1916:
 //! every root has |x| ≤ 2·max_j |c_j/c_n|^{1/(n−j)}, and by the reversed polynomial
@@ -49,9 +53,11 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
         let top = &chain[chain.len() - 1];
         chain.push(derivative(top));
     }
+    let mut scratch = Scratch::default();
     let mut roots: Vec<f64> = Vec::new();
+    let mut ends: Vec<f64> = Vec::with_capacity(n + 2);
     for (level, q) in chain.iter().enumerate().rev() {
-        let mut ends = Vec::with_capacity(roots.len() + 2);
+        ends.clear();
         ends.push(lo);
         ends.extend(roots.iter().copied().filter(|&r| r > lo && r < hi));
         ends.push(hi);
@@ -61,10 +67,18 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
         } else {
             BRACKET_DONE
         };
-        roots = roots_between_ends(q, &ends, done);
+        roots_between_ends(q, &ends, done, &mut scratch, &mut roots);
         roots.dedup();
     }
     roots
+}
+
+/// Buffers reused from level to level of the cascade.
+#[derive(Default)]
+struct Scratch {
+    values: Vec<f64>,
+    brackets: Vec<Bracket>,
+    active: Vec<usize>,
 }
 
 /// The polynomial without its exact zero roots (low zero coefficients) and its exact zero
@@ -114,58 +128,58 @@ fn derivative(p: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// p and p′ at every point of `xs`, scaled by a positive factor per point (which keeps
-/// their signs and their ratio p/p′, all the iteration needs): by Horner's rule up to x = 1,
-/// and beyond through the reversed polynomial in y = 1/x, p(x) = x^n·p_rev(y), so that no
-/// power of a large x overflows. The points below 1 run side by side (independent
-/// recurrences that the processor overlaps).
-fn eval_many(p: &[f64], xs: &[f64], v: &mut Vec<f64>, d: &mut Vec<f64>) {
-    v.clear();
-    v.resize(xs.len(), 0.0);
-    d.clear();
-    d.resize(xs.len(), 0.0);
-    for &c in p.iter().rev() {
-        for ((vi, di), &x) in v.iter_mut().zip(d.iter_mut()).zip(xs) {
-            let x = x.min(1.0);
-            *di = *di * x + *vi;
-            *vi = *vi * x + c;
-        }
-    }
-    let n = (p.len() - 1) as f64;
-    for ((vi, di), &x) in v.iter_mut().zip(d.iter_mut()).zip(xs) {
-        if x > 1.0 {
-            // p′(x) = x^{n−1}·(n·p_rev(y) − y·p_rev′(y)): scaled by x^{−n}, p′ becomes
-            // (n·p_rev − y·p_rev′)/x
-            let y = 1.0 / x;
-            let (r, dr) = p
-                .iter()
-                .fold((0.0, 0.0), |(r, dr), &c| (r * y + c, dr * y + r));
-            *vi = r;
-            *di = (n * r - y * dr) * y;
-        }
+/// Brackets iterated side by side: independent recurrences in registers, which the processor
+/// overlaps.
+const LANES: usize = 4;
+
+/// The value of p at x > 0 with its sign: by Horner's rule up to 1, beyond as the reversed
+/// polynomial at 1/x (p(x) = x^n·p_rev(1/x), the same sign).
+fn sign_value(p: &[f64], x: f64) -> f64 {
+    if x <= 1.0 {
+        p.iter().rev().fold(0.0, |v, &c| v * x + c)
+    } else {
+        let y = 1.0 / x;
+        p.iter().fold(0.0, |v, &c| v * y + c)
     }
 }
 
-/// A root's bracket during the safeguarded Newton iteration.
+/// (q, q′, q″/2) at [`LANES`] points at once by Horner's rule, the coefficients of q given
+/// from the highest power down.
+#[inline]
+fn horner_lanes<'a>(coeffs: impl Iterator<Item = &'a f64>, x: &[f64; LANES]) -> [[f64; LANES]; 3] {
+    let (mut v, mut d, mut s) = ([0.0; LANES], [0.0; LANES], [0.0; LANES]);
+    for &c in coeffs {
+        for l in 0..LANES {
+            s[l] = s[l] * x[l] + d[l];
+            d[l] = d[l] * x[l] + v[l];
+            v[l] = v[l] * x[l] + c;
+        }
+    }
+    [v, d, s]
+}
+
+/// A root's bracket during the safeguarded iteration, in x (below 1) or in y = 1/x (above).
 #[derive(Debug, Clone, Copy)]
 struct Bracket {
     lo: f64,
     hi: f64,
-    /// p(lo) > 0 (p(hi) is then negative).
+    /// The polynomial is positive at lo (negative at hi).
     lo_positive: bool,
     /// The current iterate.
     x: f64,
-    /// Relative Newton step below which the root is taken.
+    /// Relative step below which the root is taken.
     done_rel: f64,
     /// The previous step's length (rtsafe's halving rule).
     last_step: f64,
     done: bool,
+    /// The bracket lies in y = 1/x, on the reversed polynomial.
+    reversed: bool,
 }
 
 impl Bracket {
-    /// The bracket [lo, hi] with p(lo) = flo, p(hi) = fhi of opposite signs, started at the
-    /// secant point where it is narrow and at its geometric middle where it spans decades.
-    fn new((lo, flo): (f64, f64), (hi, fhi): (f64, f64), done_rel: f64) -> Self {
+    /// The bracket [lo, hi] with values flo, fhi of opposite signs, started at the secant
+    /// point where it is narrow and at its geometric middle where it spans decades.
+    fn new((lo, flo): (f64, f64), (hi, fhi): (f64, f64), done_rel: f64, reversed: bool) -> Self {
         let x = if wide(lo, hi) {
             middle(lo, hi)
         } else {
@@ -179,12 +193,19 @@ impl Bracket {
             done_rel,
             last_step: hi - lo,
             done: false,
+            reversed,
         }
     }
 
-    /// One safeguarded Newton step from p(x) = v, p′(x) = d: Newton while it stays inside and
-    /// at least halves the step (Press et al. §9.4), else bisection.
-    fn step(&mut self, v: f64, d: f64) {
+    /// The root in x.
+    fn root(&self) -> f64 {
+        let r = self.x.clamp(self.lo, self.hi);
+        if self.reversed { 1.0 / r } else { r }
+    }
+
+    /// One safeguarded step from q(x) = v, q′(x) = d, q″(x) = 2s for q of degree n:
+    /// Laguerre's step while it stays inside and at least halves the step, else bisection.
+    fn step(&mut self, [v, d, s]: [f64; 3], n: f64) {
         let x = self.x;
         if v == 0.0 {
             self.done = true;
@@ -199,23 +220,42 @@ impl Bracket {
             self.done = true;
             return;
         }
-        let step = v / d;
-        let newton = x - step;
+        let step = laguerre_step(v, d, s, n);
+        let next = x - step;
         let (lo, hi) = (self.lo, self.hi);
-        // quadratic convergence: the error after a step of 1e-9 is below rounding
+        // cubic (at worst quadratic) convergence: the error after a step of 1e-9 is below
+        // rounding
         if step.abs() <= self.done_rel * x.abs() {
             self.done = true;
-            self.x = newton.clamp(lo, hi);
+            self.x = next.clamp(lo, hi);
             return;
         }
-        if newton > lo && newton < hi && !wide(lo, hi) && step.abs() <= 0.5 * self.last_step {
-            self.x = newton;
+        if next > lo && next < hi && !wide(lo, hi) && step.abs() <= 0.5 * self.last_step {
+            self.x = next;
             self.last_step = step.abs();
         } else {
             self.x = middle(lo, hi);
             self.last_step = hi - lo;
         }
     }
+}
+
+/// Laguerre's step for a polynomial of degree n with value v, derivative d and half second
+/// derivative s (Press et al. §9.5): n/(G ± √((n − 1)(nH − G²))), G = d/v, H = G² − 2s/v, the
+/// sign that makes the denominator largest; Newton's v/d where the square root's argument is
+/// negative (a complex pair nearby) or the step is not finite.
+fn laguerre_step(v: f64, d: f64, s: f64, n: f64) -> f64 {
+    // in units of v (one division): G·v = d, H·v² = d² − 2s·v, and the step
+    // n/(G ± √·) = n·v/(d ± √((n − 1)(n·(d² − 2s·v) − d²)))
+    let disc = (n - 1.0) * (n * (d * d - 2.0 * s * v) - d * d);
+    if !(disc >= 0.0) || n < 2.0 {
+        return v / d;
+    }
+    let root = disc.sqrt();
+    // the sign of G = d/v times v's: the denominator largest in magnitude
+    let den = d + root.copysign(d);
+    let step = n * v / den;
+    if step.is_finite() { step } else { v / d }
 }
 
 /// A bracket spans decades (bisected geometrically).
@@ -232,42 +272,100 @@ fn middle(lo: f64, hi: f64) -> f64 {
     }
 }
 
-/// The roots of p between consecutive `ends` (increasing, p monotone between them): one where
-/// the sign changes, refined by safeguarded Newton steps taken for every bracket at once.
-fn roots_between_ends(p: &[f64], ends: &[f64], done_rel: f64) -> Vec<f64> {
-    let (mut v, mut d) = (Vec::new(), Vec::new());
-    eval_many(p, ends, &mut v, &mut d);
-    let mut roots = Vec::new();
-    let mut brackets: Vec<Bracket> = Vec::new();
-    for i in 1..ends.len() {
-        let (flo, fhi) = (v[i - 1], v[i]);
+/// The roots of p between consecutive `ends` (increasing, p monotone between them) into
+/// `roots`, increasing: one where the sign changes, refined by safeguarded Laguerre steps
+/// taken for every bracket at once (module doc), in x below 1 and in y = 1/x above.
+fn roots_between_ends(
+    p: &[f64],
+    ends: &[f64],
+    done_rel: f64,
+    scratch: &mut Scratch,
+    roots: &mut Vec<f64>,
+) {
+    let Scratch {
+        values,
+        brackets,
+        active,
+    } = scratch;
+    values.clear();
+    values.extend(ends.iter().map(|&x| sign_value(p, x)));
+    roots.clear();
+    brackets.clear();
+    for (e, v) in ends.windows(2).zip(values.windows(2)) {
+        let (flo, fhi) = (v[0], v[1]);
         if flo == 0.0 {
-            roots.push(ends[i - 1]);
+            roots.push(e[0]);
         } else if fhi != 0.0 && (flo > 0.0) != (fhi > 0.0) {
-            brackets.push(Bracket::new((ends[i - 1], flo), (ends[i], fhi), done_rel));
+            match bracket_in_space(p, (e[0], flo), (e[1], fhi), done_rel) {
+                Ok(b) => brackets.push(b),
+                Err(one) => roots.push(one),
+            }
         }
     }
-    if v.last() == Some(&0.0) {
+    if values.last() == Some(&0.0) {
         roots.extend(ends.last());
     }
-    let mut xs = Vec::with_capacity(brackets.len());
-    let mut active: Vec<usize> = (0..brackets.len()).collect();
-    for _ in 0..MAX_STEPS {
-        if active.is_empty() {
-            break;
-        }
-        // only the brackets still iterating are evaluated
-        xs.clear();
-        xs.extend(active.iter().map(|&i| brackets[i].x));
-        eval_many(p, &xs, &mut v, &mut d);
-        for (&i, (&vi, &di)) in active.iter().zip(v.iter().zip(&d)) {
-            brackets[i].step(vi, di);
-        }
-        active.retain(|&i| !brackets[i].done);
-    }
-    roots.extend(brackets.iter().map(|b| b.x.clamp(b.lo, b.hi)));
+    iterate(p, brackets, active);
+    roots.extend(brackets.iter().map(Bracket::root));
     roots.sort_by(f64::total_cmp);
-    roots
+}
+
+/// The bracket of a sign change of p on [lo, hi] in x where it lies below 1, in y = 1/x where
+/// above (q(y) = y^n·p(1/y) has the sign of p); one straddling 1 keeps the side of 1 where the
+/// sign changes. Err(1) when p(1) = 0.
+fn bracket_in_space(
+    p: &[f64],
+    (lo, flo): (f64, f64),
+    (hi, fhi): (f64, f64),
+    done_rel: f64,
+) -> Result<Bracket, f64> {
+    let reversed = |(lo, flo): (f64, f64), (hi, fhi): (f64, f64)| {
+        Bracket::new((1.0 / hi, fhi), (1.0 / lo, flo), done_rel, true)
+    };
+    if hi <= 1.0 {
+        return Ok(Bracket::new((lo, flo), (hi, fhi), done_rel, false));
+    }
+    if lo >= 1.0 {
+        return Ok(reversed((lo, flo), (hi, fhi)));
+    }
+    let f1: f64 = p.iter().sum();
+    if f1 == 0.0 {
+        Err(1.0)
+    } else if (f1 > 0.0) != (flo > 0.0) {
+        Ok(Bracket::new((lo, flo), (1.0, f1), done_rel, false))
+    } else {
+        Ok(reversed((1.0, f1), (hi, fhi)))
+    }
+}
+
+/// Safeguarded steps for every bracket until each is done, the brackets in x and in y = 1/x
+/// each evaluated [`LANES`] at a time.
+fn iterate(p: &[f64], brackets: &mut [Bracket], active: &mut Vec<usize>) {
+    let n = (p.len() - 1) as f64;
+    for reversed in [false, true] {
+        active.clear();
+        active.extend((0..brackets.len()).filter(|&i| brackets[i].reversed == reversed));
+        for _ in 0..MAX_STEPS {
+            if active.is_empty() {
+                break;
+            }
+            for block in active.chunks(LANES) {
+                let mut x = [0.0; LANES];
+                for (l, &i) in block.iter().enumerate() {
+                    x[l] = brackets[i].x;
+                }
+                let [v, d, s] = if reversed {
+                    horner_lanes(p.iter(), &x)
+                } else {
+                    horner_lanes(p.iter().rev(), &x)
+                };
+                for (l, &i) in block.iter().enumerate() {
+                    brackets[i].step([v[l], d[l], s[l]], n);
+                }
+            }
+            active.retain(|&i| !brackets[i].done);
+        }
+    }
 }
 
 #[cfg(test)]
