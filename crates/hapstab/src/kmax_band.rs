@@ -29,12 +29,14 @@
 //! the intervals beside its damping close on it. What none of this settles is
 //! [`BandMax::Undecided`], and the region decides it ([`crate::region::alpha_max_within`]).
 
+use num_complex::Complex64;
+
 use crate::boundary::{
-    AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, dalpha_dtheta, minus_one_line,
-    plus_one_line,
+    AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    minus_one_line, plus_one_line,
 };
 use crate::cayley::CayleyFamily;
-use crate::closed_loop::AffineFamily;
+use crate::closed_loop::{AffineFamily, SHIFTED_THETA};
 use crate::line_decomposition::{located_crossings, stable_intervals, stable_intervals_located};
 use crate::poly;
 use crate::real_roots::positive_roots;
@@ -502,15 +504,13 @@ fn separate_component(
     for w in thetas.windows(2) {
         let step = (w[1] - w[0]) / (HUMP_SAMPLES + 1) as f64;
         // the first sample above the level that may lie on the boundary, inside the band
-        let on_hump = (1..=HUMP_SAMPLES)
-            .filter_map(|j| curve_point(fam, w[0] + step * j as f64))
-            .find(|p| {
-                p.alpha > level
-                    && p.alpha.is_finite()
-                    && p.beta >= lo
-                    && p.beta <= hi
-                    && !surely_outside(fam, *p, &mut coeffs)
-            });
+        let on_hump = hump_samples(fam, w[0], step).find(|p| {
+            p.alpha > level
+                && p.alpha.is_finite()
+                && p.beta >= lo
+                && p.beta <= hi
+                && !surely_outside(fam, *p, &mut coeffs)
+        });
         let Some(p) = on_hump else { continue };
         if let Some(iv) = top_interval(fam, cf, p.beta).filter(|iv| iv.hi > level) {
             return Some(Found {
@@ -524,6 +524,22 @@ fn separate_component(
     // curve's stationary points and corners
     let cands = sorted_candidates(fam, cf, (lo, hi), level);
     highest_candidate(fam, cf, &cands, Some(found), (lo, hi)).filter(|f| f.alpha > level)
+}
+
+/// The curve's points at θ0 + j·step, j = 1 … [`HUMP_SAMPLES`]: z stepped along the circle by
+/// one rotation (no sine per point) where θ ≥ [`SHIFTED_THETA`], from the shifted form below.
+fn hump_samples(fam: &AffineFamily, theta0: f64, step: f64) -> impl Iterator<Item = AlphaBeta> {
+    let rotation = Complex64::from_polar(1.0, step);
+    let mut z = Complex64::from_polar(1.0, theta0);
+    (1..=HUMP_SAMPLES).filter_map(move |j| {
+        z *= rotation;
+        let theta = theta0 + step * j as f64;
+        if theta < SHIFTED_THETA {
+            curve_point(fam, theta)
+        } else {
+            curve_point_at(fam, z)
+        }
+    })
 }
 
 /// The damping axis at stiffness a.

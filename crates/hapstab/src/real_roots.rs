@@ -47,16 +47,25 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
         return Vec::new();
     }
     let (lo, hi) = root_bounds(&p);
-    // The cascade: derivatives[k] is the k-th derivative (scaled), down to the linear one.
-    let mut chain = vec![p];
-    while chain[chain.len() - 1].len() > 2 {
-        let top = &chain[chain.len() - 1];
-        chain.push(derivative(top));
+    // The cascade: the k-th derivative (scaled) at chain[starts[k]..], down to the linear one,
+    // in one buffer.
+    let mut chain = Vec::with_capacity((n + 1) * (n + 2) / 2);
+    let mut starts = Vec::with_capacity(n);
+    chain.extend_from_slice(&p);
+    starts.push(0);
+    for k in 1..n {
+        let from = starts[k - 1];
+        let len = n + 2 - k;
+        starts.push(chain.len());
+        for j in 1..len {
+            chain.push(chain[from + j] * j as f64 / (len - 1) as f64);
+        }
     }
     let mut scratch = Scratch::default();
     let mut roots: Vec<f64> = Vec::new();
     let mut ends: Vec<f64> = Vec::with_capacity(n + 2);
-    for (level, q) in chain.iter().enumerate().rev() {
+    for (level, &start) in starts.iter().enumerate().rev() {
+        let q = &chain[start..start + n + 1 - level];
         ends.clear();
         ends.push(lo);
         ends.extend(roots.iter().copied().filter(|&r| r > lo && r < hi));
@@ -116,16 +125,6 @@ fn root_bounds(p: &[f64]) -> (f64, f64) {
         lo.clamp(f64::MIN_POSITIVE, 1e300),
         hi.clamp(f64::MIN_POSITIVE, 1e300),
     )
-}
-
-/// p′ scaled by 1/n (the same roots, coefficients of p's size).
-fn derivative(p: &[f64]) -> Vec<f64> {
-    let n = (p.len() - 1) as f64;
-    p.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(j, &c)| c * j as f64 / n)
-        .collect()
 }
 
 /// Brackets iterated side by side: independent recurrences in registers, which the processor
