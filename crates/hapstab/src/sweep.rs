@@ -454,12 +454,16 @@ fn sweep_point(value: f64, lp: &Loop, at: KmaxAt) -> SweepPoint {
         Ok(None) => {}
         Err(e) => p.note = Some(e.to_string()),
     }
-    if let DeviceDamping::Known { damping } = device_damping(&lp.plant) {
-        p.k_max_passive = passive_kmax(lp, at, damping);
-        p.k_max_passive_with_arm = lp
-            .plant
-            .effective_damping()
-            .and_then(|b| passive_kmax(lp, at, b));
+    if let DeviceDamping::Known { damping } = device_damping(&lp.plant)
+        && let Ok(sw) = SampledWall::new(lp)
+    {
+        p.k_max_passive = passive_kmax(&sw, at, damping);
+        p.k_max_passive_with_arm = lp.plant.effective_damping().and_then(|b| match at {
+            // the passive region scales with the device damping (b_required is positively
+            // homogeneous in (K, B)): its largest K too
+            KmaxAt::Overall if damping > 0.0 => p.k_max_passive.map(|k| k * (b / damping)),
+            _ => passive_kmax(&sw, at, b),
+        });
     }
     p
 }
@@ -503,11 +507,10 @@ fn band_kmax(fam: &AffineFamily, b0: f64, b1: f64) -> Result<Option<(f64, f64)>>
 /// The largest passive K for a device damping b under the same damping constraint; the
 /// passive region is convex, so over a band it is the region's maximum if its B lies in the
 /// band, else the band's nearer edge.
-fn passive_kmax(lp: &Loop, at: KmaxAt, b: f64) -> Option<f64> {
-    let sw = SampledWall::new(lp).ok()?;
-    let best = || passive_k_max(&sw, b).filter(|w| w.stiffness.is_finite());
+fn passive_kmax(sw: &SampledWall, at: KmaxAt, b: f64) -> Option<f64> {
+    let best = || passive_k_max(sw, b).filter(|w| w.stiffness.is_finite());
     match at {
-        KmaxAt::Damping { damping } => k_max_passive_at(&sw, b, damping),
+        KmaxAt::Damping { damping } => k_max_passive_at(sw, b, damping),
         KmaxAt::Overall => best().map(|w| w.stiffness),
         KmaxAt::Band { lo, hi } => {
             let w = best()?;
@@ -515,7 +518,7 @@ fn passive_kmax(lp: &Loop, at: KmaxAt, b: f64) -> Option<f64> {
                 Some(w.stiffness)
             } else {
                 let edge = if w.damping < lo { lo } else { hi };
-                k_max_passive_at(&sw, b, edge)
+                k_max_passive_at(sw, b, edge)
             }
         }
     }

@@ -638,3 +638,35 @@ fn unstable_filter_is_refused() {
     let e = SampledWall::new(&lp).unwrap_err().to_string();
     assert!(e.contains("velocity filter") && e.contains("1.2"), "{e}");
 }
+
+/// The passive region scales with the device damping (b_required is positively homogeneous in
+/// (K, B)), so its largest K does: two independent searches at b and 2.5·b agree to 1e-9 on
+/// delayed loops with every estimator (the sweep reads the device-and-arm figure this way).
+#[test]
+fn passive_stiffness_scales_with_the_device_damping() {
+    let mut rng = SplitMix(77);
+    let mut compared = 0;
+    for i in 0..40 {
+        let t = rng.log_range(1e-4, 1e-2);
+        let delay = Delay::samples(i % 7).unwrap();
+        let lp = msd_loop(0.1, 1.0, 0.0, t, delay, random_estimator(&mut rng));
+        let sw = SampledWall::new(&lp).unwrap();
+        let b = rng.range(0.1, 5.0);
+        let (Some(one), Some(two)) = (
+            hapstab::passivity::passive_k_max(&sw, b),
+            hapstab::passivity::passive_k_max(&sw, 2.5 * b),
+        ) else {
+            continue;
+        };
+        if one.stiffness.is_finite() {
+            compared += 1;
+            assert!(
+                rel(two.stiffness, 2.5 * one.stiffness) < 1e-9,
+                "loop {i}: {} vs 2.5·{}",
+                two.stiffness,
+                one.stiffness
+            );
+        }
+    }
+    assert!(compared >= 30, "only {compared} loops compared");
+}

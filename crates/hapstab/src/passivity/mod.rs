@@ -75,8 +75,6 @@ use crate::error::Result;
 use crate::model::Loop;
 use crate::params::Wall;
 
-pub(crate) use crate::extremum::golden_max;
-
 pub use device::{DeviceDamping, device_damping};
 pub use region::{
     PASSIVE_REL_TOL, PassiveRegion, UNBOUNDED_CLIP, k_max_passive_at, passive_k_max, passive_region,

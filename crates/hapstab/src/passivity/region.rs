@@ -3,9 +3,9 @@
 
 use serde::Serialize;
 
-use super::golden_max;
 use super::requirement::SampledWall;
 use crate::error::Result;
+use crate::extremum::brent_max;
 use crate::params::Wall;
 
 /// The passive region of a loop for a device damping b (Section VIII, Fig. 9, generalized):
@@ -202,7 +202,7 @@ fn chord_distance(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
 
 /// The largest passive stiffness for device damping b, and the damping where it is reached
 /// (exact, without building the polygon): the best of [`INITIAL_DIRECTIONS`] boundary points,
-/// refined by golden-section search over the direction. None when b <= 0; K infinite when
+/// refined by Brent's search over the direction. None when b <= 0; K infinite when
 /// the region is unbounded.
 pub fn passive_k_max(sw: &SampledWall, b: f64) -> Option<Wall> {
     if !(b > 0.0 && b.is_finite()) {
@@ -238,8 +238,9 @@ fn direction_range(sw: &SampledWall) -> (f64, f64) {
     )
 }
 
-/// The largest passive K and its B: the best vertex, refined by golden-section search over the
-/// direction (on a convex region the boundary's K is unimodal in the direction).
+/// The largest passive K and its B: the best vertex, refined by Brent's search over the
+/// direction ([`brent_max`]: parabolic steps where K is smooth, golden-section ones at a
+/// kink; on a convex region the boundary's K is unimodal in the direction).
 fn largest_stiffness(sw: &SampledWall, b: f64, pts: &[RayPoint]) -> (f64, f64) {
     let kappa = |p: &RayPoint| p.1.map_or(f64::NEG_INFINITY, |(x, _)| x);
     let Some(i) = (0..pts.len()).max_by(|&i, &j| kappa(&pts[i]).total_cmp(&kappa(&pts[j]))) else {
@@ -248,7 +249,7 @@ fn largest_stiffness(sw: &SampledWall, b: f64, pts: &[RayPoint]) -> (f64, f64) {
     let lo = pts[i.saturating_sub(1)].0;
     let hi = pts[(i + 1).min(pts.len() - 1)].0;
     let f = |phi: f64| ray_point(sw, b, phi).map_or(f64::NEG_INFINITY, |(x, _)| x);
-    let (phi, _) = golden_max(f, lo, hi, DIRECTION_TOL);
+    let (phi, _) = brent_max(f, lo, hi, DIRECTION_TOL);
     let best = [pts[i].0, phi]
         .into_iter()
         .max_by(|&x, &y| f(x).total_cmp(&f(y)))
