@@ -49,20 +49,27 @@ fn test_line(what: &str, t: &CorrelationTest, stat: &str) -> String {
 
 fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
     let k = |x: Option<f64>| x.map_or("none stable".to_string(), |k| eng(k, "N/m", DIGITS));
+    let range =
+        |[lo, hi]: [f64; 2]| format!("[{}, {}]", eng(lo, "N/m", DIGITS), eng(hi, "N/m", DIGITS));
     let mut out = vec![format!("K_max at B = 0    {}", k(lim.k_max))];
-    if let Some([lo, hi]) = lim.spread {
+    if let Some(p) = &lim.interval {
         out.push(format!(
-            "  95 % spread     [{}, {}] over {} loops drawn from the parameters' covariance",
-            eng(lo, "N/m", DIGITS),
-            eng(hi, "N/m", DIGITS),
+            "  95 % interval   {} (delta method, standard error {})",
+            range(p.ci95),
+            eng(p.standard_error, "N/m", 3)
+        ));
+    }
+    if let Some(r) = lim.spread {
+        out.push(format!(
+            "  95 % spread     {} over {} loops drawn from the parameters' covariance",
+            range(r),
             lim.valid_draws
         ));
     }
-    if let Some([lo, hi]) = lim.box_range {
+    if let Some(r) = lim.box_range {
         out.push(format!(
-            "  over the box    [{}, {}]: K_max over the parameters' 95 % box",
-            eng(lo, "N/m", DIGITS),
-            eng(hi, "N/m", DIGITS)
+            "  over the box    {}: K_max over the parameters' 95 % box",
+            range(r)
         ));
     }
     if let Some(r) = &lim.robust {
@@ -75,6 +82,18 @@ fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
             "  robust          {} for every plant in the parameters' 95 % box (worst: {})",
             k(r.k_max),
             worst.join(", ")
+        ));
+    }
+    if let Some(b) = &lim.renderable {
+        let interval = b.interval.map_or(String::new(), |p| {
+            format!(", 95 % interval {}", range(p.ci95))
+        });
+        out.push(format!(
+            "K_max over 0 ≤ B ≤ {} (renderable at Δ = {}, F_n = {})  {}{interval}",
+            eng(b.band.b_max, "Ns/m", DIGITS),
+            eng(b.band.noise.position_resolution, "m", DIGITS),
+            eng(b.band.noise.force_noise, "N", DIGITS),
+            k(b.band.k_max)
         ));
     }
     out

@@ -24,15 +24,17 @@ pub mod excitation;
 pub mod frequency;
 pub mod model;
 pub mod output_error;
+pub mod propagate;
 pub mod response;
 pub mod uncertainty;
 
 use serde::Serialize;
 
-pub use consequence::{StiffnessLimit, stiffness_limit};
+pub use consequence::{BandLimit, StiffnessLimit, stiffness_limit};
 pub use data::{Columns, Record};
 pub use error::{IdResult, IdentifyError};
 pub use model::{Fixed, ModelKind, ModelSpec};
+pub use propagate::Propagated;
 pub use uncertainty::{CorrelationTest, Estimate, FitQuality};
 
 use crate::model::{Loop, VelocityEstimator};
@@ -178,7 +180,8 @@ pub fn identify_runs(records: &[Record], spec: &ModelSpec) -> IdResult<Identific
         .map(|(m, p)| m - p)
         .collect();
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let est = estimates(spec, &fit, ss, records.len())?;
+    let floor = spec.quantization * spec.quantization / 12.0;
+    let est = estimates(spec, &fit, ss, floor, records.len())?;
     let (delay_time, force_lag) = timing(spec, &est.parameters);
     Ok(Identification {
         model: spec.kind.name(),
@@ -230,18 +233,20 @@ fn held(name: &str, unit: &str, value: f64) -> Estimate {
 }
 
 /// The estimates of every parameter (held ones marked), the `offsets` runs' offsets (the
-/// last coordinates), and the covariance of the optimiser's coordinates (module doc step 4).
+/// last coordinates), and the covariance of the optimiser's coordinates (module doc step 4),
+/// the noise variance at least `floor`.
 fn estimates(
     spec: &ModelSpec,
     fit: &output_error::Fit,
     residual_ss: f64,
+    floor: f64,
     offsets: usize,
 ) -> IdResult<Estimates> {
     let free = spec.free();
     let params = spec.params();
     let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
     names.extend((1..=offsets).map(|r| format!("position offset of run {r}")));
-    let cov = uncertainty::covariance(&fit.jacobian, residual_ss, &names)?;
+    let cov = uncertainty::covariance(&fit.jacobian, residual_ss, floor, &names)?;
     let mut out: Vec<Estimate> = params
         .iter()
         .enumerate()
@@ -350,7 +355,7 @@ pub fn identify_frequency(
         evaluations,
     };
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let est = estimates(spec, &fit, ss, 0)?;
+    let est = estimates(spec, &fit, ss, 0.0, 0)?;
     let (delay_time, force_lag) = timing(spec, &est.parameters);
     let err: f64 = response
         .iter()

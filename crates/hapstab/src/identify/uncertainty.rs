@@ -3,7 +3,9 @@
 //!
 //! **Covariance.** With white measurement noise, the output-error estimate is asymptotically
 //! normal with covariance σ²(JᵀJ)⁻¹ in the optimiser's coordinates, σ² = Σe²/(N − p) (Ljung
-//! 1999, §9.3, eq. 9.17–9.18). A positive parameter's interval is e^{x ± z·se(x)}, positive
+//! 1999, §9.3, eq. 9.17–9.18), floored at the quantization's q²/12 when the position is
+//! rounded to steps of q (the rounding error's variance, Widrow & Kollár, *Quantization
+//! Noise*, 2008, ch. 4: the residuals of a model that is right cannot be smaller). A positive parameter's interval is e^{x ± z·se(x)}, positive
 //! and skewed as its log-normal law; its standard error is the delta method's θ·se(x). A real
 //! parameter's is θ ± z·se, z = [`Z_95`].
 //!
@@ -71,12 +73,14 @@ pub struct CorrelationTest {
     pub passes: bool,
 }
 
-/// The covariance of the optimiser's coordinates, σ²(JᵀJ)⁻¹ (module doc), computed on the
+/// The covariance of the optimiser's coordinates, σ²(JᵀJ)⁻¹ with σ² = max(Σe²/(N − p), `floor`)
+/// (module doc), computed on the
 /// Jacobian scaled to unit columns; refused when JᵀJ is singular (the recording does not
 /// tell the parameters apart), naming the coordinate with the least information.
 pub fn covariance(
     jacobian: &[Vec<f64>],
     residual_ss: f64,
+    floor: f64,
     names: &[String],
 ) -> IdResult<DMatrix<f64>> {
     let n = jacobian.first().map_or(0, Vec::len);
@@ -107,7 +111,7 @@ pub fn covariance(
     let inv = jtj.clone().cholesky().map(|c| c.inverse()).ok_or_else(|| {
         IdentifyError::NoFit("the data do not tell the parameters apart (JᵀJ is singular)".into())
     })?;
-    let sigma2 = residual_ss / (n - p) as f64;
+    let sigma2 = (residual_ss / (n - p) as f64).max(floor);
     Ok(DMatrix::from_fn(p, p, |a, b| {
         sigma2 * inv[(a, b)] / (norms[a] * norms[b])
     }))
