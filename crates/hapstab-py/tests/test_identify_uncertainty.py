@@ -10,6 +10,7 @@ inside: 0.95^20 = 36 %), so the delta-method intervals are asked for at least 17
 parameters' 95 % box — conservative by construction (Σ|∂K/∂θ_i|·1.96σ_i ≥ 1.96·√(gᵀΣg)) —
 for all 20."""
 
+import os
 import sys
 from pathlib import Path
 
@@ -126,3 +127,52 @@ def test_frequency_fit_intervals_cover_the_truth():
             inside[name] += lo <= truth[name] <= hi
     print({k: v / n for k, v in inside.items()})
     assert all(0.93 <= v / n <= 0.97 for v in inside.values()), inside
+
+
+# the cases of benches/baseline/identify_coverage.py: simulator model and parameters, force,
+# samples, identify's model and held parameters, the truth, the true loop
+COVERAGE_CASES = {
+    "msd": ("mass-spring-damper", {"m": 0.6, "b": 7.5, "k": 350.0}, {"f1": 40.0}, 4000,
+            {}, {"mass": 0.6, "damping": 7.5, "stiffness": 350.0},
+            lambda: hs.Loop(hs.MassSpringDamper(0.6, 7.5, 350.0), period=PERIOD)),
+    "held": ("held-device", {"m_L": 0.1, "b_L": 1.5, "m_H": 1.0, "b_H": 6.0, "k_H": 350.0},
+             {"kind": "prbs", "hold": 20, "amplitude": 2.0}, 4000,
+             {"model": "held-device", "fixed": {"device-mass": 0.1, "device-damping": 1.5}},
+             {"arm-mass": 1.0, "arm-damping": 6.0, "arm-stiffness": 350.0},
+             lambda: hs.Loop.paper()),
+    "two-mass": ("two-mass", TWO_MASS, {"f0": 5.0, "f1": 80.0, "amplitude": 2.0}, 8000,
+                 {"model": "two-mass"},
+                 {"motor-mass": 0.3, "motor-damping": 2.0, "handle-mass": 0.1,
+                  "transmission-stiffness": 2300.0, "transmission-damping": 1.0}, None),
+}
+
+
+@pytest.mark.parametrize("case", sorted(COVERAGE_CASES))
+def test_time_fit_intervals_cover_the_truth(case):
+    """Per parameter and for K_max at B = 0, how often the 95 % interval holds the truth
+    over seeded 40 dB realisations (10 µm quantization). 40 realisations here (the two-mass
+    case, slower, only in the full run): at least
+    34 of 40 (fewer has probability 0.3 % for a calibrated interval); with
+    HAPSTAB_FULL_COVERAGE=1, 200 realisations and 182-197 of 200 (the binomial 99 % band
+    around 95 %; 93-97 % is ±1.3 binomial sd at 200 and fails a calibrated interval one
+    time in five)."""
+    full = os.environ.get("HAPSTAB_FULL_COVERAGE") == "1"
+    if case == "two-mass" and not full:
+        pytest.skip("8000-sample recordings: with HAPSTAB_FULL_COVERAGE=1 only")
+    n = 200 if full else 40
+    sim, params, force, samples, kw, truth, true_loop = COVERAGE_CASES[case]
+    if true_loop is None:
+        k_true = true_two_mass_kmax()[0]
+    else:
+        k_true = hs.kmax(true_loop(), wall_damping=0.0).k_max
+    inside = dict.fromkeys([*truth, "K_max"], 0)
+    for seed in range(1, n + 1):
+        t, f, x = recording(sim, params, samples, seed, **dict(force))
+        r = hs.identify(t, f, x, quantization=Q, draws=1, **kw)
+        for name, lo, hi in zip(r.names, r.ci_low, r.ci_high):
+            if name in truth:
+                inside[name] += lo <= truth[name] <= hi
+        inside["K_max"] += r.k_max_interval[0] <= k_true <= r.k_max_interval[1]
+    print(case, n, {k: f"{100 * v / n:.1f} %" for k, v in inside.items()})
+    low, high = (182, 197) if full else (34, 40)
+    assert all(low <= v <= high for v in inside.values()), inside
