@@ -253,7 +253,7 @@ fn the_band_s_k_max_is_the_identified_loop_s_at_the_quantization_step() {
     let text = hapstab().args(args).output().unwrap();
     let text = String::from_utf8(text.stdout).unwrap();
     assert!(
-        text.contains("95 % interval") && text.contains("K_max over 0 ≤ B ≤"),
+        text.contains("95 % interval") && text.contains("over the renderable band 0 ≤ B ≤"),
         "{text}"
     );
     let err = refused(&["identify", "--data", &data, "--quantization", "nan"]);

@@ -85,16 +85,20 @@ fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
         ));
     }
     if let Some(b) = &lim.renderable {
-        let interval = b.interval.map_or(String::new(), |p| {
-            format!(", 95 % interval {}", range(p.ci95))
-        });
         out.push(format!(
-            "K_max over 0 ≤ B ≤ {} (renderable at Δ = {}, F_n = {})  {}{interval}",
+            "K_max, B ≤ B_r    {} over the renderable band 0 ≤ B ≤ {} (Δ = {}, F_n = {})",
+            k(b.band.k_max),
             eng(b.band.b_max, "Ns/m", DIGITS),
             eng(b.band.noise.position_resolution, "m", DIGITS),
-            eng(b.band.noise.force_noise, "N", DIGITS),
-            k(b.band.k_max)
+            eng(b.band.noise.force_noise, "N", DIGITS)
         ));
+        if let Some(p) = &b.interval {
+            out.push(format!(
+                "  95 % interval   {} (delta method, standard error {})",
+                range(p.ci95),
+                eng(p.standard_error, "N/m", 3)
+            ));
+        }
     }
     out
 }
