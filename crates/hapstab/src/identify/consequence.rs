@@ -75,8 +75,9 @@ pub struct BandLimit {
     pub interval: Option<Propagated>,
 }
 
-/// The noise model of the renderable band: the recording's quantization step as the
-/// position resolution when one was given, otherwise [`NoiseModel::default`].
+/// The noise model of the renderable band B ≤ B_r = F_n·√12/(Δ·‖V‖₂) ([`crate::kmax`]'s
+/// module doc): the recording's quantization step as the position resolution Δ when one was
+/// given, otherwise [`NoiseModel::default`].
 pub fn band_noise(id: &Identification) -> NoiseModel {
     let mut noise = NoiseModel::default();
     if id.spec.quantization > 0.0 {
