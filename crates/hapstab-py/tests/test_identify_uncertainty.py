@@ -7,8 +7,8 @@ coverage of the frequency fit's intervals over seeded noise realisations.
 A calibrated 95 % interval misses the truth in about one recording of twenty (all twenty
 inside: 0.95^20 = 36 %), so the delta-method intervals are asked for at least 17 of 20
 (fewer has probability 1.6 % for a calibrated interval), and only the range over the
-parameters' 95 % box — conservative by construction (Σ|∂K/∂θ_i|·1.96σ_i ≥ 1.96·√(gᵀΣg)) —
-for all 20."""
+parameters' 95 % box — conservative by construction
+(Σ|∂K/∂θ_i|·1.96σ_i ≥ 1.96·√(gᵀΣg)) — for all 20."""
 
 import os
 import sys
