@@ -213,3 +213,49 @@ fn a_simulated_log_of_the_default_loop_gives_back_its_arm() {
     ]);
     assert!(e.contains("--log-samples"), "{e}");
 }
+
+#[test]
+fn the_band_s_k_max_is_the_identified_loop_s_at_the_quantization_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let lp = dir.path().join("msd.json");
+    let data = fixture("msd_chirp_40db.csv");
+    let args = [
+        "identify",
+        "--data",
+        &data,
+        "--draws",
+        "20",
+        "--quantization",
+        "2e-5",
+    ];
+    let out = json(&[&args[..], &["--write-loop", lp.to_str().unwrap()]].concat());
+    assert_eq!(f(&out["input"]["quantization"]), 2e-5);
+    let lim = &out["k_max_at_zero_damping"];
+    let band = &lim["renderable"];
+    assert_eq!(f(&band["position_resolution"]), 2e-5);
+    let own = json(&[
+        "kmax",
+        "--loop",
+        lp.to_str().unwrap(),
+        "--position-resolution",
+        "2e-5",
+    ]);
+    let k = f(&band["k_max"]);
+    assert!(
+        (f(&own["renderable"]["k_max"]) - k).abs() <= 1e-9 * k,
+        "{own} vs {band}"
+    );
+    for p in [&lim["interval"], &band["interval"]] {
+        let [lo, hi] = [f(&p["ci95"][0]), f(&p["ci95"][1])];
+        let v = f(&p["value"]);
+        assert!(lo < v && v < hi && f(&p["standard_error"]) > 0.0, "{p}");
+    }
+    let text = hapstab().args(args).output().unwrap();
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(
+        text.contains("95 % interval") && text.contains("over the renderable band 0 ≤ B ≤"),
+        "{text}"
+    );
+    let err = refused(&["identify", "--data", &data, "--quantization", "nan"]);
+    assert!(err.contains("'quantization'"), "{err}");
+}

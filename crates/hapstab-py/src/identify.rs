@@ -5,13 +5,13 @@
 use hapstab::identify::frequency::FrequencyRecord;
 use hapstab::identify::{
     Columns, Fixed, Identification, IdentifyError, ModelKind, ModelSpec, Record, StiffnessLimit,
-    identify as fit, identify_frequency as identify_frequency_lib, stiffness_limit,
+    identify_frequency as identify_frequency_lib, identify_runs, stiffness_limit,
 };
 use hapstab::model::VelocityEstimator;
 use num_complex::Complex64;
 use numpy::{AllowTypeChange, PyArray1, PyArrayLike1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 use crate::errors::{Context, bad, finite};
 use crate::loops::PyLoop;
@@ -62,6 +62,19 @@ pub struct PyIdentification {
     pub k_max_robust: Option<f64>,
     /// The smallest and largest K_max over the parameters' 95 % box, N/m.
     pub k_max_box_range: Option<(f64, f64)>,
+    /// K_max at B = 0's delta-method 95 % interval, N/m.
+    pub k_max_interval: Option<(f64, f64)>,
+    /// K_max at B = 0's delta-method standard error, N/m.
+    pub k_max_standard_error: Option<f64>,
+    /// The renderable band's upper end B_r, Ns/m (position resolution: `quantization`, or
+    /// 10 µm without it; force noise 0.05 N).
+    pub band_b_max: Option<f64>,
+    /// K_max over the renderable band 0 ≤ B ≤ B_r, N/m.
+    pub k_max_band: Option<f64>,
+    /// Its delta-method 95 % interval, N/m.
+    pub k_max_band_interval: Option<(f64, f64)>,
+    /// The position offset of each run, m.
+    pub position_offsets: Vec<f64>,
     /// The identified loop.
     pub fitted_loop: Py<PyLoop>,
 }
@@ -126,6 +139,72 @@ fn recording(
     .map_err(to_py)
 }
 
+/// True when `v` is a list or tuple of arrays (several runs), not of numbers.
+fn is_runs(v: &Bound<'_, PyAny>) -> bool {
+    let Ok(items) = v.extract::<Vec<Bound<'_, PyAny>>>() else {
+        return false;
+    };
+    (v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>())
+        && items.first().is_some_and(|x| x.extract::<f64>().is_err())
+}
+
+/// The arrays of a list of runs, named `kw` in the error.
+fn runs_of<'py>(v: &Bound<'py, PyAny>, kw: &str) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    v.extract()
+        .map_err(|_| bad(kw, "must be a list of arrays, one per run, as t"))
+}
+
+/// The runs from `t`, `force`, `position`: three arrays (one run) or three lists of arrays
+/// of one length (several runs of the same plant).
+fn recordings(
+    t: &Bound<'_, PyAny>,
+    force: &Bound<'_, PyAny>,
+    position: &Bound<'_, PyAny>,
+) -> PyResult<Vec<Record>> {
+    if !is_runs(t) {
+        return Ok(vec![recording(t, force, position)?]);
+    }
+    let (ts, fs, xs) = (
+        runs_of(t, "t")?,
+        runs_of(force, "force")?,
+        runs_of(position, "position")?,
+    );
+    for (kw, n) in [("force", fs.len()), ("position", xs.len())] {
+        if n != ts.len() {
+            return Err(bad(kw, format!("{n} runs, t has {}", ts.len())));
+        }
+    }
+    ts.iter()
+        .zip(&fs)
+        .zip(&xs)
+        .map(|((t, f), x)| recording(t, f, x))
+        .collect()
+}
+
+/// The model spec from the keywords (errors naming them).
+#[allow(clippy::too_many_arguments)]
+fn model_spec(
+    model: &str,
+    fixed: Option<&Bound<'_, PyDict>>,
+    delay: f64,
+    force_lag: f64,
+    fit_delay: bool,
+    fit_force_lag: bool,
+    quantization: f64,
+) -> PyResult<ModelSpec> {
+    let kind = ModelKind::parse(model).map_err(to_py)?;
+    let spec = ModelSpec::new(
+        kind,
+        held(fixed)?,
+        finite("delay", delay)?,
+        finite("force_lag", force_lag)?,
+    )
+    .map_err(to_py)?
+    .fitting_timing(fit_delay, fit_force_lag);
+    spec.with_quantization(quantization)
+        .map_err(|e| bad("quantization", e))
+}
+
 fn held(fixed: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Fixed>> {
     let Some(d) = fixed else {
         return Ok(Vec::new());
@@ -142,16 +221,19 @@ fn held(fixed: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Fixed>> {
 }
 
 /// Fits `model` ("mass-spring-damper", "held-device", "two-mass" or "tf:N/D") to a
-/// recording: time `t` in s (uniform), commanded `force` in N, measured `position` in m;
-/// `fixed` = {name: value} holds parameters (e.g. {"device-mass": 0.1}); `delay` (s) and
-/// `force_lag` (s) are known parts of the loop, or the starts of their fit with `fit_delay`,
-/// `fit_force_lag`; K_max at B = 0 is for the wall's `velocity`
-/// estimator, its spread over `draws` loops drawn with `seed`. The numbers of
+/// recording by output error on the exact sampled model (Ljung 1999, §7.3): time `t` in s
+/// (uniform), commanded `force` in N, measured `position` in m — or lists of such arrays,
+/// one per run of the same plant, fitted together; `fixed` = {name: value} holds parameters
+/// (e.g. {"device-mass": 0.1}); `delay` (s) and `force_lag` (s) are known parts of the loop,
+/// or the starts of their fit with `fit_delay`, `fit_force_lag`; `quantization` (m) is the
+/// position's rounding step (noise at least q²/12, the renderable band's resolution); K_max
+/// at B = 0 and over the renderable band is for the wall's `velocity` estimator, with
+/// delta-method intervals, its spread over `draws` loops drawn with `seed`. The numbers of
 /// `hapstab identify --json`.
 #[pyfunction]
 #[pyo3(signature = (t, force, position, *, model = "mass-spring-damper", fixed = None,
                     delay = 0.0, force_lag = 0.0, fit_delay = false, fit_force_lag = false,
-                    velocity = "backward", draws = 400, seed = 1))]
+                    quantization = 0.0, velocity = "backward", draws = 400, seed = 1))]
 #[allow(clippy::too_many_arguments)]
 pub fn identify(
     py: Python<'_>,
@@ -164,20 +246,21 @@ pub fn identify(
     force_lag: f64,
     fit_delay: bool,
     fit_force_lag: bool,
+    quantization: f64,
     velocity: &str,
     draws: usize,
     seed: u64,
 ) -> PyResult<PyIdentification> {
-    let record = recording(t, force, position)?;
-    let kind = ModelKind::parse(model).map_err(to_py)?;
-    let spec = ModelSpec::new(
-        kind,
-        held(fixed)?,
-        finite("delay", delay)?,
-        finite("force_lag", force_lag)?,
-    )
-    .map_err(to_py)?
-    .fitting_timing(fit_delay, fit_force_lag);
+    let records = recordings(t, force, position)?;
+    let spec = model_spec(
+        model,
+        fixed,
+        delay,
+        force_lag,
+        fit_delay,
+        fit_force_lag,
+        quantization,
+    )?;
     let velocity: VelocityEstimator = velocity
         .parse()
         .map_err(|e: hapstab::Error| bad("velocity", e))?;
@@ -186,7 +269,7 @@ pub fn identify(
     }
     let (id, lim) = py
         .detach(|| {
-            let id = fit(&record, &spec)?;
+            let id = identify_runs(&records, &spec)?;
             let lim = stiffness_limit(&id, &velocity, draws, seed)?;
             Ok::<_, IdentifyError>((id, lim))
         })
@@ -225,6 +308,16 @@ fn result(
         k_max: lim.k_max,
         k_max_spread: lim.spread.map(|[a, b]| (a, b)),
         k_max_box_range: lim.box_range.map(|[a, b]| (a, b)),
+        k_max_interval: lim.interval.map(|p| (p.ci95[0], p.ci95[1])),
+        k_max_standard_error: lim.interval.map(|p| p.standard_error),
+        band_b_max: lim.renderable.as_ref().map(|b| b.band.b_max),
+        k_max_band: lim.renderable.as_ref().and_then(|b| b.band.k_max),
+        k_max_band_interval: lim
+            .renderable
+            .as_ref()
+            .and_then(|b| b.interval)
+            .map(|p| (p.ci95[0], p.ci95[1])),
+        position_offsets: id.position_offsets.iter().map(|o| o.value).collect(),
         k_max_robust: lim.robust.as_ref().and_then(|r| r.k_max),
         fitted_loop: Py::new(
             py,
@@ -274,15 +367,15 @@ pub fn identify_frequency(
         }
         other => to_py(other),
     })?;
-    let kind = ModelKind::parse(model).map_err(to_py)?;
-    let spec = ModelSpec::new(
-        kind,
-        held(fixed)?,
-        finite("delay", delay)?,
-        finite("force_lag", force_lag)?,
-    )
-    .map_err(to_py)?
-    .fitting_timing(fit_delay, fit_force_lag);
+    let spec = model_spec(
+        model,
+        fixed,
+        delay,
+        force_lag,
+        fit_delay,
+        fit_force_lag,
+        0.0,
+    )?;
     let velocity: VelocityEstimator = velocity
         .parse()
         .map_err(|e: hapstab::Error| bad("velocity", e))?;

@@ -156,6 +156,69 @@ fn the_consequence_brackets_the_true_k_max() {
     assert!(lo <= truth && truth <= hi);
     let robust = lim.robust.unwrap().k_max.unwrap();
     assert!(robust <= truth * (1.0 + 1e-9));
+    // the delta method's interval holds the truth, and the range over the box holds the
+    // interval (Σ|g_i|·1.96σ_i ≥ 1.96·√(gᵀΣg); 10⁻⁴ for the linearisation)
+    let delta = lim.interval.unwrap();
+    let [dlo, dhi] = delta.ci95;
+    let [blo, bhi] = lim.box_range.unwrap();
+    println!("delta [{dlo}, {dhi}] box [{blo}, {bhi}]");
+    assert!(dlo <= truth && truth <= dhi);
+    assert!(blo <= dlo * (1.0 + 1e-4) && bhi >= dhi * (1.0 - 1e-4));
+    // K_max over the renderable band (10 µm steps, no quantization given) of the true loop
+    // inside the band's interval
+    let lp =
+        hapstab::Loop::paper(hapstab::Effective::new(0.6, 7.5, 350.0).unwrap(), 1e-3, 0).unwrap();
+    let fam = hapstab::AffineFamily::of_loop(&lp).unwrap();
+    let noise = hapstab::kmax::NoiseModel::default();
+    let band_truth = hapstab::kmax::renderable_band(&lp, &fam, noise)
+        .unwrap()
+        .unwrap()
+        .k_max
+        .unwrap();
+    let band = lim.renderable.unwrap();
+    let [lo, hi] = band.interval.unwrap().ci95;
+    assert_eq!(band.band.noise, noise);
+    assert!(
+        lo <= band_truth && band_truth <= hi,
+        "{band_truth} outside [{lo}, {hi}]"
+    );
+}
+
+#[test]
+fn the_noise_variance_is_floored_at_the_quantization_s() {
+    // one coordinate with ∂ŷ/∂x = 1 at 4 samples: var(x̂) = σ²/4, σ² = max(Σe²/3, q²/12)
+    let names = vec!["x".to_string()];
+    let j = vec![vec![1.0; 4]];
+    let floor = 1e-10 / 12.0;
+    let free = hapstab::identify::uncertainty::covariance(&j, 0.0, floor, &names).unwrap();
+    assert!((free[(0, 0)] / (floor / 4.0) - 1.0).abs() < 1e-12);
+    let noisy = hapstab::identify::uncertainty::covariance(&j, 3e-9, floor, &names).unwrap();
+    assert!((noisy[(0, 0)] / (1e-9 / 4.0) - 1.0).abs() < 1e-12);
+    let e = spec("mass-spring-damper", &[], 0.0)
+        .with_quantization(-1e-5)
+        .unwrap_err();
+    assert!(e.to_string().starts_with("parameter 'quantization'"), "{e}");
+}
+
+#[test]
+fn magnitude_and_phase_errors_each_get_their_variance() {
+    // ŷ_i = x·u_i, residuals alternating kinds: var(x̂) = Σ σ²_{g(i)} u_i² / (Σ u_i²)² with
+    // σ_g² = Σ_{i∈g} e_i² / (N_g(1 − p/N)) (the sandwich, closed form for one coordinate)
+    let u = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+    let e = [0.1, 2.0, -0.2, -1.0, 0.15, 3.0];
+    let names = vec!["x".to_string()];
+    let cov =
+        hapstab::identify::uncertainty::grouped_covariance(&[u.to_vec()], &e, 2, &names).unwrap();
+    let dof = 3.0 * (1.0 - 1.0 / 6.0);
+    let s0 = (0.01 + 0.04 + 0.0225) / dof;
+    let s1 = (4.0 + 1.0 + 9.0) / dof;
+    let suu: f64 = u.iter().map(|x| x * x).sum();
+    let want = (s0 * (1.0 + 9.0 + 25.0) + s1 * (4.0 + 16.0 + 36.0)) / (suu * suu);
+    assert!(
+        (cov[(0, 0)] / want - 1.0).abs() < 1e-12,
+        "{} vs {want}",
+        cov[(0, 0)]
+    );
 }
 
 fn refused(time: Vec<f64>, force: Vec<f64>, position: Vec<f64>) -> String {

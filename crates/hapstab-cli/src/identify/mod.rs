@@ -1,6 +1,6 @@
 //! `hapstab identify`: the plant from a recording of commanded force and measured position,
 //! with standard errors and 95 % intervals, the fit and residual tests, the identified loop
-//! as a loop file, and K_max at B = 0 with its uncertainty. Every number is the library's
+//! as a loop file, and K_max at B = 0 and over the renderable damping band with its uncertainty. Every number is the library's
 //! ([`hapstab::identify`]); this module parses, calls and renders.
 
 mod plot;
@@ -62,6 +62,10 @@ pub struct IdentifyArgs {
     /// Known actuator lag τ in s (a first-order lag between commanded and applied force)
     #[arg(long, default_value_t = 0.0)]
     pub force_lag: f64,
+    /// Quantization step of the recorded position in m (0: none): the noise is taken as at
+    /// least q²/12, and q is the position resolution of the renderable damping band
+    #[arg(long, value_name = "Q", default_value_t = 0.0)]
+    pub quantization: f64,
     /// Fit the delay too (any fraction of a sample), from --delay/--delay-time (at least a
     /// quarter sample)
     #[arg(long)]
@@ -107,6 +111,7 @@ struct Input<'a> {
     force_lag: f64,
     fit_delay: bool,
     fit_force_lag: bool,
+    quantization: f64,
     velocity: &'a VelocityEstimator,
     draws: usize,
     seed: u64,
@@ -184,7 +189,8 @@ fn spec(args: &IdentifyArgs, period: f64) -> Result<ModelSpec> {
         (None, None) => 0.0,
     };
     Ok(ModelSpec::new(kind, fixed, delay_time, args.force_lag)?
-        .fitting_timing(args.fit_delay, args.fit_force_lag))
+        .fitting_timing(args.fit_delay, args.fit_force_lag)
+        .with_quantization(args.quantization)?)
 }
 
 /// Writes the identified loop as a loop file (`{"loop": …}`, as `--loop` reads it).
@@ -238,6 +244,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
                 force_lag: spec.force_lag,
                 fit_delay: spec.fit_delay,
                 fit_force_lag: spec.fit_force_lag,
+                quantization: spec.quantization,
                 velocity: &args.velocity,
                 draws: args.draws,
                 seed: args.seed,

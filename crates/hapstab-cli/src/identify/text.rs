@@ -49,20 +49,27 @@ fn test_line(what: &str, t: &CorrelationTest, stat: &str) -> String {
 
 fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
     let k = |x: Option<f64>| x.map_or("none stable".to_string(), |k| eng(k, "N/m", DIGITS));
+    let range =
+        |[lo, hi]: [f64; 2]| format!("[{}, {}]", eng(lo, "N/m", DIGITS), eng(hi, "N/m", DIGITS));
     let mut out = vec![format!("K_max at B = 0    {}", k(lim.k_max))];
-    if let Some([lo, hi]) = lim.spread {
+    if let Some(p) = &lim.interval {
         out.push(format!(
-            "  95 % spread     [{}, {}] over {} loops drawn from the parameters' covariance",
-            eng(lo, "N/m", DIGITS),
-            eng(hi, "N/m", DIGITS),
+            "  95 % interval   {} (delta method, standard error {})",
+            range(p.ci95),
+            eng(p.standard_error, "N/m", 3)
+        ));
+    }
+    if let Some(r) = lim.spread {
+        out.push(format!(
+            "  95 % spread     {} over {} loops drawn from the parameters' covariance",
+            range(r),
             lim.valid_draws
         ));
     }
-    if let Some([lo, hi]) = lim.box_range {
+    if let Some(r) = lim.box_range {
         out.push(format!(
-            "  over the box    [{}, {}]: K_max over the parameters' 95 % box",
-            eng(lo, "N/m", DIGITS),
-            eng(hi, "N/m", DIGITS)
+            "  over the box    {}: K_max over the parameters' 95 % box",
+            range(r)
         ));
     }
     if let Some(r) = &lim.robust {
@@ -76,6 +83,22 @@ fn k_max_lines(lim: &StiffnessLimit) -> Vec<String> {
             k(r.k_max),
             worst.join(", ")
         ));
+    }
+    if let Some(b) = &lim.renderable {
+        out.push(format!(
+            "K_max, B ≤ B_r    {} over the renderable band 0 ≤ B ≤ {} (Δ = {}, F_n = {})",
+            k(b.band.k_max),
+            eng(b.band.b_max, "Ns/m", DIGITS),
+            eng(b.band.noise.position_resolution, "m", DIGITS),
+            eng(b.band.noise.force_noise, "N", DIGITS)
+        ));
+        if let Some(p) = &b.interval {
+            out.push(format!(
+                "  95 % interval   {} (delta method, standard error {})",
+                range(p.ci95),
+                eng(p.standard_error, "N/m", 3)
+            ));
+        }
     }
     out
 }

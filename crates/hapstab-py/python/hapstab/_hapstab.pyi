@@ -268,6 +268,12 @@ class Identification:
     k_max_spread: Optional[Tuple[float, float]]
     k_max_robust: Optional[float]
     k_max_box_range: Optional[Tuple[float, float]]
+    k_max_interval: Optional[Tuple[float, float]]
+    k_max_standard_error: Optional[float]
+    band_b_max: Optional[float]
+    k_max_band: Optional[float]
+    k_max_band_interval: Optional[Tuple[float, float]]
+    position_offsets: List[float]
     fitted_loop: Loop
 
 class RobustKmax:
@@ -594,9 +600,9 @@ def kmax(
     beside K_max at B = 0 and over the renderable band."""
 
 def identify(
-    t: ArrayLike,
-    force: ArrayLike,
-    position: ArrayLike,
+    t: Union[ArrayLike, Sequence[ArrayLike]],
+    force: Union[ArrayLike, Sequence[ArrayLike]],
+    position: Union[ArrayLike, Sequence[ArrayLike]],
     *,
     model: str = "mass-spring-damper",
     fixed: Optional[Dict[str, float]] = None,
@@ -604,12 +610,14 @@ def identify(
     force_lag: float = 0.0,
     fit_delay: bool = False,
     fit_force_lag: bool = False,
+    quantization: float = 0.0,
     velocity: str = "backward",
     draws: int = 400,
     seed: int = 1,
 ) -> Identification:
-    """The plant from a recording of time (s), commanded force (N) and measured position (m),
-    with standard errors, 95 % intervals and K_max at B = 0 with its uncertainty."""
+    """The plant from a recording of time (s), commanded force (N) and measured position (m)
+    (or lists of them, one per run), with standard errors, 95 % intervals, and K_max at B = 0
+    and over the renderable band with their uncertainty."""
 
 def identify_frequency(
     frequency_hz: ArrayLike,

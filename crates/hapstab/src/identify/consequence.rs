@@ -7,12 +7,20 @@
 //! - the **robust** K_max over the parameters' 95 % confidence box ([`crate::robust`]): the
 //!   stiffness stable for every plant whose parameters lie inside their intervals, for the
 //!   models whose parameters are loop parameters (not a transfer function's coefficients);
+//! - the **interval**: the delta method's 95 % interval of K_max ([`super::propagate`]):
+//!   K̂·exp(±1.96·√(gᵀΣg)) with g the gradient of ln K_max in the optimiser's coordinates,
+//!   the calibrated one (about 95 % of recordings hold the truth);
+//! - K_max over the **renderable band** 0 ≤ B ≤ B_r ([`crate::kmax::renderable_band`], the
+//!   position resolution Δ the recording's quantization step when one is given) with its
+//!   delta-method interval the same way;
 //! - the **range over the box**: the smallest and largest K_max of the loops at the box's
 //!   corners (up to [`MAX_CORNER_PARAMS`] free parameters), the smallest lowered to the
 //!   robust K_max. The box is a few standard errors wide, where K_max is close to linear in
 //!   the parameters, so its extremes lie at corners; the range is at least as wide as the
-//!   linearised 95 % interval of K_max (Σ|∂K/∂θ_i|·1.96σ_i ≥ 1.96·√(gᵀΣg)) and wider when
-//!   the parameters are correlated: a conservative interval.
+//!   linearised 95 % interval of K_max (Σ|∂K/∂θ_i|·1.96σ_i ≥ 1.96·√(gᵀΣg), Cauchy–Schwarz
+//!   with |ρ_ij| ≤ 1) and wider when several parameters move K_max or they are correlated:
+//!   the conservative interval (it held the truth in every one of 200 recordings of each
+//!   test case, BENCHMARKS.md).
 
 use nalgebra::DMatrix;
 use rayon::prelude::*;
@@ -20,8 +28,9 @@ use serde::Serialize;
 
 use super::Identification;
 use super::error::IdResult;
+use super::propagate::{Propagated, delta_method, loop_at};
 use crate::closed_loop::AffineFamily;
-use crate::kmax::{KmaxQuery, kmax};
+use crate::kmax::{KmaxQuery, NoiseModel, RenderableBand, kmax, renderable_band};
 use crate::model::VelocityEstimator;
 use crate::robust::{BoxSide, RobustKmax, RobustOptions, robust_kmax};
 use crate::splitmix::SplitMix;
@@ -50,6 +59,49 @@ pub struct StiffnessLimit {
     /// The smallest and largest K_max over the 95 % box (module doc), N/m; None beyond
     /// [`MAX_CORNER_PARAMS`] free parameters or when a corner has no stable stiffness.
     pub box_range: Option<[f64; 2]>,
+    /// K_max at B = 0 with its delta-method standard error and 95 % interval (module doc).
+    pub interval: Option<Propagated>,
+    /// K_max over the renderable band with its delta-method interval (module doc).
+    pub renderable: Option<BandLimit>,
+}
+
+/// K_max over the renderable damping band of the identified loop, with its uncertainty.
+#[derive(Debug, Clone, Serialize)]
+pub struct BandLimit {
+    /// The band and K_max over it at the estimates.
+    #[serde(flatten)]
+    pub band: RenderableBand,
+    /// K_max over the band with its delta-method standard error and 95 % interval.
+    pub interval: Option<Propagated>,
+}
+
+/// The noise model of the renderable band B ≤ B_r = F_n·√12/(Δ·‖V‖₂) ([`crate::kmax`]'s
+/// module doc): the recording's quantization step as the position resolution Δ when one was
+/// given, otherwise [`NoiseModel::default`].
+pub fn band_noise(id: &Identification) -> NoiseModel {
+    let mut noise = NoiseModel::default();
+    if id.spec.quantization > 0.0 {
+        noise.position_resolution = id.spec.quantization;
+    }
+    noise
+}
+
+/// K_max over the renderable band of one loop under `noise`.
+fn band_of(lp: &crate::Loop, noise: NoiseModel) -> Option<RenderableBand> {
+    let fam = AffineFamily::of_loop(lp).ok()?;
+    renderable_band(lp, &fam, noise).ok().flatten()
+}
+
+/// K_max over the renderable band of the identified loop with its delta-method interval.
+fn band_limit(id: &Identification, velocity: &VelocityEstimator) -> IdResult<Option<BandLimit>> {
+    let noise = band_noise(id);
+    let lp = id.to_loop(velocity.clone())?;
+    let fam = AffineFamily::of_loop(&lp)?;
+    let Some(band) = renderable_band(&lp, &fam, noise)? else {
+        return Ok(None);
+    };
+    let interval = delta_method(id, velocity, |lp| band_of(lp, noise)?.k_max);
+    Ok(Some(BandLimit { band, interval }))
 }
 
 /// K_max at B = 0 of one loop in N/m.
@@ -59,7 +111,9 @@ fn k_max_at_zero(lp: &crate::Loop) -> crate::Result<Option<f64>> {
 }
 
 /// K_max at B = 0 of the identified loop with the velocity estimator `velocity`, its spread
-/// over `draws` loops drawn with `seed`, and the robust K_max over the 95 % box (module doc).
+/// over `draws` loops drawn with `seed`, its delta-method interval, the robust K_max and the
+/// range over the 95 % box, and K_max over the renderable band with its interval (module
+/// doc).
 pub fn stiffness_limit(
     id: &Identification,
     velocity: &VelocityEstimator,
@@ -102,6 +156,8 @@ pub fn stiffness_limit(
         valid_draws: samples.len(),
         robust,
         box_range,
+        interval: delta_method(id, velocity, |lp| k_max_at_zero(lp).ok().flatten()),
+        renderable: band_limit(id, velocity)?,
     })
 }
 
@@ -119,18 +175,15 @@ fn drawn_k_max(
         return Vec::new();
     };
     let l = chol.l();
-    let free = id.spec.free();
     (0..draws)
         .into_par_iter()
         .filter_map(|i| {
             let mut rng = SplitMix::stream(seed, i);
             let z: Vec<f64> = (0..p).map(|_| normal(&mut rng)).collect();
-            let mut v: Vec<f64> = id.parameters.iter().map(|e| e.value).collect();
-            for (k, &j) in free.iter().enumerate() {
-                let dx: f64 = (0..=k).map(|m| l[(k, m)] * z[m]).sum();
-                v[j] = id.optimum.coords[k].value(id.optimum.x[k] + dx);
-            }
-            let lp = id.spec.to_loop(&v, id.period, velocity.clone()).ok()?;
+            let dx: Vec<f64> = (0..p)
+                .map(|k| (0..=k).map(|m| l[(k, m)] * z[m]).sum())
+                .collect();
+            let lp = loop_at(id, velocity, &dx)?;
             k_max_at_zero(&lp).ok().map(|k| k.unwrap_or(0.0).max(0.0))
         })
         .collect()

@@ -24,15 +24,17 @@ pub mod excitation;
 pub mod frequency;
 pub mod model;
 pub mod output_error;
+pub mod propagate;
 pub mod response;
 pub mod uncertainty;
 
 use serde::Serialize;
 
-pub use consequence::{StiffnessLimit, stiffness_limit};
+pub use consequence::{BandLimit, StiffnessLimit, stiffness_limit};
 pub use data::{Columns, Record};
 pub use error::{IdResult, IdentifyError};
 pub use model::{Fixed, ModelKind, ModelSpec};
+pub use propagate::Propagated;
 pub use uncertainty::{CorrelationTest, Estimate, FitQuality};
 
 use crate::model::{Loop, VelocityEstimator};
@@ -178,7 +180,12 @@ pub fn identify_runs(records: &[Record], spec: &ModelSpec) -> IdResult<Identific
         .map(|(m, p)| m - p)
         .collect();
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let est = estimates(spec, &fit, ss, records.len())?;
+    let floor = spec.quantization * spec.quantization / 12.0;
+    let noise = Noise::White {
+        residual_ss: ss,
+        floor,
+    };
+    let est = estimates(spec, &fit, noise, records.len())?;
     let (delay_time, force_lag) = timing(spec, &est.parameters);
     Ok(Identification {
         model: spec.kind.name(),
@@ -217,6 +224,15 @@ struct Estimates {
     covariance: Vec<Vec<f64>>,
 }
 
+/// What the covariance takes the noise to be.
+enum Noise<'a> {
+    /// One white noise of variance max(Σe²/(N − p), floor) (a time recording).
+    White { residual_ss: f64, floor: f64 },
+    /// Interleaved kinds of residual, each with its own variance (a frequency response's
+    /// log-magnitude and phase).
+    Grouped { residuals: &'a [f64], groups: usize },
+}
+
 /// A held value as an estimate.
 fn held(name: &str, unit: &str, value: f64) -> Estimate {
     Estimate {
@@ -230,18 +246,26 @@ fn held(name: &str, unit: &str, value: f64) -> Estimate {
 }
 
 /// The estimates of every parameter (held ones marked), the `offsets` runs' offsets (the
-/// last coordinates), and the covariance of the optimiser's coordinates (module doc step 4).
+/// last coordinates), and the covariance of the optimiser's coordinates under `noise`
+/// (module doc step 4).
 fn estimates(
     spec: &ModelSpec,
     fit: &output_error::Fit,
-    residual_ss: f64,
+    noise: Noise,
     offsets: usize,
 ) -> IdResult<Estimates> {
     let free = spec.free();
     let params = spec.params();
     let mut names: Vec<String> = free.iter().map(|&i| params[i].name.clone()).collect();
     names.extend((1..=offsets).map(|r| format!("position offset of run {r}")));
-    let cov = uncertainty::covariance(&fit.jacobian, residual_ss, &names)?;
+    let cov = match noise {
+        Noise::White { residual_ss, floor } => {
+            uncertainty::covariance(&fit.jacobian, residual_ss, floor, &names)?
+        }
+        Noise::Grouped { residuals, groups } => {
+            uncertainty::grouped_covariance(&fit.jacobian, residuals, groups, &names)?
+        }
+    };
     let mut out: Vec<Estimate> = params
         .iter()
         .enumerate()
@@ -320,7 +344,8 @@ fn residuals_pass(runs: &Runs, fit: &output_error::Fit) -> bool {
 
 /// Identifies the plant of `spec` from a measured frequency response ([`frequency`]'s
 /// steps): Levy's start, logarithmic least squares on the exact sampled response, the
-/// estimates with their intervals, the fit (NRMSE ‖Ĥ − H‖/‖H‖, the residual RMS in nepers
+/// estimates with their intervals (the magnitude's and the phase's errors each with its own
+/// variance, [`uncertainty::grouped_covariance`]), the fit (NRMSE ‖Ĥ − H‖/‖H‖, the residual RMS in nepers
 /// and radians) and the whiteness of the residuals over frequency.
 pub fn identify_frequency(
     rec: &frequency::FrequencyRecord,
@@ -350,7 +375,11 @@ pub fn identify_frequency(
         evaluations,
     };
     let ss: f64 = residuals.iter().map(|e| e * e).sum();
-    let est = estimates(spec, &fit, ss, 0)?;
+    let noise = Noise::Grouped {
+        residuals: &residuals,
+        groups: 2,
+    };
+    let est = estimates(spec, &fit, noise, 0)?;
     let (delay_time, force_lag) = timing(spec, &est.parameters);
     let err: f64 = response
         .iter()

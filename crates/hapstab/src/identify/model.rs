@@ -255,6 +255,10 @@ pub struct ModelSpec {
     /// True when the actuator lag is fitted (`force-lag`, last), the given `force_lag` its
     /// start.
     pub fit_force_lag: bool,
+    /// The position's quantization step q in m (0 for none): the measurement noise is at
+    /// least the rounding's q²/12 ([`super::uncertainty::covariance`]), and q is the position
+    /// resolution of the renderable band ([`super::consequence`]).
+    pub quantization: f64,
 }
 
 impl ModelSpec {
@@ -321,6 +325,22 @@ impl ModelSpec {
             force_lag,
             fit_delay: false,
             fit_force_lag: false,
+            quantization: 0.0,
+        })
+    }
+
+    /// The same spec with the position quantized in steps of `q` m (module doc of
+    /// [`super::uncertainty`]); refused naming `quantization` unless q is finite and ≥ 0.
+    pub fn with_quantization(self, q: f64) -> IdResult<Self> {
+        if !q.is_finite() || q < 0.0 {
+            return Err(IdentifyError::Parameter {
+                name: "quantization".into(),
+                reason: format!("= {q} must be a finite number ≥ 0 (m)"),
+            });
+        }
+        Ok(ModelSpec {
+            quantization: q,
+            ..self
         })
     }
 

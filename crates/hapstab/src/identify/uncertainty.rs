@@ -3,7 +3,9 @@
 //!
 //! **Covariance.** With white measurement noise, the output-error estimate is asymptotically
 //! normal with covariance σ²(JᵀJ)⁻¹ in the optimiser's coordinates, σ² = Σe²/(N − p) (Ljung
-//! 1999, §9.3, eq. 9.17–9.18). A positive parameter's interval is e^{x ± z·se(x)}, positive
+//! 1999, §9.3, eq. 9.17–9.18), floored at the quantization's q²/12 when the position is
+//! rounded to steps of q (the rounding error's variance, Widrow & Kollár, *Quantization
+//! Noise*, 2008, ch. 4: the residuals of a model that is right cannot be smaller). A positive parameter's interval is e^{x ± z·se(x)}, positive
 //! and skewed as its log-normal law; its standard error is the delta method's θ·se(x). A real
 //! parameter's is θ ± z·se, z = [`Z_95`].
 //!
@@ -71,14 +73,61 @@ pub struct CorrelationTest {
     pub passes: bool,
 }
 
-/// The covariance of the optimiser's coordinates, σ²(JᵀJ)⁻¹ (module doc), computed on the
-/// Jacobian scaled to unit columns; refused when JᵀJ is singular (the recording does not
-/// tell the parameters apart), naming the coordinate with the least information.
+/// The covariance of the optimiser's coordinates, σ²(JᵀJ)⁻¹ with σ² = max(Σe²/(N − p),
+/// `floor`) (module doc), computed on the Jacobian scaled to unit columns; refused when JᵀJ
+/// is singular (the recording does not tell the parameters apart), naming the coordinate
+/// with the least information.
 pub fn covariance(
     jacobian: &[Vec<f64>],
     residual_ss: f64,
+    floor: f64,
     names: &[String],
 ) -> IdResult<DMatrix<f64>> {
+    let (n, p, norms, inv) = scaled_inverse(jacobian, names)?;
+    let sigma2 = (residual_ss / (n - p) as f64).max(floor);
+    Ok(DMatrix::from_fn(p, p, |a, b| {
+        sigma2 * inv[(a, b)] / (norms[a] * norms[b])
+    }))
+}
+
+/// The covariance of the optimiser's coordinates when the residuals come in `groups`
+/// interleaved kinds of different noise (residual i of kind i mod `groups`: a frequency
+/// response's log-magnitude and phase errors, Pintelon & Schoukens 2012, §9.4): each kind's
+/// variance σ_g² = Σ_{i∈g} e_i²/(N_g − p·N_g/N), and the least-squares estimate's covariance
+/// (JᵀJ)⁻¹ (Σ_i σ²_{g(i)} J_iᵀJ_i) (JᵀJ)⁻¹ (the sandwich, White 1980, *Econometrica* 48,
+/// eq. 3; σ²(JᵀJ)⁻¹ when all kinds share one variance).
+pub fn grouped_covariance(
+    jacobian: &[Vec<f64>],
+    residuals: &[f64],
+    groups: usize,
+    names: &[String],
+) -> IdResult<DMatrix<f64>> {
+    let (n, p, norms, inv) = scaled_inverse(jacobian, names)?;
+    let variance: Vec<f64> = (0..groups)
+        .map(|g| {
+            let e: Vec<f64> = residuals.iter().skip(g).step_by(groups).copied().collect();
+            let dof = e.len() as f64 * (1.0 - p as f64 / n as f64);
+            e.iter().map(|x| x * x).sum::<f64>() / dof
+        })
+        .collect();
+    let meat = DMatrix::from_fn(p, p, |a, b| {
+        (0..n)
+            .map(|i| variance[i % groups] * jacobian[a][i] * jacobian[b][i])
+            .sum::<f64>()
+            / (norms[a] * norms[b])
+    });
+    let sandwich = &inv * meat * &inv;
+    Ok(DMatrix::from_fn(p, p, |a, b| {
+        sandwich[(a, b)] / (norms[a] * norms[b])
+    }))
+}
+
+/// Samples n, coordinates p, the Jacobian's column norms and (DᵀJᵀJD)⁻¹ with D the
+/// columns' scaling to unit norm; refused as [`covariance`] says.
+fn scaled_inverse(
+    jacobian: &[Vec<f64>],
+    names: &[String],
+) -> IdResult<(usize, usize, Vec<f64>, DMatrix<f64>)> {
     let n = jacobian.first().map_or(0, Vec::len);
     let p = jacobian.len();
     if n <= p {
@@ -104,13 +153,10 @@ pub fn covariance(
             .sum::<f64>()
             / (norms[a] * norms[b])
     });
-    let inv = jtj.clone().cholesky().map(|c| c.inverse()).ok_or_else(|| {
+    let inv = jtj.cholesky().map(|c| c.inverse()).ok_or_else(|| {
         IdentifyError::NoFit("the data do not tell the parameters apart (JᵀJ is singular)".into())
     })?;
-    let sigma2 = residual_ss / (n - p) as f64;
-    Ok(DMatrix::from_fn(p, p, |a, b| {
-        sigma2 * inv[(a, b)] / (norms[a] * norms[b])
-    }))
+    Ok((n, p, norms, inv))
 }
 
 /// A fitted parameter's estimate from its coordinate x and the coordinate's variance.
