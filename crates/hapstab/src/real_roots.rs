@@ -247,7 +247,8 @@ fn laguerre_step(v: f64, d: f64, s: f64, n: f64) -> f64 {
     // in units of v (one division): G·v = d, H·v² = d² − 2s·v, and the step
     // n/(G ± √·) = n·v/(d ± √((n − 1)(n·(d² − 2s·v) − d²)))
     let disc = (n - 1.0) * (n * (d * d - 2.0 * s * v) - d * d);
-    if !(disc >= 0.0) || n < 2.0 {
+    // (a NaN argument fails the test too)
+    if disc.is_nan() || disc < 0.0 || n < 2.0 {
         return v / d;
     }
     let root = disc.sqrt();
