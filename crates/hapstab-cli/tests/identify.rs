@@ -51,7 +51,7 @@ fn the_identified_loop_file_gives_kmax_the_same_k_max() {
     assert_eq!(arm["name"], "arm-mass");
     let [lo, hi] = [f(&arm["ci95"][0]), f(&arm["ci95"][1])];
     assert!(lo < 1.0 && 1.0 < hi, "{arm}");
-    let k = f(&out["k_max_at_zero_damping"]["k_max"]);
+    let k = f(&out["stiffness_limit"]["k_max"]);
     let own = json(&[
         "kmax",
         "--loop",
@@ -60,7 +60,7 @@ fn the_identified_loop_file_gives_kmax_the_same_k_max() {
         "0",
     ]);
     assert!((f(&own["k_max"]) - k).abs() <= 1e-12 * k, "{own} vs {k}");
-    let spread = &out["k_max_at_zero_damping"]["spread"];
+    let spread = &out["stiffness_limit"]["spread"];
     assert!(f(&spread[0]) <= k && k <= f(&spread[1]), "{spread}");
     assert!(plot.exists() && dir.path().join("fit.svg").exists());
 }
@@ -230,7 +230,7 @@ fn the_band_s_k_max_is_the_identified_loop_s_at_the_quantization_step() {
     ];
     let out = json(&[&args[..], &["--write-loop", lp.to_str().unwrap()]].concat());
     assert_eq!(f(&out["input"]["quantization"]), 2e-5);
-    let lim = &out["k_max_at_zero_damping"];
+    let lim = &out["stiffness_limit"];
     let band = &lim["renderable"];
     assert_eq!(f(&band["position_resolution"]), 2e-5);
     let own = json(&[

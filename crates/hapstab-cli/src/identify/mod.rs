@@ -123,7 +123,7 @@ struct Report<'a> {
     input: Input<'a>,
     #[serde(flatten)]
     identification: &'a Identification,
-    k_max_at_zero_damping: &'a StiffnessLimit,
+    stiffness_limit: &'a StiffnessLimit,
     #[serde(skip_serializing_if = "Option::is_none")]
     bootstrap: Option<&'a Bootstrap>,
     #[serde(rename = "loop")]
@@ -250,7 +250,7 @@ pub fn run(args: &IdentifyArgs) -> Result<()> {
                 seed: args.seed,
             },
             identification: &id,
-            k_max_at_zero_damping: &limit,
+            stiffness_limit: &limit,
             bootstrap: boot.as_ref(),
             lp: &lp,
             loop_file: args.write_loop.as_ref(),
