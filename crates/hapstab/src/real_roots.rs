@@ -404,6 +404,23 @@ mod tests {
     }
 
     #[test]
+    fn a_cluster_of_roots_and_roots_on_both_sides_of_one() {
+        // six roots 5 % apart (where Newton's step crawls across the cluster), their mirror
+        // images above 1 (the reversed polynomial's side) and a pair straddling x = 1
+        let mut rs: Vec<f64> = (0..6).map(|j| 0.5 * (1.0 + 0.05 * j as f64)).collect();
+        rs.extend((0..6).map(|j| 2.0 * (1.0 + 0.05 * j as f64)));
+        rs.extend([0.99, 1.01]);
+        rs.sort_by(f64::total_cmp);
+        let got = positive_roots(&from_roots(&rs));
+        assert_eq!(got.len(), rs.len(), "{got:?}");
+        for (g, r) in got.iter().zip(&rs) {
+            // the cluster is ill-conditioned: rounding the coefficients alone moves its roots
+            // by up to 2.8e-6 relative (numpy.roots on the same coefficients)
+            assert!((g - r).abs() <= 1e-5 * r, "{g} vs {r}");
+        }
+    }
+
+    #[test]
     fn no_positive_roots() {
         assert!(positive_roots(&[1.0, 2.0, 1.0]).is_empty()); // (x + 1)²
         assert!(positive_roots(&[0.0, 0.0, 1.0]).is_empty()); // x²
