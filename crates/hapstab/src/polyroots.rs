@@ -60,6 +60,8 @@ struct Terms {
     terms: Vec<(u32, f64)>,
     /// Number of rounding errors that the evaluation can accumulate on its largest term.
     ops: f64,
+    /// No exponent missing: [`Terms::eval_dense`].
+    dense: bool,
 }
 
 /// p(z), p′(z) and the running error bound of the computed p(z).
@@ -76,13 +78,18 @@ impl Terms {
         // doubles the error of the one before), as g steps of Horner's scheme would: about
         // one operation per degree plus one per term.
         let ops = (degree + terms.len()) as f64;
-        Self { terms, ops }
+        // every exponent from the degree down to 0 present
+        let dense = terms.len() == degree + 1;
+        Self { terms, ops, dense }
     }
 
     /// Horner's scheme over the nonzero terms: across a gap of g exponents
     /// P ← P z^g + c and P′ ← P′ z^g + g P z^{g−1}.
     fn eval(&self, z: Complex64) -> Eval {
         let az = z.norm();
+        if self.dense {
+            return self.eval_dense(z, az);
+        }
         let (mut e, c0) = self.terms[0];
         let mut p = Complex64::new(c0, 0.0);
         let mut dp = Complex64::new(0.0, 0.0);
@@ -100,6 +107,24 @@ impl Terms {
             dp = dp * ze + p * (e as f64) * ze1;
             p *= ze;
             abs *= az.powi(e as i32);
+        }
+        let noise = EVAL_NOISE * self.ops * f64::EPSILON * abs;
+        Eval { p, dp, noise }
+    }
+}
+
+impl Terms {
+    /// [`Terms::eval`] where every exponent is present (no gaps): plain Horner steps, the
+    /// same operations as the gap-1 case of the general loop.
+    fn eval_dense(&self, z: Complex64, az: f64) -> Eval {
+        let c0 = self.terms[0].1;
+        let mut p = Complex64::new(c0, 0.0);
+        let mut dp = Complex64::new(0.0, 0.0);
+        let mut abs = c0.abs();
+        for &(_, c) in &self.terms[1..] {
+            dp = dp * z + p;
+            p = p * z + c;
+            abs = abs * az + c.abs();
         }
         let noise = EVAL_NOISE * self.ops * f64::EPSILON * abs;
         Eval { p, dp, noise }

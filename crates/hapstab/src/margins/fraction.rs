@@ -430,7 +430,7 @@ impl FractionLoop {
                     .zip(poly::mat_vec(&self.a_mat, &v))
                     .map(|(x, y)| x + y)
                     .collect();
-                self.hold_input(at.g.iter().zip(&v).map(|(x, y)| x + y).collect(), u)
+                self.hold_input(at.g.iter().zip(&v).map(|(x, y)| x + y).collect(), &u)
             }
             _ => self.hold_direct(lambda),
         }
@@ -445,14 +445,14 @@ impl FractionLoop {
             .zip(&self.b_vec)
             .map(|(x, y)| x + y)
             .collect();
-        self.hold_input(g, u)
+        self.hold_input(g, &u)
     }
 
     /// The hold input from g and u = e^{Aτ}B: dg = −u, ddg = A·u.
-    fn hold_input(&self, g: Vec<f64>, u: Vec<f64>) -> HoldInput {
+    fn hold_input(&self, g: Vec<f64>, u: &[f64]) -> HoldInput {
         HoldInput {
             g,
-            ddg: poly::mat_vec(&self.a_mat, &u),
+            ddg: poly::mat_vec(&self.a_mat, u),
             dg: u.iter().map(|x| -x).collect(),
         }
     }
@@ -469,27 +469,24 @@ impl FractionLoop {
         let (e, psi) = exp_and_integral(&self.a_mat, 1.0 / FRACTIONS as f64);
         let step = poly::mat_vec(&psi, &self.b_vec);
         let n = self.b_vec.len();
-        // x ← x + E(h)·x + extra, one new vector per step (e is e^{Ah} − I)
-        let advance = |x: &[f64], extra: Option<&[f64]>| -> Vec<f64> {
-            (0..n)
-                .map(|i| {
-                    let ex: f64 = e[i].iter().zip(x).map(|(a, b)| a * b).sum();
-                    x[i] + ex + extra.map_or(0.0, |s| s[i])
-                })
-                .collect()
+        // x ← x + E(h)·x (+ step for g), into the second buffer (e is e^{Ah} − I)
+        let advance = |x: &[f64], extra: &[f64], next: &mut [f64]| {
+            for i in 0..n {
+                let ex: f64 = e[i].iter().zip(x).map(|(a, b)| a * b).sum();
+                next[i] = x[i] + ex + extra.get(i).copied().unwrap_or(0.0);
+            }
         };
         let (mut g, mut u) = (vec![0.0; n], self.b_vec.clone());
+        let (mut g_next, mut u_next) = (vec![0.0; n], vec![0.0; n]);
         let mut out = Vec::with_capacity(FRACTIONS + 1);
         for m in 0..=FRACTIONS {
-            let (g_next, u_next) = if m < FRACTIONS {
-                (advance(&g, Some(&step)), advance(&u, None))
-            } else {
-                (Vec::new(), Vec::new())
-            };
-            out.push(self.hold_input(
-                std::mem::replace(&mut g, g_next),
-                std::mem::replace(&mut u, u_next),
-            ));
+            out.push(self.hold_input(g.clone(), &u));
+            if m < FRACTIONS {
+                advance(&g, &step, &mut g_next);
+                advance(&u, &[], &mut u_next);
+                std::mem::swap(&mut g, &mut g_next);
+                std::mem::swap(&mut u, &mut u_next);
+            }
         }
         out.reverse();
         out
