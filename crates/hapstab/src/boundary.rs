@@ -332,6 +332,9 @@ pub fn scanned_line_crossings(fam: &AffineFamily, line: &WallLine) -> Vec<LineCr
 /// start.
 const TABLE_BLOCK: usize = 512;
 
+/// Angles per parallel task of [`CircleTable::on`] (a few hundred angles in all).
+const SHARED_BLOCK: usize = 128;
+
 /// The parts (P0, PK, PB) of a family on the θ grid of the crossing scan, computed once for
 /// many lines: [`line_crossings_tabulated`] then finds the same crossings as
 /// [`line_crossings`] (the same values at the same θ) without re-evaluating p on the grid,
@@ -349,12 +352,10 @@ impl CircleTable {
     }
 
     /// The table of `fam` on the given sorted angles in (0, π): one analysis's shared grid
-    /// (the margins'), on the calling thread (a few hundred angles: handing blocks to other
-    /// threads cost more than it saved). Its crossings are those of [`line_crossings`] on
-    /// that grid.
+    /// (the margins'), in blocks of [`SHARED_BLOCK`] angles that an idle thread may take.
+    /// Its crossings are those of [`line_crossings`] on that grid.
     pub fn on(fam: &AffineFamily, thetas: Vec<f64>) -> Self {
-        let parts = thetas.iter().map(|&t| fam.parts_on_circle(t)).collect();
-        Self { thetas, parts }
+        Self::in_blocks(fam, thetas, SHARED_BLOCK)
     }
 
     /// The parts of `fam` at `thetas`, in parallel blocks of at least `block` angles (each

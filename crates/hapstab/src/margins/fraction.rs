@@ -27,6 +27,7 @@
 //! max_λ |L_λ(θ)| ≤ [max(|W_∅|, |W_∅ + Σ Γ_j ΔW_j|) + Σ_j δ_j·|ΔW_j|]/|P0|.
 
 use num_complex::Complex64;
+use rayon::prelude::*;
 
 use super::frequency::{UNIFORM_PER_DEGREE, root_grid, trimmed};
 use crate::closed_loop::{AffineFamily, SHIFTED_THETA, ShiftedParts};
@@ -35,6 +36,9 @@ use crate::extremum::{golden_max, merge_grid, refine_max, sample_maxima};
 use crate::model::{Delay, Loop};
 use crate::poly::{self, Mat, modulus};
 use crate::zoh::{DiscreteLoop, StateSpace, WallScale, exp_and_integral};
+
+/// Angles per block of [`FractionTable::new`]'s evaluation, one parallel task each.
+const TABLE_BLOCK: usize = 64;
 
 /// Fractions j/FRACTIONS of a sample (j = 0 … FRACTIONS − 1) on which the crossovers of every
 /// fraction's loop are tabulated, and on which the bound's δ_j is sampled.
@@ -566,16 +570,23 @@ impl<'a> FractionTable<'a> {
         let delta = fl.deviation_bound(fl.holds());
         let width = fl.width();
         let mut values = vec![Complex64::new(0.0, 0.0); width * fl.grid.len()];
-        let mut powers = Vec::new();
-        let bounds = fl
-            .grid
-            .iter()
-            .zip(values.chunks_exact_mut(width))
-            .map(|(&t, out)| {
-                fl.parts_into(t, &mut powers, out);
-                fl.gain_bounds(FractionParts(out), &delta)
-            })
-            .collect();
+        // in blocks of angles that an idle thread may take (the margins' other half)
+        let mut bounds = vec![(0.0, 0.0); fl.grid.len()];
+        values
+            .par_chunks_mut(width * TABLE_BLOCK)
+            .zip(bounds.par_chunks_mut(TABLE_BLOCK))
+            .zip(fl.grid.par_chunks(TABLE_BLOCK))
+            .for_each(|((values, bounds), thetas)| {
+                let mut powers = Vec::new();
+                for ((&t, out), bound) in thetas
+                    .iter()
+                    .zip(values.chunks_exact_mut(width))
+                    .zip(bounds)
+                {
+                    fl.parts_into(t, &mut powers, out);
+                    *bound = fl.gain_bounds(FractionParts(out), &delta);
+                }
+            });
         Self {
             fl,
             values,
