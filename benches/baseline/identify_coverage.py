@@ -100,7 +100,7 @@ def main(argv=None):
                     inside[p["name"]] += lo <= truth[p["name"]] <= hi
                     rel = abs(p["value"] / truth[p["name"]] - 1)
                     worst[p["name"]] = max(worst[p["name"]], rel)
-            lim = out["k_max_at_zero_damping"]
+            lim = out["stiffness_limit"]
             lo, hi = lim["spread"]
             k_inside += lo <= true_k <= hi
             box = lim["box_range"]

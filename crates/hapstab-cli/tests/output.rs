@@ -152,7 +152,7 @@ fn identify_cases() -> Vec<JsonCase> {
             "parameters",
             "fit",
             "whiteness",
-            "k_max_at_zero_damping",
+            "stiffness_limit",
             "loop",
         ],
     )]

@@ -33,9 +33,9 @@ def test_equals_the_command_line_and_holds_the_truth(hapstab_cli):
     cli = json.loads(out.stdout)
     assert r.model == cli["model"] == "held-device"
     assert list(r.values) == [p["value"] for p in cli["parameters"]]
-    assert r.k_max == cli["k_max_at_zero_damping"]["k_max"]
-    assert list(r.k_max_spread) == cli["k_max_at_zero_damping"]["spread"]
-    assert list(r.k_max_box_range) == cli["k_max_at_zero_damping"]["box_range"]
+    assert r.k_max == cli["stiffness_limit"]["k_max"]
+    assert list(r.k_max_spread) == cli["stiffness_limit"]["spread"]
+    assert list(r.k_max_box_range) == cli["stiffness_limit"]["box_range"]
     truth = {"arm-mass": 1.0, "arm-damping": 6.0, "arm-stiffness": 350.0}
     for name, v, lo, hi in zip(r.names, r.values, r.ci_low, r.ci_high):
         if name in truth:
