@@ -9,9 +9,9 @@ use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{csv_num, eng, print_json, sig};
-use crate::plot::{Marker, palette};
-use crate::wall_plot::{self, Plane};
+use crate::wall_plot;
 use hapstab::loop_analysis::region;
+use hapstab_plot::{Marker, palette};
 
 /// Arguments of `hapstab boundary`.
 #[derive(Args, Debug)]
@@ -283,8 +283,8 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
 }
 
 /// The stable region with K_max (α_max) marked.
-fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> crate::plot::Figure {
-    let plane = Plane::of(rl, fam);
+fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> hapstab_plot::Figure {
+    let plane = wall_plot::plane(rl, fam);
     let mut fig =
         wall_plot::region_figure(&plane, r, "Stable region").subtitle(wall_plot::loop_line(rl));
     if !r.polygons.is_empty() {

@@ -12,8 +12,8 @@ use num_complex::Complex64;
 
 use crate::model::ResolvedLoop;
 use crate::output::sig;
-use crate::plot::{Figure, Grid, Legend, Marker, Series, palette};
 use crate::wall_plot::{self, Plane};
+use hapstab_plot::{Figure, Grid, Legend, Marker, Series, palette, segment_distance};
 
 /// Side length of each square panel (px).
 const PANEL: u32 = 800;
@@ -44,7 +44,7 @@ pub fn save(
     path: &Path,
 ) -> Result<Vec<PathBuf>> {
     let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
-    let plane = Plane::of(rl, fam);
+    let plane = wall_plot::plane(rl, fam);
     let at = plane.point(c.wall.0, c.wall.1);
     let title = format!("Check of the wall {}: {}", plane.describe(at), c.verdict);
     let mut g = Grid::new(title, 2)
@@ -98,7 +98,7 @@ fn wall_zoom(mut fig: Figure, plane: &Plane, r: &StableRegion, at: (f64, f64)) -
     let share = |p: (f64, f64)| ((p.0 - at.0) / span.0, (p.1 - at.1) / span.1);
     let d = edges
         .iter()
-        .map(|&(a, b)| segment_distance(share(a), share(b)))
+        .map(|&(a, b)| segment_distance((0.0, 0.0), share(a), share(b)))
         .fold(f64::INFINITY, f64::min);
     // far from the region, just wide enough to reach the boundary
     let half = match WALL_REACH * d {
@@ -110,17 +110,6 @@ fn wall_zoom(mut fig: Figure, plane: &Plane, r: &StableRegion, at: (f64, f64)) -
     fig.legend = Legend::Hidden;
     fig.x_range(at.0 - half * span.0, at.0 + half * span.0)
         .y_range(at.1 - half * span.1, at.1 + half * span.1)
-}
-
-/// The distance from the origin to the segment a–b.
-fn segment_distance(a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = match len2 > 0.0 {
-        true => (-(a.0 * dx + a.1 * dy) / len2).clamp(0.0, 1.0),
-        false => 0.0,
-    };
-    (a.0 + t * dx).hypot(a.1 + t * dy)
 }
 
 /// The z-plane zoomed onto z = 1 (or, with no root within [`NEAR_ONE`] of it, onto the

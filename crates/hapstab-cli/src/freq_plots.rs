@@ -116,8 +116,8 @@ fn run(a: &FreqArgs, kind: Kind) -> Result<()> {
         let title = wall_text(w);
         let sub = crate::wall_plot::loop_line(&rl);
         let written = match kind {
-            Kind::Bode => crate::freq_figures::bode(&fr, &title, &sub).save_as(path),
-            Kind::Nyquist => crate::freq_figures::nyquist(&fr, &title, &sub).save_as(path),
+            Kind::Bode => hapstab_plot::freq::bode(&fr, &title, &sub).save_as(path),
+            Kind::Nyquist => hapstab_plot::freq::nyquist(&fr, &title, &sub).save_as(path),
         };
         plot = written.with_context(|| format!("--plot {}", path.display()))?;
     }

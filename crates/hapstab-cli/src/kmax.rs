@@ -8,9 +8,9 @@ use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{eng, print_json};
-use crate::plot::{Marker, palette};
 use crate::wall_plot::{self, Plane};
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, RenderableBand};
+use hapstab_plot::{Marker, palette};
 
 /// A band of virtual damping lo ≤ B ≤ hi in Ns/m (`LO:HI`; `inf` for no upper bound).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,7 +77,7 @@ pub struct KmaxArgs {
     /// A side of the robust box, NAME:LO:HI with NAME one of `sweep --param`'s names
     /// (arm-stiffness, arm-mass, arm-damping, mass, damping, stiffness, motor-mass,
     /// transmission-stiffness, cutoff, delay-time, period, force-lag, …), repeatable.
-    #[arg(long = "box", value_name = "NAME:LO:HI", value_parser = crate::robust_box::parse_side,
+    #[arg(long = "box", value_name = "NAME:LO:HI", value_parser = hapstab_serve::robust_box::parse_side,
           requires = "robust", allow_hyphen_values = true)]
     boxes: Vec<hapstab::robust::BoxSide>,
     /// With --box: uniform samples of the box before refinement.
@@ -181,9 +181,9 @@ fn figure(
     fam: &AffineFamily,
     out: &KmaxOut,
     band: DampingRange,
-) -> Result<crate::plot::Figure> {
+) -> Result<hapstab_plot::Figure> {
     let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
-    let plane = Plane::of(rl, fam);
+    let plane = wall_plot::plane(rl, fam);
     let mut fig = wall_plot::region_figure(&plane, &r, "Largest stable stiffness K_max")
         .subtitle(wall_plot::loop_line(rl));
     let mut lines: Vec<f64> = match out.wall_damping {
@@ -214,7 +214,7 @@ fn figure(
             .iter()
             .any(|l| (l - b).abs() <= 1e-9 * l.abs().max(1.0))
     };
-    let tag = |fig: &mut crate::plot::Figure, at: (f64, f64), style, legend: &str, text| {
+    let tag = |fig: &mut hapstab_plot::Figure, at: (f64, f64), style, legend: &str, text| {
         if on_line(at.1) {
             wall_plot::mark_above(fig, at, style, legend, text)
         } else {
@@ -244,7 +244,7 @@ fn figure(
 }
 
 /// The renderable band's top B_r dashed, and K_max over the band marked above it.
-fn mark_renderable(fig: &mut crate::plot::Figure, rb: &RenderableBand, plane: &Plane) {
+fn mark_renderable(fig: &mut hapstab_plot::Figure, rb: &RenderableBand, plane: &Plane) {
     let label = format!("renderable band 0 ≤ B ≤ {}", eng(rb.b_max, "Ns/m", 6));
     wall_plot::damping_line(fig, rb.b_max, Some(label.as_str()));
     if let (Some(k), Some(b)) = (rb.k_max, rb.b_at_k_max) {

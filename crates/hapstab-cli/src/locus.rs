@@ -13,8 +13,8 @@ use serde::Serialize;
 
 use crate::model::{DEFAULT_WALL, LoopArgs, LoopInput, describe_loop};
 use crate::output::{csv_num, eng, print_json, radius_text, sig};
-use crate::plot::{Annotation, Figure, Grid, Legend, Marker, Series, palette};
 use crate::wall_plot::files_text;
+use hapstab_plot::{Annotation, Figure, Grid, Legend, Marker, Series, palette};
 
 /// Arguments of `hapstab locus`.
 #[derive(Args, Debug)]

@@ -15,6 +15,7 @@ use anyhow::{Context, Result, bail};
 use hapstab::Loop;
 use hapstab::model::{Plant, PlantModel};
 use hapstab::params::{Arm, Effective};
+use hapstab_serve::loop_io::remainder;
 
 use crate::model::{LoopArgs, PlantArgs, ResolvedLoop};
 
@@ -141,17 +142,6 @@ fn fill_mass_spring_damper(p: &mut PlantArgs, e: &Effective, arm: Option<Arm>) {
         }
         _ => fill_lumped(p, e),
     }
-}
-
-/// The device's part x of a sum s = x + arm (eq. 1's m = m_L + m_H, b = b_L + b_H): the
-/// shortest decimal that the arm completes to s exactly (the number the user typed, where
-/// s − arm would carry the sum's rounding: 1.1 − 1.0 = 0.10000000000000009), else s − arm.
-pub(crate) fn remainder(sum: f64, arm: f64) -> f64 {
-    let diff = (sum - arm).max(0.0);
-    (1..=17)
-        .filter_map(|digits| format!("{diff:.*e}", digits - 1).parse::<f64>().ok())
-        .find(|x| *x + arm == sum)
-        .unwrap_or(diff)
 }
 
 /// The file's arm where no arm flag (and no --no-arm) changes it.

@@ -1,12 +1,12 @@
 //! `hapstab`: command-line front end of the hapstab library. It only parses arguments, calls
-//! the library and formats output; every analysis lives in the `hapstab` crate.
+//! the library and formats output; every analysis lives in the `hapstab` crate, the figures'
+//! machinery in `hapstab-plot` and the explorer of `hapstab serve` in `hapstab-serve`.
 
 mod boundary;
 mod budget;
 mod check;
 mod check_plot;
 mod discretize;
-mod freq_figures;
 mod freq_plots;
 mod identify;
 mod kmax;
@@ -20,14 +20,11 @@ mod output;
 mod paper;
 mod passivity;
 mod passivity_quantized;
-mod plot;
 mod population;
-mod population_plot;
 mod progress;
 mod ranges;
 mod robust;
 mod robust_box;
-mod serve;
 mod simulate;
 mod sweep;
 mod wall_plot;
@@ -91,7 +88,7 @@ enum Command {
     /// Reproduce the paper: Figs. 4–10 (SVG, PNG), claims C1–C11 with verdicts, α_max table
     Paper(paper::PaperArgs),
     /// Interactive explorer in the browser: a local web server drawing the exact region live
-    Serve(serve::ServeArgs),
+    Serve(hapstab_serve::ServeArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
@@ -108,7 +105,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sweep(a) => sweep::run(&a),
         Command::Population(a) => population::run(&a),
         Command::Map(a) => map::run(&a),
-        Command::Serve(a) => serve::run(&a),
+        Command::Serve(a) => Ok(hapstab_serve::run(&a)?),
         Command::Ranges(a) => ranges::run(&a),
         Command::Linear(a) => linear::run(&a),
         Command::Nyquist(a) => nyquist::run(&a),
@@ -231,6 +228,27 @@ mod tests {
             let line = one_line(&e.render().to_string());
             assert!(line.contains(flag), "{args:?}: {line}");
             assert!(!line.contains('\n'), "{line}");
+        }
+    }
+
+    /// Every flag a library error can name is a flag of some command.
+    #[test]
+    fn parameters_name_real_flags() {
+        use clap::CommandFactory;
+        fn longs(c: &clap::Command, out: &mut std::collections::HashSet<String>) {
+            out.extend(
+                c.get_arguments()
+                    .filter_map(|a| a.get_long().map(str::to_string)),
+            );
+            c.get_subcommands().for_each(|s| longs(s, out));
+        }
+        let mut flags = std::collections::HashSet::new();
+        longs(&Cli::command(), &mut flags);
+        for p in hapstab::Param::ALL {
+            for f in p.flag().into_iter().flat_map(|f| f.split('/')) {
+                let name = f.strip_prefix("--").unwrap_or(f);
+                assert!(flags.contains(name), "{p:?}: no command has {f}");
+            }
         }
     }
 }

@@ -21,13 +21,13 @@ use clap::{Args, ValueEnum};
 use hapstab::limits::map_cost_of_degree;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
 use hapstab::{AffineFamily, Normalized};
-use plotters::style::RGBColor;
+use hapstab_plot::RGBColor;
 use serde::Serialize;
 
 use crate::budget::{self, Driver};
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, PHYSICAL_PLANT_FLAGS};
 use crate::output::print_json;
-use crate::plot::{Figure, Legend, Series, palette};
+use hapstab_plot::{Figure, Legend, Series, palette};
 
 /// Arguments of `hapstab map`.
 #[derive(Args, Debug)]

@@ -2,9 +2,9 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use hapstab::AffineFamily;
 use hapstab::model::{Delay, Loop, Plant, PlantModel as LibPlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Device, Effective, Normalized, Physical, Sampling, Wall};
+use hapstab::{AffineFamily, Param};
 use serde::Serialize;
 
 use crate::output::{poly_text, sig};
@@ -356,13 +356,13 @@ pub const LOOP_FLAGS: [&str; 9] = [
 pub struct Coefficients(pub Vec<f64>);
 
 fn plant_numerator(s: &str) -> std::result::Result<Coefficients, String> {
-    hapstab::spec::parse_coefficients("plant numerator", s)
+    hapstab::spec::parse_coefficients(Param::PlantNum, s)
         .map(Coefficients)
         .map_err(|e| e.to_string())
 }
 
 fn plant_denominator(s: &str) -> std::result::Result<Coefficients, String> {
-    hapstab::spec::parse_coefficients("plant denominator", s)
+    hapstab::spec::parse_coefficients(Param::PlantDen, s)
         .map(Coefficients)
         .map_err(|e| e.to_string())
 }
@@ -594,49 +594,20 @@ fn tf_context(a: &LoopArgs, e: hapstab::Error) -> anyhow::Error {
     }
 }
 
-/// The flag that carries a parameter the library names in its errors (None for parameters
-/// without a flag of their own).
-fn flag_of(name: &str) -> Option<&'static str> {
-    Some(match name {
-        "mass m" => "--mass",
-        "damping b" => "--damping",
-        "stiffness k" => "--stiffness",
-        "motor mass" => "--motor-mass",
-        "motor damping" => "--motor-damping",
-        "handle mass" => "--handle-mass",
-        "handle mass + arm mass" => "--handle-mass/--arm-mass",
-        "transmission stiffness" => "--transmission-stiffness",
-        "transmission damping" => "--transmission-damping",
-        "arm mass m_H" => "--arm-mass",
-        "arm damping b_H" => "--arm-damping",
-        "arm stiffness k_H" => "--arm-stiffness",
-        "force lag tau" => "--force-lag",
-        "sampling period T" => "--period",
-        n if n.starts_with("velocity") => "--velocity",
-        _ => return None,
-    })
-}
-
 impl LoopArgs {
     /// A library error with the flag that carries the parameter it names in front
-    /// ("--motor-mass: motor mass must be in …"); the effective mass of a device and arm
-    /// given separately is named by those flags.
+    /// ("--motor-mass: motor mass must be in …"); the effective mass, damping and stiffness of
+    /// a device and arm given separately are named by those flags.
     fn with_flag(&self, e: hapstab::Error) -> anyhow::Error {
-        let name = match &e {
-            hapstab::Error::Invalid { name, .. }
-            | hapstab::Error::OutOfRange { name, .. }
-            | hapstab::Error::NotPositive { name, .. }
-            | hapstab::Error::Negative { name, .. }
-            | hapstab::Error::NotFinite { name, .. } => *name,
-            _ => return e.into(),
-        };
-        let flag = match (name, self.plant.mass) {
-            ("mass m", None) => Some("--device-mass/--arm-mass"),
-            ("damping b", None) if self.plant.damping.is_none() => {
+        let flag = match (e.param(), self.plant.mass) {
+            (Some(Param::Mass), None) => Some("--device-mass/--arm-mass"),
+            (Some(Param::Damping), None) if self.plant.damping.is_none() => {
                 Some("--device-damping/--arm-damping")
             }
-            ("stiffness k", None) if self.plant.stiffness.is_none() => Some("--arm-stiffness"),
-            _ => flag_of(name),
+            (Some(Param::Stiffness), None) if self.plant.stiffness.is_none() => {
+                Some("--arm-stiffness")
+            }
+            (p, _) => p.and_then(Param::flag),
         };
         match flag {
             Some(f) => anyhow::anyhow!("{f}: {e}"),
@@ -718,14 +689,10 @@ pub fn resolve_loop_wall(rl: &ResolvedLoop, fam: &AffineFamily, wall: &WallArgs)
 fn check_wall_range(fam: &AffineFamily, w: Wall, normalized: bool) -> Result<()> {
     let units = fam.to_units(w.stiffness, w.damping);
     hapstab::model::check_wall_range(fam, w, units, normalized).map_err(|e| {
-        let stiffness = matches!(&e, hapstab::Error::Invalid { name, .. } if name.contains("stiffness") || *name == "alpha");
-        let flag = match (normalized, stiffness) {
-            (true, true) => "--alpha",
-            (true, false) => "--beta",
-            (false, true) => "--wall-stiffness",
-            (false, false) => "--wall-damping",
-        };
-        anyhow::anyhow!("{flag}: {e}")
+        match e.param().and_then(Param::flag) {
+            Some(flag) => anyhow::anyhow!("{flag}: {e}"),
+            None => e.into(),
+        }
     })
 }
 

@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::output::print_json;
-use crate::plot::Saved;
+use hapstab_plot::Saved;
 
 /// Arguments of `hapstab paper`.
 #[derive(Args, Debug)]

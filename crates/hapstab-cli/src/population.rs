@@ -148,7 +148,7 @@ fn run_curve(
     }
     let plot = match &a.plot {
         Some(stem) => Some(
-            crate::population_plot::figure(&r, &crate::wall_plot::loop_line(rl))
+            hapstab_plot::population::figure(&r, &crate::wall_plot::loop_line(rl))
                 .save(stem)
                 .with_context(|| format!("--plot {}", stem.display()))?,
         ),

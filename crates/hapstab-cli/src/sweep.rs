@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, describe_loop};
 use crate::output::{csv_num, csv_opt, eng, print_json, sig};
-use crate::plot::{Figure, Legend, Marker, Series, palette};
+use hapstab_plot::{Figure, Legend, Marker, Series, palette};
 
 /// Arguments of `hapstab sweep`.
 #[derive(Args, Debug)]
@@ -63,7 +63,7 @@ struct SweepOut {
     /// Wall-clock time of the analysis, s.
     seconds: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
-    plot: Option<crate::plot::Saved>,
+    plot: Option<hapstab_plot::Saved>,
 }
 
 fn k_max_at(a: &SweepArgs) -> Result<KmaxAt> {

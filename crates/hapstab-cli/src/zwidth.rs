@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{csv_num, csv_opt, eng, print_json, sig};
-use crate::plot::{Figure, Grid, Legend, Marker, Series, palette};
+use hapstab_plot::{Figure, Grid, Legend, Marker, Series, palette};
 
 /// Arguments of `hapstab zwidth`.
 #[derive(Args, Debug)]
@@ -76,7 +76,7 @@ struct ZwidthOut {
     input: ZwidthInput,
     loops: Vec<LoopOut>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    plot: Option<crate::plot::Saved>,
+    plot: Option<hapstab_plot::Saved>,
 }
 
 /// The loop flags of a --compare spec applied over the base flags.

@@ -193,8 +193,6 @@ pub fn frequency_response(
             Some(x.extract().map_err(|e| bad("omega", e))?)
         }
     };
-    let fr = py
-        .detach(|| response(lp, w, omega.as_deref()))
-        .py_with(&[("omega", "omega")])?;
+    let fr = py.detach(|| response(lp, w, omega.as_deref())).py()?;
     response_object(py, fr)
 }

@@ -164,13 +164,7 @@ fn query(
             let d = NoiseModel::default();
             let dx = position_resolution.unwrap_or(d.position_resolution);
             let f = force_noise.unwrap_or(d.force_noise);
-            let keywords = [
-                ("position resolution", "position_resolution"),
-                ("force noise", "force_noise"),
-            ];
-            Ok(KmaxQuery::Design(
-                NoiseModel::new(dx, f).py_with(&keywords)?,
-            ))
+            Ok(KmaxQuery::Design(NoiseModel::new(dx, f).py()?))
         }
     }
 }

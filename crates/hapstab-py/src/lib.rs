@@ -82,5 +82,6 @@ fn _hapstab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(identify::identify_frequency, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_rebuild, m)?)?;
     m.add_function(wrap_pyfunction!(pickle::_result_fields, m)?)?;
+    m.add_function(wrap_pyfunction!(errors::_parameter_keywords, m)?)?;
     Ok(())
 }

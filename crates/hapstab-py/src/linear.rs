@@ -68,9 +68,7 @@ pub fn linear_condition(
     py: Python<'_>,
 ) -> PyResult<PyLinearCondition> {
     let lp = &r#loop.lp;
-    let lc = py
-        .detach(|| condition(lp, &levels))
-        .py_with(&[("loop", "loop"), ("level", "levels")])?;
+    let lc = py.detach(|| condition(lp, &levels)).py()?;
     Ok(condition_object(py, &lc, !r#loop.normalized))
 }
 

@@ -117,8 +117,6 @@ pub fn root_locus(
     let ks: Option<Vec<f64>> = wall_stiffness
         .map(|x| x.extract().map_err(|e| bad("wall_stiffness", e)))
         .transpose()?;
-    let rl = py
-        .detach(|| locus(lp, b, ks.as_deref()))
-        .py_with(&[("K", "wall_stiffness"), ("wall damping B", "wall_damping")])?;
+    let rl = py.detach(|| locus(lp, b, ks.as_deref())).py()?;
     locus_object(py, rl)
 }

@@ -2,6 +2,7 @@
 //! a transfer function) and the loop (plant, sampling period, delay in seconds, velocity
 //! estimator, actuator lag), each validated by the library when constructed.
 
+use hapstab::Param;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass};
 use hapstab::params::{Arm, Device, Effective};
 use hapstab::{AffineFamily, PlantParams, VelocityEstimator};
@@ -58,9 +59,9 @@ impl PyMassSpringDamper {
             stiffness: arm_stiffness,
         };
         let inner = Effective::combine(device, arm).py_with(&[
-            ("mass m", "device_mass + arm_mass"),
-            ("damping b", "device_damping + arm_damping"),
-            ("stiffness k", "arm_stiffness"),
+            (Param::Mass, "device_mass + arm_mass"),
+            (Param::Damping, "device_damping + arm_damping"),
+            (Param::Stiffness, "arm_stiffness"),
         ])?;
         let operator = (arm != Arm::NONE).then_some(arm);
         Ok(Self { inner, operator })
@@ -383,7 +384,7 @@ fn delay_of(delay: Option<f64>, delay_samples: Option<usize>, period: f64) -> Py
             "delay, delay_samples",
             "give the delay either in seconds (delay) or in whole samples (delay_samples)",
         )),
-        (None, Some(d)) => Delay::samples(d).py_with(&[("delay d", "delay_samples")]),
+        (None, Some(d)) => Delay::samples(d).py_with(&[(Param::Delay, "delay_samples")]),
         (t, None) => Delay::from_time(t.unwrap_or(0.0), period).py(),
     }
 }
@@ -407,18 +408,18 @@ impl PyLoop {
             // γ = kT²/m and δ = bT/m must be finite (Table I): a mass far too small for the
             // period is named here rather than as an overflow of the discretization.
             PlantParams::from_physical(e, period).py_with(&[
-                ("mass m", "plant.mass"),
-                ("damping b", "plant.damping"),
-                ("stiffness k", "plant.stiffness"),
+                (Param::Mass, "plant.mass"),
+                (Param::Damping, "plant.damping"),
+                (Param::Stiffness, "plant.stiffness"),
             ])?;
         }
         let plant = Plant::new(model, force_lag).py_with(&[
-            ("mass m", "plant.mass"),
-            ("motor mass", "plant.motor_mass"),
-            ("handle mass", "plant.handle_mass"),
-            ("arm mass m_H", "plant.arm_mass"),
+            (Param::Mass, "plant.mass"),
+            (Param::MotorMass, "plant.motor_mass"),
+            (Param::HandleMass, "plant.handle_mass"),
+            (Param::ArmMass, "plant.arm_mass"),
             (
-                "handle mass + arm mass",
+                Param::HandleAndArmMass,
                 "plant.handle_mass + plant.arm_mass",
             ),
         ])?;
@@ -470,7 +471,7 @@ impl PyLoop {
     fn normalized(gamma: f64, delta: f64, d: usize) -> PyResult<Self> {
         let pp = PlantParams::new(gamma, delta).py()?;
         Ok(Self {
-            lp: Loop::normalized(pp, d).py_with(&[("delay d", "d")])?,
+            lp: Loop::normalized(pp, d).py_with(&[(Param::Delay, "d")])?,
             normalized: true,
         })
     }
@@ -480,7 +481,7 @@ impl PyLoop {
     /// The file's wall, if any, is Loop.load_wall(path).
     #[staticmethod]
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
-        let f = hapstab::loop_spec::load(&path).py_with(&[("loop file", "path")])?;
+        let f = hapstab::loop_spec::load(&path).py_as("path")?;
         Ok(Self {
             lp: f.lp,
             normalized: f.normalized,
@@ -490,14 +491,14 @@ impl PyLoop {
     /// The wall (K, B) a loop file names (α, β for a normalized loop), or None.
     #[staticmethod]
     fn load_wall(path: std::path::PathBuf) -> PyResult<Option<(f64, f64)>> {
-        let f = hapstab::loop_spec::load(&path).py_with(&[("loop file", "path")])?;
+        let f = hapstab::loop_spec::load(&path).py_as("path")?;
         Ok(f.wall.map(|w| (w.stiffness, w.damping)))
     }
 
     /// The loop from the text of a loop file (see Loop.load).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let f = hapstab::loop_spec::parse(text).py_with(&[("loop file", "text")])?;
+        let f = hapstab::loop_spec::parse(text).py_as("text")?;
         Ok(Self {
             lp: f.lp,
             normalized: f.normalized,

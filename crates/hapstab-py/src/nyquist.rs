@@ -2,6 +2,7 @@
 //! the robustly stable region and Colgate's passive region checked against it
 //! (`nyquist_regions`, the numbers of `hapstab nyquist --json`).
 
+use hapstab::Param;
 use hapstab::nyquist::{
     NyquistRegions, SweepInput, SweepRow, no_progress, nyquist_regions as regions,
 };
@@ -88,7 +89,7 @@ pub fn nyquist_regions(
     py: Python<'_>,
 ) -> PyResult<PyNyquistRegions> {
     finite("delta", delta)?;
-    hapstab::params::check_delay(d).py_with(&[("delay d", "d")])?;
+    hapstab::params::check_delay(d).py_with(&[(Param::Delay, "d")])?;
     if finite("gamma_fraction", gamma_fraction)? < 0.0 {
         return Err(bad(
             "gamma_fraction",
@@ -114,7 +115,7 @@ pub fn nyquist_regions(
     )?;
     let r = py
         .detach(|| regions(input, &no_progress))
-        .py_with(&[("delta", "delta"), ("delay d", "d")])?;
+        .py_with(&[(Param::Delay, "d")])?;
     regions_object(py, &r)
 }
 

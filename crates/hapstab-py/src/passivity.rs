@@ -247,8 +247,6 @@ pub fn passivity(
     let device = device_of(r#loop, device_damping)?;
     let units = wall_units(&r#loop.lp, &fam, w).py()?;
     let stable = analysis(&r#loop.lp, &fam, units).py()?.stable();
-    let (p, region) = py
-        .detach(|| compute(&r#loop.lp, w, device))
-        .py_with(&[("velocity filter", "velocity")])?;
+    let (p, region) = py.detach(|| compute(&r#loop.lp, w, device)).py()?;
     passivity_object(py, &p, stable, region.as_ref())
 }

@@ -1,13 +1,14 @@
 //! `stability_probability`: P(stable) over a population of operators, at one wall or as a
 //! curve against K, as `hapstab population --json` gives it ([`hapstab::population`]).
 
+use hapstab::Param;
 use hapstab::population::{Dist, Population, stability_probability as curve, wall_probability};
 use hapstab::sweep::SweepParam;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{Context, bad, finite};
+use crate::errors::{Context, bad, finite, swept};
 use crate::loops::PyLoop;
 use crate::text::num;
 
@@ -100,8 +101,8 @@ fn population(distributions: Option<&Bound<'_, PyDict>>) -> PyResult<Population>
                 .map_err(|_| bad("distributions", format!("{name}: needs a text KIND:A:B")))?;
             let p: SweepParam = name
                 .parse()
-                .py_with(&[("sweep parameter", "distributions")])?;
-            let dist = Dist::parse(&text).py_with(&[("distribution", "distributions")])?;
+                .py_with(&[(Param::SweepParameter, "distributions")])?;
+            let dist = Dist::parse(&text).py()?;
             Ok((p, dist))
         })
         .collect::<PyResult<_>>()?;
@@ -143,11 +144,8 @@ pub fn stability_probability(
     let cost = hapstab::limits::population_cost(fam.degree(), samples);
     crate::budget::check_loop(cost, &r#loop.lp, &fam, "the population")?;
     let lp = &r#loop.lp;
-    let own = [
-        ("samples", "samples"),
-        ("level", "levels"),
-        ("population", "distributions"),
-    ];
+    // a drawn value that a loop refuses comes from the distributions
+    let own = swept("distributions");
     if let Some(k) = wall_stiffness {
         let wall = hapstab::params::Wall {
             stiffness: finite("wall_stiffness", k)?,

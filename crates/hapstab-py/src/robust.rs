@@ -1,12 +1,13 @@
 //! `robust_kmax`: robust K_max of any loop over a box of its parameters, as
 //! `hapstab kmax --robust --box … --json` gives it ([`hapstab::robust::robust_kmax`]).
 
+use hapstab::Param;
 use hapstab::robust::{BoxSide, RobustKmax, RobustOptions};
 use hapstab::sweep::SweepParam;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{Context, bad, finite};
+use crate::errors::{Context, bad, finite, swept};
 use crate::loops::PyLoop;
 use crate::text::num;
 
@@ -73,7 +74,7 @@ fn sides(bounds: &Bound<'_, PyDict>) -> PyResult<Vec<BoxSide>> {
             let (lo, hi): (f64, f64) = v
                 .extract()
                 .map_err(|_| bad("bounds", format!("{name}: needs a (lo, hi) pair")))?;
-            let param: SweepParam = name.parse().py_with(&[("sweep parameter", "bounds")])?;
+            let param: SweepParam = name.parse().py_with(&[(Param::SweepParameter, "bounds")])?;
             let (lo, hi) = (finite("bounds", lo)?, finite("bounds", hi)?);
             if lo > hi {
                 return Err(bad(
@@ -113,12 +114,11 @@ pub fn robust_kmax(
     };
     let fam = r#loop.family()?;
     let lp = &r#loop.lp;
-    let n = hapstab::robust::box_degree(lp, &sides)
-        .py_with(&[("box", "bounds"), ("sweep parameter", "bounds")])?;
+    let n = hapstab::robust::box_degree(lp, &sides).py_with(&swept("bounds"))?;
     let cost = hapstab::limits::robust_box_cost(n, sides.len(), &opts);
     crate::budget::check_loop(cost, lp, &fam, "the robust K_max")?;
     let r = py
         .detach(|| hapstab::robust::robust_kmax(lp, &sides, b, &opts))
-        .py_with(&[("box", "bounds"), ("sweep parameter", "bounds")])?;
+        .py_with(&swept("bounds"))?;
     Ok(PyRobustKmax::from(r))
 }

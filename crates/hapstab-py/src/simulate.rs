@@ -1,6 +1,7 @@
 //! `simulate`: the sampled-data loop of Fig. 3 in the time domain, with the nonlinear effects
 //! of Remark 1 and Section IX, its trace as numpy arrays and the run's verdict.
 
+use hapstab::Param;
 use hapstab::model::{Loop, PlantModel};
 use hapstab::params::{Physical, Sampling, Wall};
 use hapstab::simulation::{
@@ -145,9 +146,10 @@ fn length(
             &format!("{}, {}", seconds.0, count.0),
             "give the length either in seconds or in samples",
         )),
-        (Some(s), None) => Ok(Some(
-            samples_for_duration(s, period).py_with(&[("duration", seconds.0)])?,
-        )),
+        (Some(s), None) => Ok(Some(samples_for_duration(s, period).py_with(&[
+            (Param::Duration, seconds.0),
+            (Param::DurationPeriods, seconds.0),
+        ])?)),
         (None, n) => Ok(n),
     }
 }

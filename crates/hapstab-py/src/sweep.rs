@@ -78,7 +78,7 @@ pub fn sweep(
     damping_range: Option<(f64, f64)>,
     py: Python<'_>,
 ) -> PyResult<PySweep> {
-    let name: SweepParam = param.parse().py_with(&[("sweep parameter", "param")])?;
+    let name: SweepParam = param.parse().py()?;
     let values: Vec<f64> = values.as_array().to_vec();
     if values.len() > hapstab::sweep::MAX_SWEEP_POINTS {
         return Err(bad(
@@ -104,7 +104,7 @@ pub fn sweep(
     let base = &r#loop.lp;
     let points = py
         .detach(|| hapstab::sweep::kmax_sweep(&values, |v| name.apply(base, v), at, &|_| {}))
-        .py_with(&[("sweep value", "values")])?;
+        .py_as("values")?;
     Ok(sweep_object(py, name, &values, &points))
 }
 

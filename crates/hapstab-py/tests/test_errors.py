@@ -92,3 +92,40 @@ def test_numerical_error_is_a_runtime_error():
 def test_a_mass_too_small_for_the_period_is_named():
     with pytest.raises(ValueError, match=r"^plant.mass: mass m = 1e-310 makes δ = bT/m = inf"):
         hs.Loop(hs.MassSpringDamper(1e-310, 1e6, 0.0), period=1e-3)
+
+
+def api_keywords():
+    """Every parameter name of the package's functions and methods, from its type stubs."""
+    import ast
+    from pathlib import Path
+
+    stub = Path(hs.__file__).with_name("_hapstab.pyi")
+    names = set()
+    for node in ast.walk(ast.parse(stub.read_text())):
+        if isinstance(node, ast.FunctionDef):
+            a = node.args
+            names.update(x.arg for x in a.posonlyargs + a.args + a.kwonlyargs)
+    return names - {"self"}
+
+
+def test_every_parameter_keyword_is_a_keyword_of_the_api():
+    from hapstab import _hapstab
+
+    keywords = api_keywords()
+    table = _hapstab._parameter_keywords()
+    assert len({key for key, _ in table}) == len(table)
+    for key, kw in table:
+        if kw is None:
+            continue
+        for part in kw.replace("+", ",").split(","):
+            assert part.strip() in keywords, (key, kw)
+
+
+def test_a_sweep_names_its_values():
+    with pytest.raises(ValueError, match=r"^values: sampling period T must be > 0"):
+        hs.sweep(LOOP, "period", [1e-3, 0.0])
+
+
+def test_a_box_names_its_bounds():
+    with pytest.raises(ValueError, match=r"^bounds: "):
+        hs.robust_kmax(LOOP, {"arm-stiffness": (-10.0, 1.0)})

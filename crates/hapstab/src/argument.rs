@@ -83,7 +83,7 @@ impl OnCircle for Wall<'_> {
     fn on_circle(&self, r: f64, theta: f64) -> (Complex64, Complex64, f64) {
         let (fam, a, b) = (self.fam, self.a, self.b);
         let kf = fam.k as f64;
-        let zk = Complex64::from_polar(r.powi(fam.k as i32), theta * kf);
+        let zk = crate::circle::polar(r.powi(fam.k as i32), theta * kf);
         let i = Complex64::i();
         let (x, dx_dtheta, core, pk, pb) = match &fam.shifted {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
@@ -92,7 +92,7 @@ impl OnCircle for Wall<'_> {
                 (w, i * (w + 1.0), &sh.p0_core, &sh.pk, &sh.pb)
             }
             _ => {
-                let z = Complex64::from_polar(r, theta);
+                let z = crate::circle::polar(r, theta);
                 (z, i * z, &fam.p0_core, &fam.pk, &fam.pb)
             }
         };
@@ -123,7 +123,7 @@ impl OnCircle for Coefficients<'_> {
     }
 
     fn on_circle(&self, r: f64, theta: f64) -> (Complex64, Complex64, f64) {
-        let z = Complex64::from_polar(r, theta);
+        let z = crate::circle::polar(r, theta);
         let (p, dp) = poly::eval_with_derivative(self.0, z);
         let err = 4.0 * self.0.len() as f64 * f64::EPSILON * abs_at(self.0, r);
         (p, Complex64::i() * z * dp, err)

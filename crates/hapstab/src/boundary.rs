@@ -164,7 +164,7 @@ pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<AlphaBeta> {
 /// da/dθ along the curve, analytically (for the largest stable stiffness on an arc); near
 /// z = 1 in the shifted variable.
 pub fn dalpha_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
-    let z = Complex64::from_polar(1.0, theta);
+    let z = crate::circle::unit(theta);
     let iz = Complex64::i() * z;
     // near z = 1 from the shifted form (w = e^{iθ} − 1 without cancellation), as the curve
     // itself is evaluated there: the z-coefficients place no stationary point at θ ≪ 1
@@ -255,7 +255,7 @@ fn crossing_from_parts(
 
 /// d/dθ of Im(Q conj D) at z = e^{iθ} (d/dθ = iz·d/dz), from the shifted form near z = 1.
 pub(crate) fn crossing_slope(fam: &AffineFamily, line: &WallLine, theta: f64) -> f64 {
-    let z = Complex64::from_polar(1.0, theta);
+    let z = crate::circle::unit(theta);
     let parts = if theta < crate::closed_loop::SHIFTED_THETA {
         let h = (0.5 * theta).sin();
         fam.parts_shifted_with_derivative(Complex64::new(-2.0 * h * h, theta.sin()))
@@ -616,7 +616,7 @@ mod tests {
         let fam = PolyFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 2).unwrap();
         for t in [0.01, 0.5, 1.0, 2.0, 3.0] {
             let p = curve_point(&fam, t).unwrap();
-            let v = fam.eval(p.alpha, p.beta, Complex64::from_polar(1.0, t));
+            let v = fam.eval(p.alpha, p.beta, crate::circle::unit(t));
             assert!(
                 v.norm() < 1e-14 * (1.0 + p.alpha.abs() + p.beta.abs()),
                 "{v}"

@@ -89,7 +89,7 @@ fn at_zero(c: &[f64]) -> (f64, f64) {
 fn pow_one_plus(w: Complex64, e: f64) -> Complex64 {
     let ln_mod = 0.5 * (2.0 * w.re + w.norm_sqr()).ln_1p();
     let arg = w.im.atan2(1.0 + w.re);
-    Complex64::from_polar((e * ln_mod).exp(), e * arg)
+    crate::circle::polar((e * ln_mod).exp(), e * arg)
 }
 
 impl AffineFamily {
@@ -273,7 +273,7 @@ impl AffineFamily {
         let zk = match self.k {
             0 => Complex64::new(1.0, 0.0),
             1 => z,
-            k => Complex64::from_polar(1.0, theta * k as f64),
+            k => crate::circle::unit(theta * k as f64),
         };
         (zk * core, pk, pb)
     }
@@ -285,13 +285,13 @@ impl AffineFamily {
         match &self.shifted {
             Some(sh) if theta.abs() < SHIFTED_THETA => {
                 // sin θ = 2 sin(θ/2) cos(θ/2): one sine and cosine for w and z = 1 + w
-                let (h, c) = (0.5 * theta).sin_cos();
+                let (h, c) = crate::circle::sin_cos(0.5 * theta);
                 let w = Complex64::new(-2.0 * h * h, 2.0 * h * c);
                 let [core, pk, pb] = poly::eval3(&sh.p0_core, &sh.pk, &sh.pb, w);
                 (w + 1.0, core, pk, pb)
             }
             _ => {
-                let z = Complex64::from_polar(1.0, theta);
+                let z = crate::circle::unit(theta);
                 let [core, pk, pb] = poly::eval3(&self.p0_core, &self.pk, &self.pb, z);
                 (z, core, pk, pb)
             }

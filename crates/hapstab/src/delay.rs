@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::param::Param;
 use crate::params::MAX_DELAY;
 
 /// The delay of the wall force, t_d = (d + λ)·T with whole samples d and a fraction
@@ -38,8 +39,8 @@ impl Delay {
 
     /// From a delay time t_d >= 0 in seconds and the period T: d = ⌊t_d/T⌋, λ = t_d/T − d.
     pub fn from_time(delay_time: f64, period: f64) -> Result<Self> {
-        non_negative("delay time t_d", delay_time)?;
-        positive("sampling period T", period)?;
+        non_negative(Param::DelayTime, delay_time)?;
+        positive(Param::Period, period)?;
         let ratio = delay_time / period;
         if !ratio.is_finite() || ratio > MAX_DELAY as f64 {
             return Err(Error::DelayTooLarge {
@@ -66,10 +67,10 @@ impl Delay {
     /// Checks d <= [`MAX_DELAY`] and λ ∈ [0, 1).
     pub fn validated(self) -> Result<Self> {
         crate::params::check_delay(self.samples)?;
-        finite("delay fraction", self.fraction)?;
+        finite(Param::DelayFraction, self.fraction)?;
         if !(0.0..1.0).contains(&self.fraction) {
             return Err(Error::OutOfRange {
-                name: "delay fraction",
+                param: Param::DelayFraction,
                 value: self.fraction,
                 range: "[0, 1)",
             });

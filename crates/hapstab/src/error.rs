@@ -2,33 +2,35 @@
 
 use thiserror::Error;
 
+use crate::param::Param;
+
 /// Everything that can go wrong when building or analysing a model.
 ///
-/// Each variant names the parameter and the offending value so that a front end can print
-/// one clear line.
+/// Each variant names the parameter (a [`Param`]) and the offending value so that a front end
+/// can print one clear line and name the argument that carries the parameter.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum Error {
     /// A parameter is NaN or infinite.
-    #[error("{name} must be a finite number (got {value})")]
+    #[error("{param} must be a finite number (got {value})")]
     NotFinite {
-        /// Parameter name.
-        name: &'static str,
+        /// The parameter.
+        param: Param,
         /// Offending value.
         value: f64,
     },
     /// A parameter that must be strictly positive is not.
-    #[error("{name} must be > 0 (got {value})")]
+    #[error("{param} must be > 0 (got {value})")]
     NotPositive {
-        /// Parameter name.
-        name: &'static str,
+        /// The parameter.
+        param: Param,
         /// Offending value.
         value: f64,
     },
     /// A parameter that must be non-negative is negative.
-    #[error("{name} must be >= 0 (got {value})")]
+    #[error("{param} must be >= 0 (got {value})")]
     Negative {
-        /// Parameter name.
-        name: &'static str,
+        /// The parameter.
+        param: Param,
         /// Offending value.
         value: f64,
     },
@@ -53,10 +55,10 @@ pub enum Error {
         max: usize,
     },
     /// A parameter lies outside a documented range.
-    #[error("{name} must be in {range} (got {})", shown(*.value))]
+    #[error("{param} must be in {range} (got {})", shown(*.value))]
     OutOfRange {
-        /// Parameter name.
-        name: &'static str,
+        /// The parameter.
+        param: Param,
         /// Offending value.
         value: f64,
         /// The allowed range, as text.
@@ -64,19 +66,19 @@ pub enum Error {
     },
     /// A parameter is unusable for a reason other than its range (a zero polynomial, an
     /// improper transfer function, …).
-    #[error("{name} {reason}")]
+    #[error("{param} {reason}")]
     Invalid {
-        /// Parameter name.
-        name: &'static str,
+        /// The parameter.
+        param: Param,
         /// Why, in words, starting with a verb ("must be …", "is …").
         reason: String,
     },
     /// A physical parameter whose normalized form (Table I) overflows: the normalized value
     /// derived from it is not a finite number.
-    #[error("{name} = {value:?} makes {derived} = {result:?}, not a finite number")]
+    #[error("{param} = {value:?} makes {derived} = {result:?}, not a finite number")]
     Unrepresentable {
         /// The physical parameter to blame.
-        name: &'static str,
+        param: Param,
         /// Its value.
         value: f64,
         /// The derived normalized quantity, e.g. "δ = bT/m".
@@ -87,6 +89,37 @@ pub enum Error {
     /// A numerical routine did not converge.
     #[error("numerical failure: {0}")]
     Numerical(String),
+}
+
+impl Error {
+    /// The parameter the error is about (None for a numerical failure).
+    pub fn param(&self) -> Option<Param> {
+        match self {
+            Error::NotFinite { param, .. }
+            | Error::NotPositive { param, .. }
+            | Error::Negative { param, .. }
+            | Error::OutOfRange { param, .. }
+            | Error::Invalid { param, .. }
+            | Error::Unrepresentable { param, .. } => Some(*param),
+            Error::FractionalDelay { .. } => Some(Param::DelayTime),
+            Error::DelayTooLarge { .. } => Some(Param::Delay),
+            Error::Numerical(_) => None,
+        }
+    }
+
+    /// The offending value, when the error has one number to show.
+    pub fn value(&self) -> Option<f64> {
+        match self {
+            Error::NotFinite { value, .. }
+            | Error::NotPositive { value, .. }
+            | Error::Negative { value, .. }
+            | Error::OutOfRange { value, .. }
+            | Error::Unrepresentable { value, .. }
+            | Error::DelayTooLarge { value, .. } => Some(*value),
+            Error::FractionalDelay { delay_time, .. } => Some(*delay_time),
+            Error::Invalid { .. } | Error::Numerical(_) => None,
+        }
+    }
 }
 
 /// A value in an error message: plain below 1e15 and from 1e-4 on, else in e-notation.
@@ -102,30 +135,30 @@ fn shown(v: f64) -> String {
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// Checks that `value` is finite.
-pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64> {
+pub(crate) fn finite(param: Param, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::NotFinite { name, value })
+        Err(Error::NotFinite { param, value })
     }
 }
 
 /// Checks that `value` is finite and > 0.
-pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
-    finite(name, value)?;
+pub(crate) fn positive(param: Param, value: f64) -> Result<f64> {
+    finite(param, value)?;
     if value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::NotPositive { name, value })
+        Err(Error::NotPositive { param, value })
     }
 }
 
 /// Checks that `value` is finite and >= 0.
-pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
-    finite(name, value)?;
+pub(crate) fn non_negative(param: Param, value: f64) -> Result<f64> {
+    finite(param, value)?;
     if value >= 0.0 {
         Ok(value)
     } else {
-        Err(Error::Negative { name, value })
+        Err(Error::Negative { param, value })
     }
 }

@@ -139,6 +139,27 @@ pub fn merge_grid(ts: &mut Vec<f64>) {
     ts.dedup_by(|x, y| (*x - *y).abs() <= MERGE_REL * x.abs().max(y.abs()));
 }
 
+/// [`merge_grid`] of two grids that are already merged (sorted, finite, without near
+/// duplicates), in one linear pass: the same grid.
+pub fn merge_sorted_grids(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        let take_a = j == b.len() || (i < a.len() && a[i].total_cmp(&b[j]).is_le());
+        let t = if take_a { a[i] } else { b[j] };
+        if take_a {
+            i += 1;
+        } else {
+            j += 1;
+        }
+        match out.last() {
+            Some(&x) if (t - x).abs() <= MERGE_REL * x.abs().max(t.abs()) => {}
+            _ => out.push(t),
+        }
+    }
+    out
+}
+
 /// The indices of the local maxima of the samples: vs[i] ≥ both neighbours and strictly above
 /// one of them (a plateau of equal samples is no extremum).
 pub fn sample_maxima(vs: &[f64]) -> impl Iterator<Item = usize> + '_ {
@@ -220,6 +241,26 @@ pub fn refine_max(f: impl Fn(f64) -> f64, ts: &[f64], i: usize, rel: f64) -> (f6
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn merging_two_merged_grids_equals_merging_their_union() {
+        // two grids with shared points, near duplicates (1e-13 apart) and interleaving
+        let mut a: Vec<f64> = (0..200)
+            .map(|i| (i as f64 * 0.37).sin().abs() * 3.0)
+            .collect();
+        let mut b: Vec<f64> = (0..150)
+            .map(|i| (i as f64 * 0.11).cos().abs() * 3.0)
+            .collect();
+        b.extend(a.iter().take(20).map(|x| x * (1.0 + 1e-13)));
+        b.extend(a.iter().skip(20).take(20).copied());
+        merge_grid(&mut a);
+        merge_grid(&mut b);
+        let mut union = [a.clone(), b.clone()].concat();
+        merge_grid(&mut union);
+        assert_eq!(merge_sorted_grids(&a, &b), union);
+        assert_eq!(merge_sorted_grids(&b, &a), union);
+        assert_eq!(merge_sorted_grids(&a, &[]), a);
+    }
 
     #[test]
     fn golden_finds_the_vertex_of_a_parabola() {

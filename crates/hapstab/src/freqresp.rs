@@ -26,6 +26,7 @@ use crate::loop_analysis::{analysis, wall_units};
 use crate::margins::frequency::{frequency_grid, loop_value, stability_margin};
 use crate::margins::{CrossingKind, Margins, margins_beside_verdict};
 use crate::model::Loop;
+use crate::param::Param;
 use crate::params::Wall;
 
 /// Log-spaced samples per decade of the default grid.
@@ -184,13 +185,13 @@ pub fn frequency_response(
 fn check_omega(omega: &[f64]) -> Result<()> {
     if omega.is_empty() {
         return Err(Error::Invalid {
-            name: "omega",
+            param: Param::Omega,
             reason: "needs at least one frequency".into(),
         });
     }
     match omega.iter().find(|w| !(w.is_finite() && **w > 0.0)) {
         Some(&w) => Err(Error::OutOfRange {
-            name: "omega",
+            param: Param::Omega,
             value: w,
             range: "finite angular frequencies > 0 in rad/s",
         }),
@@ -280,7 +281,7 @@ mod tests {
         let omega = [1.0, 10.0, 100.0, 1000.0, 3000.0];
         let fr = frequency_response(&lp, wall, Some(&omega)).unwrap();
         for (i, w) in omega.iter().enumerate() {
-            let z = Complex64::from_polar(1.0, w * t);
+            let z = crate::circle::unit(w * t);
             let l = k * t * t / (2.0 * m) * (z + 1.0) / ((z - 1.0) * (z - 1.0));
             let got = Complex64::new(fr.re[i], fr.im[i]);
             assert!((got - l).norm() <= 1e-10 * l.norm(), "{w}: {got} vs {l}");

@@ -21,6 +21,7 @@ use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
 use crate::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
 use crate::model::Loop;
+use crate::param::Param;
 use crate::region::ConfirmedMax;
 
 /// Default position resolution Δ at the handle, in m (10 µm: a desktop haptic device's
@@ -79,12 +80,12 @@ impl NoiseModel {
     /// A noise model with both values checked finite and positive.
     pub fn new(position_resolution: f64, force_noise: f64) -> Result<Self> {
         for (name, v) in [
-            ("position resolution", position_resolution),
-            ("force noise", force_noise),
+            (Param::PositionResolution, position_resolution),
+            (Param::ForceNoise, force_noise),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::Invalid {
-                    name,
+                    param: name,
                     reason: format!("must be a positive finite number (got {v})"),
                 });
             }
@@ -236,7 +237,7 @@ fn finite_damping(b: f64) -> Result<f64> {
         Ok(b)
     } else {
         Err(Error::Invalid {
-            name: "wall damping B",
+            param: Param::WallDamping,
             reason: format!("must be a finite number (got {b})"),
         })
     }

@@ -29,8 +29,6 @@
 //! the intervals beside its damping close on it. What none of this settles is
 //! [`BandMax::Undecided`], and the region decides it ([`crate::region::alpha_max_within`]).
 
-use num_complex::Complex64;
-
 use crate::boundary::{
     AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
     minus_one_line, plus_one_line,
@@ -529,8 +527,8 @@ fn separate_component(
 /// The curve's points at θ0 + j·step, j = 1 … [`HUMP_SAMPLES`]: z stepped along the circle by
 /// one rotation (no sine per point) where θ ≥ [`SHIFTED_THETA`], from the shifted form below.
 fn hump_samples(fam: &AffineFamily, theta0: f64, step: f64) -> impl Iterator<Item = AlphaBeta> {
-    let rotation = Complex64::from_polar(1.0, step);
-    let mut z = Complex64::from_polar(1.0, theta0);
+    let rotation = crate::circle::unit(step);
+    let mut z = crate::circle::unit(theta0);
     (1..=HUMP_SAMPLES).filter_map(move |j| {
         z *= rotation;
         let theta = theta0 + step * j as f64;

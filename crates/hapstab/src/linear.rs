@@ -18,6 +18,7 @@ use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_alpha_interval
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite};
 use crate::model::{Loop, PlantModel};
+use crate::param::Param;
 use crate::params::{Normalized, Physical, PlantParams, check_delay};
 use crate::zoh::WallScale;
 
@@ -251,7 +252,7 @@ pub struct LinearCondition {
 pub fn linear_condition(lp: &Loop, levels: &[f64]) -> Result<LinearCondition> {
     let (Some(pp), PlantModel::MassSpringDamper(e)) = (lp.paper_view(), &lp.plant.model) else {
         return Err(Error::Invalid {
-            name: "loop",
+            param: Param::Loop,
             reason: "has no normalized view (the paper's loop: a mass-spring-damper, the \
                      backward difference, a whole-sample delay, no actuator lag): the linear \
                      condition (22) belongs to it"
@@ -305,10 +306,10 @@ const LEVEL_MATCH: f64 = 1e-6;
 pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<ValidityPoint>> {
     check_delay(d)?;
     for &l in levels {
-        finite("level", l)?;
+        finite(Param::Level, l)?;
         if l <= 0.0 {
             return Err(Error::NotPositive {
-                name: "level",
+                param: Param::Level,
                 value: l,
             });
         }
@@ -465,7 +466,7 @@ pub fn error_curve(pp: PlantParams, d: usize, betas: &[f64]) -> Result<Vec<Error
     betas
         .iter()
         .map(|&b| {
-            finite("beta", b)?;
+            finite(Param::Beta, b)?;
             let alpha = exact_upper_alpha(&fam, b);
             let alpha_linear = linear_alpha_limit(b, pp.delta, d);
             Ok(ErrorSample {

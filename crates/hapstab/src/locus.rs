@@ -19,6 +19,7 @@ use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
 use crate::loop_analysis::{characteristic, damping_units, k_max_at_damping};
 use crate::model::Loop;
+use crate::param::Param;
 use crate::stability::roots;
 
 /// Uniform samples of the default sweep.
@@ -59,7 +60,7 @@ pub struct RootLocus {
 pub fn root_locus(lp: &Loop, damping: f64, stiffness: Option<&[f64]>) -> Result<RootLocus> {
     if !damping.is_finite() {
         return Err(Error::NotFinite {
-            name: "wall damping B",
+            param: Param::WallDamping,
             value: damping,
         });
     }
@@ -120,13 +121,13 @@ pub fn root_locus(lp: &Loop, damping: f64, stiffness: Option<&[f64]>) -> Result<
 fn check_stiffness(ks: &[f64]) -> Result<()> {
     if ks.is_empty() {
         return Err(Error::Invalid {
-            name: "K",
+            param: Param::WallStiffness,
             reason: "needs at least one stiffness".into(),
         });
     }
     match ks.iter().find(|k| !k.is_finite()) {
         Some(&k) => Err(Error::NotFinite {
-            name: "K",
+            param: Param::WallStiffness,
             value: k,
         }),
         None => Ok(()),

@@ -25,6 +25,7 @@ use serde_json::{Map, Value};
 
 use crate::error::{Error, Result};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
+use crate::param::Param;
 use crate::params::{Arm, Device, Effective, PlantParams, Wall};
 
 /// Default sampling period T: 1 ms, the paper's upper limit (Section IV).
@@ -140,7 +141,7 @@ impl LoopSpec {
         let delay = match (self.delay, self.delay_time) {
             (Some(_), Some(_)) => {
                 return Err(Error::Invalid {
-                    name: "loop.delay",
+                    param: Param::LoopFileDelay,
                     reason:
                         "is given twice: give either delay (samples, fraction) or delay_time (s)"
                             .into(),
@@ -187,7 +188,7 @@ pub const MAX_FILE_BYTES: u64 = 64 << 20;
 pub fn load(path: &Path) -> Result<LoadedLoop> {
     use std::io::Read;
     let cannot = |e: std::io::Error| Error::Invalid {
-        name: "loop file",
+        param: Param::LoopFile,
         reason: format!("'{}' cannot be read: {e}", path.display()),
     };
     let mut text = String::new();
@@ -198,7 +199,7 @@ pub fn load(path: &Path) -> Result<LoadedLoop> {
         .map_err(cannot)?;
     if text.len() as u64 > MAX_FILE_BYTES {
         return Err(Error::Invalid {
-            name: "loop file",
+            param: Param::LoopFile,
             reason: format!(
                 "'{}' is longer than {} MB: not a loop file",
                 path.display(),
@@ -209,13 +210,13 @@ pub fn load(path: &Path) -> Result<LoadedLoop> {
     parse(&text).map_err(|e| {
         let why = match e {
             Error::Invalid {
-                name: "loop file",
+                param: Param::LoopFile,
                 reason,
             } => reason,
             other => other.to_string(),
         };
         Error::Invalid {
-            name: "loop file",
+            param: Param::LoopFile,
             reason: format!("'{}': {why}", path.display()),
         }
     })
@@ -224,7 +225,7 @@ pub fn load(path: &Path) -> Result<LoadedLoop> {
 /// Parses the text of a loop file (module doc).
 pub fn parse(text: &str) -> Result<LoadedLoop> {
     let value: Value = serde_json::from_str(text).map_err(|e| Error::Invalid {
-        name: "loop file",
+        param: Param::LoopFile,
         reason: format!("is not JSON: {e}"),
     })?;
     let Value::Object(mut doc) = value else {
@@ -310,7 +311,7 @@ fn field<T: DeserializeOwned>(value: Value, at: &str) -> Result<T> {
 
 fn invalid(path: &str, why: &str) -> Error {
     Error::Invalid {
-        name: "loop file",
+        param: Param::LoopFile,
         reason: if path.is_empty() || path == "." {
             why.to_string()
         } else {
@@ -374,6 +375,6 @@ impl LoopInput {
 
     /// The record as JSON text, for a loop file.
     pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).unwrap_or_default()
+        crate::json::pretty(self).unwrap_or_default()
     }
 }

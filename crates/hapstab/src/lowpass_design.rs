@@ -28,6 +28,7 @@ use num_complex::Complex64;
 
 use crate::error::{Error, Result};
 use crate::model::VelocityEstimator;
+use crate::param::Param;
 
 /// Largest filter order of every family.
 pub const MAX_ORDER: usize = 8;
@@ -67,19 +68,19 @@ impl Family {
             .find(|f| f.keyword().eq_ignore_ascii_case(word))
     }
 
-    fn order_name(self) -> &'static str {
+    fn order_param(self) -> Param {
         match self {
-            Family::Butterworth => "velocity Butterworth order N",
-            Family::Bessel => "velocity Bessel order N",
-            Family::CriticallyDamped => "velocity critically damped order N",
+            Family::Butterworth => Param::ButterworthOrder,
+            Family::Bessel => Param::BesselOrder,
+            Family::CriticallyDamped => Param::CriticallyDampedOrder,
         }
     }
 
-    fn cutoff_name(self) -> &'static str {
+    fn cutoff_param(self) -> Param {
         match self {
-            Family::Butterworth => "velocity Butterworth cut-off f_c",
-            Family::Bessel => "velocity Bessel cut-off f_c",
-            Family::CriticallyDamped => "velocity critically damped cut-off f_c",
+            Family::Butterworth => Param::ButterworthCutoff,
+            Family::Bessel => Param::BesselCutoff,
+            Family::CriticallyDamped => Param::CriticallyDampedCutoff,
         }
     }
 
@@ -130,10 +131,10 @@ impl NamedLowPass {
 
     /// Checks 1 ≤ N ≤ 8 and f_c > 0, naming the family's parameter.
     pub fn validated(self) -> Result<Self> {
-        crate::error::positive(self.family.cutoff_name(), self.cutoff_hz)?;
+        crate::error::positive(self.family.cutoff_param(), self.cutoff_hz)?;
         if !(1..=MAX_ORDER).contains(&self.order) {
             return Err(Error::OutOfRange {
-                name: self.family.order_name(),
+                param: self.family.order_param(),
                 value: self.order as f64,
                 range: "1..=8",
             });
@@ -145,7 +146,7 @@ impl NamedLowPass {
     pub fn within_nyquist(self, period: f64) -> Result<Self> {
         if self.cutoff_hz * 2.0 * period >= 1.0 {
             return Err(Error::Invalid {
-                name: self.family.cutoff_name(),
+                param: self.family.cutoff_param(),
                 reason: format!(
                     "must be below the Nyquist frequency 1/(2T) = {} Hz (got {} Hz)",
                     0.5 / period,

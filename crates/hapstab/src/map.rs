@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::closed_loop::{AffineFamily, PolyFamily};
 use crate::error::{Error, Result};
+use crate::param::Param;
 use crate::params::{Normalized, PlantParams};
 use crate::stability::Analysis;
 use crate::verdict::{Verdict, decide_coefficients};
@@ -34,7 +35,7 @@ impl std::str::FromStr for Axis {
             "gamma" => Ok(Axis::Gamma),
             "delta" => Ok(Axis::Delta),
             _ => Err(Error::OutOfRange {
-                name: "axis",
+                param: Param::MapAxis,
                 value: f64::NAN,
                 range: "{alpha, beta, gamma, delta}",
             }),
@@ -61,18 +62,18 @@ pub const MAX_POINTS: usize = 100_000_000;
 impl AxisRange {
     /// Validates a range: finite ends, lo < hi, 2 <= n.
     pub fn new(axis: Axis, lo: f64, hi: f64, n: usize) -> Result<Self> {
-        crate::error::finite("axis lower end", lo)?;
-        crate::error::finite("axis upper end", hi)?;
+        crate::error::finite(Param::MapAxisStart, lo)?;
+        crate::error::finite(Param::MapAxisEnd, hi)?;
         if lo >= hi {
             return Err(Error::OutOfRange {
-                name: "axis upper end",
+                param: Param::MapAxisEnd,
                 value: hi,
                 range: "(lo, inf)",
             });
         }
         if n < 2 {
             return Err(Error::OutOfRange {
-                name: "axis points",
+                param: Param::MapAxisPoints,
                 value: n as f64,
                 range: "[2, 1e8]",
             });
@@ -135,14 +136,14 @@ impl MapSpec {
     pub fn new(x: AxisRange, y: AxisRange, base: Normalized) -> Result<Self> {
         if x.axis == y.axis {
             return Err(Error::OutOfRange {
-                name: "map axes",
+                param: Param::MapAxes,
                 value: f64::NAN,
                 range: "two different parameters",
             });
         }
         if x.n.saturating_mul(y.n) > MAX_POINTS {
             return Err(Error::OutOfRange {
-                name: "map points",
+                param: Param::MapPoints,
                 value: (x.n as f64) * (y.n as f64),
                 range: "[4, 1e8]",
             });
@@ -150,10 +151,10 @@ impl MapSpec {
         for r in [x, y] {
             if matches!(r.axis, Axis::Gamma | Axis::Delta) && r.lo < 0.0 {
                 return Err(Error::Negative {
-                    name: if r.axis == Axis::Gamma {
-                        "gamma"
+                    param: if r.axis == Axis::Gamma {
+                        Param::Gamma
                     } else {
-                        "delta"
+                        Param::Delta
                     },
                     value: r.lo,
                 });
@@ -274,7 +275,7 @@ pub fn wall_map(
 ) -> Result<WallMap> {
     if x.n.saturating_mul(y.n) > MAX_POINTS {
         return Err(Error::OutOfRange {
-            name: "map points",
+            param: Param::MapPoints,
             value: (x.n as f64) * (y.n as f64),
             range: "[4, 1e8]",
         });
@@ -344,9 +345,9 @@ pub struct MapValues {
     pub radius: Option<Vec<f64>>,
 }
 
-fn check_values(name: &'static str, v: &[f64]) -> Result<()> {
+fn check_values(param: Param, v: &[f64]) -> Result<()> {
     v.iter()
-        .try_for_each(|&x| crate::error::finite(name, x).map(|_| ()))
+        .try_for_each(|&x| crate::error::finite(param, x).map(|_| ()))
 }
 
 /// The grid method of Section V over axes given by value, not necessarily uniform: the
@@ -359,11 +360,11 @@ pub fn wall_map_values(
     b: &[f64],
     kind: MapKind,
 ) -> Result<MapValues> {
-    check_values("wall stiffness", a)?;
-    check_values("wall damping", b)?;
+    check_values(Param::WallStiffness, a)?;
+    check_values(Param::WallDamping, b)?;
     if a.len().saturating_mul(b.len()) > MAX_POINTS {
         return Err(Error::OutOfRange {
-            name: "map points",
+            param: Param::MapPoints,
             value: (a.len() as f64) * (b.len() as f64),
             range: "[0, 1e8]",
         });
@@ -393,7 +394,7 @@ pub fn wall_map_points(
 ) -> Result<MapValues> {
     if a.len() != b.len() {
         return Err(Error::Invalid {
-            name: "wall damping",
+            param: Param::WallDamping,
             reason: format!(
                 "has {} values where the wall stiffness has {}",
                 b.len(),
@@ -401,8 +402,8 @@ pub fn wall_map_points(
             ),
         });
     }
-    check_values("wall stiffness", a)?;
-    check_values("wall damping", b)?;
+    check_values(Param::WallStiffness, a)?;
+    check_values(Param::WallDamping, b)?;
     let deg = fam.degree();
     let chunks: Vec<(Vec<bool>, Vec<f64>)> = a
         .par_chunks(POINTS_PER_TASK)

@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 pub use crate::delay::Delay;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::lowpass_design::{Family, NamedLowPass};
+use crate::param::Param;
 use crate::params::{Effective, MAX_DELAY, PlantParams};
 
 /// A two-mass haptic device: the motor-side inertia (where the actuator pushes and the
@@ -140,7 +141,7 @@ impl Plant {
 
     /// Validates the model's parameters and the lag τ >= 0.
     pub fn new(model: PlantModel, force_lag: f64) -> Result<Self> {
-        non_negative("force lag tau", force_lag)?;
+        non_negative(Param::ForceLag, force_lag)?;
         validate_model(&model)?;
         Ok(Self {
             model,
@@ -218,14 +219,14 @@ impl Plant {
         let mut r = match &self.model {
             PlantModel::MassSpringDamper(e) => vec![
                 (
-                    "stiffness k",
+                    Param::Stiffness,
                     e.stiffness,
                     "N/m",
                     e.stiffness.sqrt() / e.mass.sqrt(),
                     MAX_RATE_PER_SAMPLE,
                 ),
                 (
-                    "damping b",
+                    Param::Damping,
                     e.damping,
                     "Ns/m",
                     e.damping / e.mass,
@@ -237,35 +238,35 @@ impl Plant {
                 let (kt, bt) = (t.transmission_stiffness, t.transmission_damping);
                 vec![
                     (
-                        "transmission stiffness",
+                        Param::TransmissionStiffness,
                         kt,
                         "N/m",
                         kt.sqrt() / j.sqrt() + kt.sqrt() / mh.sqrt(),
                         MAX_RATE_PER_SAMPLE,
                     ),
                     (
-                        "arm stiffness k_H",
+                        Param::ArmStiffness,
                         t.arm.stiffness,
                         "N/m",
                         t.arm.stiffness.sqrt() / mh.sqrt(),
                         MAX_RATE_PER_SAMPLE,
                     ),
                     (
-                        "motor damping",
+                        Param::MotorDamping,
                         t.motor_damping,
                         "Ns/m",
                         t.motor_damping / j,
                         MAX_DECAY_PER_SAMPLE,
                     ),
                     (
-                        "transmission damping",
+                        Param::TransmissionDamping,
                         bt,
                         "Ns/m",
                         bt / j + bt / mh,
                         MAX_DECAY_PER_SAMPLE,
                     ),
                     (
-                        "arm damping b_H",
+                        Param::ArmDamping,
                         t.arm.damping,
                         "Ns/m",
                         t.arm.damping / mh,
@@ -275,7 +276,7 @@ impl Plant {
             }
             PlantModel::TransferFunction { den, .. } => {
                 vec![(
-                    "plant denominator",
+                    Param::PlantDen,
                     f64::NAN,
                     "",
                     pole_bound(strip_leading_zeros(den)),
@@ -285,7 +286,7 @@ impl Plant {
         };
         if self.force_lag > 0.0 {
             r.push((
-                "force lag tau",
+                Param::ForceLag,
                 self.force_lag,
                 "s",
                 1.0 / self.force_lag,
@@ -298,7 +299,7 @@ impl Plant {
     /// Refuses a plant with a mode too fast for the sampling period (see
     /// [`MAX_RATE_PER_SAMPLE`] and [`MAX_DECAY_PER_SAMPLE`]), naming the parameter that makes it so.
     fn check_time_scale(&self, period: f64) -> Result<()> {
-        for (name, value, unit, rate, limit) in self.rates() {
+        for (param, value, unit, rate, limit) in self.rates() {
             let per_sample = rate * period;
             if per_sample.is_nan() || per_sample <= limit {
                 continue;
@@ -309,7 +310,7 @@ impl Plant {
                 format!("= {value:e} {unit} ")
             };
             return Err(Error::Invalid {
-                name,
+                param,
                 reason: format!(
                     "{what}makes a plant mode as fast as {rate:.3e} rad/s, {per_sample:.3e} per sampling \
                      period T = {period:e} s: beyond the exact discretization's range \
@@ -323,7 +324,7 @@ impl Plant {
 
 /// A plant rate: the parameter that sets it, its value and unit, the rate in 1/s, and the
 /// largest rate × T accepted.
-type Rate = (&'static str, f64, &'static str, f64, f64);
+type Rate = (Param, f64, &'static str, f64, f64);
 
 /// Fujiwara's bound on the roots of a polynomial with descending coefficients:
 /// 2·max |a_i/a_0|^{1/i} (the last term halved).
@@ -366,12 +367,12 @@ pub const MAX_MASS: f64 = 1e6;
 const MASS_RANGE: &str = "[1e-6, 1e6] kg";
 
 /// Refuses a mass outside [[`MIN_MASS`], [`MAX_MASS`]], naming it.
-fn check_mass(name: &'static str, m: f64) -> Result<()> {
+fn check_mass(param: Param, m: f64) -> Result<()> {
     if (MIN_MASS..=MAX_MASS).contains(&m) {
         return Ok(());
     }
     Err(Error::OutOfRange {
-        name,
+        param,
         value: m,
         range: MASS_RANGE,
     })
@@ -380,36 +381,36 @@ fn check_mass(name: &'static str, m: f64) -> Result<()> {
 /// The masses of a two-mass device in range: the motor's, and the handle's with the arm's
 /// (blaming the larger of the two when the sum is too heavy, the sum when too light).
 fn check_two_mass(t: &TwoMass) -> Result<()> {
-    check_mass("motor mass", t.motor_mass)?;
+    check_mass(Param::MotorMass, t.motor_mass)?;
     let sum = t.handle_mass + t.arm.mass;
     if sum > MAX_MASS {
         return if t.handle_mass >= t.arm.mass {
-            check_mass("handle mass", t.handle_mass.max(sum))
+            check_mass(Param::HandleMass, t.handle_mass.max(sum))
         } else {
-            check_mass("arm mass m_H", t.arm.mass.max(sum))
+            check_mass(Param::ArmMass, t.arm.mass.max(sum))
         };
     }
-    check_mass("handle mass + arm mass", sum)
+    check_mass(Param::HandleAndArmMass, sum)
 }
 
 fn validate_model(model: &PlantModel) -> Result<()> {
     match model {
         PlantModel::MassSpringDamper(e) => {
             Effective::new(e.mass, e.damping, e.stiffness)?;
-            check_mass("mass m", e.mass)?;
+            check_mass(Param::Mass, e.mass)?;
         }
         PlantModel::TwoMass(t) => {
-            positive("motor mass", t.motor_mass)?;
-            non_negative("motor damping", t.motor_damping)?;
-            non_negative("handle mass", t.handle_mass)?;
-            positive("transmission stiffness", t.transmission_stiffness)?;
-            non_negative("transmission damping", t.transmission_damping)?;
-            non_negative("arm mass m_H", t.arm.mass)?;
-            non_negative("arm damping b_H", t.arm.damping)?;
-            non_negative("arm stiffness k_H", t.arm.stiffness)?;
+            positive(Param::MotorMass, t.motor_mass)?;
+            non_negative(Param::MotorDamping, t.motor_damping)?;
+            non_negative(Param::HandleMass, t.handle_mass)?;
+            positive(Param::TransmissionStiffness, t.transmission_stiffness)?;
+            non_negative(Param::TransmissionDamping, t.transmission_damping)?;
+            non_negative(Param::ArmMass, t.arm.mass)?;
+            non_negative(Param::ArmDamping, t.arm.damping)?;
+            non_negative(Param::ArmStiffness, t.arm.stiffness)?;
             if t.handle_mass + t.arm.mass == 0.0 {
                 return Err(Error::NotPositive {
-                    name: "handle mass + arm mass",
+                    param: Param::HandleAndArmMass,
                     value: 0.0,
                 });
             }
@@ -426,28 +427,28 @@ pub const MAX_PLANT_ORDER: usize = 12;
 
 fn validate_tf(num: &[f64], den: &[f64]) -> Result<()> {
     for &c in num {
-        finite("plant numerator coefficient", c)?;
+        finite(Param::PlantNumCoefficient, c)?;
     }
     for &c in den {
-        finite("plant denominator coefficient", c)?;
+        finite(Param::PlantDenCoefficient, c)?;
     }
     let den = strip_leading_zeros(den);
     let num = strip_leading_zeros(num);
     if den.is_empty() {
         return Err(Error::Invalid {
-            name: "plant denominator",
+            param: Param::PlantDen,
             reason: "is zero".into(),
         });
     }
     if num.is_empty() {
         return Err(Error::Invalid {
-            name: "plant numerator",
+            param: Param::PlantNum,
             reason: "is zero (the wall would act on nothing)".into(),
         });
     }
     if num.len() >= den.len() {
         return Err(Error::Invalid {
-            name: "plant transfer function",
+            param: Param::PlantTransferFunction,
             reason: format!(
                 "must be strictly proper: numerator degree < denominator degree (got numerator degree {}, denominator degree {})",
                 num.len() - 1,
@@ -457,7 +458,7 @@ fn validate_tf(num: &[f64], den: &[f64]) -> Result<()> {
     }
     if den.len() - 1 > MAX_PLANT_ORDER {
         return Err(Error::OutOfRange {
-            name: "plant order",
+            param: Param::PlantOrder,
             value: (den.len() - 1) as f64,
             range: "1..=12",
         });
@@ -477,7 +478,7 @@ impl VelocityEstimator {
         match &self {
             VelocityEstimator::Backward => {}
             VelocityEstimator::LowPass { cutoff_hz } => {
-                positive("velocity low-pass cut-off f_c", *cutoff_hz)?;
+                positive(Param::VelocityCutoff, *cutoff_hz)?;
             }
             VelocityEstimator::Butterworth { .. }
             | VelocityEstimator::Bessel { .. }
@@ -489,7 +490,7 @@ impl VelocityEstimator {
             VelocityEstimator::Average { samples } => {
                 if *samples == 0 || *samples > MAX_DELAY {
                     return Err(Error::OutOfRange {
-                        name: "velocity average window N",
+                        param: Param::VelocityWindow,
                         value: *samples as f64,
                         range: "1..=2000",
                     });
@@ -497,24 +498,24 @@ impl VelocityEstimator {
             }
             VelocityEstimator::Iir { b, a } => {
                 for &c in b.iter().chain(a) {
-                    finite("velocity filter coefficient", c)?;
+                    finite(Param::VelocityFilterCoefficient, c)?;
                 }
                 if a.first().copied().unwrap_or(0.0) == 0.0 {
                     return Err(Error::Invalid {
-                        name: "velocity filter a0",
+                        param: Param::VelocityFilterA0,
                         reason: "must be nonzero (the filter must be causal)".into(),
                     });
                 }
                 check_filter_range(b, a)?;
                 if b.is_empty() || b.iter().all(|&x| x == 0.0) {
                     return Err(Error::Invalid {
-                        name: "velocity filter numerator",
+                        param: Param::VelocityFilterNumerator,
                         reason: "is zero (the wall's damper would act on nothing)".into(),
                     });
                 }
                 if b.len().max(a.len()) > MAX_DELAY + 1 {
                     return Err(Error::OutOfRange {
-                        name: "velocity filter length",
+                        param: Param::VelocityFilterLength,
                         value: b.len().max(a.len()) as f64,
                         range: "1..=2001",
                     });
@@ -629,8 +630,8 @@ pub const MAX_FILTER_RATIO: f64 = 1e50;
 fn check_filter_range(b: &[f64], a: &[f64]) -> Result<()> {
     let a0 = a[0];
     let parts = [
-        ("velocity filter numerator b", b),
-        ("velocity filter denominator a", a),
+        (Param::VelocityFilterNumerator, b),
+        (Param::VelocityFilterDenominator, a),
     ];
     for (name, part) in parts {
         for (i, &c) in part.iter().enumerate() {
@@ -638,14 +639,18 @@ fn check_filter_range(b: &[f64], a: &[f64]) -> Result<()> {
             if ratio <= MAX_FILTER_RATIO {
                 continue;
             }
-            let letter = if name.ends_with('b') { 'b' } else { 'a' };
+            let letter = if name == Param::VelocityFilterNumerator {
+                'b'
+            } else {
+                'a'
+            };
             let (name, value) = if c.abs() > MAX_FILTER_RATIO {
                 (name, c)
             } else {
-                ("velocity filter a0", a0)
+                (Param::VelocityFilterA0, a0)
             };
             return Err(Error::Invalid {
-                name,
+                param: name,
                 reason: format!(
                     "= {value:e} makes {letter}{i}/a0 = {ratio:e}: beyond the representable range \
                      (|b_i/a0|, |a_i/a0| ≤ {MAX_FILTER_RATIO:e})"
@@ -674,16 +679,16 @@ pub fn check_wall_range(
     let own = largest(&fam.p0_core).max(1.0);
     let terms = [
         (
-            "wall stiffness K",
-            "alpha",
+            Param::WallStiffness,
+            Param::Alpha,
             "N/m",
             wall.stiffness,
             units.0,
             &fam.pk,
         ),
         (
-            "wall damping B",
-            "beta",
+            Param::WallDamping,
+            Param::Beta,
             "Ns/m",
             wall.damping,
             units.1,
@@ -701,7 +706,7 @@ pub fn check_wall_range(
             (name, unit, value)
         };
         return Err(Error::Invalid {
-            name,
+            param: name,
             reason: format!(
                 "= {value:e}{}{unit} makes its term of p(z) {ratio:.1e} times the loop's own: \
                  beyond the representable range (at most {MAX_WALL_TERM:e})",
@@ -720,10 +725,10 @@ impl Loop {
         delay: Delay,
         velocity: VelocityEstimator,
     ) -> Result<Self> {
-        positive("sampling period T", period)?;
+        positive(Param::Period, period)?;
         if !(MIN_PERIOD..=MAX_PERIOD).contains(&period) {
             return Err(Error::OutOfRange {
-                name: "sampling period T",
+                param: Param::Period,
                 value: period,
                 range: "[1e-7, 1] s",
             });

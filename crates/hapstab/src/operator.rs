@@ -6,6 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::model::{Plant, PlantModel};
+use crate::param::Param;
 use crate::params::{Arm, Device, Effective};
 
 impl Plant {
@@ -50,17 +51,17 @@ impl Plant {
 fn check_operator(model: &PlantModel, arm: Arm) -> Result<()> {
     let PlantModel::MassSpringDamper(e) = model else {
         return Err(Error::Invalid {
-            name: "operator",
+            param: Param::Operator,
             reason: "only a mass-spring-damper (eq. 1) includes its operator; a two-mass \
                      device holds its arm in its own model"
                 .into(),
         });
     };
     let parts = [
-        ("arm mass m_H", arm.mass, "plant mass m", e.mass),
-        ("arm damping b_H", arm.damping, "plant damping b", e.damping),
+        (Param::ArmMass, arm.mass, "plant mass m", e.mass),
+        (Param::ArmDamping, arm.damping, "plant damping b", e.damping),
         (
-            "arm stiffness k_H",
+            Param::ArmStiffness,
             arm.stiffness,
             "plant stiffness k",
             e.stiffness,
@@ -69,7 +70,7 @@ fn check_operator(model: &PlantModel, arm: Arm) -> Result<()> {
     for (name, part, whole_name, whole) in parts {
         if !(0.0..=whole).contains(&part) {
             return Err(Error::Invalid {
-                name,
+                param: name,
                 reason: format!(
                     "= {part} must be >= 0 and within the {whole_name} = {whole} it is part of"
                 ),

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::param::Param;
 
 /// Largest supported delay in samples. A delay of 2000 samples is two seconds at 1 kHz, far
 /// beyond any haptic loop; the bound keeps every analysis within memory and time.
@@ -78,19 +79,19 @@ impl Effective {
     /// Builds and validates an effective plant directly (m > 0, b >= 0, k >= 0).
     pub fn new(mass: f64, damping: f64, stiffness: f64) -> Result<Self> {
         Ok(Self {
-            mass: positive("mass m", mass)?,
-            damping: non_negative("damping b", damping)?,
-            stiffness: non_negative("stiffness k", stiffness)?,
+            mass: positive(Param::Mass, mass)?,
+            damping: non_negative(Param::Damping, damping)?,
+            stiffness: non_negative(Param::Stiffness, stiffness)?,
         })
     }
 
     /// Combines device and arm by eq. (1).
     pub fn combine(device: Device, arm: Arm) -> Result<Self> {
-        non_negative("device mass m_L", device.mass)?;
-        non_negative("device damping b_L", device.damping)?;
-        non_negative("arm mass m_H", arm.mass)?;
-        non_negative("arm damping b_H", arm.damping)?;
-        non_negative("arm stiffness k_H", arm.stiffness)?;
+        non_negative(Param::DeviceMass, device.mass)?;
+        non_negative(Param::DeviceDamping, device.damping)?;
+        non_negative(Param::ArmMass, arm.mass)?;
+        non_negative(Param::ArmDamping, arm.damping)?;
+        non_negative(Param::ArmStiffness, arm.stiffness)?;
         Self::new(
             device.mass + arm.mass,
             device.damping + arm.damping,
@@ -111,7 +112,7 @@ pub struct Sampling {
 impl Sampling {
     /// Validates T > 0 and d <= [`MAX_DELAY`].
     pub fn new(period: f64, delay: usize) -> Result<Self> {
-        positive("sampling period T", period)?;
+        positive(Param::Period, period)?;
         check_delay(delay)?;
         Ok(Self { period, delay })
     }
@@ -119,8 +120,8 @@ impl Sampling {
     /// Builds the sampling from a delay time t_d in seconds, which must be a whole number of
     /// periods (Table I: d = t_d / T).
     pub fn from_delay_time(period: f64, delay_time: f64) -> Result<Self> {
-        positive("sampling period T", period)?;
-        non_negative("delay time t_d", delay_time)?;
+        positive(Param::Period, period)?;
+        non_negative(Param::DelayTime, delay_time)?;
         let ratio = delay_time / period;
         let d = ratio.round();
         if (ratio - d).abs() > 1e-9 * d.max(1.0) {
@@ -172,8 +173,8 @@ impl Physical {
     /// Validates and bundles the parts.
     pub fn new(plant: Effective, wall: Wall, sampling: Sampling) -> Result<Self> {
         let plant = Effective::new(plant.mass, plant.damping, plant.stiffness)?;
-        finite("wall stiffness K", wall.stiffness)?;
-        finite("wall damping B", wall.damping)?;
+        finite(Param::WallStiffness, wall.stiffness)?;
+        finite(Param::WallDamping, wall.damping)?;
         let sampling = Sampling::new(sampling.period, sampling.delay)?;
         Ok(Self {
             plant,
@@ -190,8 +191,8 @@ impl Physical {
         let alpha = per_mass(
             "α = KT²/m",
             [
-                ("wall stiffness K", self.wall.stiffness.abs()),
-                ("sampling period T", t),
+                (Param::WallStiffness, self.wall.stiffness.abs()),
+                (Param::Period, t),
             ],
             2,
             m,
@@ -199,8 +200,8 @@ impl Physical {
         let beta = per_mass(
             "β = BT/m",
             [
-                ("wall damping B", self.wall.damping.abs()),
-                ("sampling period T", t),
+                (Param::WallDamping, self.wall.damping.abs()),
+                (Param::Period, t),
             ],
             1,
             m,
@@ -219,7 +220,7 @@ impl Physical {
 /// goes to x or T when x·Tᵖ alone overflows, else to the mass m.
 fn per_mass(
     derived: &'static str,
-    [(x_name, x), (t_name, t)]: [(&'static str, f64); 2],
+    [(x_name, x), (t_name, t)]: [(Param, f64); 2],
     power: i32,
     mass: f64,
 ) -> Result<f64> {
@@ -229,14 +230,14 @@ fn per_mass(
         return Ok(result);
     }
     let (name, value) = if num.is_finite() {
-        ("mass m", mass)
+        (Param::Mass, mass)
     } else if x >= t {
         (x_name, x)
     } else {
         (t_name, t)
     };
     Err(Error::Unrepresentable {
-        name,
+        param: name,
         value,
         derived,
         result,
@@ -256,8 +257,8 @@ impl PlantParams {
     /// Validates γ >= 0 and δ >= 0, both finite.
     pub fn new(gamma: f64, delta: f64) -> Result<Self> {
         Ok(Self {
-            gamma: non_negative("gamma", gamma)?,
-            delta: non_negative("delta", delta)?,
+            gamma: non_negative(Param::Gamma, gamma)?,
+            delta: non_negative(Param::Delta, delta)?,
         })
     }
 
@@ -265,19 +266,16 @@ impl PlantParams {
     /// γ or δ overflows is refused naming the physical parameter (e.g. a mass so small that
     /// bT/m is infinite).
     pub fn from_physical(plant: &Effective, period: f64) -> Result<Self> {
-        positive("sampling period T", period)?;
+        positive(Param::Period, period)?;
         let gamma = per_mass(
             "γ = kT²/m",
-            [
-                ("stiffness k", plant.stiffness),
-                ("sampling period T", period),
-            ],
+            [(Param::Stiffness, plant.stiffness), (Param::Period, period)],
             2,
             plant.mass,
         )?;
         let delta = per_mass(
             "δ = bT/m",
-            [("damping b", plant.damping), ("sampling period T", period)],
+            [(Param::Damping, plant.damping), (Param::Period, period)],
             1,
             plant.mass,
         )?;
@@ -304,8 +302,8 @@ pub struct Normalized {
 impl Normalized {
     /// Validates: α, β finite; γ, δ finite and >= 0; d <= [`MAX_DELAY`].
     pub fn new(alpha: f64, beta: f64, gamma: f64, delta: f64, d: usize) -> Result<Self> {
-        finite("alpha", alpha)?;
-        finite("beta", beta)?;
+        finite(Param::Alpha, alpha)?;
+        finite(Param::Beta, beta)?;
         let plant = PlantParams::new(gamma, delta)?;
         check_delay(d)?;
         Ok(Self {
@@ -334,8 +332,8 @@ impl Normalized {
     /// Converts back to physical units for a given effective mass m and period T (Table I
     /// inverted): K = αm/T², B = βm/T, k = γm/T², b = δm/T, t_d = dT.
     pub fn to_physical(&self, mass: f64, period: f64) -> Result<Physical> {
-        positive("mass m", mass)?;
-        positive("sampling period T", period)?;
+        positive(Param::Mass, mass)?;
+        positive(Param::Period, period)?;
         let t2 = period * period;
         Physical::new(
             Effective::new(mass, self.delta * mass / period, self.gamma * mass / t2)?,

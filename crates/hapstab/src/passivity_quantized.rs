@@ -35,6 +35,7 @@
 use serde::Serialize;
 
 use crate::error::{Result, finite, non_negative, positive};
+use crate::param::Param;
 
 /// A sampled virtual wall on a device with friction and an encoder.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -125,12 +126,12 @@ pub fn quantization_bound(w: &QuantizedWall) -> f64 {
 }
 
 fn validated(w: &QuantizedWall) -> Result<QuantizedWall> {
-    non_negative("wall stiffness K", w.stiffness)?;
-    finite("wall damping B", w.damping)?;
-    positive("sampling period T", w.period)?;
-    non_negative("device damping b", w.device_damping)?;
-    non_negative("Coulomb friction f_c", w.coulomb)?;
-    positive("quantization Δ", w.quantization)?;
+    non_negative(Param::WallStiffness, w.stiffness)?;
+    finite(Param::WallDamping, w.damping)?;
+    positive(Param::Period, w.period)?;
+    non_negative(Param::DeviceDamping, w.device_damping)?;
+    non_negative(Param::CoulombFriction, w.coulomb)?;
+    positive(Param::Quantization, w.quantization)?;
     Ok(*w)
 }
 

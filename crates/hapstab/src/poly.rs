@@ -65,8 +65,26 @@ pub fn eval(c: &[f64], z: Complex64) -> Complex64 {
 pub fn eval3(a: &[f64], b: &[f64], c: &[f64], z: Complex64) -> [Complex64; 3] {
     let n = a.len().max(b.len()).max(c.len());
     let (zr, zi) = (z.re, z.im);
-    let at = |p: &[f64], i: usize| if i < p.len() { p[i] } else { 0.0 };
     let (mut ar, mut ai, mut br, mut bi, mut cr, mut ci) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    let m = b.len();
+    if a.len() == n && c.len() == m {
+        // the family's shape (P0's core at least as long as the wall parts, which are equally
+        // long): no test for missing coefficients in the loops
+        for &x in a[m..].iter().rev() {
+            (ar, ai) = (ar * zr - ai * zi + x, ar * zi + ai * zr);
+        }
+        for ((&x, &y), &w) in a[..m].iter().zip(b).zip(c).rev() {
+            (ar, ai) = (ar * zr - ai * zi + x, ar * zi + ai * zr);
+            (br, bi) = (br * zr - bi * zi + y, br * zi + bi * zr);
+            (cr, ci) = (cr * zr - ci * zi + w, cr * zi + ci * zr);
+        }
+        return [
+            Complex64::new(ar, ai),
+            Complex64::new(br, bi),
+            Complex64::new(cr, ci),
+        ];
+    }
+    let at = |p: &[f64], i: usize| if i < p.len() { p[i] } else { 0.0 };
     for i in (0..n).rev() {
         (ar, ai) = (ar * zr - ai * zi + at(a, i), ar * zi + ai * zr);
         (br, bi) = (br * zr - bi * zi + at(b, i), br * zi + bi * zr);
@@ -220,6 +238,31 @@ pub fn char_poly(a: &Mat) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn three_at_once_are_bit_for_bit_each_alone_at_every_shape() {
+        let p: Vec<f64> = (0..10)
+            .map(|i| (i as f64 * 1.7).sin() * 10f64.powi(i % 4))
+            .collect();
+        let z = Complex64::new(0.3, -0.95);
+        // equal lengths, the family's shape (longer first, the two others equal), and others
+        for (la, lb, lc) in [
+            (9, 9, 9),
+            (9, 7, 7),
+            (8, 8, 2),
+            (3, 9, 5),
+            (1, 1, 1),
+            (0, 4, 4),
+        ] {
+            let (a, b, c) = (&p[..la], &p[1..=lb], &p[..lc]);
+            let [ea, eb, ec] = eval3(a, b, c, z);
+            assert_eq!(
+                (ea, eb, ec),
+                (eval(a, z), eval(b, z), eval(c, z)),
+                "{la} {lb} {lc}"
+            );
+        }
+    }
 
     #[test]
     fn char_poly_of_companion_matrix() {

@@ -265,7 +265,7 @@ fn starting_points(c: &[f64]) -> Vec<Complex64> {
         let turn = out.len() as f64 / n as f64;
         for t in 0..m {
             let angle = std::f64::consts::TAU * (t as f64 / m as f64 + turn) + START_ANGLE;
-            out.push(Complex64::from_polar(radius, angle));
+            out.push(crate::circle::polar(radius, angle));
         }
     }
     out
@@ -320,7 +320,7 @@ fn aberth_update(poly: &Prepared, i: usize, re: &[f64], im: &[f64]) -> (bool, Co
         z - step
     } else if z.norm() > 0.0 {
         // Two approximations met (the Aberth sum is infinite): move this one off.
-        z * Complex64::from_polar(1.0 + NUDGE, 1.0)
+        z * crate::circle::polar(1.0 + NUDGE, 1.0)
     } else {
         Complex64::new(NUDGE, NUDGE)
     };
@@ -500,7 +500,7 @@ mod tests {
         let r = aberth(&c).unwrap();
         let modulus = 0.5f64.powf(1.0 / 20.0);
         for k in 0..20 {
-            let w = Complex64::from_polar(modulus, std::f64::consts::TAU * k as f64 / 20.0);
+            let w = crate::circle::polar(modulus, std::f64::consts::TAU * k as f64 / 20.0);
             let near = r.iter().filter(|e| (e.z - w).norm() < 1e-14).count();
             assert_eq!(near, 1, "root {w}: {r:?}");
         }

@@ -22,6 +22,7 @@ use crate::AffineFamily;
 use crate::error::{Error, Result};
 use crate::kmax::{KmaxQuery, kmax};
 use crate::model::Loop;
+use crate::param::Param;
 use crate::ranges::RatioLimits;
 use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
@@ -63,7 +64,7 @@ impl Dist {
     /// Parses `uniform:LO:HI`, `normal:MEAN:SD` or `lognormal:MEDIAN:SIGMA`.
     pub fn parse(text: &str) -> Result<Dist> {
         let bad = |why: &str| Error::Invalid {
-            name: "distribution",
+            param: Param::Distribution,
             reason: format!(
                 "{why} (got '{text}'; uniform:LO:HI, normal:MEAN:SD or lognormal:MEDIAN:SIGMA)"
             ),
@@ -196,7 +197,7 @@ pub fn wall_probability(
     check(pop, wall.damping, samples, &[])?;
     if !wall.stiffness.is_finite() {
         return Err(Error::NotFinite {
-            name: "wall stiffness K",
+            param: Param::WallStiffness,
             value: wall.stiffness,
         });
     }
@@ -294,7 +295,7 @@ fn applies(lp: &Loop, pop: &Population, params: &[SweepParam], seed: u64) -> Res
     match (loop_of(lp, params, &draw(pop, seed, 0)), pop) {
         (Ok(_), _) => Ok(()),
         (Err(e), Population::SectionIv) => Err(Error::Invalid {
-            name: "population",
+            param: Param::Population,
             reason: format!(
                 "of Section IV draws the arm's m_H, b_H and k_H, which this loop cannot take \
                  ({e}); give the distributions of its own parameters instead"
@@ -363,19 +364,19 @@ pub fn stability_probability(
 fn check(pop: &Population, b: f64, samples: usize, levels: &[f64]) -> Result<()> {
     if !b.is_finite() {
         return Err(Error::NotFinite {
-            name: "wall damping B",
+            param: Param::WallDamping,
             value: b,
         });
     }
     if samples == 0 {
         return Err(Error::Invalid {
-            name: "samples",
+            param: Param::Samples,
             reason: "must be at least 1".into(),
         });
     }
     if let Some(q) = levels.iter().find(|q| !(**q > 0.0 && **q < 1.0)) {
         return Err(Error::OutOfRange {
-            name: "level",
+            param: Param::Level,
             value: *q,
             range: "(0, 1)",
         });
@@ -384,7 +385,7 @@ fn check(pop: &Population, b: f64, samples: usize, levels: &[f64]) -> Result<()>
         && params.is_empty()
     {
         return Err(Error::Invalid {
-            name: "population",
+            param: Param::Population,
             reason: "needs at least one parameter distribution".into(),
         });
     }

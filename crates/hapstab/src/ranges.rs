@@ -15,6 +15,7 @@
 use serde::Serialize;
 
 use crate::error::{Error, Result, non_negative, positive};
+use crate::param::Param;
 use crate::params::{Arm, Device, Effective, PlantParams};
 
 /// Upper bounds of the physical ratios that enter eq. (14).
@@ -43,9 +44,18 @@ impl RatioLimits {
         device_damping_per_mass: f64,
     ) -> Result<Self> {
         Ok(Self {
-            arm_stiffness_per_mass: non_negative("k_H/m_H limit", arm_stiffness_per_mass)?,
-            arm_damping_per_mass: non_negative("b_H/m_H limit", arm_damping_per_mass)?,
-            device_damping_per_mass: non_negative("b_L/m_L limit", device_damping_per_mass)?,
+            arm_stiffness_per_mass: non_negative(
+                Param::ArmStiffnessPerMassLimit,
+                arm_stiffness_per_mass,
+            )?,
+            arm_damping_per_mass: non_negative(
+                Param::ArmDampingPerMassLimit,
+                arm_damping_per_mass,
+            )?,
+            device_damping_per_mass: non_negative(
+                Param::DeviceDampingPerMassLimit,
+                device_damping_per_mass,
+            )?,
         })
     }
 
@@ -85,7 +95,7 @@ pub struct Ranges {
 /// The γ and δ bounds of eq. (14) for sampling period T and given ratio limits, with the
 /// extended range (15) (Section IV).
 pub fn ranges_with(period: f64, limits: RatioLimits) -> Result<Ranges> {
-    positive("sampling period T", period)?;
+    positive(Param::Period, period)?;
     let limits = RatioLimits::new(
         limits.arm_stiffness_per_mass,
         limits.arm_damping_per_mass,
@@ -95,7 +105,7 @@ pub fn ranges_with(period: f64, limits: RatioLimits) -> Result<Ranges> {
     let delta_max = period * limits.damping_per_mass();
     if !gamma_max.is_finite() || !delta_max.is_finite() {
         return Err(Error::OutOfRange {
-            name: "sampling period T",
+            param: Param::Period,
             value: period,
             range: "a range where T²·(k_H/m_H) and T·(b/m) are finite",
         });
@@ -149,7 +159,7 @@ fn ratio(num: f64, den: f64) -> f64 {
 /// γ and δ of a device held by an arm (eq. 12) and the upper bounds of eq. (13), with a check
 /// of the ratios against eq. (11) (Section IV).
 pub fn check_arm(device: Device, arm: Arm, period: f64) -> Result<ArmCheck> {
-    positive("sampling period T", period)?;
+    positive(Param::Period, period)?;
     let eff = Effective::combine(device, arm)?;
     let plant = PlantParams::from_physical(&eff, period)?;
     let ks = ratio(arm.stiffness, arm.mass);

@@ -28,6 +28,7 @@ use crate::error::{Error, Result};
 use crate::kmax::{KmaxQuery, kmax};
 use crate::loop_analysis::wall_units;
 use crate::model::Loop;
+use crate::param::Param;
 use crate::params::Wall;
 use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
@@ -138,14 +139,14 @@ impl Eval {
 fn check_box(lp: &Loop, sides: &[BoxSide]) -> Result<()> {
     if sides.is_empty() {
         return Err(Error::Invalid {
-            name: "box",
+            param: Param::Box,
             reason: "needs at least one parameter range NAME:LO:HI".into(),
         });
     }
     for (i, s) in sides.iter().enumerate() {
         if !(s.lo.is_finite() && s.hi.is_finite() && s.lo <= s.hi) {
             return Err(Error::Invalid {
-                name: "box",
+                param: Param::Box,
                 reason: format!(
                     "{}: needs finite LO <= HI (got {}:{})",
                     s.param.name(),
@@ -156,7 +157,7 @@ fn check_box(lp: &Loop, sides: &[BoxSide]) -> Result<()> {
         }
         if sides[..i].iter().any(|o| o.param == s.param) {
             return Err(Error::Invalid {
-                name: "box",
+                param: Param::Box,
                 reason: format!("{} is given twice", s.param.name()),
             });
         }

@@ -18,6 +18,7 @@ use std::str::FromStr;
 use crate::error::{Error, Result, finite};
 use crate::lowpass_design::{Family, NamedLowPass};
 use crate::model::VelocityEstimator;
+use crate::param::Param;
 
 /// The accepted forms of a velocity estimator spec, for error messages and help texts.
 pub const VELOCITY_FORMS: &str = "backward, lowpass:FC, butterworth:N:FC, bessel:N:FC, \
@@ -25,7 +26,7 @@ pub const VELOCITY_FORMS: &str = "backward, lowpass:FC, butterworth:N:FC, bessel
 
 fn bad_velocity(text: &str, why: &str) -> Error {
     Error::Invalid {
-        name: "velocity estimator",
+        param: Param::Velocity,
         reason: format!("'{}' {why} (expected {VELOCITY_FORMS})", excerpt(text)),
     }
 }
@@ -80,12 +81,12 @@ fn excerpt_items(list: &str) -> String {
     )
 }
 
-/// Parses a comma-separated list of finite numbers; `name` names the parameter in errors.
-pub fn parse_coefficients(name: &'static str, text: &str) -> Result<Vec<f64>> {
+/// Parses a comma-separated list of finite numbers; `param` names the parameter in errors.
+pub fn parse_coefficients(param: Param, text: &str) -> Result<Vec<f64>> {
     let text = text.trim();
     if text.is_empty() {
         return Err(Error::Invalid {
-            name,
+            param,
             reason: "is empty (expected comma-separated numbers, e.g. 1,3,10)".into(),
         });
     }
@@ -93,14 +94,14 @@ pub fn parse_coefficients(name: &'static str, text: &str) -> Result<Vec<f64>> {
         .map(|tok| {
             let tok = tok.trim();
             let x: f64 = tok.parse().map_err(|_| Error::Invalid {
-                name,
+                param,
                 reason: format!(
                     "has '{}', which is not a number (in '{}')",
                     excerpt(tok),
                     excerpt(text)
                 ),
             })?;
-            finite(name, x)
+            finite(param, x)
         })
         .collect()
 }
@@ -112,8 +113,8 @@ fn parse_iir(text: &str, body: &str) -> Result<VelocityEstimator> {
             "needs a '/' between numerator and denominator",
         ));
     };
-    let b = parse_coefficients("velocity filter numerator b", b)?;
-    let a = parse_coefficients("velocity filter denominator a", a)?;
+    let b = parse_coefficients(Param::VelocityFilterNumerator, b)?;
+    let a = parse_coefficients(Param::VelocityFilterDenominator, a)?;
     VelocityEstimator::Iir { b, a }.validated()
 }
 
@@ -304,7 +305,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("'iir: 2001 coefficients (1, 1, 1, …)'"), "{e}");
-        let e = parse_coefficients("num", &format!("{ones},y"))
+        let e = parse_coefficients(Param::PlantNum, &format!("{ones},y"))
             .unwrap_err()
             .to_string();
         assert!(e.len() < 300 && e.contains("'y'"), "{e}");
@@ -320,13 +321,18 @@ mod tests {
     #[test]
     fn coefficient_lists() {
         assert_eq!(
-            parse_coefficients("num", "1, 3,10").unwrap(),
+            parse_coefficients(Param::PlantNum, "1, 3,10").unwrap(),
             vec![1.0, 3.0, 10.0]
         );
-        assert_eq!(parse_coefficients("num", "-2.5e-3").unwrap(), vec![-2.5e-3]);
-        assert!(parse_coefficients("num", "").is_err());
-        assert!(parse_coefficients("num", "1,,2").is_err());
-        let e = parse_coefficients("num", "1,inf").unwrap_err().to_string();
+        assert_eq!(
+            parse_coefficients(Param::PlantNum, "-2.5e-3").unwrap(),
+            vec![-2.5e-3]
+        );
+        assert!(parse_coefficients(Param::PlantNum, "").is_err());
+        assert!(parse_coefficients(Param::PlantNum, "1,,2").is_err());
+        let e = parse_coefficients(Param::PlantNum, "1,inf")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("num") && e.contains("inf"), "{e}");
     }
 }

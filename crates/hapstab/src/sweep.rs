@@ -13,6 +13,7 @@ use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite};
 use crate::kmax_band::{BandMax, k_max_band};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
+use crate::param::Param;
 use crate::params::{Arm, Effective};
 use crate::passivity::{
     DeviceDamping, SampledWall, device_damping, k_max_passive_at, passive_k_max,
@@ -106,6 +107,28 @@ impl SweepParam {
         }
     }
 
+    /// The loop's parameter it sets, as errors name it.
+    pub fn param(self) -> Param {
+        match self {
+            SweepParam::DelayTime => Param::DelayTime,
+            SweepParam::Period => Param::Period,
+            SweepParam::Cutoff => Param::VelocityCutoff,
+            SweepParam::Window => Param::VelocityWindow,
+            SweepParam::ForceLag => Param::ForceLag,
+            SweepParam::Mass => Param::Mass,
+            SweepParam::Damping => Param::Damping,
+            SweepParam::Stiffness => Param::Stiffness,
+            SweepParam::MotorMass => Param::MotorMass,
+            SweepParam::MotorDamping => Param::MotorDamping,
+            SweepParam::HandleMass => Param::HandleMass,
+            SweepParam::TransmissionStiffness => Param::TransmissionStiffness,
+            SweepParam::TransmissionDamping => Param::TransmissionDamping,
+            SweepParam::ArmMass => Param::ArmMass,
+            SweepParam::ArmDamping => Param::ArmDamping,
+            SweepParam::ArmStiffness => Param::ArmStiffness,
+        }
+    }
+
     /// The parameter's SI unit.
     pub fn unit(self) -> &'static str {
         match self {
@@ -130,12 +153,12 @@ impl SweepParam {
     /// parameter, when the loop has no such parameter (a cut-off without a low-pass estimator,
     /// a motor mass without a two-mass device, …).
     pub fn apply(self, lp: &Loop, v: f64) -> Result<Loop> {
-        finite(self.name(), v)?;
+        finite(self.param(), v)?;
         let mut out = lp.clone();
         match self {
             SweepParam::DelayTime => out.delay = Delay::from_time(v, lp.period)?,
             SweepParam::Period => {
-                crate::error::positive("sampling period T", v)?;
+                crate::error::positive(Param::Period, v)?;
                 out.delay = Delay::from_time(lp.delay_time(), v)?;
                 out.period = v;
             }
@@ -175,7 +198,7 @@ impl SweepParam {
 
 fn missing(p: SweepParam, needs: &str) -> Error {
     Error::Invalid {
-        name: "sweep parameter",
+        param: Param::SweepParameter,
         reason: format!("{} needs {needs}", p.name()),
     }
 }
@@ -183,7 +206,7 @@ fn missing(p: SweepParam, needs: &str) -> Error {
 fn whole_window(v: f64) -> Result<usize> {
     if v < 1.0 || v.fract() != 0.0 {
         return Err(Error::OutOfRange {
-            name: "velocity average window N",
+            param: Param::VelocityWindow,
             value: v,
             range: "whole numbers 1..=2000",
         });
@@ -245,7 +268,7 @@ fn set_held(p: SweepParam, plant: &Plant, e: &Effective, arm: Arm, v: f64) -> Re
                 .with_operator(arm);
         }
     }
-    crate::error::non_negative(p.name(), v)?;
+    crate::error::non_negative(p.param(), v)?;
     let e = Effective::new(
         e.mass - arm.mass + arm2.mass,
         e.damping - arm.damping + arm2.damping,
@@ -260,7 +283,7 @@ fn set_msd(p: SweepParam, e: &Effective, v: f64) -> Result<Effective> {
         SweepParam::Damping => Effective::new(e.mass, v, e.stiffness),
         SweepParam::Stiffness | SweepParam::ArmStiffness => Effective::new(e.mass, e.damping, v),
         SweepParam::ArmMass | SweepParam::ArmDamping => Err(Error::Invalid {
-            name: "sweep parameter",
+            param: Param::SweepParameter,
             reason: format!(
                 "{} is part of the one-mass plant's effective m = m_L + m_H and b = b_L + b_H; \
                  sweep mass or damping",
@@ -278,7 +301,7 @@ impl FromStr for SweepParam {
             .into_iter()
             .find(|p| p.name() == s)
             .ok_or_else(|| Error::Invalid {
-                name: "sweep parameter",
+                param: Param::SweepParameter,
                 reason: format!(
                     "'{s}' is not one of {}",
                     SweepParam::ALL.map(|p| p.name()).join(", ")
@@ -306,11 +329,11 @@ pub struct SweepRange {
 impl SweepRange {
     /// Validates lo, hi finite and 2 <= n <= [`MAX_SWEEP_POINTS`].
     pub fn new(param: SweepParam, lo: f64, hi: f64, n: usize) -> Result<Self> {
-        finite("sweep start", lo)?;
-        finite("sweep end", hi)?;
+        finite(Param::SweepStart, lo)?;
+        finite(Param::SweepEnd, hi)?;
         if !(2..=MAX_SWEEP_POINTS).contains(&n) {
             return Err(Error::OutOfRange {
-                name: "sweep points N",
+                param: Param::SweepPoints,
                 value: n as f64,
                 range: "2..=100000",
             });
@@ -335,24 +358,24 @@ impl FromStr for SweepRange {
         let parts: Vec<&str> = s.split(':').collect();
         let [name, lo, hi, n] = parts[..] else {
             return Err(Error::Invalid {
-                name: "sweep range",
+                param: Param::SweepRange,
                 reason: format!("'{s}' must be NAME:START:END:POINTS, e.g. delay-time:0:0.005:50"),
             });
         };
-        let num = |what: &'static str, t: &str| {
+        let num = |param: Param, t: &str| {
             t.trim().parse::<f64>().map_err(|_| Error::Invalid {
-                name: what,
+                param,
                 reason: format!("'{t}' is not a number"),
             })
         };
         let count = n.trim().parse::<usize>().map_err(|_| Error::Invalid {
-            name: "sweep points N",
+            param: Param::SweepPoints,
             reason: format!("'{n}' is not a whole number"),
         })?;
         Self::new(
             name.trim().parse()?,
-            num("sweep start", lo)?,
-            num("sweep end", hi)?,
+            num(Param::SweepStart, lo)?,
+            num(Param::SweepEnd, hi)?,
             count,
         )
     }

@@ -36,6 +36,7 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator, strip_leading_zeros};
+use crate::param::Param;
 use crate::params::Effective;
 use crate::poly::{self, Mat};
 
@@ -225,7 +226,7 @@ fn transfer_function(num: &[f64], den: &[f64], period: f64, m_ref: f64) -> Resul
     let n = den.len() - 1;
     if n == 0 || num.len() > n {
         return Err(Error::Invalid {
-            name: "plant transfer function",
+            param: Param::PlantTransferFunction,
             reason: "must be strictly proper".into(),
         });
     }

@@ -21,7 +21,7 @@ use hapstab::params::{Effective, Physical, Sampling, Wall};
 use hapstab::ranges::ranges;
 use hapstab::stability::{Verdict, roots, schur_stable};
 use hapstab::verdict::decide_coefficients;
-use hapstab::{Error, Normalized, PlantParams, PolyFamily};
+use hapstab::{Error, Normalized, Param, PlantParams, PolyFamily};
 
 const PI2: f64 = PI * PI;
 
@@ -426,7 +426,9 @@ fn linear_condition_of_a_loop_is_its_normalized_view() {
     )
     .unwrap();
     match linear_condition(&lowpass, &levels) {
-        Err(Error::Invalid { name: "loop", .. }) => {}
+        Err(Error::Invalid {
+            param: Param::Loop, ..
+        }) => {}
         other => panic!("{other:?}"),
     }
 }

@@ -54,6 +54,18 @@ fn saved_loops_load_back_bit_for_bit() {
 }
 
 #[test]
+fn a_negative_zero_is_written_as_zero_as_every_report_writes_it() {
+    let wall = Wall {
+        stiffness: 2000.0,
+        damping: -0.0,
+    };
+    let text = LoopInput::new(&paper_default(), false, Some(wall)).to_json();
+    assert!(!text.contains("-0"), "{text}");
+    assert!(text.contains("\"damping\": 0"), "{text}");
+    assert_eq!(parse(&text).unwrap().wall, Some(wall));
+}
+
+#[test]
 fn an_operator_and_a_force_lag_survive_the_file() {
     let lp = paper_default();
     let lp = Loop::new(

@@ -20,7 +20,7 @@ use hapstab::model::{Loop, VelocityEstimator};
 use serde::Serialize;
 
 use crate::output::print_json;
-use crate::plot::Saved;
+use hapstab_plot::Saved;
 
 /// Fit a plant model to a recording of force and position, then answer with K_max.
 #[derive(Args, Debug, Clone)]

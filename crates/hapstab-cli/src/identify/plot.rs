@@ -6,7 +6,7 @@ use hapstab::identify::{Identification, Record};
 use hapstab::model::Loop;
 
 use crate::output::sig;
-use crate::plot::{Figure, Grid, Legend, Series, palette};
+use hapstab_plot::{Figure, Grid, Legend, Series, palette};
 
 /// Buckets of the min-max decimation of each curve: two points per bucket keep the envelope
 /// of a dense noisy trace. The curves are one pixel wide: a wider polyline's mitred joins
@@ -16,7 +16,7 @@ const PLOT_BUCKETS: usize = 1_500;
 /// The (time, value × scale) pairs, min-max decimated to [`PLOT_BUCKETS`] buckets.
 fn thinned(t: &[f64], v: &[f64], scale: f64) -> Vec<(f64, f64)> {
     let pts: Vec<(f64, f64)> = t.iter().zip(v).map(|(t, v)| (*t, v * scale)).collect();
-    crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
+    hapstab_plot::decimate_minmax(&pts, PLOT_BUCKETS)
 }
 
 /// The figure (module doc), positions in mm.
@@ -119,7 +119,7 @@ pub fn bode(rec: &FrequencyRecord, id: &Identification, lp: &Loop) -> Grid {
             .x_log10()
             .legend(Legend::Below);
         fig.add(
-            Series::scatter(f.iter().copied().zip(meas), crate::plot::Marker::Circle)
+            Series::scatter(f.iter().copied().zip(meas), hapstab_plot::Marker::Circle)
                 .color(palette::GREY)
                 .label("measured"),
         );

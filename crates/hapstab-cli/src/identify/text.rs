@@ -7,7 +7,7 @@ use hapstab::model::Loop;
 
 use super::IdentifyArgs;
 use crate::output::{eng, sig};
-use crate::plot::Saved;
+use hapstab_plot::Saved;
 
 /// Significant digits of the estimates.
 const DIGITS: usize = 6;

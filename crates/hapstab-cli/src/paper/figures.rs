@@ -10,7 +10,8 @@ use super::compute::{
     RobustKey, sweep_gamma,
 };
 use crate::output::sig;
-use crate::plot::{Figure, Grid, Kind, Legend, Marker, RGBColor, Saved, Series, palette};
+use hapstab_plot::simplify::simplify_ring;
+use hapstab_plot::{Figure, Grid, Kind, Legend, Marker, RGBColor, Saved, Series, palette};
 
 /// x-axis label.
 const XL: &str = "α = KT²/m";
@@ -49,68 +50,10 @@ impl PaperFigure {
     pub fn save(&self, dir: &std::path::Path) -> Result<Saved> {
         let stem = dir.join(self.name);
         match &self.drawing {
-            Drawing::Single(f) => f.save(stem),
-            Drawing::Grid(g) => g.save(stem),
+            Drawing::Single(f) => Ok(f.save(stem)?),
+            Drawing::Grid(g) => Ok(g.save(stem)?),
         }
     }
-}
-
-/// Douglas–Peucker decimation of a closed ring (returned closed: last = first) with the
-/// tolerance measured in axis-range units.
-pub fn decimate_ring(ring: &[(f64, f64)], xr: (f64, f64), yr: (f64, f64)) -> Vec<(f64, f64)> {
-    let mut pts: Vec<(f64, f64)> = ring.to_vec();
-    if let Some(&first) = ring.first() {
-        pts.push(first);
-    }
-    let n = pts.len();
-    if n < 4 {
-        return pts;
-    }
-    let (sx, sy) = (1.0 / (xr.1 - xr.0), 1.0 / (yr.1 - yr.0));
-    let q: Vec<(f64, f64)> = pts.iter().map(|p| (p.0 * sx, p.1 * sy)).collect();
-    let mut keep = vec![false; n];
-    keep[0] = true;
-    keep[n - 1] = true;
-    // A closed ring starts and ends at one point: split it at the farthest vertex first.
-    let far = (1..n - 1)
-        .max_by(|&i, &j| {
-            let d = |k: usize| (q[k].0 - q[0].0).hypot(q[k].1 - q[0].1);
-            d(i).total_cmp(&d(j))
-        })
-        .unwrap_or(n / 2);
-    keep[far] = true;
-    let mut stack = vec![(0usize, far), (far, n - 1)];
-    while let Some((a, b)) = stack.pop() {
-        if b <= a + 1 {
-            continue;
-        }
-        let (ax, ay) = q[a];
-        let (dx, dy) = (q[b].0 - ax, q[b].1 - ay);
-        let len2 = dx * dx + dy * dy;
-        let mut best = (0.0, a);
-        for (i, p) in q.iter().enumerate().take(b).skip(a + 1) {
-            let (px, py) = (p.0 - ax, p.1 - ay);
-            let dist = if len2 > 0.0 {
-                let t = ((px * dx + py * dy) / len2).clamp(0.0, 1.0);
-                (px - t * dx).hypot(py - t * dy)
-            } else {
-                px.hypot(py)
-            };
-            if dist > best.0 {
-                best = (dist, i);
-            }
-        }
-        if best.0 > DRAW_TOL {
-            keep[best.1] = true;
-            stack.push((a, best.1));
-            stack.push((best.1, b));
-        }
-    }
-    pts.iter()
-        .zip(&keep)
-        .filter(|(_, k)| **k)
-        .map(|(p, _)| *p)
-        .collect()
 }
 
 /// The outline of a region as polylines (one per component, NaN-separated in one series).
@@ -121,7 +64,8 @@ fn outline(r: &Results, k: Key, xr: (f64, f64), yr: (f64, f64)) -> Result<Vec<(f
         if i > 0 {
             out.push((f64::NAN, f64::NAN));
         }
-        out.extend(decimate_ring(ring, xr, yr));
+        let scale = (1.0 / (xr.1 - xr.0), 1.0 / (yr.1 - yr.0));
+        out.extend(simplify_ring(ring, scale, DRAW_TOL));
     }
     Ok(out)
 }
@@ -163,10 +107,10 @@ fn occupied(f: &Figure, bx: [f64; 4]) -> bool {
         Kind::Line { .. } => s
             .points
             .windows(2)
-            .any(|w| crate::plot::segment_meets_box(w[0], w[1], bx)),
+            .any(|w| hapstab_plot::segment_meets_box(w[0], w[1], bx)),
         Kind::Polygon { .. } => {
             let n = s.points.len();
-            (0..n).any(|i| crate::plot::segment_meets_box(s.points[i], s.points[(i + 1) % n], bx))
+            (0..n).any(|i| hapstab_plot::segment_meets_box(s.points[i], s.points[(i + 1) % n], bx))
                 || inside(&s.points, (0.5 * (bx[0] + bx[1]), 0.5 * (bx[2] + bx[3])))
         }
         Kind::Scatter { .. } => s

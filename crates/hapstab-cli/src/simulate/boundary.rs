@@ -23,7 +23,7 @@ use super::{
 };
 use crate::model::{LoopArgs, LoopInput, PlantModel, ResolvedLoop};
 use crate::output::print_json;
-use crate::plot::Saved;
+use hapstab_plot::Saved;
 
 /// Arguments of `hapstab simboundary`.
 #[derive(Args, Debug)]
@@ -203,7 +203,7 @@ fn boundary_points(
     betas: &[f64],
     stable_when: StableWhen,
 ) -> Result<Vec<EmpiricalPoint>> {
-    let bar = crate::progress::Bar::new(betas.len(), "β values", !a.json);
+    let bar = crate::progress::Bar::new(betas.len(), "dampings", !a.json);
     let points: Vec<EmpiricalPoint> = betas
         .par_iter()
         .map(|&beta| {
@@ -369,14 +369,14 @@ fn boundary_warnings(points: &[EmpiricalPoint], s: &RunSettings) -> Vec<String> 
             "the push does not hold the device on the wall: a larger --push keeps it in contact"
         };
         w.push(format!(
-            "at {separated} of {} β values the device left the wall (separated); separation is not stability, so nothing beyond counts as stable: {advice}",
+            "at {separated} of {} dampings the device left the wall (separated); separation is not stability, so nothing beyond counts as stable: {advice}",
             points.len()
         ));
     }
     let undecided = count(Outcome::Undecided);
     if undecided > 0 {
         w.push(format!(
-            "at {undecided} of {} β values a run did not settle within the horizon (near the boundary the loop is nearly marginal), so nothing beyond counts as stable; --max-duration simulates longer",
+            "at {undecided} of {} dampings a run did not settle within the horizon (near the boundary the loop is nearly marginal), so nothing beyond counts as stable; --max-duration simulates longer",
             points.len()
         ));
     }

@@ -8,7 +8,7 @@ use hapstab::simulation::EmpiricalPoint;
 
 use super::run_args::RunSettings;
 use super::{Units, describe_effects};
-use crate::plot::{Figure, Legend, Marker, Series, palette};
+use hapstab_plot::{Figure, Legend, Marker, Series, palette};
 
 /// The plane of the figure: N/m per unit of α (or a) and Ns/m per unit of β (or b) for a
 /// physical figure, none for a normalized one.

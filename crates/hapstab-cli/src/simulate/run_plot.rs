@@ -9,7 +9,7 @@ use super::run_args::RunSettings;
 use super::run_text::outcome_summary;
 use super::{Units, describe_effects};
 use crate::output::{eng, sig};
-use crate::plot::{Figure, Grid, Legend, Series, palette};
+use hapstab_plot::{Figure, Grid, Legend, Series, palette};
 
 /// Points per plotted curve (min-max decimated).
 const PLOT_BUCKETS: usize = 2_000;
@@ -129,7 +129,7 @@ impl Panels<'_> {
             .filter(|(t, _)| **t >= from)
             .map(|(&t, &y)| (t, y * scale))
             .collect();
-        crate::plot::decimate_minmax(&pts, PLOT_BUCKETS)
+        hapstab_plot::decimate_minmax(&pts, PLOT_BUCKETS)
     }
 
     /// Position over time with the judged window shaded and the wall surface where it is not

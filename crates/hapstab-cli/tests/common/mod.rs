@@ -1,12 +1,31 @@
 //! Helpers shared by the command-line tests: run `hapstab`, read its JSON.
 #![allow(dead_code)]
 
+pub mod strict;
+
 use assert_cmd::Command;
 use serde_json::Value;
 
 /// The `hapstab` binary of this build.
 pub fn hapstab() -> Command {
     Command::cargo_bin("hapstab").unwrap()
+}
+
+/// Runs the binary in `dir`, asserting success, and returns its standard output.
+pub fn stdout_in(dir: &std::path::Path, args: &[&str]) -> String {
+    let out = hapstab().current_dir(dir).args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "hapstab {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// [`stdout_in`] the system's temporary directory.
+pub fn stdout(args: &[&str]) -> String {
+    stdout_in(&std::env::temp_dir(), args)
 }
 
 /// The JSON a command prints (exit 0 required).
@@ -84,4 +103,17 @@ pub fn check(extra: &[&str]) -> Value {
 /// The spectral radius of a `check` answer.
 pub fn radius(v: &Value) -> f64 {
     f(&v["spectral_radius"])
+}
+
+/// The commands of `hapstab --help`, in the order listed.
+pub fn commands() -> Vec<String> {
+    let help = stdout(&["--help"]);
+    help.lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .map(String::from)
+        .collect()
 }

@@ -18,6 +18,7 @@ use serde::Serialize;
 use super::response::SampledModel;
 use crate::error::{Error, Result};
 use crate::model::Loop;
+use crate::param::Param;
 use crate::splitmix::SplitMix;
 
 /// A force excitation.
@@ -57,7 +58,7 @@ impl std::str::FromStr for Excitation {
     /// Parses `chirp:F0:F1`, `prbs:HOLD` or `step`.
     fn from_str(text: &str) -> Result<Self> {
         let bad = |why: &str| Error::Invalid {
-            name: "excitation",
+            param: Param::Excitation,
             reason: format!("'{text}': {why}"),
         };
         let parts: Vec<&str> = text.split(':').collect();

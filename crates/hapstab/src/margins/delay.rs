@@ -236,12 +236,11 @@ fn solve(fl: &FractionLoop, (mut s, mut theta): (f64, f64)) -> Option<(f64, f64)
         }
         let whole = s.floor();
         let hold = fl.hold(s - whole);
-        let f_at = |t: f64| {
-            fl.parts(t).view().loop_at(&hold.g) * Complex64::from_polar(1.0, -whole * t) + 1.0
-        };
+        let f_at =
+            |t: f64| fl.parts(t).view().loop_at(&hold.g) * crate::circle::unit(-whole * t) + 1.0;
         let at = fl.parts(theta);
         let parts = at.view();
-        let turn = Complex64::from_polar(1.0, -whole * theta);
+        let turn = crate::circle::unit(-whole * theta);
         let f = parts.loop_at(&hold.g) * turn + 1.0;
         let ds = parts.slope_at(&hold.dg) * turn;
         let h = THETA_DIFF_REL * theta;

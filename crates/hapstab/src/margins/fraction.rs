@@ -95,7 +95,7 @@ pub struct FractionLoop {
     /// ‖A‖₁.
     a_norm: f64,
     /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS.
-    holds: Vec<HoldInput>,
+    holds: HoldTable,
     /// The frequency grid of the table.
     pub grid: Vec<f64>,
 }
@@ -162,6 +162,53 @@ pub struct HoldInput {
     pub dg: Vec<f64>,
     /// d²g/dλ².
     pub ddg: Vec<f64>,
+}
+
+/// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS, in one buffer: g,
+/// dg/dλ and d²g/dλ² of each fraction side by side.
+#[derive(Debug, Clone, Default)]
+pub struct HoldTable {
+    n: usize,
+    data: Vec<f64>,
+}
+
+/// One row of a [`HoldTable`]: g(λ), dg/dλ and d²g/dλ² at one fraction.
+#[derive(Debug, Clone, Copy)]
+pub struct HoldRow<'a> {
+    /// g(λ).
+    pub g: &'a [f64],
+    /// dg/dλ.
+    pub dg: &'a [f64],
+    /// d²g/dλ².
+    pub ddg: &'a [f64],
+}
+
+impl HoldTable {
+    /// The row at fraction j/[`FRACTIONS`] (None past the table).
+    pub fn get(&self, j: usize) -> Option<HoldRow<'_>> {
+        let n = self.n;
+        let row = self.data.get(3 * n * j..3 * n * (j + 1))?;
+        Some(HoldRow {
+            g: &row[..n],
+            dg: &row[n..2 * n],
+            ddg: &row[2 * n..],
+        })
+    }
+
+    /// The rows from λ = 0 up.
+    pub fn rows(&self) -> impl Iterator<Item = HoldRow<'_>> {
+        (0..self.len()).filter_map(|j| self.get(j))
+    }
+
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        self.data.len().checked_div(3 * self.n).unwrap_or(0)
+    }
+
+    /// True when the table has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
 }
 
 /// P0's core and the wall parts of a [`FractionLoop`] in one variable (P0 = z·core: the hold
@@ -330,7 +377,7 @@ impl FractionLoop {
             in_w,
             scale: base.scale,
             a_norm: 0.0,
-            holds: Vec::new(),
+            holds: HoldTable::default(),
             grid: Vec::new(),
         };
         fl.a_norm = poly::norm1(&fl.a_mat);
@@ -365,12 +412,12 @@ impl FractionLoop {
         match &self.in_w {
             Some(w_polys) if theta.abs() < SHIFTED_THETA => {
                 // sin θ = 2 sin(θ/2) cos(θ/2): one sine and cosine for w and z = 1 + w
-                let (h, c) = (0.5 * theta).sin_cos();
+                let (h, c) = crate::circle::sin_cos(0.5 * theta);
                 let w = Complex64::new(-2.0 * h * h, 2.0 * h * c);
                 w_polys.at_into(w, w + 1.0, powers, out)
             }
             _ => {
-                let z = Complex64::from_polar(1.0, theta);
+                let z = crate::circle::unit(theta);
                 self.in_z.at_into(z, z, powers, out)
             }
         }
@@ -463,13 +510,13 @@ impl FractionLoop {
 
     /// The hold inputs at the fractions j/[`FRACTIONS`], j = 0 … FRACTIONS (the last, λ = 1,
     /// only for the bound), tabulated when the loop was built.
-    pub fn holds(&self) -> &[HoldInput] {
+    pub fn holds(&self) -> &HoldTable {
         &self.holds
     }
 
     /// The table of [`FractionLoop::holds`] by the exact one-step recursion in τ = 1 − λ
     /// with step h = 1/FRACTIONS: g(τ + h) = Ψ(h)B + e^{Ah}g(τ), e^{A(τ+h)}B = e^{Ah}e^{Aτ}B.
-    fn hold_table(&self) -> Vec<HoldInput> {
+    fn hold_table(&self) -> HoldTable {
         let (e, psi) = exp_and_integral(&self.a_mat, 1.0 / FRACTIONS as f64);
         let step = poly::mat_vec(&psi, &self.b_vec);
         let n = self.b_vec.len();
@@ -482,9 +529,16 @@ impl FractionLoop {
         };
         let (mut g, mut u) = (vec![0.0; n], self.b_vec.clone());
         let (mut g_next, mut u_next) = (vec![0.0; n], vec![0.0; n]);
-        let mut out = Vec::with_capacity(FRACTIONS + 1);
-        for m in 0..=FRACTIONS {
-            out.push(self.hold_input(g.clone(), &u));
+        // rows from τ = 0 (λ = 1) up, reversed below
+        let mut rows = vec![0.0; 3 * n * (FRACTIONS + 1)];
+        for (m, row) in rows.chunks_exact_mut(3 * n).enumerate() {
+            let (rg, rest) = row.split_at_mut(n);
+            let (rdg, rddg) = rest.split_at_mut(n);
+            rg.copy_from_slice(&g);
+            for i in 0..n {
+                rdg[i] = -u[i];
+                rddg[i] = self.a_mat[i].iter().zip(&u).map(|(a, b)| a * b).sum();
+            }
             if m < FRACTIONS {
                 advance(&g, &step, &mut g_next);
                 advance(&u, &[], &mut u_next);
@@ -492,17 +546,17 @@ impl FractionLoop {
                 std::mem::swap(&mut u, &mut u_next);
             }
         }
-        out.reverse();
-        out
+        let data = rows.chunks_exact(3 * n).rev().flatten().copied().collect();
+        HoldTable { n, data }
     }
 
     /// δ_j of the module doc: a bound of |g_j(λ) − (1 − λ)Γ_j| over λ ∈ [0, 1].
-    pub fn deviation_bound(&self, holds: &[HoldInput]) -> Vec<f64> {
+    pub fn deviation_bound(&self, holds: &HoldTable) -> Vec<f64> {
         let h = 1.0 / FRACTIONS as f64;
         (0..self.gamma.len())
             .map(|j| {
                 let (mut dev, mut curv) = (0.0_f64, 0.0_f64);
-                for (i, hi) in holds.iter().enumerate() {
+                for (i, hi) in holds.rows().enumerate() {
                     let lambda = i as f64 * h;
                     dev = dev.max((hi.g[j] - (1.0 - lambda) * self.gamma[j]).abs());
                     curv = curv.max(hi.ddg[j].abs());
@@ -653,10 +707,16 @@ impl<'a> FractionTable<'a> {
             })
             .collect();
         let mut out = Vec::new();
-        for (j, hold) in self.fl.holds().iter().take(FRACTIONS).enumerate() {
+        let (mut ls, mut vs) = (
+            Vec::with_capacity(near.len()),
+            Vec::with_capacity(near.len()),
+        );
+        for (j, hold) in self.fl.holds().rows().take(FRACTIONS).enumerate() {
             let lambda = j as f64 / FRACTIONS as f64;
-            let ls: Vec<Complex64> = near.iter().map(|&i| self.at(i).loop_at(&hold.g)).collect();
-            let vs: Vec<f64> = ls.iter().map(|&l| modulus(l).ln()).collect();
+            ls.clear();
+            ls.extend(near.iter().map(|&i| self.at(i).loop_at(hold.g)));
+            vs.clear();
+            vs.extend(ls.iter().map(|&l| modulus(l).ln()));
             for k in 1..near.len() {
                 let (i0, i1) = (near[k - 1], near[k]);
                 if i1 != i0 + 1 || (vs[k - 1] > 0.0) == (vs[k] > 0.0) {
@@ -670,7 +730,7 @@ impl<'a> FractionTable<'a> {
                     value: ls[k - 1] + (ls[k] - ls[k - 1]) * t,
                 });
             }
-            out.extend(self.hidden_pairs(lambda, hold, &near, &vs));
+            out.extend(self.hidden_pairs(lambda, hold.g, &near, &vs));
         }
         out
     }
@@ -679,12 +739,12 @@ impl<'a> FractionTable<'a> {
     fn hidden_pairs(
         &self,
         lambda: f64,
-        hold: &HoldInput,
+        hold_g: &[f64],
         near: &[usize],
         vs: &[f64],
     ) -> Vec<FractionCrossover> {
         let ts = &self.fl.grid;
-        let g = |t: f64| modulus(self.fl.parts(t).view().loop_at(&hold.g)).ln();
+        let g = |t: f64| modulus(self.fl.parts(t).view().loop_at(hold_g)).ln();
         sample_maxima(vs)
             .filter(|&k| vs[k] <= 0.0 && vs[k] > -REFINE_LOG)
             .filter(|&k| near[k] > 0 && near[k] + 1 < ts.len())
@@ -694,7 +754,7 @@ impl<'a> FractionTable<'a> {
                 (v > 0.0).then(|| FractionCrossover {
                     lambda,
                     theta: t,
-                    value: self.fl.parts(t).view().loop_at(&hold.g),
+                    value: self.fl.parts(t).view().loop_at(hold_g),
                 })
             })
             .collect()

@@ -28,7 +28,7 @@ use serde::Serialize;
 
 use crate::boundary::CircleTable;
 use crate::closed_loop::AffineFamily;
-use crate::extremum::{may_exceed, merge_grid, refine_max, sample_maxima};
+use crate::extremum::{may_exceed, merge_grid, merge_sorted_grids, refine_max, sample_maxima};
 use crate::poly::modulus;
 use crate::stability::roots;
 
@@ -195,10 +195,8 @@ pub fn gain_scan(fam: &AffineFamily, a: f64, b: f64) -> GainScan {
 pub fn margin_grid(fam: &AffineFamily, modes: &[f64]) -> Vec<f64> {
     let m = UNIFORM_PER_DEGREE * (fam.degree() + 2);
     let pi = std::f64::consts::PI;
-    let mut ts = modes.to_vec();
-    ts.extend((1..m).map(|i| pi * i as f64 / m as f64));
-    merge_grid(&mut ts);
-    ts
+    let uniform: Vec<f64> = (1..m).map(|i| pi * i as f64 / m as f64).collect();
+    merge_sorted_grids(modes, &uniform)
 }
 
 /// [`gain_scan`] with the samples taken from a table on a grid that contains the family's

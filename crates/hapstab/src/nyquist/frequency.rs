@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use crate::error::{Result, finite, non_negative, positive};
+use crate::param::Param;
 
 use std::f64::consts::PI;
 
@@ -51,11 +52,11 @@ pub struct NyquistStiffness {
 /// period T oscillates at the Nyquist frequency (≈ 987.0 kN/m for m = 0.1 kg, T = 1 ms,
 /// b = 1.5 Ns/m).
 pub fn nyquist_stiffness(mass: f64, damping: f64, period: f64) -> Result<NyquistStiffness> {
-    positive("mass m", mass)?;
-    non_negative("damping b", damping)?;
-    positive("sampling period T", period)?;
+    positive(Param::Mass, mass)?;
+    non_negative(Param::Damping, damping)?;
+    positive(Param::Period, period)?;
     let stiffness = PI * PI * mass / (period * period) + damping * damping / (4.0 * mass);
-    finite("stiffness k", stiffness)?;
+    finite(Param::Stiffness, stiffness)?;
     let delta = damping * period / mass;
     Ok(NyquistStiffness {
         mass,

@@ -10,6 +10,7 @@ use super::{Progress, RobustOptions, Ticker, no_progress};
 use crate::boundary::AlphaBeta;
 use crate::closed_loop::PolyFamily;
 use crate::error::{Result, non_negative, positive};
+use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
 /// Colgate's passive region, eq. (28): δ > α/2 + |β| with α ≥ 0 (d = 0), a triangle.
@@ -41,7 +42,7 @@ impl PassiveRegion {
 
 /// Colgate's passive region of eq. (28) as a polygon (Section VIII-A, Fig. 9).
 pub fn passive_region(delta: f64) -> Result<PassiveRegion> {
-    non_negative("delta", delta)?;
+    non_negative(Param::Delta, delta)?;
     let p = |alpha, beta| AlphaBeta { alpha, beta };
     Ok(PassiveRegion {
         delta,
@@ -101,7 +102,7 @@ pub fn passive_inside_robust_with_progress(
     opts: RobustOptions,
     progress: Progress,
 ) -> Result<PassiveCheck> {
-    positive("delta", delta)?;
+    positive(Param::Delta, delta)?;
     check_delay(d)?;
     let (gs, _) = gamma_samples(gamma_lo, gamma_hi, opts.gamma_samples, delta);
     let configs = unit_configs(&gs, delta, d)?;

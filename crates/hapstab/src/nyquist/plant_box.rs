@@ -13,6 +13,7 @@ use super::{Progress, Ticker, beta_bound, no_progress};
 use crate::boundary::AlphaBeta;
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
 /// A box of plants in physical units for robust design (beyond the paper): every mass,
@@ -67,22 +68,22 @@ impl PlantBox {
 
     /// Validates the ranges: finite, lo ≤ hi, masses > 0, damping and stiffness ≥ 0, T > 0.
     pub fn validated(self) -> Result<Self> {
-        positive("minimum mass", self.mass[0])?;
-        positive("maximum mass", self.mass[1])?;
-        non_negative("minimum damping", self.damping[0])?;
-        non_negative("maximum damping", self.damping[1])?;
-        non_negative("minimum stiffness", self.stiffness[0])?;
-        non_negative("maximum stiffness", self.stiffness[1])?;
-        positive("sampling period T", self.period)?;
+        positive(Param::BoxMassMin, self.mass[0])?;
+        positive(Param::BoxMassMax, self.mass[1])?;
+        non_negative(Param::BoxDampingMin, self.damping[0])?;
+        non_negative(Param::BoxDampingMax, self.damping[1])?;
+        non_negative(Param::BoxStiffnessMin, self.stiffness[0])?;
+        non_negative(Param::BoxStiffnessMax, self.stiffness[1])?;
+        positive(Param::Period, self.period)?;
         check_delay(self.d)?;
         for (name, r) in [
-            ("mass range", self.mass),
-            ("damping range", self.damping),
-            ("stiffness range", self.stiffness),
+            (Param::BoxMass, self.mass),
+            (Param::BoxDamping, self.damping),
+            (Param::BoxStiffness, self.stiffness),
         ] {
             if r[1] < r[0] {
                 return Err(Error::OutOfRange {
-                    name,
+                    param: name,
                     value: r[1],
                     range: "an upper end >= the lower end",
                 });
@@ -153,7 +154,7 @@ pub fn robust_stiffness_interval(
     damping: f64,
     opts: BoxOptions,
 ) -> Result<Option<(f64, f64, [f64; 3])>> {
-    finite("virtual damping B", damping)?;
+    finite(Param::WallDamping, damping)?;
     let pb = pb.validated()?;
     let (configs, coords) = box_configs(&pb, opts)?;
     Ok(box_slice(&pb, &configs, &coords, opts, damping, true))

@@ -11,6 +11,7 @@ use super::{DEGENERATE_OFFSET, Progress, Ticker, beta_bound, no_progress, unit_c
 use crate::boundary::AlphaBeta;
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, non_negative};
+use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
 /// A slice of a robust region at one β: the robust α-interval (lo, hi).
@@ -147,13 +148,13 @@ pub fn robust_region_with_progress(
     opts: RobustOptions,
     progress: Progress,
 ) -> Result<RobustRegion> {
-    non_negative("delta", delta)?;
-    non_negative("gamma_lo", gamma_lo)?;
-    non_negative("gamma_hi", gamma_hi)?;
+    non_negative(Param::Delta, delta)?;
+    non_negative(Param::GammaLo, gamma_lo)?;
+    non_negative(Param::GammaHi, gamma_hi)?;
     check_delay(d)?;
     if gamma_hi < gamma_lo {
         return Err(Error::OutOfRange {
-            name: "gamma_hi",
+            param: Param::GammaHi,
             value: gamma_hi,
             range: "[gamma_lo, inf)",
         });

@@ -9,6 +9,7 @@ use super::{Progress, no_progress, nyquist_gamma, unit_circle_pole};
 use crate::boundary::{Interval, stable_alpha_intervals};
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, non_negative};
+use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
 /// A bound B such that no (α, β) with |β| ≥ B is stable: |p(0)| = |n0 β| < 1 is necessary
@@ -192,12 +193,12 @@ pub fn gamma_sweep_with_progress(
     beta_samples: usize,
     progress: Progress,
 ) -> Result<Vec<RegionSummary>> {
-    non_negative("delta", delta)?;
-    non_negative("gamma fraction", fraction)?;
+    non_negative(Param::Delta, delta)?;
+    non_negative(Param::GammaFraction, fraction)?;
     check_delay(d)?;
     if steps == 0 {
         return Err(Error::NotPositive {
-            name: "steps",
+            param: Param::Steps,
             value: 0.0,
         });
     }

@@ -32,7 +32,7 @@
 //!
 //! X = K + B·V the wall without its delay. The first factor is the Dirichlet kernel (2d + 1
 //! at θ = 0); Im X/sin(θ/2) is formed from the filter's coefficient correlation
-//! c_m (X = Σ c_m e^{−jmθ}/|den|²) as −Σ c_m·sin(mθ)/sin(θ/2), each quotient accurate to an ulp
+//! c_m (X = Σ c_m e^{−jmθ}/|den|²) as −Σ c_m·sin(mθ)/sin(θ/2), each quotient accurate to a few ulps
 //! and equal to 2m at θ = 0. No difference of nearly equal numbers is formed for any θ, and
 //! θ = 0 itself is evaluated exactly (the ratio's finite limit).
 //!
@@ -64,10 +64,18 @@
 //! ends θ = 0 (exact limit) and θ = π compete as well. The value is exact to rounding (the
 //! function is flat at an interior maximum, so an error δθ in the frequency changes it by
 //! O(δθ²)); the binding frequency is accurate to about 1e-8 relative.
+//!
+//! # The largest passive stiffness
+//!
+//! b_required is convex and positively homogeneous in (K, B), so the passive region is convex
+//! and its largest K is b / min_β b_required(1, β), a convex minimization in one variable
+//! that [`passive_k_max`] solves with a certified bound (about ten evaluations of the
+//! requirement); at one damping, [`k_max_passive_at`] bisects on K.
 
 mod device;
 mod region;
 mod requirement;
+mod stiffness;
 
 use serde::Serialize;
 
@@ -76,10 +84,9 @@ use crate::model::Loop;
 use crate::params::Wall;
 
 pub use device::{DeviceDamping, device_damping};
-pub use region::{
-    PASSIVE_REL_TOL, PassiveRegion, UNBOUNDED_CLIP, k_max_passive_at, passive_k_max, passive_region,
-};
+pub use region::{PASSIVE_REL_TOL, PassiveRegion, UNBOUNDED_CLIP, passive_region};
 pub use requirement::{DampingRequirement, SampledWall};
+pub use stiffness::{k_max_passive_at, passive_k_max};
 
 /// Relative width of the band |b − b_required| ≤ BOUNDARY_BAND·scale in which a device is
 /// reported as on the passivity boundary rather than passive or not: the requirement is exact

@@ -4,8 +4,9 @@
 use serde::Serialize;
 
 use super::requirement::SampledWall;
+use super::stiffness::passive_k_max;
 use crate::error::Result;
-use crate::extremum::brent_max;
+use crate::param::Param;
 use crate::params::Wall;
 
 /// The passive region of a loop for a device damping b (Section VIII, Fig. 9, generalized):
@@ -41,10 +42,6 @@ pub struct PassiveRegion {
 /// exactly on the boundary, not from the vertices.
 pub const PASSIVE_REL_TOL: f64 = 1e-5;
 
-/// Final bracket of the direction search for the largest passive stiffness, in radians: the
-/// boundary's K is flat at its maximum, so 1e-10 rad leaves the value exact to rounding.
-const DIRECTION_TOL: f64 = 1e-10;
-
 /// An unbounded passive region is cut at this multiple of its bounded part's size.
 pub const UNBOUNDED_CLIP: f64 = 10.0;
 
@@ -78,7 +75,7 @@ impl PassiveRegion {
 
 /// A direction's boundary point in (κ, B) = (KT/2, B), Ns/m both; None when unbounded.
 fn ray_point(sw: &SampledWall, b: f64, phi: f64) -> Option<(f64, f64)> {
-    let (s, c) = phi.sin_cos();
+    let (s, c) = crate::circle::sin_cos(phi);
     let wall = Wall {
         stiffness: 2.0 * c / sw.period(),
         damping: s,
@@ -89,7 +86,7 @@ fn ray_point(sw: &SampledWall, b: f64, phi: f64) -> Option<(f64, f64)> {
 
 /// The passive region of a loop's wall for device damping b (see [`PassiveRegion`]).
 pub fn passive_region(sw: &SampledWall, b: f64) -> Result<PassiveRegion> {
-    crate::error::finite("device damping b", b)?;
+    crate::error::finite(Param::DeviceDamping, b)?;
     if b <= 0.0 {
         return Ok(PassiveRegion {
             device_damping: b,
@@ -127,10 +124,9 @@ pub fn passive_region(sw: &SampledWall, b: f64) -> Result<PassiveRegion> {
     for i in [1, vertices.len() - 1] {
         vertices[i].stiffness = -vertices[i].damping * v1;
     }
-    let (k_max, b_at_k_max) = if bounded {
-        largest_stiffness(sw, b, &pts)
-    } else {
-        (f64::INFINITY, f64::NAN)
+    let (k_max, b_at_k_max) = match passive_k_max(sw, b) {
+        Some(w) if bounded => (w.stiffness, w.damping),
+        _ => (f64::INFINITY, f64::NAN),
     };
     let area = shoelace(&vertices);
     Ok(PassiveRegion {
@@ -200,34 +196,6 @@ fn chord_distance(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
     (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
 }
 
-/// The largest passive stiffness for device damping b, and the damping where it is reached
-/// (exact, without building the polygon): the best of [`INITIAL_DIRECTIONS`] boundary points,
-/// refined by Brent's search over the direction. None when b <= 0; K infinite when
-/// the region is unbounded.
-pub fn passive_k_max(sw: &SampledWall, b: f64) -> Option<Wall> {
-    if !(b > 0.0 && b.is_finite()) {
-        return None;
-    }
-    let (lo, hi) = direction_range(sw);
-    let pts: Vec<RayPoint> = (0..=INITIAL_DIRECTIONS)
-        .map(|i| {
-            let phi = lo + (hi - lo) * i as f64 / INITIAL_DIRECTIONS as f64;
-            (phi, ray_point(sw, b, phi))
-        })
-        .collect();
-    if pts.iter().any(|p| p.1.is_none()) {
-        return Some(Wall {
-            stiffness: f64::INFINITY,
-            damping: f64::NAN,
-        });
-    }
-    let (k, d) = largest_stiffness(sw, b, &pts);
-    Some(Wall {
-        stiffness: k,
-        damping: d,
-    })
-}
-
 /// The admissible directions (W(1) >= 0) in the (KT/2, B)-plane: a half-turn centred on the
 /// normal of the line W(1) = 0.
 fn direction_range(sw: &SampledWall) -> (f64, f64) {
@@ -236,26 +204,6 @@ fn direction_range(sw: &SampledWall) -> (f64, f64) {
         center - std::f64::consts::FRAC_PI_2,
         center + std::f64::consts::FRAC_PI_2,
     )
-}
-
-/// The largest passive K and its B: the best vertex, refined by Brent's search over the
-/// direction ([`brent_max`]: parabolic steps where K is smooth, golden-section ones at a
-/// kink; on a convex region the boundary's K is unimodal in the direction).
-fn largest_stiffness(sw: &SampledWall, b: f64, pts: &[RayPoint]) -> (f64, f64) {
-    let kappa = |p: &RayPoint| p.1.map_or(f64::NEG_INFINITY, |(x, _)| x);
-    let Some(i) = (0..pts.len()).max_by(|&i, &j| kappa(&pts[i]).total_cmp(&kappa(&pts[j]))) else {
-        return (f64::NAN, f64::NAN);
-    };
-    let lo = pts[i.saturating_sub(1)].0;
-    let hi = pts[(i + 1).min(pts.len() - 1)].0;
-    let f = |phi: f64| ray_point(sw, b, phi).map_or(f64::NEG_INFINITY, |(x, _)| x);
-    let (phi, _) = brent_max(f, lo, hi, DIRECTION_TOL);
-    let best = [pts[i].0, phi]
-        .into_iter()
-        .max_by(|&x, &y| f(x).total_cmp(&f(y)))
-        .unwrap_or(phi);
-    let (x, y) = ray_point(sw, b, best).unwrap_or((f64::NAN, f64::NAN));
-    (x / (0.5 * sw.period()), y)
 }
 
 /// Shoelace area of a polygon in physical units.
@@ -268,51 +216,4 @@ fn shoelace(v: &[Wall]) -> f64 {
         })
         .sum::<f64>()
         * 0.5
-}
-
-/// Bisection steps for the largest passive K at a damping: from a bracket of any size down to
-/// one ulp takes at most about 1100 halvings of the exponent range; 200 is plenty for the
-/// brackets found by doubling.
-const BISECTION_STEPS: usize = 200;
-
-/// The largest passive stiffness K in N/m at a given damping B (None when no K >= −B·V(1) is
-/// passive there): b_required is convex in K, so it crosses b once; found by bisection to
-/// full precision.
-pub fn k_max_passive_at(sw: &SampledWall, b: f64, damping: f64) -> Option<f64> {
-    let k_lo = -damping * sw.dc_velocity();
-    let need = |k: f64| {
-        sw.required_damping(Wall {
-            stiffness: k,
-            damping,
-        })
-        .b_required
-    };
-    let at_lo = need(k_lo);
-    if at_lo.is_nan() || at_lo >= b {
-        return None;
-    }
-    let mut step = 2.0 * b / sw.period();
-    let mut k_hi = k_lo + step;
-    let mut guard = 0;
-    while need(k_hi) < b {
-        step *= 2.0;
-        k_hi = k_lo + step;
-        guard += 1;
-        if guard > 2000 || !k_hi.is_finite() {
-            return Some(f64::INFINITY);
-        }
-    }
-    let mut lo = k_lo;
-    for _ in 0..BISECTION_STEPS {
-        let mid = 0.5 * (lo + k_hi);
-        if mid <= lo || mid >= k_hi {
-            break;
-        }
-        if need(mid) < b {
-            lo = mid;
-        } else {
-            k_hi = mid;
-        }
-    }
-    Some(lo)
 }

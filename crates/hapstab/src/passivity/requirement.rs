@@ -8,6 +8,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::extremum::{merge_grid, refine_max};
 use crate::model::Loop;
+use crate::param::Param;
 use crate::params::Wall;
 
 /// Grid samples per half-turn of phase (of the delay's e^{−jdθ} and of each filter
@@ -26,6 +27,10 @@ const POLE_OFFSETS: i32 = 16;
 /// Poles of the velocity filter with |r| above this radius get the extra samples: below it
 /// the resonance is wider than the uniform grid's resolution anyway.
 const POLE_RADIUS: f64 = 0.5;
+
+/// Lags of the filter correlation whose e^{imθ} is a power of e^{iθ} in
+/// [`SampledWall::basis_at`] (larger ones take their own sine and cosine).
+const POWER_LAGS: usize = 8;
 
 /// Width of the final bracket of a frequency maximum, relative to its angle. The function is flat at an
 /// interior maximum, so the value there is exact to rounding long before: an error of 1e-9 rad
@@ -50,6 +55,8 @@ pub struct SampledWall {
     vd: Vec<f64>,
     /// Lags m and coefficients c_m of (Vn·M)(e^{jθ})·conj Vd(e^{jθ}) = Σ c_m e^{−jmθ}.
     corr: Vec<(i64, f64)>,
+    /// The largest |m| of the correlation's lags.
+    max_lag: usize,
     /// V(1) in 1/s: the estimator's DC gain (0 for every differentiator).
     dc_velocity: f64,
     /// The grid and the frequency basis on it.
@@ -99,11 +106,18 @@ impl SampledWall {
             crate::poly::mul(&vn, &[1.0 - lambda, lambda])
         };
         let dc_velocity = vn.iter().sum::<f64>() / (lp.period * vd.iter().sum::<f64>());
+        let corr = correlation(&vm, &vd);
+        let max_lag = corr
+            .iter()
+            .map(|(m, _)| m.unsigned_abs() as usize)
+            .max()
+            .unwrap_or(0);
         let mut wall = Self {
             period: lp.period,
             d: lp.delay.samples,
             lambda,
-            corr: correlation(&vm, &vd),
+            corr,
+            max_lag,
             vn,
             vd,
             dc_velocity,
@@ -118,6 +132,16 @@ impl SampledWall {
     /// The sampling period T in s.
     pub fn period(&self) -> f64 {
         self.period
+    }
+
+    /// The uniform spacing of the grid the maximum over θ is screened on, in rad.
+    pub fn grid_step(&self) -> f64 {
+        std::f64::consts::PI / (SAMPLES_PER_TURN * self.turns()) as f64
+    }
+
+    /// Half-turns of phase the grid resolves: the delay's and each filter coefficient's.
+    fn turns(&self) -> usize {
+        self.d + self.vn.len() + 2
     }
 
     /// The wall's static stiffness W(1) = K + B·V(1) in N/m (K for every differentiator).
@@ -149,6 +173,32 @@ impl SampledWall {
         }
     }
 
+    /// ∂/∂B of [`SampledWall::required_damping_at`] at a fixed θ, in s: the slope of one of
+    /// the convex functions of B whose maximum over θ is the requirement, so that at the
+    /// maximizing θ it is a subgradient of [`SampledWall::required_damping`] in B (Danskin).
+    /// Where the square root of the fractional-delay form vanishes, the middle of its
+    /// subdifferential.
+    pub fn required_damping_slope_at(&self, wall: Wall, theta: f64) -> f64 {
+        let b = self.basis_at(theta);
+        let (k, bb) = (wall.stiffness, wall.damping);
+        let half_t = 0.5 * self.period;
+        if self.lambda == 0.0 {
+            return half_t * b.rb;
+        }
+        // d/dB of q + √(q² + c·|X|²): q = ratio/2, |X|² = K² + 2KB·Re V + B²|V|²
+        let q = 0.5 * (k * b.rk + bb * b.rb);
+        let dq = 0.5 * b.rb;
+        let c = self.lambda * (1.0 - self.lambda);
+        let w2 = (k * k + 2.0 * k * bb * b.re_v + bb * bb * b.abs_v2).max(0.0);
+        let dw2 = 2.0 * k * b.re_v + 2.0 * bb * b.abs_v2;
+        let root = (q * q + c * w2).sqrt();
+        if root > 0.0 {
+            half_t * (dq + (q * dq + 0.5 * c * dw2) / root)
+        } else {
+            half_t * dq
+        }
+    }
+
     fn value(&self, b: &Basis, wall: Wall) -> f64 {
         let (k, bb) = (wall.stiffness, wall.damping);
         let ratio = k * b.rk + bb * b.rb;
@@ -161,11 +211,14 @@ impl SampledWall {
         half_t * plus_root(q, self.lambda * (1.0 - self.lambda) * w2)
     }
 
-    /// The frequency basis at θ, free of cancellation (module doc).
+    /// The frequency basis at θ, free of cancellation (module doc). e^{imθ} for the
+    /// correlation's lags |m| <= [`POWER_LAGS`] are powers of e^{iθ} (built from the half
+    /// angle: cos θ = 1 − 2 sin²(θ/2), sin θ = 2 sin(θ/2) cos(θ/2)); for mθ < π/2 every product
+    /// adds positive terms, so sin(mθ) keeps a relative error of a few ulps however small θ.
     fn basis_at(&self, theta: f64) -> Basis {
-        let (sh, ch) = (0.5 * theta).sin_cos();
+        let (sh, ch) = crate::circle::sin_cos(0.5 * theta);
         let d = self.d as f64;
-        let (sphi, cphi) = ((d + 0.5) * theta).sin_cos();
+        let (sphi, cphi) = crate::circle::sin_cos((d + 0.5) * theta);
         let dirichlet = if theta == 0.0 {
             2.0 * d + 1.0
         } else {
@@ -173,14 +226,25 @@ impl SampledWall {
         };
         let lam = self.lambda;
         let rk = (1.0 - 2.0 * lam * sh * sh) * dirichlet + 2.0 * lam * ch * cphi;
+        let z = Complex64::new(1.0 - 2.0 * sh * sh, 2.0 * sh * ch);
+        let mut powers = [Complex64::new(1.0, 0.0); POWER_LAGS + 1];
+        let top = self.max_lag.min(POWER_LAGS);
+        for j in 1..=top {
+            powers[j] = powers[j - 1] * z;
+        }
+        let powers = &powers[..=top];
         let (mut re_c, mut im_c_over) = (0.0, 0.0);
         for &(m, c) in &self.corr {
-            let (s, co) = (m as f64 * theta).sin_cos();
+            let k = m.unsigned_abs() as usize;
+            let (s, co) = match powers.get(k) {
+                Some(p) => (p.im * m.signum() as f64, p.re),
+                None => crate::circle::sin_cos(m as f64 * theta),
+            };
             re_c += c * co;
             let s_over = if theta == 0.0 { 2.0 * m as f64 } else { s / sh };
             im_c_over -= c * s_over;
         }
-        let z_inv = Complex64::from_polar(1.0, -theta);
+        let z_inv = z.conj();
         let vd = eval_inverse(&self.vd, z_inv);
         let vn = eval_inverse(&self.vn, z_inv);
         let vd2 = vd.norm_sqr();
@@ -198,8 +262,7 @@ impl SampledWall {
     /// The uniform grid on [0, π] plus samples around the filter's poles near the circle.
     fn make_grid(&self, den_ascending: &[f64]) -> Vec<f64> {
         let pi = std::f64::consts::PI;
-        let turns = self.d + self.vn.len() + 2;
-        let n = SAMPLES_PER_TURN * turns;
+        let n = SAMPLES_PER_TURN * self.turns();
         let mut g: Vec<f64> = (0..=n).map(|i| pi * i as f64 / n as f64).collect();
         for r in pole_roots(den_ascending) {
             let rad = r.norm();
@@ -223,20 +286,65 @@ impl SampledWall {
     /// The maximum over [0, π] and its θ (module doc: grid, parabolic screening, golden
     /// refinement, ends).
     fn maximize(&self, wall: Wall) -> (f64, f64) {
-        let vals: Vec<f64> = self.basis.iter().map(|b| self.value(b, wall)).collect();
-        let n = vals.len();
-        let (mut best, mut best_t) = (vals[0], self.grid[0]);
-        for (i, &v) in vals.iter().enumerate() {
-            if v > best {
-                best = v;
-                best_t = self.grid[i];
+        let s = self.maximize_in(wall, std::slice::from_ref(&(0..self.grid.len())));
+        (s.value, s.theta)
+    }
+
+    /// The requirement as [`SampledWall::required_damping`], with the grid indices of the
+    /// maxima it refined (and of the best sample): where a nearby wall binds.
+    pub(crate) fn required_damping_screened(&self, wall: Wall) -> Screened {
+        self.maximize_in(wall, std::slice::from_ref(&(0..self.grid.len())))
+    }
+
+    /// The maximum over the grid cells of `windows` alone (sorted, disjoint index ranges):
+    /// a lower bound of the requirement, equal to it when the wall binds inside them.
+    pub(crate) fn required_damping_within(
+        &self,
+        wall: Wall,
+        windows: &[std::ops::Range<usize>],
+    ) -> Screened {
+        self.maximize_in(wall, windows)
+    }
+
+    /// The number of grid samples.
+    pub(crate) fn grid_len(&self) -> usize {
+        self.grid.len()
+    }
+
+    /// The grid index nearest θ.
+    pub(crate) fn grid_index(&self, theta: f64) -> usize {
+        let i = self.grid.partition_point(|&t| t < theta);
+        if i > 0 && (i == self.grid.len() || theta - self.grid[i - 1] < self.grid[i] - theta) {
+            i - 1
+        } else {
+            i.min(self.grid.len() - 1)
+        }
+    }
+
+    /// The module doc's screening on the samples of `windows`.
+    fn maximize_in(&self, wall: Wall, windows: &[std::ops::Range<usize>]) -> Screened {
+        let mut out = Screened {
+            value: f64::NEG_INFINITY,
+            theta: f64::NAN,
+            refined: Vec::new(),
+        };
+        let mut vals: Vec<(usize, f64)> = Vec::new();
+        let mut best_i = 0;
+        for w in windows {
+            for i in w.clone() {
+                let v = self.value(&self.basis[i], wall);
+                if v > out.value || out.theta.is_nan() {
+                    (out.value, out.theta, best_i) = (v, self.grid[i], i);
+                }
+                vals.push((i, v));
             }
         }
-        let scale = vals.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let floor = best - REFINE_WINDOW * scale;
-        for i in 1..n - 1 {
-            let (a, b, c) = (vals[i - 1], vals[i], vals[i + 1]);
-            if b < a || b < c {
+        out.refined.push(best_i);
+        let scale = vals.iter().fold(0.0_f64, |m, v| m.max(v.1.abs()));
+        let floor = out.value - REFINE_WINDOW * scale;
+        for k in 1..vals.len().saturating_sub(1) {
+            let ((ia, a), (i, b), (ic, c)) = (vals[k - 1], vals[k], vals[k + 1]);
+            if ia + 1 != i || i + 1 != ic || b < a || b < c {
                 continue;
             }
             let peak = parabola_peak(&self.grid[i - 1..=i + 1], a, b, c);
@@ -249,13 +357,25 @@ impl SampledWall {
                 i,
                 THETA_TOL,
             );
-            if v > best {
-                best = v;
-                best_t = t;
+            out.refined.push(i);
+            if v > out.value {
+                (out.value, out.theta) = (v, t);
             }
         }
-        (best, best_t)
+        out
     }
+}
+
+/// A requirement found by screening part or all of the grid: the maximum, its θ and the grid
+/// indices of the maxima refined (the best sample's first).
+#[derive(Debug, Clone)]
+pub(crate) struct Screened {
+    /// The largest requirement found, in Ns/m.
+    pub value: f64,
+    /// Its θ.
+    pub theta: f64,
+    /// Grid indices where the requirement peaks.
+    pub refined: Vec<usize>,
 }
 
 /// q + √(q² + c) for c ≥ 0 without cancellation when q < 0.
@@ -343,7 +463,7 @@ fn check_filter_stable(den: &[f64]) -> Result<()> {
         .map(|z| z.norm())
         .fold(0.0, f64::max);
     Err(Error::Invalid {
-        name: "velocity filter",
+        param: Param::VelocityFilter,
         reason: format!(
             "has a pole at |z| = {radius} (on or outside the unit circle): the wall is not a \
              stable filter and the passivity condition does not apply"

@@ -2,6 +2,7 @@
 //! and the search window cut from them around the curve.
 
 use super::*;
+use crate::param::Param;
 
 /// Half-planes whose intersection contains every stable wall (see the module doc).
 pub(super) struct Bounds {
@@ -36,7 +37,7 @@ impl Bounds {
             .any(|(p, _)| p.x.abs() >= 0.5 * HUGE || p.y.abs() >= 0.5 * HUGE);
         if unbounded {
             return Err(Error::Invalid {
-                name: "loop",
+                param: Param::Loop,
                 reason: "has a wall whose stiffness and damping act alike on every coefficient of \
                          p(z), so its stable set is unbounded and has no region to draw"
                     .into(),

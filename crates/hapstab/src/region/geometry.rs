@@ -133,7 +133,7 @@ pub(super) fn point_at(fam: &AffineFamily, theta: f64, z: Complex64) -> Option<P
 
 /// e^{iθ}.
 pub(super) fn unit(theta: f64) -> Complex64 {
-    let (s, c) = theta.sin_cos();
+    let (s, c) = crate::circle::sin_cos(theta);
     Complex64::new(c, s)
 }
 

@@ -36,6 +36,7 @@ use crate::boundary::{
 };
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
+use crate::param::Param;
 use crate::verdict::Verdict;
 use crate::verdict::{decide, inside_unit_circle};
 
@@ -222,7 +223,7 @@ pub fn stable_region(fam: &AffineFamily) -> Result<StableRegion> {
 pub fn stable_region_with(fam: &AffineFamily, rel_tol: f64) -> Result<StableRegion> {
     if !(rel_tol.is_finite() && (MIN_REL_TOL..=0.1).contains(&rel_tol)) {
         return Err(Error::OutOfRange {
-            name: "region tolerance",
+            param: Param::RegionTolerance,
             value: rel_tol,
             range: "[1e-13, 0.1]",
         });

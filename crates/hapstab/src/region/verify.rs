@@ -315,7 +315,8 @@ pub(super) fn grid_suspects(
     };
     for r in radii.iter().map(|r| r * size) {
         for k in 0..8 {
-            let (s, c) = (k as f64 * std::f64::consts::FRAC_PI_4 + GRID_JITTER).sin_cos();
+            let (s, c) =
+                crate::circle::sin_cos(k as f64 * std::f64::consts::FRAC_PI_4 + GRID_JITTER);
             out.extend(probe(fam, region, P { x: r * c, y: r * s }, &mut coeffs));
         }
     }

@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::{Config, Outcome, simulate};
 use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, positive};
+use crate::param::Param;
 use crate::params::PlantParams;
 
 /// When a simulated run counts as stable for [`empirical_boundary`].
@@ -86,7 +87,7 @@ pub struct EmpiricalPoint {
 /// α-interval that starts at α = −γ, by D-decomposition ([`crate::linear::exact_upper_alpha`]).
 /// None if no such interval exists; `f64::INFINITY` if it is unbounded.
 pub fn exact_alpha_limit(plant: PlantParams, d: usize, beta: f64) -> Result<Option<f64>> {
-    finite("beta", beta)?;
+    finite(Param::Beta, beta)?;
     let plant = PlantParams::new(plant.gamma, plant.delta)?;
     let fam = PolyFamily::new(plant, d)?;
     Ok(crate::linear::exact_upper_alpha(&fam, beta))
@@ -168,7 +169,7 @@ fn bisect(
 fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
     let alpha_linear = search.template.model.exact_upper_a(beta)?;
     let alpha_max = match search.alpha_max {
-        Some(a) => positive("alpha_max", a)?,
+        Some(a) => positive(Param::AlphaMax, a)?,
         None => match alpha_linear {
             Some(a) if a.is_finite() => 3.0 * a,
             _ => 2.0,
@@ -227,23 +228,23 @@ pub fn empirical_boundary(search: &BoundarySearch) -> Result<Vec<EmpiricalPoint>
     search.template.validate()?;
     if search.grid < 2 {
         return Err(Error::OutOfRange {
-            name: "grid",
+            param: Param::Grid,
             value: search.grid as f64,
             range: "[2, inf)",
         });
     }
     if !(search.rel_tolerance >= MIN_REL_TOLERANCE && search.rel_tolerance < 1.0) {
         return Err(Error::OutOfRange {
-            name: "rel_tolerance",
+            param: Param::RelTolerance,
             value: search.rel_tolerance,
             range: "[1e-6, 1)",
         });
     }
     if let StableWhen::AmplitudeBelow(a) = search.stable_when {
-        positive("amplitude threshold", a)?;
+        positive(Param::AmplitudeThreshold, a)?;
     }
     for &b in &search.betas {
-        finite("beta", b)?;
+        finite(Param::Beta, b)?;
     }
     search
         .betas

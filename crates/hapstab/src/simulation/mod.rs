@@ -67,6 +67,7 @@ use serde::Serialize;
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::model::{Loop, PlantModel};
+use crate::param::Param;
 use crate::params::{Normalized, Physical, Wall};
 use crate::stability::Analysis;
 
@@ -115,8 +116,8 @@ impl Model {
         let params = params.validated()?;
         Ok(Self {
             params,
-            mass: positive("mass m", mass)?,
-            period: positive("sampling period T", period)?,
+            mass: positive(Param::Mass, mass)?,
+            period: positive(Param::Period, period)?,
         })
     }
 
@@ -139,8 +140,8 @@ impl Model {
     /// The same plant and sampling with another wall (α, β) (Table I).
     pub fn with_wall(&self, alpha: f64, beta: f64) -> Result<Self> {
         let mut params = self.params;
-        params.alpha = finite("alpha", alpha)?;
-        params.beta = finite("beta", beta)?;
+        params.alpha = finite(Param::Alpha, alpha)?;
+        params.beta = finite(Param::Beta, beta)?;
         Self::new(params, self.mass, self.period)
     }
 
@@ -163,8 +164,8 @@ pub struct LoopModel {
 impl LoopModel {
     /// Bundles a loop and its wall; the wall must be finite.
     pub fn new(lp: Loop, wall: Wall) -> Result<Self> {
-        finite("wall stiffness K", wall.stiffness)?;
-        finite("wall damping B", wall.damping)?;
+        finite(Param::WallStiffness, wall.stiffness)?;
+        finite(Param::WallDamping, wall.damping)?;
         Ok(Self { lp, wall })
     }
 }
@@ -222,8 +223,8 @@ impl SimModel {
             SimModel::Loop(m) => {
                 let s = m.lp.wall_scale();
                 let wall = Wall {
-                    stiffness: finite("a", a)? * s.stiffness,
-                    damping: finite("b", b)? * s.damping,
+                    stiffness: finite(Param::WallUnitStiffness, a)? * s.stiffness,
+                    damping: finite(Param::WallUnitDamping, b)? * s.damping,
                 };
                 SimModel::Loop(LoopModel::new(m.lp.clone(), wall)?)
             }
@@ -267,7 +268,7 @@ impl SimModel {
     /// stable a-interval that starts at the z = 1 line (Section V: α = −γ for the paper's
     /// loop) and reaches a > 0. None if there is none; `f64::INFINITY` if it is unbounded.
     pub fn exact_upper_a(&self, b: f64) -> Result<Option<f64>> {
-        finite("b", b)?;
+        finite(Param::WallUnitDamping, b)?;
         match self {
             SimModel::Paper(m) => exact_alpha_limit(m.params.plant(), m.params.d, b),
             SimModel::Loop(_) => {
@@ -365,19 +366,19 @@ impl Effects {
 
     /// Checks every value (finite wall position, q > 0, F_max > 0, 0 <= F_c <= F_s).
     pub fn validate(&self) -> Result<()> {
-        finite("wall position x_w", self.wall_position)?;
+        finite(Param::WallPosition, self.wall_position)?;
         if let Some(q) = self.quantization {
-            positive("quantization q", q)?;
+            positive(Param::Quantization, q)?;
         }
         if let Some(f) = self.saturation {
-            positive("saturation F_max", f)?;
+            positive(Param::Saturation, f)?;
         }
         if let Some(fr) = self.friction {
-            non_negative("Coulomb friction F_c", fr.coulomb)?;
-            non_negative("static friction F_s", fr.stiction)?;
+            non_negative(Param::CoulombFriction, fr.coulomb)?;
+            non_negative(Param::StaticFriction, fr.stiction)?;
             if fr.stiction < fr.coulomb {
                 return Err(Error::OutOfRange {
-                    name: "static friction F_s",
+                    param: Param::StaticFriction,
                     value: fr.stiction,
                     range: "[F_c, inf)",
                 });
@@ -413,10 +414,10 @@ impl HumanForce {
 
     fn validate(&self) -> Result<()> {
         match self {
-            HumanForce::Constant(f) => finite("human force F_H", *f).map(|_| ()),
+            HumanForce::Constant(f) => finite(Param::HumanForce, *f).map(|_| ()),
             HumanForce::Samples(v) => v
                 .iter()
-                .try_for_each(|&f| finite("human force profile F_H[k]", f).map(|_| ())),
+                .try_for_each(|&f| finite(Param::HumanForceProfile, f).map(|_| ())),
             HumanForce::Function(_) => Ok(()),
         }
     }
@@ -498,7 +499,7 @@ impl Config {
         self.effects.validate()?;
         if self.effects.friction.is_some() && !self.model.friction_defined() {
             return Err(Error::Invalid {
-                name: "friction",
+                param: Param::Friction,
                 reason: "is not defined for a transfer-function plant: it acts on a mass, which \
                          a transfer function does not name (use the mass-spring-damper or the \
                          two-mass plant)"
@@ -506,25 +507,25 @@ impl Config {
             });
         }
         self.human.validate()?;
-        finite("initial position", self.initial.position)?;
-        finite("initial velocity", self.initial.velocity)?;
+        finite(Param::InitialPosition, self.initial.position)?;
+        finite(Param::InitialVelocity, self.initial.velocity)?;
         if self.samples < 2 {
             return Err(Error::OutOfRange {
-                name: "samples",
+                param: Param::DurationSamples,
                 value: self.samples as f64,
                 range: "[2, inf)",
             });
         }
         if self.max_samples < self.samples {
             return Err(Error::OutOfRange {
-                name: "max_samples (the horizon)",
+                param: Param::MaxSamples,
                 value: self.max_samples as f64,
                 range: "[samples, inf)",
             });
         }
         if self.trace_rows == 1 || self.trace_rows > MAX_TRACE_ROWS {
             return Err(Error::OutOfRange {
-                name: "trace rows",
+                param: Param::TraceRows,
                 value: self.trace_rows as f64,
                 range: "0 or [2, 2e6]",
             });
@@ -553,12 +554,12 @@ impl Config {
 
 /// The number of samples covering `seconds` at period T (rounded up), for `--duration`.
 pub fn samples_for_duration(seconds: f64, period: f64) -> Result<usize> {
-    positive("duration", seconds)?;
-    positive("sampling period T", period)?;
+    positive(Param::Duration, seconds)?;
+    positive(Param::Period, period)?;
     let n = (seconds / period).ceil();
     if n > 1e12 {
         return Err(Error::OutOfRange {
-            name: "duration / T",
+            param: Param::DurationPeriods,
             value: n,
             range: "[1, 1e12]",
         });

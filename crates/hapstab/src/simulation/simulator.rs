@@ -10,6 +10,7 @@ use super::{BLOW_UP, Config, Contact, HumanForce, LoopFacts, RunLog, RunVerdict,
 use super::{Trace, verdict};
 use crate::error::{Result, finite};
 use crate::model::MAX_PLANT_ORDER;
+use crate::param::Param;
 use crate::poly;
 use crate::zoh::{PlantPorts, StateSpace, exp_and_integral, initial_state};
 
@@ -202,7 +203,7 @@ impl Laws {
             HumanForce::Samples(v) => v.get(k).or(v.last()).copied().unwrap_or(0.0) * self.scale,
             HumanForce::Function(f) => {
                 let v = f(k as f64 * self.period);
-                finite("human force F_H(t)", v)? * self.scale
+                finite(Param::HumanForceFunction, v)? * self.scale
             }
         })
     }

@@ -1,0 +1,387 @@
+//! `/api/region`: the exact stable region (Section V) simplified for drawing, the linear
+//! condition, the passive regions and on request the robust region (Section VIII), with
+//! their estimated costs.
+
+use std::time::Instant;
+
+use hapstab::boundary::AlphaBeta;
+use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
+use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
+use hapstab::linear::linear_alpha_limit;
+use hapstab::loop_analysis;
+use hapstab::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
+use hapstab::region::{EdgeKind, stable_region};
+use hapstab::{AffineFamily, Loop, PolyFamily};
+use serde::Serialize;
+
+use super::PlantOut;
+use super::passive::{PassiveOut, passive_regions};
+use super::region_request::RegionReq;
+use super::robust_box::{RobustBoxOut, robust_box_out};
+use crate::limits::*;
+use crate::query::{ApiError, GeneralLoop, PhysicalSpec, fmt, lib_error};
+use crate::robust_box::RobustBoxAnswer;
+use hapstab_plot::simplify::simplify_polygon;
+
+/// β slices of the exact cross-check of an empty polygon result.
+const EMPTY_CHECK_SLICES: usize = 64;
+
+/// One edge of a drawn polygon.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct EdgeOut {
+    /// Index of the edge's first vertex in the polygon's vertex list.
+    pub start: usize,
+    /// z_plus_one (α = −γ), z_minus_one (α + 2β = c), complex (root pair e^{±iθ}) or window.
+    pub kind: &'static str,
+}
+
+/// The exact stable region (Section V) as sent to the page.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct RegionJson {
+    /// Stable components: vertex rings of [α, β], counter-clockwise.
+    pub polygons: Vec<Vec<[f64; 2]>>,
+    /// Edges of each polygon.
+    pub edges: Vec<Vec<EdgeOut>>,
+    /// Largest stable α (the library's `StableRegion::alpha_max`; null when empty).
+    pub alpha_max: f64,
+    /// β at α_max.
+    pub beta_at_alpha_max: f64,
+    /// Area in the (α, β)-plane (of the exact polygons).
+    pub area: f64,
+    /// No stable point.
+    pub empty: bool,
+    /// Vertices of the exact polygons.
+    pub vertices_exact: usize,
+    /// Vertices sent after simplification.
+    pub vertices_sent: usize,
+    /// Simplification tolerance relative to the region's size.
+    pub tol: f64,
+}
+
+/// The linear condition (23) of Section VII: α < (β + δ)/(d + 1/2), and α > −γ (19).
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct LinearOut {
+    pub equation: &'static str,
+    /// dα/dβ along the line: 1/(d + 1/2).
+    pub slope: f64,
+    /// α of the line at β = 0: δ/(d + 1/2).
+    pub alpha_at_beta0: f64,
+    /// Lower bound of eq. (19): α > −γ.
+    pub alpha_lower: f64,
+}
+
+/// The robustly stable region over a γ range (Section VIII), from
+/// `hapstab::nyquist::robust_region`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct RobustOut {
+    pub gamma_lo: f64,
+    pub gamma_hi: f64,
+    /// Physical mode: the arm's stiffness range k_H ∈ [lo, hi] in N/m that gives the γ range
+    /// (γ = k_H T²/m with m and b fixed); null when the range was given as γ.
+    pub arm_stiffness_lo: Option<f64>,
+    pub arm_stiffness_hi: Option<f64>,
+    /// Uniform γ samples (ends included) and initial β slices.
+    pub gamma_samples: usize,
+    pub beta_samples: usize,
+    /// Golden-section refinement of the slice ends in γ.
+    pub refined: bool,
+    pub method: &'static str,
+    /// Polygon through the slice ends as [α, β], counter-clockwise.
+    pub polygon: Vec<[f64; 2]>,
+    pub alpha_max: f64,
+    pub beta_at_alpha_max: f64,
+    pub area: f64,
+    pub empty: bool,
+    /// Some slice had more than one robust α-interval.
+    pub multiple_intervals: bool,
+    /// γ samples at δ = 0, γ = (jπ)², replaced by the limit from inside the range.
+    pub degenerate_gammas: Vec<f64>,
+}
+
+/// Server-side time in milliseconds.
+#[derive(Debug, Clone, Default, Serialize)]
+pub(crate) struct Timing {
+    pub region: f64,
+    pub robust: f64,
+    /// The robust K_max over a box.
+    pub robust_kmax: f64,
+    pub total: f64,
+}
+
+/// Answer of `/api/region`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct RegionOut {
+    /// (γ, δ, d); for a loop beyond the paper's, γ is its static stiffness in wall units
+    /// (the z = 1 line a = −γ) and δ = 0: the loop itself is under `loop`.
+    pub params: PlantOut,
+    pub physical: Option<PhysicalSpec>,
+    /// A loop beyond the paper's: plant, period, delay and velocity estimator; the region
+    /// is drawn in its wall units a = K/k_per_alpha, b = B/b_per_beta.
+    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
+    pub lp: Option<Loop>,
+    pub region: RegionJson,
+    /// The paper's linear condition (null for other loops).
+    pub linear: Option<LinearOut>,
+    pub passive: Option<PassiveOut>,
+    /// Eq. (28) with the arm's damping counted (a device held by an arm): towards this
+    /// operator only.
+    pub passive_with_arm: Option<PassiveOut>,
+    pub robust: Option<RobustOut>,
+    /// Physical mode and loops beyond the paper's: K_max at B = 0, over the renderable band
+    /// and over B ≥ 0 in N/m and Ns/m (the library's answer, as `hapstab kmax --json`).
+    pub kmax: Option<KmaxReport>,
+    /// With `box=…`: the robust K_max over the box at `wall_damping`, the keys of
+    /// `hapstab kmax --robust --box … --json`.
+    pub robust_kmax: Option<RobustBoxAnswer>,
+    /// The command line's text of `robust_kmax`, a line per item, the last one saying what was
+    /// checked.
+    pub robust_kmax_text: Option<Vec<String>>,
+    pub warnings: Vec<String>,
+    pub server_ms: Timing,
+}
+
+/// The design K_max answer of a loop (`hapstab kmax` without a damping).
+fn design_kmax(lp: &Loop, fam: &AffineFamily) -> Result<KmaxReport, ApiError> {
+    kmax(lp, fam, KmaxQuery::Design(NoiseModel::default())).map_err(lib_error)
+}
+
+/// The paper's loop of a physical query: the device held by the arm (eq. 1), as the
+/// command line forms it.
+fn paper_loop(p: &PhysicalSpec, d: usize) -> Result<Loop, ApiError> {
+    let device = hapstab::Device {
+        mass: p.device_mass,
+        damping: p.device_damping,
+    };
+    let arm = hapstab::Arm {
+        mass: p.arm_mass,
+        damping: p.arm_damping,
+        stiffness: p.arm_stiffness,
+    };
+    let plant = hapstab::Plant::held_device(device, arm).map_err(lib_error)?;
+    let delay = hapstab::Delay::samples(d).map_err(lib_error)?;
+    Loop::new(plant, p.period, delay, hapstab::VelocityEstimator::Backward).map_err(lib_error)
+}
+
+/// Estimated cost of the nominal part of `/api/region`: the exact polygons and, when they
+/// come out empty, the cross-check by 64 exact α-interval slices.
+pub(crate) fn nominal_region_cost(d: usize) -> Cost {
+    region_cost(d).then(region_summary_cost(EMPTY_CHECK_SLICES, d))
+}
+
+/// Estimated cost of the robust region of `/api/region`.
+pub(crate) fn robust_cost(
+    d: usize,
+    gamma_samples: usize,
+    beta_samples: usize,
+    refine: bool,
+) -> Cost {
+    robust_region_cost(
+        gamma_samples,
+        beta_samples,
+        d,
+        refine,
+        ROBUST_REFINE_BETA_ROUNDS,
+    )
+}
+
+fn edge_kind(k: &EdgeKind) -> &'static str {
+    match k {
+        EdgeKind::ZPlusOne => "z_plus_one",
+        EdgeKind::ZMinusOne => "z_minus_one",
+        EdgeKind::Complex { .. } => "complex",
+        EdgeKind::Window => "window",
+    }
+}
+
+pub(super) fn ab(p: &AlphaBeta) -> [f64; 2] {
+    [p.alpha, p.beta]
+}
+
+/// The exact region drawn with the tolerance relative to its size.
+fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for v in r.polygons.iter().flat_map(|p| p.vertices.iter()) {
+        x0 = x0.min(v.alpha);
+        x1 = x1.max(v.alpha);
+        y0 = y0.min(v.beta);
+        y1 = y1.max(v.beta);
+    }
+    let size = (x1 - x0).max(y1 - y0);
+    let abs_tol = if size.is_finite() { tol * size } else { 0.0 };
+    let mut polygons = Vec::with_capacity(r.polygons.len());
+    let mut edges = Vec::with_capacity(r.polygons.len());
+    for poly in &r.polygons {
+        let (verts, starts) = simplify_polygon(poly, abs_tol);
+        polygons.push(verts.iter().map(ab).collect::<Vec<_>>());
+        edges.push(
+            poly.edges
+                .iter()
+                .zip(starts)
+                .map(|(e, s)| EdgeOut {
+                    start: s,
+                    kind: edge_kind(&e.kind),
+                })
+                .collect::<Vec<_>>(),
+        );
+    }
+    RegionJson {
+        vertices_sent: polygons.iter().map(Vec::len).sum(),
+        polygons,
+        edges,
+        alpha_max: r.alpha_max,
+        beta_at_alpha_max: r.beta_at_alpha_max,
+        area: r.area,
+        empty: r.polygons.is_empty(),
+        vertices_exact: r.polygons.iter().map(|p| p.vertices.len()).sum(),
+        tol,
+    }
+}
+
+/// `/api/region` for a loop beyond the paper's: the exact region of its family in wall
+/// units and its passive regions; the paper's linear condition does not apply.
+fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiError> {
+    let t0 = Instant::now();
+    let r = loop_analysis::region(&g.lp, &g.family).map_err(lib_error)?;
+    let region = region_json(&r, req.tol);
+    let (passive, passive_with_arm) = passive_regions(&req.spec)?;
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (rk, t_rk) = robust_kmax(req)?;
+    Ok(RegionOut {
+        params: PlantOut::from(&req.spec),
+        physical: req.spec.physical,
+        lp: Some(g.lp.clone()),
+        region,
+        linear: None,
+        passive,
+        passive_with_arm,
+        robust: None,
+        kmax: Some(design_kmax(&g.lp, &g.family)?),
+        robust_kmax_text: rk.as_ref().map(|r| r.text.clone()),
+        robust_kmax: rk.map(|r| r.answer),
+        warnings: Vec::new(),
+        server_ms: Timing {
+            region: ms,
+            robust: 0.0,
+            robust_kmax: t_rk,
+            total: t0.elapsed().as_secs_f64() * 1e3,
+        },
+    })
+}
+
+/// The robustly stable region over the query's γ range (Section VIII).
+fn robust_out(
+    rr: super::region_request::RobustReq,
+    delta: f64,
+    d: usize,
+) -> Result<RobustOut, ApiError> {
+    let opts = RobustOptions {
+        gamma_samples: rr.gamma_samples,
+        beta_samples: rr.beta_samples,
+        refine_gamma: rr.refine,
+        refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
+    };
+    let r = robust_region(delta, d, rr.lo, rr.hi, opts).map_err(lib_error)?;
+    Ok(RobustOut {
+        gamma_lo: r.gamma_lo,
+        gamma_hi: r.gamma_hi,
+        arm_stiffness_lo: rr.arm_stiffness.map(|k| k[0]),
+        arm_stiffness_hi: rr.arm_stiffness.map(|k| k[1]),
+        gamma_samples: rr.gamma_samples,
+        beta_samples: rr.beta_samples,
+        refined: rr.refine,
+        method: "hapstab::nyquist::robust_region: intersection of exact per-β stable α-intervals over uniform γ samples",
+        polygon: r.polygon.iter().map(ab).collect(),
+        alpha_max: r.alpha_max,
+        beta_at_alpha_max: r.beta_at_alpha_max,
+        area: r.area,
+        empty: r.empty,
+        multiple_intervals: r.multiple_intervals,
+        degenerate_gammas: r.degenerate_gammas,
+    })
+}
+
+/// The robust K_max over the request's box, if any, and its time in ms.
+fn robust_kmax(req: &RegionReq) -> Result<(Option<RobustBoxOut>, f64), ApiError> {
+    let t = Instant::now();
+    let out = req.robust_kmax.as_ref().map(robust_box_out).transpose()?;
+    Ok((out, t.elapsed().as_secs_f64() * 1e3))
+}
+
+/// Computes the answer of `/api/region`.
+pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
+    if let Some(g) = &req.spec.general {
+        return general_region(req, g);
+    }
+    let t0 = Instant::now();
+    let spec = &req.spec;
+    let fam = PolyFamily::new(spec.plant, spec.d).map_err(lib_error)?;
+    let r = stable_region(&fam).map_err(lib_error)?;
+    let t_region = t0.elapsed().as_secs_f64() * 1e3;
+    let mut warnings = Vec::new();
+    let region = region_json(&r, req.tol);
+    if unit_circle_pole(spec.plant).is_some() {
+        warnings.push(format!(
+            "δ = 0 and γ = {} = (jπ)²: p(z) has a root on the unit circle for every (α, β) (Section VIII-B), so no point is strictly stable",
+            fmt(spec.plant.gamma)
+        ));
+    } else if region.empty {
+        // Cross-check an empty polygon result by exact per-β α-intervals.
+        let summary = region_summary(spec.plant, spec.d, EMPTY_CHECK_SLICES).map_err(lib_error)?;
+        if !summary.empty {
+            warnings.push(format!(
+                "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::nyquist::region_summary) find stable points up to α = {} at β = {}",
+                fmt(summary.alpha_max),
+                fmt(summary.beta_at_alpha_max)
+            ));
+        }
+    }
+    let delta = spec.plant.delta;
+    let linear = Some(LinearOut {
+        equation: "α < (β + δ)/(d + 1/2)  (eq. 23),  α > −γ  (eq. 19)",
+        slope: 1.0 / (spec.d as f64 + 0.5),
+        alpha_at_beta0: linear_alpha_limit(0.0, delta, spec.d),
+        alpha_lower: -spec.plant.gamma,
+    });
+    let (passive, passive_with_arm) = passive_regions(spec)?;
+    let t1 = Instant::now();
+    let robust = req
+        .robust
+        .map(|rr| robust_out(rr, delta, spec.d))
+        .transpose()?;
+    let t_robust = t1.elapsed().as_secs_f64() * 1e3;
+    let kmax = spec
+        .physical
+        .as_ref()
+        .map(|p| -> Result<KmaxReport, ApiError> {
+            let lp = paper_loop(p, spec.d)?;
+            let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
+            design_kmax(&lp, &fam)
+        })
+        .transpose()?;
+    let (rk, t_rk) = robust_kmax(req)?;
+    Ok(RegionOut {
+        params: PlantOut::from(spec),
+        physical: spec.physical,
+        lp: None,
+        region,
+        linear,
+        passive,
+        passive_with_arm,
+        robust,
+        kmax,
+        robust_kmax_text: rk.as_ref().map(|r| r.text.clone()),
+        robust_kmax: rk.map(|r| r.answer),
+        warnings,
+        server_ms: Timing {
+            region: t_region,
+            robust: t_robust,
+            robust_kmax: t_rk,
+            total: t0.elapsed().as_secs_f64() * 1e3,
+        },
+    })
+}
