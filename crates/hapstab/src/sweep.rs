@@ -423,6 +423,9 @@ pub struct SweepPoint {
 /// K_max (stable and passive) of the loops `loop_at(v)` for every value, in parallel;
 /// `progress` is called with the number of points done. Every loop is built (and so
 /// validated) before any analysis, so a bad value fails the whole sweep with its message.
+/// The passive K_max depends only on the sampled wall (period, delay, velocity estimator) and
+/// the damping that counts, so points that share them (a sweep of an arm or plant parameter)
+/// share one computation.
 pub fn kmax_sweep<F>(
     values: &[f64],
     loop_at: F,
@@ -433,12 +436,29 @@ where
     F: Fn(f64) -> Result<Loop>,
 {
     let loops: Vec<Loop> = values.iter().map(|&v| loop_at(v)).collect::<Result<_>>()?;
+    let keys: Vec<PassiveKey> = loops.iter().map(PassiveKey::of).collect();
+    // the first point of each distinct key, and each point's key among them
+    let mut firsts: Vec<usize> = Vec::new();
+    let slot: Vec<usize> = (0..keys.len())
+        .map(|i| match firsts.iter().position(|&j| keys[j] == keys[i]) {
+            Some(s) => s,
+            None => {
+                firsts.push(i);
+                firsts.len() - 1
+            }
+        })
+        .collect();
+    let passive: Vec<PassiveKmax> = firsts
+        .par_iter()
+        .map(|&i| PassiveKmax::of(&loops[i], &keys[i], at))
+        .collect();
     let done = AtomicUsize::new(0);
     Ok(values
         .par_iter()
         .zip(loops.par_iter())
-        .map(|(&v, lp)| {
-            let p = sweep_point(v, lp, at);
+        .zip(slot.par_iter())
+        .map(|((&v, lp), &s)| {
+            let p = sweep_point(v, lp, at, passive[s]);
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
             p
         })
@@ -460,13 +480,13 @@ pub fn sweep_param(
     )
 }
 
-fn sweep_point(value: f64, lp: &Loop, at: KmaxAt) -> SweepPoint {
+fn sweep_point(value: f64, lp: &Loop, at: KmaxAt, passive: PassiveKmax) -> SweepPoint {
     let mut p = SweepPoint {
         value,
         k_max: None,
         b_at_k_max: None,
-        k_max_passive: None,
-        k_max_passive_with_arm: None,
+        k_max_passive: passive.device,
+        k_max_passive_with_arm: passive.with_arm,
         note: None,
     };
     match stable_kmax(lp, at) {
@@ -477,18 +497,61 @@ fn sweep_point(value: f64, lp: &Loop, at: KmaxAt) -> SweepPoint {
         Ok(None) => {}
         Err(e) => p.note = Some(e.to_string()),
     }
-    if let DeviceDamping::Known { damping } = device_damping(&lp.plant)
-        && let Ok(sw) = SampledWall::new(lp)
-    {
-        p.k_max_passive = passive_kmax(&sw, at, damping);
-        p.k_max_passive_with_arm = lp.plant.effective_damping().and_then(|b| match at {
+    p
+}
+
+/// What a point's passive K_max depends on: the sampled wall and the dampings that count.
+#[derive(Debug, Clone, PartialEq)]
+struct PassiveKey {
+    period: f64,
+    delay: Delay,
+    velocity: VelocityEstimator,
+    /// The device's own damping (None when the plant does not name it).
+    device: Option<f64>,
+    /// The device's and the arm's damping together (eq. 28's b).
+    with_arm: Option<f64>,
+}
+
+impl PassiveKey {
+    fn of(lp: &Loop) -> Self {
+        let device = match device_damping(&lp.plant) {
+            DeviceDamping::Known { damping } => Some(damping),
+            _ => None,
+        };
+        Self {
+            period: lp.period,
+            delay: lp.delay,
+            velocity: lp.velocity.clone(),
+            device,
+            with_arm: device.and(lp.plant.effective_damping()),
+        }
+    }
+}
+
+/// The passive K_max of a point: for the device's own damping and with the arm's counted.
+#[derive(Debug, Clone, Copy, Default)]
+struct PassiveKmax {
+    device: Option<f64>,
+    with_arm: Option<f64>,
+}
+
+impl PassiveKmax {
+    fn of(lp: &Loop, key: &PassiveKey, at: KmaxAt) -> Self {
+        let Some(damping) = key.device else {
+            return Self::default();
+        };
+        let Ok(sw) = SampledWall::new(lp) else {
+            return Self::default();
+        };
+        let device = passive_kmax(&sw, at, damping);
+        let with_arm = key.with_arm.and_then(|b| match at {
             // the passive region scales with the device damping (b_required is positively
             // homogeneous in (K, B)): its largest K too
-            KmaxAt::Overall if damping > 0.0 => p.k_max_passive.map(|k| k * (b / damping)),
+            KmaxAt::Overall if damping > 0.0 => device.map(|k| k * (b / damping)),
             _ => passive_kmax(&sw, at, b),
         });
+        Self { device, with_arm }
     }
-    p
 }
 
 /// The largest stable K and its B in physical units.

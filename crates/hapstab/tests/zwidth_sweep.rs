@@ -185,3 +185,54 @@ fn cutoff_sweep_and_progress() {
     }
     assert!(pts[0].k_max.unwrap() < pts[11].k_max.unwrap());
 }
+
+/// A sweep of an arm parameter shares one passive computation between its points (they have
+/// the same sampled wall and device damping): each point's passive K_max equals the one
+/// computed for its own loop alone, at every damping constraint, and eq. (28)'s figure with
+/// the arm's damping counted follows the arm damping swept.
+#[test]
+fn shared_passive_kmax_equals_each_points_own() {
+    use hapstab::params::Arm;
+    use hapstab::passivity::{SampledWall, k_max_passive_at, passive_k_max};
+    let device = hapstab::params::Device {
+        mass: 0.25,
+        damping: 2.0,
+    };
+    let plant = Plant::held_device(device, Arm::TYPICAL).unwrap();
+    let delay = Delay::from_time(4e-4, T).unwrap();
+    let lp = Loop::new(plant, T, delay, VelocityEstimator::Backward).unwrap();
+    for (range, at) in [
+        ("arm-stiffness:0:2000:7", KmaxAt::Overall),
+        ("arm-damping:1:9:5", KmaxAt::Overall),
+        ("arm-damping:1:9:5", KmaxAt::Damping { damping: 3.0 }),
+        ("arm-mass:0.5:3:4", KmaxAt::Band { lo: 0.0, hi: 1.0 }),
+    ] {
+        let r: SweepRange = range.parse().unwrap();
+        let pts = sweep_param(&lp, &r, at, &|_| {}).unwrap();
+        for p in &pts {
+            let own = r.param.apply(&lp, p.value).unwrap();
+            let sw = SampledWall::new(&own).unwrap();
+            let b_arm = own.plant.effective_damping().unwrap();
+            let want = |b: f64| match at {
+                KmaxAt::Damping { damping } => k_max_passive_at(&sw, b, damping),
+                _ => passive_k_max(&sw, b).map(|w| w.stiffness),
+            };
+            if !matches!(at, KmaxAt::Band { .. }) {
+                assert_eq!(p.k_max_passive, want(2.0), "{range} at {}", p.value);
+                let with_arm = p.k_max_passive_with_arm.unwrap();
+                assert!(
+                    rel(with_arm, want(b_arm).unwrap()) < 1e-12,
+                    "{range} at {}",
+                    p.value
+                );
+            }
+            assert_eq!(
+                p.k_max_passive, pts[0].k_max_passive,
+                "{range}: one device damping"
+            );
+        }
+        if range.starts_with("arm-damping") {
+            assert!(pts[0].k_max_passive_with_arm < pts[4].k_max_passive_with_arm);
+        }
+    }
+}
