@@ -35,10 +35,15 @@ use crate::boundary::{
 };
 use crate::cayley::CayleyFamily;
 use crate::closed_loop::{AffineFamily, SHIFTED_THETA};
-use crate::line_decomposition::{located_crossings, stable_intervals, stable_intervals_located};
+use crate::line_decomposition::{
+    located_crossings, stable_intervals, stable_intervals_located, stable_intervals_with_angles,
+};
 use crate::poly;
 use crate::real_roots::positive_roots;
 use crate::region::{ConfirmedMax, confirm_max};
+
+mod cap;
+use cap::{Level, cap_by_levels, cap_top};
 
 /// Relative distance of the walls beside K_max that the point test must find inside (below)
 /// and not inside (above): the region's confirmation distance.
@@ -117,7 +122,8 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
 /// From a stable top upward, cap by cap: the certificate's stable damping interval above the
 /// current answer is a cap of the region, whose top ([`cap_top`]) is the next answer once the
 /// point test confirms it; where a cap's top is not found or not confirmed, the curve's
-/// candidates above the current answer ([`highest_candidate`]) give the next.
+/// candidates above the current answer ([`highest_candidate`]) give the next, and failing
+/// them the cap's levels ([`cap_by_levels`]).
 fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f64)) -> BandMax {
     let mut cands: Option<Vec<AlphaBeta>> = None;
     for _ in 0..CAP_ROUNDS {
@@ -132,29 +138,45 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
                 }
             },
             Certificate::Other => None,
-            Certificate::Cap { alpha, ends } => cap_top(fam, alpha, ends),
+            Certificate::Cap { alpha, ends } => Some(Level { a: alpha, ends }),
         };
-        let inside = |b: f64| b >= band.0 && b <= band.1;
-        let next = cap
-            .filter(|c| c.alpha > found.alpha && inside(c.beta))
-            .and_then(|c| exact_top(fam, cf, c.alpha, c.beta).map(|a| (a, c.beta)))
-            .map(|(alpha, beta)| Found {
-                alpha,
-                beta,
-                exact: true,
-            })
-            .or_else(|| {
-                let list =
-                    cands.get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha));
-                highest_candidate(fam, cf, list, Some(found), band)
-                    .filter(|f| f.alpha > found.alpha)
-            });
-        match next {
+        match next_top(fam, cf, found, cap, &mut cands, band) {
             Some(f) => found = f,
             None => return BandMax::Undecided,
         }
     }
     BandMax::Undecided
+}
+
+/// The next top above `found`: the cap's top where [`cap_top`] finds it and the exact stable
+/// intervals at its damping reach it, else the highest of the curve's candidates above
+/// `found` (listed once per search in `cands`), else the cap's top by its levels.
+fn next_top(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    found: Found,
+    cap: Option<Level>,
+    cands: &mut Option<Vec<AlphaBeta>>,
+    band: (f64, f64),
+) -> Option<Found> {
+    let exact = |(alpha, beta): (f64, f64)| Found {
+        alpha,
+        beta,
+        exact: true,
+    };
+    let inside = |b: f64| b >= band.0 && b <= band.1;
+    let top = cap.and_then(|c| cap_top(fam, c.a, c.ends));
+    top.filter(|c| c.alpha > found.alpha && inside(c.beta))
+        .and_then(|c| exact_top(fam, cf, c.alpha, c.beta).map(|a| (a, c.beta)))
+        .map(exact)
+        .or_else(|| {
+            let list = cands.get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha));
+            highest_candidate(fam, cf, list, Some(found), band).filter(|f| f.alpha > found.alpha)
+        })
+        .or_else(|| {
+            let guess = top.map_or(f64::NAN, |c| c.alpha);
+            cap_by_levels(fam, cf, cap?, guess).map(exact)
+        })
 }
 
 /// The curve's candidates inside the band above `floor`, highest first.
@@ -177,165 +199,9 @@ fn sorted_candidates(
     cands
 }
 
-/// The top of a cap whose ends at stiffness a lie at angles θ1, θ2 (0 or π on the z = ±1
-/// lines): the smooth top of one arc, the corner where two arcs meet, where an arc meets a
-/// line, or where the two lines meet.
-fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Option<AlphaBeta> {
-    let on_curve = |t: f64| t > 0.0 && t < std::f64::consts::PI;
-    let line_at = |t: f64| {
-        if t == 0.0 {
-            plus_one_line(fam)
-        } else {
-            minus_one_line(fam)
-        }
-    };
-    let [(b1, t1), (b2, t2)] = ends;
-    match (on_curve(t1), on_curve(t2)) {
-        (true, true) => smooth_top(fam, a, (b1, b2), (t1, t2)).or_else(|| cap_corner(fam, a, ends)),
-        (true, false) => arc_meets_line(fam, a, t1, &line_at(t2)?),
-        (false, true) => arc_meets_line(fam, a, t2, &line_at(t1)?),
-        (false, false) => lines_meet(&line_at(t1)?, &line_at(t2)?),
-    }
-}
-
-/// Samples of a(θ) between a cap's ends that must all lie above its level for the cap to be
-/// one arc's smooth top.
-const ARC_SAMPLES: usize = 8;
-
-/// The cap's top where one arc of the curve runs from one end over a stationary point of a
-/// to the other, staying above the cap's level: da/dθ = 0 by Brent's method between the ends.
-fn smooth_top(
-    fam: &AffineFamily,
-    a: f64,
-    (b1, b2): (f64, f64),
-    (t1, t2): (f64, f64),
-) -> Option<AlphaBeta> {
-    let (lo, hi) = (t1.min(t2), t1.max(t2));
-    let slope = |t: f64| dalpha_dtheta(fam, t);
-    if !(slope(lo) > 0.0 && slope(hi) < 0.0) {
-        return None;
-    }
-    let above = (1..ARC_SAMPLES).all(|j| {
-        let t = lo + (hi - lo) * j as f64 / ARC_SAMPLES as f64;
-        curve_point(fam, t).is_some_and(|p| p.alpha >= a)
-    });
-    if !above {
-        return None;
-    }
-    let p = curve_point(fam, crate::bracket::sign_change(lo, hi, slope))?;
-    (p.alpha >= a && p.beta >= b1.min(b2) && p.beta <= b1.max(b2)).then_some(p)
-}
-
-/// Where the arc through θ at stiffness a meets a z = ±1 line, by the secant method on the
-/// line's value along the curve.
-fn arc_meets_line(fam: &AffineFamily, a: f64, theta: f64, l: &RootLine) -> Option<AlphaBeta> {
-    let value = |t: f64| curve_point(fam, t).map(|p| l.value(p));
-    let h = 1e-6 * theta.min(std::f64::consts::PI - theta);
-    let (mut t0, mut t1) = (theta, theta + h);
-    let (mut v0, mut v1) = (value(t0)?, value(t1)?);
-    for _ in 0..CAP_STEPS {
-        let t2 = t1 - v1 * (t1 - t0) / (v1 - v0);
-        if !(t2 > 0.0 && t2 < std::f64::consts::PI) {
-            return None;
-        }
-        (t0, v0) = (t1, v1);
-        (t1, v1) = (t2, value(t2)?);
-        if (t1 - t0).abs() <= SETTLED * t1 || v1 == 0.0 {
-            return curve_point(fam, t1).filter(|p| p.alpha >= a);
-        }
-    }
-    None
-}
-
 /// Caps closed before the search gives up (each a corner where the curve crosses itself
 /// above the previous answer; one is the rule, a second is rare).
 const CAP_ROUNDS: usize = 4;
-
-/// A Newton step below this relative size has settled (a few ulps of a(θ)'s rounding).
-const SETTLED: f64 = 1e-14;
-
-/// A Newton step that no longer halves has settled at the rounding of the function when it is
-/// below this relative size.
-const NEAR: f64 = 1e-10;
-
-/// Newton steps at most on the meeting of two arcs, and on a point of an arc at a stiffness.
-const CAP_STEPS: usize = 60;
-
-/// The corner where a cap closes: the two arcs through its ends (angles θ1, θ2 at stiffness
-/// a0) meet at the stiffness a where b(θ2(a)) − b(θ1(a)) = 0, by Newton's method in a (each
-/// arc followed by Newton's method in θ on a(θ) = a). None where an arc turns back (a smooth
-/// top that the stationary points should have held) or the iteration does not settle.
-fn cap_corner(fam: &AffineFamily, a0: f64, ends: [(f64, f64); 2]) -> Option<AlphaBeta> {
-    let mut a = a0;
-    let mut arcs = (arc_at(fam, ends[0].1, a)?, arc_at(fam, ends[1].1, a)?);
-    let mut last = f64::INFINITY;
-    for _ in 0..CAP_STEPS {
-        let ((t1, b1, s1), (t2, b2, s2)) = arcs;
-        let mut step = (b2 - b1) / (s2 - s1);
-        if !step.is_finite() {
-            return None;
-        }
-        // damped: halve a step that leaves either arc (it turned back on the way)
-        let next = (0..DAMPING_HALVINGS).find_map(|_| {
-            let pair = arc_at(fam, t1, a - step).zip(arc_at(fam, t2, a - step));
-            if pair.is_none() {
-                step *= 0.5;
-            }
-            pair
-        })?;
-        a -= step;
-        arcs = next;
-        if step.abs() <= SETTLED * a.abs()
-            || (step.abs() >= 0.5 * last && step.abs() <= NEAR * a.abs())
-        {
-            return Some(AlphaBeta {
-                alpha: a,
-                beta: arcs.0.1,
-            });
-        }
-        last = step.abs();
-    }
-    None
-}
-
-/// Halvings of a Newton step in a that leaves an arc before the corner search gives up.
-const DAMPING_HALVINGS: usize = 40;
-
-/// The point of the curve's arc through θ at stiffness a: (θ, b, db/da there), by Newton's
-/// method on a(θ) = a with slopes from central differences.
-fn arc_at(fam: &AffineFamily, theta: f64, a: f64) -> Option<(f64, f64, f64)> {
-    use std::f64::consts::PI;
-    let mut th = theta;
-    let mut last = f64::INFINITY;
-    for _ in 0..ARC_STEPS {
-        let p = curve_point(fam, th)?;
-        // forward differences: a relative error of 1e-7 in the slope keeps Newton's
-        // convergence at a ratio of 1e-7 per step
-        let h = SLOPE_STEP * th.min(PI - th);
-        let q = curve_point(fam, th + h)?;
-        let (da, db) = ((q.alpha - p.alpha) / h, (q.beta - p.beta) / h);
-        let step = (p.alpha - a) / da;
-        let next = th - step;
-        if !(next > 0.0 && next < PI) || step.abs() > last {
-            return None; // off the arc, or diverging: the arc does not reach a
-        }
-        // settled: a step at the rounding of a(θ), or one that no longer shrinks near it
-        if step.abs() <= SETTLED * th || (step.abs() >= 0.5 * last && step.abs() <= NEAR * th) {
-            let p = curve_point(fam, next)?;
-            return Some((next, p.beta, db / da));
-        }
-        th = next;
-        last = step.abs();
-    }
-    None
-}
-
-/// Newton steps at most on a point of an arc (quadratic convergence from a nearby angle
-/// needs a handful; more means the arc does not reach the stiffness).
-const ARC_STEPS: usize = 20;
-
-/// Relative step of the forward differences of the curve in θ.
-const SLOPE_STEP: f64 = 1e-7;
 
 /// The highest end of the stable stiffness intervals at damping b (None when none is stable
 /// or the highest is unbounded).
