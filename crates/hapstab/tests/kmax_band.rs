@@ -173,3 +173,42 @@ fn kmax_without_the_polygon_on_ten_thousand_loops() {
     eprintln!("compared {compared}, undecided {undecided}");
     assert!(compared >= 10_000, "{compared} compared");
 }
+
+/// A cap whose top is a corner far above the certificate's level: the two-mass device with a
+/// lag and a 200 Hz low-pass behind 7.755 ms (the benchmarks' general loop), where Newton's
+/// method on the two arcs from the level meets another crossing of the curve. The answer is
+/// decided, equals the region's polygon, and the point test confirms it on both sides.
+#[test]
+fn a_cap_far_above_its_level_closes_on_the_regions_top() {
+    use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+    let plant = Plant::new(
+        PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.05,
+            motor_damping: 0.5,
+            handle_mass: 0.05,
+            transmission_stiffness: 2e4,
+            transmission_damping: 2.0,
+            arm: hapstab::params::Arm::TYPICAL,
+        }),
+        2e-4,
+    )
+    .unwrap();
+    let delay = Delay::from_time(0.38 / 49.0, 1e-3).unwrap();
+    let velocity = VelocityEstimator::LowPass { cutoff_hz: 200.0 };
+    let fam = AffineFamily::of_loop(&Loop::new(plant, 1e-3, delay, velocity).unwrap()).unwrap();
+    let BandMax::Max(fast) = k_max_band(&fam, f64::NEG_INFINITY, f64::INFINITY) else {
+        panic!("undecided");
+    };
+    let region = stable_region(&fam).unwrap();
+    let want = alpha_max_within(&fam, &region, f64::NEG_INFINITY, f64::INFINITY)
+        .unwrap()
+        .unwrap();
+    assert!(
+        close(fast.alpha, want.alpha),
+        "{} vs {}",
+        fast.alpha,
+        want.alpha
+    );
+    assert!(inside(&fam, fast.alpha * (1.0 - BESIDE), fast.beta));
+    assert!(!inside(&fam, fast.alpha * (1.0 + BESIDE), fast.beta));
+}
