@@ -26,9 +26,10 @@ const MAX_STEPS: usize = 200;
 /// this one, is below the double's rounding).
 const NEWTON_DONE: f64 = 1e-9;
 
-/// The same for a derivative's roots, which only end the next level's brackets: after a step
-/// of 1e-6 the error is of order 1e-12 relative, far below any sign test's resolution.
-const BRACKET_DONE: f64 = 1e-6;
+/// The same for a derivative's roots, which only end the next level's brackets: Laguerre's
+/// step converges cubically, so after a step of 1e-4 the error is of order 1e-12 relative,
+/// far below any sign test's resolution.
+const BRACKET_DONE: f64 = 1e-4;
 
 /// A bracket is bisected geometrically (at √(lo·hi)) while hi/lo exceeds this ratio: a root
 /// at 1e-17 in a bracket reaching 1 is then found in a few dozen steps instead of 60
