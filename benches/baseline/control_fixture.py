@@ -25,7 +25,7 @@ benches/baseline/control_mpmath.py shows on this fixture's loops.)
 
 The spectral radius max |pole| and the verdict (stable iff it is < 1) are written to the
 fixture crates/hapstab/tests/fixtures/control_loops.json that
-crates/hapstab/tests/python_control.rs reads. Plants and velocity estimators are written in
+crates/hapstab/tests/engine/python_control.rs reads. Plants and velocity estimators are written in
 hapstab's own forms (serde `PlantModel`, the `--velocity` spec text) so that the Rust test
 builds the same loop from the same numbers.
 """

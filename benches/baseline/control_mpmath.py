@@ -13,7 +13,7 @@ p(z) = z^d D(z) Vd(z) + N(z) (K Vd(z) + B Vn(z)) and its roots (mpmath.polyroots
 reference spectral radius beside python-control's, and beside hapstab's when --rust names a
 file of "id wall_kind radius" lines (HAPSTAB_CONTROL_DUMP=FILE cargo test -p hapstab --test
 python_control writes one). --write stores the reference in the fixture as
-`reference_radius` (the nearest double), the referee of tests/python_control.rs where
+`reference_radius` (the nearest double), the referee of tests/engine/python_control.rs where
 python-control and hapstab disagree.
 """
 

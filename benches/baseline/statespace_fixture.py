@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Seeded random haptic loops refereed in state space (statespace_referee.py), written to
-crates/hapstab/tests/fixtures/statespace_loops.json for crates/hapstab/tests/statespace_referee.rs.
+crates/hapstab/tests/fixtures/statespace_loops.json for crates/hapstab/tests/engine/statespace_referee.rs.
 
 Usage (benches/baseline/statespace_fixture.sh runs it in a venv with numpy, scipy, mpmath):
 

@@ -7,7 +7,7 @@
 # backend) into a venv under target/ (never committed). About 35 minutes on two cores.
 # Usage: bash benches/baseline/statespace_fixture.sh [--seed S] [--loops N] [--jobs J]
 # STATESPACE_FIXTURE=PATH writes elsewhere (a larger run for HAPSTAB_REFEREE_FIXTURE=PATH cargo
-# test -p hapstab --test statespace_referee).
+# test -p hapstab --test engine statespace_referee::).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 venv=target/referee-venv

@@ -32,7 +32,7 @@ from statespace_referee import Referee, stable_intervals
 # path rounds to the nearest double.
 CONTROL_TOL = 1e-13
 # python-control's own radii are known to miss the 60-digit reference by up to 5e-8 on a few
-# strongly unstable loops (see tests/python_control.rs); they are reported, not required.
+# strongly unstable loops (see tests/engine/python_control.rs); they are reported, not required.
 
 # A double-path radius of the fixture must match its 40-digit recomputation this closely:
 # the double path is taken only where the error bound is below 1e-13.

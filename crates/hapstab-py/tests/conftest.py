@@ -20,7 +20,7 @@ def target_dir() -> Path:
 @pytest.fixture(scope="session")
 def reference():
     """The seeded reference values written by the library's own test
-    (crates/hapstab/tests/python_reference.rs), regenerated here so that they match the
+    (crates/hapstab/tests/engine/python_reference.rs), regenerated here so that they match the
     library being bound."""
     subprocess.run(
         ["cargo", "test", "-q", "-p", "hapstab", "--test", "python_reference"],

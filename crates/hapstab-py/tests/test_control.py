@@ -6,7 +6,7 @@ closed by python-control alone through its state-space route (sample_system(ss(P
 'zoh'), the delay z^(−d), the wall K + B·V(z), feedback, poles); hapstab builds the same loop
 from the same numbers through the Python API. Walls are drawn away from the boundary.
 
-As in crates/hapstab/tests/python_control.rs, loops whose dominant root is ill-conditioned
+As in crates/hapstab/tests/engine/python_control.rs, loops whose dominant root is ill-conditioned
 in the coefficients of p(z) (condition number κ with κ·ε > 1e-9, several roots crowding
 z = 1) are set aside: no root finder working from those coefficients reaches 1e-9. At most
 a tenth of the drawn loops may be set aside. Where hapstab and python-control differ by more

@@ -1,6 +1,6 @@
 """The Python package gives the Rust library's results: seeded loops of every kind built
 through the Python API, compared with the values the library computed by itself
-(crates/hapstab/tests/python_reference.rs): α_max and K_max bit-equal, spectral radii to
+(crates/hapstab/tests/engine/python_reference.rs): α_max and K_max bit-equal, spectral radii to
 1e-12, maps and coefficient arrays equal."""
 
 import numpy as np

@@ -12,7 +12,7 @@
 //!
 //! `HAPSTAB_DELAY_LOOPS=N` sets the number of loops (120 by default).
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use common::loops::{random_loop, stable_wall, verdict};

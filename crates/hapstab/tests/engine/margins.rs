@@ -2,7 +2,7 @@
 //! on the perturbed loop (just inside and just beyond the margin) and against the roots, never
 //! against the margins module itself.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use hapstab::boundary::stable_alpha_intervals;

@@ -40,7 +40,7 @@ const COEFFICIENT_ROUNDING: f64 = 1e-15;
 
 #[test]
 fn general_engine_reproduces_the_paper_engine() {
-    let text = include_str!("fixtures/paper_regression.json");
+    let text = include_str!("../fixtures/paper_regression.json");
     let fx: Fixture = serde_json::from_str(text).expect("fixture");
     assert_eq!(fx.points.len(), 1000);
     let mut with_interval = 0;

@@ -21,7 +21,7 @@
 //! Every loop of the committed fixture is checked (about 20 s). A larger run: make a bigger
 //! fixture elsewhere, `STATESPACE_FIXTURE=/tmp/big.json bash benches/baseline/statespace_fixture.sh
 //! --loops 3000`, and point the test at it, `HAPSTAB_REFEREE_FIXTURE=/tmp/big.json cargo test
-//! -p hapstab --test statespace_referee`. `HAPSTAB_REFEREE_REPORT=FILE` writes every
+//! -p hapstab --test engine statespace_referee::`. `HAPSTAB_REFEREE_REPORT=FILE` writes every
 //! disagreement to FILE.
 
 use std::collections::BTreeMap;

@@ -6,7 +6,7 @@
 //! where it is well-conditioned, the argument principle where it is not), and (on a subset)
 //! the exact region contains it iff the point test says stable.
 //!
-//! A longer run: `HAPSTAB_EXTREME_CASES=1000000 cargo test -p hapstab --release --test extremes`.
+//! A longer run: `HAPSTAB_EXTREME_CASES=1000000 cargo test -p hapstab --release --test engine extremes::`.
 
 use hapstab::AffineFamily;
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};

@@ -4,7 +4,7 @@
 //! of p(z) (`hapstab::stability::roots` on `AffineFamily::coefficients`), from closed forms
 //! or from independent linear algebra, never from the simulator itself.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use hapstab::simulation::{

@@ -23,7 +23,7 @@
 //! 5 % of K*, and checks that random inputs at 0.8K* never take out more than the initial
 //! storage.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use hapstab::Loop;

@@ -11,9 +11,9 @@
 //!
 //! `HAPSTAB_MARGIN_LOOPS=N` sets the number of loops (300 by default, the acceptance size);
 //! `HAPSTAB_MARGIN_DENSE=M` the dense grid (20 000 angles by default; 10⁶ in the long run:
-//! `HAPSTAB_MARGIN_DENSE=1000000 cargo test --release -p hapstab --test margins_property`).
+//! `HAPSTAB_MARGIN_DENSE=1000000 cargo test --release -p hapstab --test engine margins_property::`).
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use common::loops::{random_loop, stable_wall, verdict};

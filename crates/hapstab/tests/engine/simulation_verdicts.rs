@@ -4,7 +4,7 @@
 //! reported only once settled. Expected verdicts come from `hapstab::stability` (roots and
 //! Schur–Cohn), never from the simulator.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use hapstab::simulation::{

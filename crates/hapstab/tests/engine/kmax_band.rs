@@ -8,10 +8,10 @@
 //! region's polygon misses a top (its K_max lower than the candidates'), the θ scan's exact
 //! interval at the higher answer's damping must reach it and the point test confirm it.
 //!
-//! `cargo test --release -p hapstab --test kmax_band -- --ignored` runs the version that
+//! `cargo test --release -p hapstab --test engine kmax_band:: -- --ignored` runs the version that
 //! compares 10⁴ loops.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use common::loops::random_loop;

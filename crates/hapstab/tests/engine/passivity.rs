@@ -3,7 +3,7 @@
 //! formula written here independently, from a time-domain energy balance, or from the
 //! Schur–Cohn test — never from the passivity module itself.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};

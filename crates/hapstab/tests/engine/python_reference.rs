@@ -307,7 +307,7 @@ fn python_reference_values() {
             }
         }
     }
-    let doc = json!({"generator": "crates/hapstab/tests/python_reference.rs", "seed": SEED, "cases": cases});
+    let doc = json!({"generator": "crates/hapstab/tests/engine/python_reference.rs", "seed": SEED, "cases": cases});
     let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("python_reference.json");
     std::fs::write(&path, serde_json::to_string_pretty(&doc).unwrap()).unwrap();
 }

@@ -4,7 +4,7 @@
 //! seed are stable at K_max·(1 − 1e-6) by the root-based analysis, and the reported worst
 //! plant, rebuilt from its printed values, is not stable at K_max·(1 + 1e-6).
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use common::loops::random_loop;

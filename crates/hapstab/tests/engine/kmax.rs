@@ -3,7 +3,7 @@
 //! mass's closed-form boundary α < 2β(2 − β)/(2 + β) (d = 0, backward difference), and the
 //! design query's three numbers against the separate queries and the verdict.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use common::loops::{random_loop, verdict};

@@ -2,7 +2,7 @@
 //! from the independent root finder / Schur–Cohn test of `hapstab::stability`, never from
 //! the simulator itself.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use hapstab::simulation::{

@@ -2,7 +2,7 @@
 //! for bit on seeded loops of every kind; the defaults are the paper's device, arm and
 //! sampling; every malformed file is refused naming the field.
 
-mod common;
+use crate::common;
 
 use common::SplitMix;
 use common::loops::random_loop;
