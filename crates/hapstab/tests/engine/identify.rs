@@ -3,12 +3,11 @@
 //! simulator's truth at 40 dB SNR and inside its 95 % interval; bad data refused naming the
 //! column or the problem.
 
-use std::path::PathBuf;
-
 use hapstab::identify::{
     Columns, Fixed, IdentifyError, ModelKind, ModelSpec, Record, identify, stiffness_limit,
 };
 use hapstab::model::VelocityEstimator;
+use std::path::PathBuf;
 
 fn fixture(name: &str) -> (Record, serde_json::Value) {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/identify");

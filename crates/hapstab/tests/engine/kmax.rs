@@ -4,7 +4,6 @@
 //! design query's three numbers against the separate queries and the verdict.
 
 use crate::common;
-
 use common::SplitMix;
 use common::loops::{random_loop, verdict};
 use hapstab::kmax::{

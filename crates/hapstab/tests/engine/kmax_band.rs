@@ -12,7 +12,6 @@
 //! compares 10⁴ loops.
 
 use crate::common;
-
 use common::SplitMix;
 use common::loops::random_loop;
 use hapstab::AffineFamily;

@@ -3,7 +3,6 @@
 //! sampling; every malformed file is refused naming the field.
 
 use crate::common;
-
 use common::SplitMix;
 use common::loops::random_loop;
 use hapstab::loop_spec::{LoopInput, parse};

@@ -8,23 +8,26 @@
 
 mod common;
 
-mod analyses;
+mod boundary;
 mod extremes;
-mod foundation;
-mod general_loop;
 mod identify;
 mod kmax;
 mod kmax_band;
+mod linear;
 mod loop_spec;
+mod map;
 mod margins;
 mod margins_delay;
 mod margins_property;
+mod nyquist;
 mod paper_regression;
 mod passivity;
 mod passivity_quantized;
+mod plant;
 mod population;
 mod python_control;
 mod python_reference;
+mod ranges;
 mod region;
 mod region_hard_cases;
 mod robust;
@@ -33,6 +36,8 @@ mod simulation;
 mod simulation_clip;
 mod simulation_loop;
 mod simulation_verdicts;
+mod stability;
 mod statespace_referee;
 mod verdict;
+mod zoh;
 mod zwidth_sweep;

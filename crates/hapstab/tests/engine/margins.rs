@@ -3,7 +3,6 @@
 //! against the margins module itself.
 
 use crate::common;
-
 use common::SplitMix;
 use hapstab::boundary::stable_alpha_intervals;
 use hapstab::margins::margins;

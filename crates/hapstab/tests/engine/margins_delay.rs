@@ -13,7 +13,6 @@
 //! `HAPSTAB_DELAY_LOOPS=N` sets the number of loops (120 by default).
 
 use crate::common;
-
 use common::SplitMix;
 use common::loops::{random_loop, stable_wall, verdict};
 use hapstab::AffineFamily;

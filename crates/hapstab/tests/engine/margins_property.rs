@@ -14,7 +14,6 @@
 //! `HAPSTAB_MARGIN_DENSE=1000000 cargo test --release -p hapstab --test engine margins_property::`).
 
 use crate::common;
-
 use common::SplitMix;
 use common::loops::{random_loop, stable_wall, verdict};
 use hapstab::AffineFamily;

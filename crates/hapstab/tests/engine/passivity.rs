@@ -4,7 +4,6 @@
 //! Schur–Cohn test — never from the passivity module itself.
 
 use crate::common;
-
 use common::SplitMix;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Effective, Wall};

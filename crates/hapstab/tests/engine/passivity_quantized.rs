@@ -24,7 +24,6 @@
 //! storage.
 
 use crate::common;
-
 use common::SplitMix;
 use hapstab::Loop;
 use hapstab::params::{Effective, Wall};

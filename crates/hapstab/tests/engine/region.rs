@@ -1,13 +1,15 @@
-//! Acceptance tests of the exact stable regions (issue 3). Expected values come from closed
-//! forms (pure mass), from the roots (spectral radius at vertices) and from the independent
-//! grid method.
+//! The exact stable regions (`hapstab::region`) of the paper's loop and of general loops.
+//! Expected values come from closed forms (pure mass), from the roots (spectral radius at
+//! vertices) and from the independent grid method.
 
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map};
+use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+use hapstab::params::{Arm, Effective};
 use hapstab::region::{EdgeKind, StableRegion, stable_region};
 use hapstab::schur_cohn::spectral_radius_schur;
 use hapstab::stability::schur_stable;
-use hapstab::{Normalized, PlantParams, PolyFamily};
+use hapstab::{AffineFamily, Normalized, PlantParams, PolyFamily};
 
 fn region(g: f64, dl: f64, d: usize) -> (PolyFamily, StableRegion) {
     let fam = PolyFamily::new(PlantParams::new(g, dl).unwrap(), d).unwrap();
@@ -361,4 +363,254 @@ fn near_nyquist_tends_to_the_triangle() {
         last = gap;
     }
     assert!(last < 1e-3, "{last}");
+}
+
+fn family(lp: &Loop) -> AffineFamily {
+    AffineFamily::of_loop(lp).unwrap()
+}
+
+fn with(plant: Plant, delay: Delay, v: VelocityEstimator) -> Loop {
+    Loop::new(plant, 1e-3, delay, v).unwrap()
+}
+
+/// Ten loops beyond the paper's: two-mass device, actuator lag, every velocity estimator,
+/// fractional delays, a transfer function.
+fn general_loops() -> Vec<(&'static str, Loop)> {
+    let msd = || paper_plant();
+    let two_mass = two_mass_plant;
+    let frac = |x: f64| Delay::from_time(x * 1e-3, 1e-3).unwrap();
+    let whole = |d: usize| Delay::samples(d).unwrap();
+    let tf = fourth_order_plant();
+    let iir = VelocityEstimator::Iir {
+        // backward difference through a 2-tap moving average: (1 − z⁻²)/(2T)
+        b: vec![500.0, 0.0, -500.0],
+        a: vec![1.0],
+    };
+    vec![
+        (
+            "low-pass 100 Hz",
+            with(
+                msd(),
+                whole(0),
+                VelocityEstimator::LowPass { cutoff_hz: 100.0 },
+            ),
+        ),
+        (
+            "average 5",
+            with(msd(), whole(1), VelocityEstimator::Average { samples: 5 }),
+        ),
+        ("iir", with(msd(), whole(0), iir)),
+        (
+            "delay 0.5T",
+            with(msd(), frac(0.5), VelocityEstimator::Backward),
+        ),
+        (
+            "delay 1.3T",
+            with(msd(), frac(1.3), VelocityEstimator::Backward),
+        ),
+        (
+            "force lag 0.2 ms",
+            with(
+                msd().with_force_lag(2e-4).unwrap(),
+                whole(1),
+                VelocityEstimator::Backward,
+            ),
+        ),
+        (
+            "two-mass",
+            with(two_mass(), whole(1), VelocityEstimator::Backward),
+        ),
+        (
+            "transfer function",
+            with(tf, whole(0), VelocityEstimator::Backward),
+        ),
+        (
+            "two-mass, low-pass, delay 0.7T",
+            with(
+                two_mass(),
+                frac(0.7),
+                VelocityEstimator::LowPass { cutoff_hz: 200.0 },
+            ),
+        ),
+        (
+            "device alone, average 15",
+            with(
+                Plant::mass_spring_damper(Effective::new(0.1, 1.5, 0.0).unwrap()).unwrap(),
+                whole(0),
+                VelocityEstimator::Average { samples: 15 },
+            ),
+        ),
+    ]
+}
+
+fn paper_plant() -> Plant {
+    Plant::mass_spring_damper(Effective::new(1.1, 7.5, 350.0).unwrap()).unwrap()
+}
+
+/// A two-mass device (50 g motor and handle, 20 kN/m transmission) held by the typical arm.
+fn two_mass_plant() -> Plant {
+    Plant::new(
+        PlantModel::TwoMass(TwoMass {
+            motor_mass: 0.05,
+            motor_damping: 0.5,
+            handle_mass: 0.05,
+            transmission_stiffness: 2e4,
+            transmission_damping: 2.0,
+            arm: Arm::TYPICAL,
+        }),
+        0.0,
+    )
+    .unwrap()
+}
+
+/// P(s) = (2s + 400)/(0.1s⁴ + 8s³ + 900s² + 4e4 s + 1e5).
+fn fourth_order_plant() -> Plant {
+    Plant::new(
+        PlantModel::TransferFunction {
+            num: vec![2.0, 400.0],
+            den: vec![0.1, 8.0, 900.0, 4.0e4, 1.0e5],
+        },
+        0.0,
+    )
+    .unwrap()
+}
+
+/// Every vertex of a general loop's region lies on the boundary: ρ within 1e-9 of 1, and
+/// 1e-6 of the region's size inward is stable, outward unstable (away from corners).
+#[test]
+fn general_region_vertices_lie_on_the_boundary() {
+    use hapstab::stability::schur_stable;
+    for (name, lp) in general_loops() {
+        let fam = family(&lp);
+        let r = hapstab::region::stable_region(&fam).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(!r.polygons.is_empty(), "{name}: empty");
+        let mut c = vec![0.0; fam.degree() + 1];
+        let mut checked = 0;
+        for poly in &r.polygons {
+            let v = &poly.vertices;
+            let n = v.len();
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for p in v {
+                lo = lo.min(p.alpha.min(p.beta));
+                hi = hi.max(p.alpha.max(p.beta));
+            }
+            let size = hi - lo;
+            let corners: Vec<usize> = poly.corners();
+            for i in (0..n).step_by((n / 200).max(1)) {
+                if corners.contains(&i) {
+                    continue;
+                }
+                let p = v[i];
+                // the radius as `check` computes it (roots near z = 1 polished in w = z − 1: a
+                // vertex near θ = 0 has a pair of roots crowding z = 1, which the bisection on
+                // the z-coefficients resolves only to about 1e-7)
+                let rho = hapstab::stability::Analysis::of_family(&fam, p.alpha, p.beta)
+                    .unwrap()
+                    .spectral_radius;
+                assert!((rho - 1.0).abs() < 1e-9, "{name} vertex {i}: ρ = {rho}");
+                let near_corner = corners
+                    .iter()
+                    .any(|&j| (v[j].alpha - p.alpha).hypot(v[j].beta - p.beta) < 1e-4 * size);
+                if near_corner {
+                    continue;
+                }
+                let (a, b) = (v[(i + n - 1) % n], v[(i + 1) % n]);
+                let (tx, ty) = (b.alpha - a.alpha, b.beta - a.beta);
+                let l = tx.hypot(ty);
+                let (nx, ny) = (-ty / l, tx / l);
+                let h = 1e-6 * size;
+                fam.coefficients_into(p.alpha + h * nx, p.beta + h * ny, &mut c);
+                assert!(schur_stable(&c), "{name} vertex {i}: inward unstable");
+                fam.coefficients_into(p.alpha - h * nx, p.beta - h * ny, &mut c);
+                assert!(!schur_stable(&c), "{name} vertex {i}: outward stable");
+                checked += 1;
+            }
+        }
+        assert!(checked > 50, "{name}: {checked}");
+        // α_max is the top of the exact stable interval at its damping
+        let iv = hapstab::boundary::stable_alpha_intervals(&fam, r.beta_at_alpha_max);
+        let top = iv.iter().map(|i| i.hi).fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (top - r.alpha_max).abs() < 1e-9 * r.alpha_max.abs().max(1e-12),
+            "{name}: α_max {} vs interval top {top}",
+            r.alpha_max
+        );
+    }
+}
+
+/// The polygons agree with a direct grid of Schur–Cohn tests away from the boundary.
+#[test]
+fn general_region_agrees_with_a_grid() {
+    use hapstab::boundary::AlphaBeta;
+    use hapstab::stability::schur_stable;
+    for (name, lp) in general_loops() {
+        let fam = family(&lp);
+        let r = hapstab::region::stable_region(&fam).unwrap();
+        let pts = r.polygons.iter().flat_map(|p| p.vertices.iter());
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for p in pts {
+            x0 = x0.min(p.alpha);
+            x1 = x1.max(p.alpha);
+            y0 = y0.min(p.beta);
+            y1 = y1.max(p.beta);
+        }
+        let (w, h) = (x1 - x0, y1 - y0);
+        let n = 80;
+        let mut c = vec![0.0; fam.degree() + 1];
+        let mut stable_seen = 0;
+        for i in 0..n {
+            for j in 0..n {
+                let a = x0 - 0.1 * w + 1.2 * w * (i as f64 + 0.37) / n as f64;
+                let b = y0 - 0.1 * h + 1.2 * h * (j as f64 + 0.61) / n as f64;
+                fam.coefficients_into(a, b, &mut c);
+                let s = schur_stable(&c);
+                stable_seen += s as usize;
+                let inside = r.contains(AlphaBeta { alpha: a, beta: b });
+                assert_eq!(s, inside, "{name} at ({a}, {b})");
+            }
+        }
+        // thin regions (long velocity windows) fill only a few per cent of their box
+        assert!(stable_seen > n * n / 40, "{name}: {stable_seen}");
+    }
+}
+
+/// The largest stable K within a damping band: the region's maximum when it lies inside,
+/// otherwise the best of a dense scan of exact stable intervals over the band.
+#[test]
+fn stiffness_maximum_within_a_damping_band() {
+    use hapstab::boundary::stable_alpha_intervals;
+    use hapstab::region::{alpha_max_within, stable_region};
+    for (name, lp) in general_loops().into_iter().take(6) {
+        let fam = family(&lp);
+        let r = stable_region(&fam).unwrap();
+        // a band around the maximum returns it
+        let b = r.beta_at_alpha_max;
+        let p = alpha_max_within(&fam, &r, b - 0.01, b + 0.01)
+            .unwrap()
+            .unwrap();
+        assert_eq!((p.alpha, p.beta), (r.alpha_max, b), "{name}");
+        // a band below the maximum: compare with a scan of exact intervals
+        let (lo, hi) = (b - 0.5 * b.abs().max(0.05), b - 0.1 * b.abs().max(0.05));
+        let Some(p) = alpha_max_within(&fam, &r, lo, hi).unwrap() else {
+            continue;
+        };
+        assert!(p.beta >= lo && p.beta <= hi, "{name}: {p:?}");
+        let scan = (0..=400)
+            .map(|i| lo + (hi - lo) * i as f64 / 400.0)
+            .flat_map(|bb| stable_alpha_intervals(&fam, bb).into_iter().map(|iv| iv.hi))
+            .filter(|h| h.is_finite())
+            .fold(f64::NEG_INFINITY, f64::max);
+        let tol = 1e-9 * r.alpha_max.abs();
+        assert!(p.alpha >= scan - tol, "{name}: {} < scan {scan}", p.alpha);
+        // and it is attained: the exact interval at its damping reaches it
+        let top = stable_alpha_intervals(&fam, p.beta)
+            .iter()
+            .map(|iv| iv.hi)
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (top - p.alpha).abs() <= 1e-7 * r.alpha_max.abs(),
+            "{name}: {top} vs {}",
+            p.alpha
+        );
+    }
 }

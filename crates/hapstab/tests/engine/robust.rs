@@ -5,7 +5,6 @@
 //! plant, rebuilt from its printed values, is not stable at K_max·(1 + 1e-6).
 
 use crate::common;
-
 use common::SplitMix;
 use common::loops::random_loop;
 use hapstab::loop_analysis::{analysis, wall_units};

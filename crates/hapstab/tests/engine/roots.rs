@@ -1,14 +1,13 @@
 //! The roots of p(z): the Aberth–Ehrlich finder against the companion matrix, closed forms
 //! at the extremes, and the verdict of an `Analysis` against its own spectral radius.
 
-use std::time::Instant;
-
 use hapstab::stability::{
     Analysis, MARGINAL_BAND, Verdict, roots, roots_companion, verdict_of_radius,
 };
 use hapstab::verdict::decide_coefficients;
 use hapstab::{Normalized, PlantParams, PolyFamily};
 use num_complex::Complex64;
+use std::time::Instant;
 
 /// SplitMix64: a seeded generator, so the "random" points are the same on every run.
 struct Rng(u64);

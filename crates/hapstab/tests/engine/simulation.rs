@@ -3,7 +3,6 @@
 //! the simulator itself.
 
 use crate::common;
-
 use common::SplitMix;
 use hapstab::simulation::{
     BoundarySearch, Config, Contact, Effects, Friction, HumanForce, Model, Outcome, StableWhen,

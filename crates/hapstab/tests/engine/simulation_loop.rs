@@ -5,7 +5,6 @@
 //! or from independent linear algebra, never from the simulator itself.
 
 use crate::common;
-
 use common::SplitMix;
 use hapstab::simulation::{
     Config, Contact, Friction, HumanForce, LoopModel, Model, Outcome, SimModel, Simulator, Trace,

@@ -5,7 +5,6 @@
 //! Schur–Cohn), never from the simulator.
 
 use crate::common;
-
 use common::SplitMix;
 use hapstab::simulation::{
     Config, Contact, DEFAULT_MAX_SAMPLES, Effects, Friction, HumanForce, Initial, Model, Outcome,

@@ -24,8 +24,6 @@
 //! -p hapstab --test engine statespace_referee::`. `HAPSTAB_REFEREE_REPORT=FILE` writes every
 //! disagreement to FILE.
 
-use std::collections::BTreeMap;
-
 use hapstab::AffineFamily;
 use hapstab::boundary::AlphaBeta;
 use hapstab::loop_analysis::{analysis, damping_units, region, stable_intervals, wall_units};
@@ -36,6 +34,7 @@ use hapstab::region::{DEFAULT_REL_TOL, StableRegion};
 use hapstab::stability::{MARGINAL_BAND, Verdict};
 use rayon::prelude::*;
 use serde::Deserialize;
+use std::collections::BTreeMap;
 
 /// Spectral radii must agree to this relative difference: the referee's radii are good to
 /// about 1e-14 (to the nearest double on its 40-digit path), so 1e-9 leaves hapstab room for
