@@ -645,3 +645,40 @@ fn refusals() {
         }
     }
 }
+
+/// The linear condition (22)/(23) is defined for the paper's loop only: where the explorer's
+/// point has it (`linear` not null) `hapstab linear` computes it for the same loop (saved as a
+/// loop file by `check --json`), and its α interval at the wall is the explorer's bit for bit;
+/// elsewhere both refuse it (the explorer with null, the command line in one line).
+#[test]
+fn linear_condition() {
+    let s = Server::start(&[]);
+    let dir = tempfile::tempdir().unwrap();
+    for (i, k) in kinds().iter().enumerate() {
+        let w = wall(k);
+        let (flags, query) = wall_args(k, &w);
+        let p = api(&s, "/api/point", k, &query);
+        let c = cli(&["check"], k, &refs(&flags));
+        let file = dir.path().join(format!("loop{i}.json"));
+        std::fs::write(&file, c["input"].to_string()).unwrap();
+        let args = ["linear", "--loop", file.to_str().unwrap()];
+        if p["linear"].is_null() {
+            let err = cli_refuses(&args);
+            assert!(err.contains("paper"), "{}: {err}", k.name);
+            continue;
+        }
+        common::json(&args);
+        // the linear condition (23) at the wall's β and the wall in normalized units
+        let at = format!("{}: linear", k.name);
+        same(&p["linear"]["alpha_upper"], &c["alpha_linear"], &[], &at);
+        if !k.normalized {
+            same(
+                &p["params"],
+                &c["normalized"],
+                &[],
+                &format!("{at}: (α, β, γ, δ, d)"),
+            );
+        }
+    }
+    report("linear_condition");
+}
