@@ -79,6 +79,19 @@ fn kmax_three_ways_is_the_library_s() {
         all["renderable"]["b_max"].as_f64(),
         lib.renderable.as_ref().map(|r| r.b_max)
     );
+    // the renderable band of another noise model: B_r = F_n·√12/(Δ·‖V‖₂), proportional to
+    // F_n/Δ
+    let noisy = s
+        .get(&format!(
+            "/api/kmax?{PAPER_LOOP}&position_resolution=2e-5&force_noise=0.1"
+        ))
+        .json();
+    let b_r = |j: &serde_json::Value| j["renderable"]["b_max"].as_f64().unwrap();
+    assert!(
+        (b_r(&noisy) - b_r(&all)).abs() <= 1e-12 * b_r(&all),
+        "{noisy}"
+    );
+    assert_eq!(noisy["renderable"]["force_noise"], 0.1);
     // the band's K_max is at least the K_max at any damping inside it
     assert!(band["k_max"].as_f64().unwrap() >= k);
     assert!(all["k_max"].as_f64().unwrap() >= band["k_max"].as_f64().unwrap());

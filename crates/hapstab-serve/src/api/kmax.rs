@@ -64,17 +64,14 @@ fn query_of(p: &Params) -> Result<KmaxQuery, ApiError> {
         Some(KmaxAt::Damping { damping }) => KmaxQuery::AtDamping(damping),
         Some(KmaxAt::Band { lo, hi }) => KmaxQuery::Band { lo, hi },
         Some(KmaxAt::Overall) | None => {
-            let positive = |name: &str, default: f64| {
-                let x = p.num_or(name, default, 0.0, f64::MAX, "")?;
-                if x > 0.0 {
-                    Ok(x)
-                } else {
-                    Err(ApiError::param(
-                        name,
-                        p.raw(name).unwrap_or(""),
-                        format!("parameter '{name}' must be a positive number (got {x})"),
-                    ))
-                }
+            let positive = |name: &str, default: f64| match p.opt_num(name)? {
+                None => Ok(default),
+                Some(x) if x > 0.0 => Ok(x),
+                Some(x) => Err(ApiError::param(
+                    name,
+                    p.raw(name).unwrap_or(""),
+                    format!("parameter '{name}' must be a positive number (got {x})"),
+                )),
             };
             let dx = positive("position_resolution", DEFAULT_POSITION_RESOLUTION)?;
             let fn_ = positive("force_noise", DEFAULT_FORCE_NOISE)?;

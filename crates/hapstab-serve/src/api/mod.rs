@@ -12,7 +12,7 @@
 
 use serde::Serialize;
 
-use super::query::{ApiError, PlantSpec, clip, lib_error};
+use super::query::{ApiError, PlantSpec, clip, fmt, lib_error};
 use hapstab::limits::{Budget, Cost};
 use hapstab::{AffineFamily, Loop};
 
@@ -68,14 +68,10 @@ pub(crate) fn within_budget(
 /// delay that sets the degree of its p(z).
 pub(crate) fn loop_budget(spec: &PlantSpec, cost: Cost, what: &str) -> Result<(), ApiError> {
     let (name, value) = match (&spec.general, spec.physical) {
-        (Some(g), _) if g.lp.delay.fraction > 0.0 => ("delay_time", fmt_s(g.lp.delay_time())),
+        (Some(g), _) if g.lp.delay.fraction > 0.0 => ("delay_time", fmt(g.lp.delay_time())),
         _ => ("d", spec.d.to_string()),
     };
     within_budget(cost, what, name, &value)
-}
-
-fn fmt_s(x: f64) -> String {
-    format!("{x}")
 }
 
 /// The physical loop of a request and its family; the normalized mode is refused for the
