@@ -5,13 +5,17 @@ a transfer function of order 5, the estimators average, low-pass and IIR, an act
 fractional delay), every analysis — check with its margins, K_max at a damping, over a band and
 overall, the stable region, the map, passivity, the sweep, the Z-width and the simulated
 contact — gives from Python the numbers of `hapstab … --json`, bit for bit where both compute
-the same thing. Since the explorer's API answers the command line's objects bit for bit (the
-Rust matrix), the three front ends agree."""
+the same thing. The explorer's API answers the command line's objects bit for bit (the Rust
+matrix); `test_explorer_equals_python` compares Python with the explorer's new endpoints
+directly as well, on the explorer's query of Python's own loop file (`/api/open`)."""
 
 import csv as csvlib
 import json
 import math
+import re
 import subprocess
+import urllib.parse
+import urllib.request
 
 import numpy as np
 import pytest
@@ -328,3 +332,58 @@ def test_refusals(hapstab_cli, tmp_path):
         refused(hapstab_cli, "linear", "--loop", str(file))
         with pytest.raises(ValueError, match="loop"):
             hs.linear_condition(lp)
+
+
+@pytest.fixture(scope="module")
+def server(hapstab_cli):
+    """`hapstab serve` on a free port; its base URL."""
+    proc = subprocess.Popen([str(hapstab_cli), "serve", "--port", "0"], stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+    line = proc.stdout.readline()
+    m = re.search(r"http://[0-9.:]+/", line)
+    assert m, line
+    yield m.group(0)
+    proc.terminate()
+    proc.wait(timeout=10)
+
+
+def explorer(base, path, query, **extra):
+    """The explorer's answer at `path` for the page's `query` and extra parameters."""
+    url = f"{base}{path}?{query}&{urllib.parse.urlencode(extra)}"
+    with urllib.request.urlopen(url) as r:
+        return json.load(r)
+
+
+@pytest.mark.parametrize("i", PHYSICAL, ids=[IDS[i] for i in PHYSICAL])
+def test_explorer_equals_python(hapstab_cli, server, i):
+    """Python's loop saved as a loop file, opened by the explorer (`/api/open`), analysed by
+    `/api/kmax`, `/api/passivity`, `/api/sweep` and `/api/zwidth`: Python's numbers."""
+    name, make, _, (param, lo, hi, n), _ = KINDS[i]
+    lp = make()
+    q = explorer(server, "api/open", "", file=lp.to_json())["query"]
+    keys = ("k_max", "b_at_k_max", "k_max_attained", "k_max_at_zero_damping", "k_linear")
+    for kw, extra in ((dict(wall_damping=2.0), dict(wall_damping=2)),
+                      (dict(damping_range=(0.0, 20.0)), dict(damping_lo=0, damping_hi=20)),
+                      ({}, {})):
+        a, p = explorer(server, "api/kmax", q, **extra), hs.kmax(lp, **kw)
+        # at a given damping Python's answer echoes it as b_at_k_max, the JSON under `input`
+        for key in keys if "wall_damping" not in kw else ("k_max", "k_linear"):
+            same(getattr(p, key), a.get(key), (name, "kmax", extra, key))
+    kb = wall(hapstab_cli, KINDS[i])
+    a = explorer(server, "api/passivity", q, wall_stiffness=repr(kb[0]),
+                 wall_damping=repr(kb[1]))
+    p = hs.passivity(lp, *kb)
+    for key in ("b_required", "binding_theta", "dc_stiffness", "verdict", "stable"):
+        same(getattr(p, key), a[key], (name, "passivity", key))
+    if a["passive_region"] is not None:
+        same_array(p.passive_region.vertices, a["passive_region"]["vertices"], name)
+    a = explorer(server, "api/sweep", q, param=param, lo=lo, hi=hi, n=n)
+    s = hs.sweep(lp, param, [pt["value"] for pt in a["points"]])
+    for j, pt in enumerate(a["points"]):
+        for key in ("k_max", "b_at_k_max", "k_max_passive", "k_max_passive_with_arm"):
+            same(float(getattr(s, key)[j]), pt[key], (name, "sweep", key, j))
+    a = explorer(server, "api/zwidth", q, table_damping="0,2")["loops"][0]
+    z = hs.zwidth(lp, table_damping=[0.0, 2.0])
+    same(z.stable_area, a["stable_area"], (name, "zwidth"))
+    same(z.k_max, a["k_max"]["stiffness"], (name, "zwidth"))
+    same_array(np.asarray(z.table_k_max), [r["k_max"] for r in a["table"]], (name, "table"))
