@@ -6,9 +6,10 @@ use clap::Args;
 use hapstab::AffineFamily;
 use serde::Serialize;
 
-use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
+use crate::model::{LoopArgs, ResolvedLoop, describe_loop};
 use crate::output::{eng, print_json};
 use crate::wall_plot::{self, Plane};
+use hapstab::answer::{KmaxAnswer, kmax_answer};
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, RenderableBand};
 use hapstab_plot::{Marker, palette};
 
@@ -103,55 +104,14 @@ pub struct KmaxArgs {
     json: bool,
 }
 
-/// The paper's normalized view of the result (Table I).
-#[derive(Serialize)]
-struct PaperView {
-    alpha_max: Option<f64>,
-    beta: Option<f64>,
-    gamma: f64,
-    delta: f64,
-    d: usize,
-}
-
-/// The loop and the given damping, or the damping range searched.
-#[derive(Serialize)]
-struct KmaxInput {
-    #[serde(flatten)]
-    lp: LoopInput,
-    /// B in Ns/m, when given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    wall_damping: Option<f64>,
-    /// The damping range searched without a B, [lo, hi] in Ns/m (hi null: unbounded).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    damping_range: Option<[Option<f64>; 2]>,
-}
-
-impl KmaxInput {
-    fn new(
-        rl: &ResolvedLoop,
-        wall_damping: Option<f64>,
-        damping_range: Option<[Option<f64>; 2]>,
-    ) -> Self {
-        KmaxInput {
-            lp: rl.input(None),
-            wall_damping,
-            damping_range,
-        }
-    }
-}
-
 #[derive(Serialize)]
 struct KmaxOut {
-    input: KmaxInput,
-    /// The answer, under the library's report keys.
+    /// The answer with its inputs, as the explorer's `/api/kmax` gives it.
     #[serde(flatten)]
-    report: KmaxReport,
+    answer: KmaxAnswer,
     /// The given B, Ns/m (echoed under `input`).
     #[serde(skip)]
     wall_damping: Option<f64>,
-    /// The paper's loop: the same result in normalized units (Table I).
-    #[serde(rename = "normalized", skip_serializing_if = "Option::is_none")]
-    paper: Option<PaperView>,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     plot: Vec<std::path::PathBuf>,
@@ -159,17 +119,10 @@ struct KmaxOut {
 
 /// The library's answer to the query, with the loop and the query echoed.
 fn answer(rl: &ResolvedLoop, fam: &AffineFamily, query: KmaxQuery) -> Result<KmaxOut> {
-    let report = hapstab::kmax::kmax(&rl.lp, fam, query)?;
-    let (wall_damping, damping_range) = match query {
-        KmaxQuery::AtDamping(b) => (Some(b), None),
-        KmaxQuery::Band { lo, hi } => (None, Some([Some(lo), hi.is_finite().then_some(hi)])),
-        KmaxQuery::Design(_) => (None, Some([Some(0.0), None])),
-    };
+    let answer = kmax_answer(&rl.lp, fam, query)?;
     Ok(KmaxOut {
-        input: KmaxInput::new(rl, wall_damping, damping_range),
-        paper: paper_view(rl, report.k_max_units, report.b_units),
-        report,
-        wall_damping,
+        wall_damping: answer.input.wall_damping,
+        answer,
         plot: Vec::new(),
     })
 }
@@ -193,10 +146,10 @@ fn figure(
             .filter(|b| b.is_finite())
             .collect(),
     };
-    if let Some(rb) = &out.report.renderable {
+    if let Some(rb) = &out.answer.report.renderable {
         lines.push(rb.b_max);
     }
-    let band_lines = lines.len() - usize::from(out.report.renderable.is_some());
+    let band_lines = lines.len() - usize::from(out.answer.report.renderable.is_some());
     for (i, b) in lines[..band_lines].iter().enumerate() {
         let label = match out.wall_damping {
             Some(_) => "the given B".to_string(),
@@ -205,7 +158,7 @@ fn figure(
         wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
     }
     // the renderable band's top after the band's lines (each spans the ranges drawn so far)
-    if let Some(rb) = &out.report.renderable {
+    if let Some(rb) = &out.answer.report.renderable {
         mark_renderable(&mut fig, rb, &plane);
     }
     // a tag on a damping line is lifted off it (the marker stays at its point)
@@ -221,7 +174,7 @@ fn figure(
             wall_plot::mark(fig, at, style.0, style.1, legend, text)
         }
     };
-    if let Some(k) = out.report.k_max_at_zero_damping {
+    if let Some(k) = out.answer.report.k_max_at_zero_damping {
         tag(
             &mut fig,
             (k, 0.0),
@@ -230,8 +183,8 @@ fn figure(
             "B = 0",
         );
     }
-    let b_best = out.report.b_at_k_max.or(out.wall_damping);
-    if let (Some(k), Some(b)) = (out.report.k_max, b_best) {
+    let b_best = out.answer.report.b_at_k_max.or(out.wall_damping);
+    if let (Some(k), Some(b)) = (out.answer.report.k_max, b_best) {
         tag(
             &mut fig,
             (k, b),
@@ -265,16 +218,6 @@ fn band_text(band: DampingRange) -> String {
         "∞".to_string()
     };
     format!("{} ≤ B ≤ {hi}", eng(band.lo, "Ns/m", 6))
-}
-
-fn paper_view(rl: &ResolvedLoop, alpha_max: Option<f64>, beta: Option<f64>) -> Option<PaperView> {
-    rl.lp.paper_view().map(|pp| PaperView {
-        alpha_max,
-        beta,
-        gamma: pp.gamma,
-        delta: pp.delta,
-        d: rl.lp.delay.samples,
-    })
 }
 
 /// The query the flags ask: at --wall-damping, over --damping-range, or the design query
@@ -374,7 +317,7 @@ fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: b
     for line in describe_loop(&rl.lp) {
         println!("{line}");
     }
-    let r = &out.report;
+    let r = &out.answer.report;
     // the pure spring first: the number a device renders without virtual damping
     if over_band {
         match r.k_max_at_zero_damping {

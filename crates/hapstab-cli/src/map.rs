@@ -18,8 +18,9 @@ use std::path::Path;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, ValueEnum};
+use hapstab::answer::{MapInput, MapSummary};
 use hapstab::limits::map_cost_of_degree;
-use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
+use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map_physical};
 use hapstab::{AffineFamily, Normalized};
 use hapstab_plot::RGBColor;
 use serde::Serialize;
@@ -147,22 +148,11 @@ enum Format {
     Npy,
 }
 
-/// The map's inputs: the axes as given, the loop (or the fixed normalized parameters).
 #[derive(Serialize)]
-struct MapInput {
-    x: String,
-    y: String,
+struct MapOut {
+    /// The map's summary with its inputs, as the explorer's `/api/map` gives it.
     #[serde(flatten)]
-    lp: LoopInput,
-    radius: bool,
-}
-
-#[derive(Serialize)]
-struct MapSummary {
-    input: MapInput,
-    points: usize,
-    stable_points: usize,
-    seconds: f64,
+    summary: MapSummary,
     out: Option<String>,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -242,20 +232,24 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     }
     let rl = a.lp.resolve(false)?;
     let fam = AffineFamily::of_loop(&rl.lp)?;
-    let (a_lo, b_lo) = fam.to_units(x.range.lo, y.range.lo);
-    let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
-    let xa = AxisRange::new(Axis::Alpha, a_lo, a_hi, x.range.n)?;
-    let yb = AxisRange::new(Axis::Beta, b_lo, b_hi, y.range.n)?;
     let n = fam.degree();
     let degree = crate::budget::degree_drivers(&a.lp, &rl.lp)
         .into_iter()
         .max_by(|p, q| p.factor.total_cmp(&q.factor))
         .map(|d| (d.flag, d.value));
     let (flag, value) = degree.unwrap_or(("--delay", "0".into()));
+    let (a_lo, b_lo) = fam.to_units(x.range.lo, y.range.lo);
+    let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
     let stable = stable_share(&fam, (a_lo, a_hi), (b_lo, b_hi));
     check_budget(a, (x, y), n, stable, (flag, &value))?;
     let bar = map_bar(a, x, y, n);
-    let m = wall_map(&fam, xa, yb, kind, &bar.stage(0))?;
+    let m = wall_map_physical(
+        &fam,
+        ((x.range.lo, x.range.hi), x.range.n),
+        ((y.range.lo, y.range.hi), y.range.n),
+        kind,
+        &bar.stage(0),
+    )?;
     Ok(Values {
         stable: m.stable,
         radius: m.radius,
@@ -543,16 +537,18 @@ pub fn run(a: &MapArgs) -> Result<()> {
     let stable_points = v.stable.iter().filter(|&&s| s).count();
     let out = a.out.as_ref().map(|p| p.display().to_string());
     if a.json {
-        return print_json(&MapSummary {
-            input: MapInput {
-                x: a.x.clone(),
-                y: a.y.clone(),
-                lp: v.input,
-                radius: a.radius,
+        return print_json(&MapOut {
+            summary: MapSummary {
+                input: MapInput {
+                    x: a.x.clone(),
+                    y: a.y.clone(),
+                    lp: v.input,
+                    radius: a.radius,
+                },
+                points,
+                stable_points,
+                seconds: secs,
             },
-            points,
-            stable_points,
-            seconds: secs,
             out,
             plot,
         });

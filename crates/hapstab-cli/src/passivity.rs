@@ -9,19 +9,15 @@ use crate::passivity_quantized::{
 };
 use clap::Args;
 use hapstab::AffineFamily;
+use hapstab::answer::{PassivityAnswer, passivity_answer};
 use hapstab::params::Wall;
-use hapstab::passivity::{
-    DeviceDamping, PassiveRegion, Passivity, PassivityVerdict, SampledWall, passive_region,
-    passivity_with,
-};
+use hapstab::passivity::{DeviceDamping, Passivity, PassivityVerdict};
 use serde::Serialize;
 
 use crate::model::{
-    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
-    resolve_loop_wall,
+    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop, resolve_loop_wall,
 };
 use crate::output::{eng, print_json, sig};
-use hapstab::loop_analysis::{analysis, wall_units};
 
 /// Arguments of `hapstab passivity`.
 #[derive(Args, Debug)]
@@ -39,48 +35,11 @@ pub struct PassivityArgs {
     json: bool,
 }
 
-/// The passive region in the output: its largest stiffness and its polygon.
-#[derive(Serialize)]
-struct RegionOut {
-    k_max: f64,
-    b_at_k_max: f64,
-    area: f64,
-    bounded: bool,
-    /// Counter-clockwise vertices [K, B].
-    vertices: Vec<[f64; 2]>,
-}
-
 #[derive(Serialize)]
 struct PassivityOut {
-    input: LoopInput,
-    /// The device damping the wall requires, Ns/m (δ for a normalized plant).
-    b_required: f64,
-    /// Where the requirement binds, Hz (cycles per sample for a normalized plant).
-    binding_frequency_hz: f64,
-    /// The same as θ = ωT in [0, π].
-    binding_theta: f64,
-    /// The wall's static stiffness K + B·V(1), N/m (must be >= 0).
-    dc_stiffness: f64,
-    /// The device's own damping b_L, the arm's excluded (null when the argument does not
-    /// apply): passivity towards any passive operator.
-    device_damping: Option<f64>,
-    /// The paper's eq. (28) read with the effective damping b = b_L + b_H of eq. (1), the arm
-    /// included (null when the plant names no arm): passivity towards this operator only.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    effective_damping: Option<f64>,
-    /// The verdict against the effective damping.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    effective_verdict: Option<PassivityVerdict>,
-    /// True when b > b_required and the static stiffness is >= 0; null when not applicable.
-    meets: Option<bool>,
-    verdict: PassivityVerdict,
-    /// Why the verdict is not applicable.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    note: Option<String>,
-    /// The wall's stability (Schur–Cohn), to read beside the passivity verdict.
-    stable: bool,
-    /// The passive region for the device's damping (null when not applicable).
-    passive_region: Option<RegionOut>,
+    /// The passivity answer, as the explorer's `/api/passivity` gives it.
+    #[serde(flatten)]
+    answer: PassivityAnswer,
     /// Abbott & Okamura's quantized-spring conditions (with --quantization and --coulomb).
     #[serde(skip_serializing_if = "Option::is_none")]
     quantized: Option<QuantizedOut>,
@@ -95,21 +54,16 @@ pub fn run(a: &PassivityArgs) -> Result<()> {
     let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(&fam))
         .then(hapstab::limits::roots_cost(n));
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "the passive region")?;
-    let sw = SampledWall::new(&rl.lp)?;
-    let p = passivity_with(&sw, &rl.lp, w);
-    let units = wall_units(&rl.lp, &fam, w)?;
-    let stable = analysis(&rl.lp, &fam, units)?.verdict == hapstab::stability::Verdict::Stable;
-    let region = match &p.device {
-        DeviceDamping::Known { damping } => Some(passive_region(&sw, *damping)?),
-        DeviceDamping::NotApplicable { .. } => None,
-    };
+    let (answer, p) = passivity_answer(&rl.lp, &fam, rl.normalized, w)?;
     let quantized = quantized(a, &rl, w, &p)?;
-    let mut out = output(&rl, &p, stable, region.as_ref());
-    out.quantized = quantized.as_ref().map(|(o, _)| o.clone());
+    let out = PassivityOut {
+        answer,
+        quantized: quantized.as_ref().map(|(o, _)| o.clone()),
+    };
     if a.json {
         return print_json(&out);
     }
-    print_text(&rl, w, &out);
+    print_text(&rl, w, &out.answer);
     for line in quantized.iter().flat_map(|(_, lines)| lines) {
         println!("quantized   {line}");
     }
@@ -144,48 +98,7 @@ fn quantized(
     )
 }
 
-fn output(
-    rl: &ResolvedLoop,
-    p: &Passivity,
-    stable: bool,
-    region: Option<&PassiveRegion>,
-) -> PassivityOut {
-    let (device_damping, note) = match &p.device {
-        DeviceDamping::Known { damping } => (Some(*damping), None),
-        DeviceDamping::NotApplicable { reason } => (None, Some(reason.clone())),
-    };
-    PassivityOut {
-        input: rl.input(Some(p.wall)),
-        b_required: p.requirement.b_required,
-        binding_frequency_hz: p.requirement.frequency_hz,
-        binding_theta: p.requirement.theta,
-        dc_stiffness: p.dc_stiffness,
-        device_damping,
-        effective_damping: p.with_arm.map(|a| a.damping),
-        effective_verdict: p.with_arm.map(|a| a.verdict),
-        meets: match p.verdict {
-            PassivityVerdict::NotApplicable => None,
-            v => Some(v == PassivityVerdict::Passive),
-        },
-        verdict: p.verdict,
-        note,
-        stable,
-        passive_region: region.map(|r| RegionOut {
-            k_max: r.k_max,
-            b_at_k_max: r.b_at_k_max,
-            area: r.area,
-            bounded: r.bounded,
-            vertices: r
-                .vertices
-                .iter()
-                .map(|v| [v.stiffness, v.damping])
-                .collect(),
-        }),
-        quantized: None,
-    }
-}
-
-fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
+fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityAnswer) {
     let (k_unit, b_unit, f_unit) = if rl.normalized {
         ("", "", "cycles/sample")
     } else {
@@ -247,7 +160,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityOut) {
 }
 
 fn verdict_text(
-    o: &PassivityOut,
+    o: &PassivityAnswer,
     what: &str,
     b_unit: &str,
     num: &dyn Fn(f64, &str) -> String,

@@ -6,10 +6,11 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hapstab::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange, sweep_param};
+use hapstab::answer::{SweepAnswer, sweep_answer};
+use hapstab::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange};
 use serde::Serialize;
 
-use crate::model::{LoopArgs, LoopInput, describe_loop};
+use crate::model::{LoopArgs, describe_loop};
 use crate::output::{csv_num, csv_opt, eng, print_json, sig};
 use hapstab_plot::{Figure, Legend, Marker, Series, palette};
 
@@ -45,23 +46,11 @@ pub struct SweepArgs {
     json: bool,
 }
 
-/// The loop, the swept parameter and the damping at which K_max is taken.
-#[derive(Serialize)]
-struct SweepInput {
-    #[serde(flatten)]
-    lp: LoopInput,
-    param: SweepParam,
-    k_max_at: KmaxAt,
-}
-
 #[derive(Serialize)]
 struct SweepOut {
-    input: SweepInput,
-    /// Unit of the swept values.
-    unit: &'static str,
-    points: Vec<SweepPoint>,
-    /// Wall-clock time of the analysis, s.
-    seconds: f64,
+    /// The sweep with its inputs, as the explorer's `/api/sweep` gives it.
+    #[serde(flatten)]
+    answer: SweepAnswer,
     #[serde(skip_serializing_if = "Option::is_none")]
     plot: Option<hapstab_plot::Saved>,
 }
@@ -110,29 +99,18 @@ pub fn run(a: &SweepArgs) -> Result<()> {
     }
     check_budget(a, &rl.lp, &range, at)?;
     let bar = crate::progress::Bar::new(range.n, "points", !a.json);
-    let t = std::time::Instant::now();
-    let points = sweep_param(&rl.lp, &range, at, &bar.stage(0))
+    let answer = sweep_answer(&rl.lp, &range, at, &bar.stage(0))
         .with_context(|| format!("--param {}", a.param))?;
-    let seconds = t.elapsed().as_secs_f64();
     bar.finish();
+    let points = &answer.points;
     if let Some(path) = &a.csv {
-        write_csv(path, range.param, &points)?;
+        write_csv(path, range.param, points)?;
     }
     let plot = match &a.plot {
-        Some(p) => Some(figure(range.param, at, &points, &swept_line(&rl, range.param)).save(p)?),
+        Some(p) => Some(figure(range.param, at, points, &swept_line(&rl, range.param)).save(p)?),
         None => None,
     };
-    let out = SweepOut {
-        input: SweepInput {
-            lp: rl.input(None),
-            param: range.param,
-            k_max_at: at,
-        },
-        unit: range.param.unit(),
-        points,
-        seconds,
-        plot,
-    };
+    let out = SweepOut { answer, plot };
     if a.json {
         return print_json(&out);
     }
@@ -147,7 +125,8 @@ fn value_text(p: SweepParam, v: f64) -> String {
     }
 }
 
-fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
+fn print_text(lp: &hapstab::Loop, out: &SweepOut) {
+    let o = &out.answer;
     for line in describe_loop(lp) {
         println!("{line}");
     }
@@ -201,7 +180,7 @@ fn print_text(lp: &hapstab::Loop, o: &SweepOut) {
              the paper's eq. (28) with b = b_L + b_H, towards this operator only"
         );
     }
-    if let Some(s) = &o.plot {
+    if let Some(s) = &out.plot {
         println!("plot        {} and {}", s.svg.display(), s.png.display());
     }
 }

@@ -7,8 +7,9 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::parser::ValueSource;
 use clap::{ArgAction, Args, CommandFactory, FromArgMatches, Parser};
+use hapstab::answer::{ZwidthAnswer, ZwidthInput, ZwidthLoop as LoopOut};
 use hapstab::params::Wall;
-use hapstab::zwidth::{ZWidth, zwidth};
+use hapstab::zwidth::ZWidth;
 use serde::Serialize;
 
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
@@ -53,28 +54,11 @@ struct Override {
     lp: LoopArgs,
 }
 
-/// One analysed loop.
-#[derive(Serialize)]
-struct LoopOut {
-    label: String,
-    input: LoopInput,
-    #[serde(flatten)]
-    zwidth: ZWidth,
-}
-
-/// The command's inputs: the compared specs and the table's dampings (each loop's own
-/// inputs are under `loops[i].input`).
-#[derive(Serialize)]
-struct ZwidthInput {
-    compare: Vec<String>,
-    /// Null: 11 dampings from 0 to the largest stable B of each loop.
-    table_damping: Option<Vec<f64>>,
-}
-
 #[derive(Serialize)]
 struct ZwidthOut {
-    input: ZwidthInput,
-    loops: Vec<LoopOut>,
+    /// The Z-widths with their inputs, as the explorer's `/api/zwidth` gives them.
+    #[serde(flatten)]
+    answer: ZwidthAnswer,
     #[serde(skip_serializing_if = "Option::is_none")]
     plot: Option<hapstab_plot::Saved>,
 }
@@ -155,13 +139,10 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
     let out: Vec<LoopOut> = loops
         .into_iter()
         .map(|(label, rl)| {
-            let z = zwidth(&rl.lp, dampings).with_context(|| format!("loop '{label}'"))?;
+            let z = LoopOut::new(label.clone(), &rl.lp, dampings)
+                .with_context(|| format!("loop '{label}'"))?;
             bar.inc();
-            Ok(LoopOut {
-                label,
-                input: rl.input(None),
-                zwidth: z,
-            })
+            Ok(z)
         })
         .collect::<Result<_>>()?;
     bar.finish();
@@ -178,11 +159,8 @@ pub fn run(a: &ZwidthArgs) -> Result<()> {
             compare: a.compare.clone(),
             table_damping: a.table_damping.clone(),
         };
-        return print_json(&ZwidthOut {
-            input,
-            loops: out,
-            plot,
-        });
+        let answer = ZwidthAnswer { input, loops: out };
+        return print_json(&ZwidthOut { answer, plot });
     }
     for (i, o) in out.iter().enumerate() {
         if i > 0 {

@@ -5,7 +5,9 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::api::{PointOut, RegionOut, RegionReq, parse_region, point, region, region_names};
+use crate::api::{
+    PointOut, RegionOut, RegionReq, WallAt, parse_region, point, region, region_names,
+};
 use crate::limits::{MAX_EXPORT_PX, MIN_EXPORT_PX};
 use crate::query::{ApiError, Params, fmt};
 use hapstab_plot::text::{eng, sig};
@@ -114,7 +116,10 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
     }
     let out = region(&req.region)?;
     let pt = match req.point {
-        Some((a, b)) => Some(point(&req.region.spec, a, b)?),
+        Some((a, b)) => Some(point(
+            &req.region.spec,
+            WallAt::of_units(&req.region.spec, a, b),
+        )?),
         None => None,
     };
     let view = req.view.unwrap_or_else(|| auto_view(&out, pt.as_ref()));

@@ -11,6 +11,11 @@
 //! | `GET /api/region` | exact stable region (Section V), α_max, linear condition (23), passive region (28, d = 0), optional robust region over a γ range, or in physical mode over the arm's stiffness k_H (Section VIII); with `box=NAME:LO:HI,…` (physical units, any loop) the robust K_max over that box at `wall_damping`, as `hapstab kmax --robust --box … --json` |
 //! | `GET /api/point` | verdict, spectral radius and roots of p(z) at one (α, β) |
 //! | `GET /api/simulate` | a short simulated wall contact at one (α, β) |
+//! | `GET /api/kmax` | K_max of a physical loop at `wall_damping`, over `damping_lo`..`damping_hi`, or over every damping, as `hapstab kmax --json` |
+//! | `GET /api/sweep` | K_max against `param` from `lo` to `hi` in `n` points, as `hapstab sweep --json` |
+//! | `GET /api/zwidth` | the Z-width of a physical loop, as `hapstab zwidth --json` |
+//! | `GET /api/map` | the grid method over (K, B) of any loop or two of α, β, γ, δ, as `hapstab map --json` with the grid |
+//! | `GET /api/passivity` | the passivity of one wall and the passive region, as `hapstab passivity --json` |
 //! | `GET /api/export` | the current view as SVG, CSV or JSON |
 //!
 //! Every parameter is validated; bad input is HTTP 400 with `{"error": ...}` naming the
@@ -232,6 +237,11 @@ fn router(state: AppState) -> Router {
         .route("/api/region", get(api_region))
         .route("/api/point", get(api_point))
         .route("/api/simulate", get(api_simulate))
+        .route("/api/kmax", get(api_kmax))
+        .route("/api/sweep", get(api_sweep))
+        .route("/api/zwidth", get(api_zwidth))
+        .route("/api/map", get(api_map))
+        .route("/api/passivity", get(api_passivity))
         .route("/api/export", get(api_export))
         .route("/api/open", get(api_open))
         .fallback(not_found)
@@ -307,7 +317,7 @@ async fn not_found(req: Request) -> Response {
     ApiError::status(
         StatusCode::NOT_FOUND,
         format!(
-            "no such endpoint: {} (endpoints: /, /api/limits, /api/region, /api/point, /api/simulate, /api/export)",
+            "no such endpoint: {} (endpoints: /, /api/limits, /api/region, /api/point, /api/simulate, /api/kmax, /api/sweep, /api/zwidth, /api/map, /api/passivity, /api/export)",
             req.uri().path().chars().take(80).collect::<String>()
         ),
     )
@@ -421,9 +431,9 @@ async fn api_point(State(st): State<AppState>, q: RawQuery) -> Response {
     let r = async {
         let p = params(q, &api::point_names())?;
         let spec = query::plant_spec(&p)?;
-        let (a, b) = api::wall_point(&p, &spec)?;
+        let at = api::wall_at(&p, &spec)?;
         api::point_budget(&spec)?;
-        run_job(&st, move || api::point(&spec, a, b)).await
+        run_job(&st, move || api::point(&spec, at)).await
     }
     .await;
     respond(r, |v| json_timed(&v, v.server_ms))
@@ -437,6 +447,54 @@ async fn api_simulate(State(st): State<AppState>, q: RawQuery) -> Response {
     }
     .await;
     respond(r, |v| json_timed(&v, v.server_ms))
+}
+
+/// An analysis of the command line behind one endpoint: the query's `names`, its parser and
+/// its computation, run on the blocking pool; the answer is the command's `--json` object,
+/// with the computing time in the Server-Timing header only.
+async fn analysis<R, T>(
+    st: AppState,
+    q: RawQuery,
+    names: Vec<&'static str>,
+    parse: fn(&Params) -> Result<R, ApiError>,
+    compute: fn(&R) -> Result<T, ApiError>,
+) -> Response
+where
+    R: Send + 'static,
+    T: Serialize + Send + 'static,
+{
+    let r = async {
+        let p = params(q, &names)?;
+        let req = parse(&p)?;
+        run_job(&st, move || {
+            let t0 = std::time::Instant::now();
+            compute(&req).map(|v| (v, t0.elapsed().as_secs_f64() * 1e3))
+        })
+        .await
+    }
+    .await;
+    respond(r, |(v, ms)| json_timed(&v, ms))
+}
+
+async fn api_kmax(State(st): State<AppState>, q: RawQuery) -> Response {
+    analysis(st, q, api::kmax_names(), api::parse_kmax, api::kmax).await
+}
+
+async fn api_sweep(State(st): State<AppState>, q: RawQuery) -> Response {
+    analysis(st, q, api::sweep_names(), api::parse_sweep, api::sweep).await
+}
+
+async fn api_zwidth(State(st): State<AppState>, q: RawQuery) -> Response {
+    analysis(st, q, api::zwidth_names(), api::parse_zwidth, api::zwidth).await
+}
+
+async fn api_map(State(st): State<AppState>, q: RawQuery) -> Response {
+    analysis(st, q, api::map_names(), api::parse_map, api::map).await
+}
+
+async fn api_passivity(State(st): State<AppState>, q: RawQuery) -> Response {
+    let parse = api::parse_passivity;
+    analysis(st, q, api::passivity_names(), parse, api::passivity).await
 }
 
 /// `/api/open?file=TEXT`: the page's query for a loop file's text.

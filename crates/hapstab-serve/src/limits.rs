@@ -54,6 +54,12 @@ pub(crate) const MAX_TRACE_POINTS: usize = 2000;
 /// Simulation: largest |push force| in N and |initial velocity| in m/s.
 pub(crate) const MAX_PUSH: f64 = 1e6;
 pub(crate) const MAX_VELOCITY: f64 = 1e3;
+/// Sweep (`/api/sweep`): largest number of points.
+pub(crate) const MAX_SWEEP_POINTS: usize = 1000;
+/// Map (`/api/map`): largest number of points along one axis.
+pub(crate) const MAX_MAP_AXIS_POINTS: usize = 1000;
+/// Z-width (`/api/zwidth`): largest number of dampings in the K_max table.
+pub(crate) const MAX_TABLE_DAMPINGS: usize = 200;
 /// Export plot size in px.
 pub(crate) const MIN_EXPORT_PX: usize = 200;
 pub(crate) const MAX_EXPORT_PX: usize = 4000;
@@ -125,6 +131,12 @@ pub(crate) struct Limits {
     pub robust_box_samples: [usize; 2],
     pub robust_box_verify: [usize; 2],
     pub sim_samples: [usize; 2],
+    /// Points of a sweep (`/api/sweep`'s `n`).
+    pub sweep_points: [usize; 2],
+    /// Points along one axis of a map (`/api/map`'s `x` and `y`).
+    pub map_axis_points: [usize; 2],
+    /// Dampings of a Z-width's K_max table (`/api/zwidth`'s `table_damping`).
+    pub zwidth_table_dampings_max: usize,
     pub sim_horizon_samples: usize,
     pub sim_trace_points_max: usize,
     pub export_px: [usize; 2],
@@ -174,6 +186,9 @@ pub(crate) fn limits() -> Limits {
         robust_box_samples: [0, MAX_BOX_SAMPLES],
         robust_box_verify: [0, MAX_BOX_VERIFY],
         sim_samples: [MIN_SIM_SAMPLES, MAX_SIM_SAMPLES],
+        sweep_points: [2, MAX_SWEEP_POINTS],
+        map_axis_points: [2, MAX_MAP_AXIS_POINTS],
+        zwidth_table_dampings_max: MAX_TABLE_DAMPINGS,
         sim_horizon_samples: SIM_HORIZON,
         sim_trace_points_max: MAX_TRACE_POINTS,
         export_px: [MIN_EXPORT_PX, MAX_EXPORT_PX],

@@ -18,6 +18,7 @@
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
 //! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
 //! | [`kmax`] | Section V: K_max at a damping, over a band, and over the renderable band |
+//! | [`answer`] | the answers of K_max, sweep, Z-width, map and passivity with their inputs, as every front end writes them |
 //! | [`population`] | beyond the paper: P(stable) over a population of operators |
 //! | [`robust`] | beyond the paper: robust K_max of any loop over a box of its parameters |
 //! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
@@ -34,6 +35,7 @@
 
 #![deny(missing_docs)]
 
+pub mod answer;
 pub mod argument;
 pub mod boundary;
 pub mod bracket;

@@ -296,6 +296,23 @@ pub fn wall_map(
     })
 }
 
+/// [`wall_map`] over the physical wall: K from `k.0` to `k.1` N/m in `nx` points along x and
+/// B from `b.0` to `b.1` Ns/m in `ny` points along y, converted to the family's wall units
+/// (the map of `hapstab map --x K:… --y B:…`).
+pub fn wall_map_physical(
+    fam: &AffineFamily,
+    (k, nx): ((f64, f64), usize),
+    (b, ny): ((f64, f64), usize),
+    kind: MapKind,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<WallMap> {
+    let (a_lo, b_lo) = fam.to_units(k.0, b.0);
+    let (a_hi, b_hi) = fam.to_units(k.1, b.1);
+    let x = AxisRange::new(Axis::Alpha, a_lo, a_hi, nx)?;
+    let y = AxisRange::new(Axis::Beta, b_lo, b_hi, ny)?;
+    wall_map(fam, x, y, kind, progress)
+}
+
 /// Stable flags (and spectral radii) of the walls (a(ix), b(iy)) of a family over an nx × ny
 /// grid, one [`wall_point`] per point, in parallel over rows.
 fn wall_grid(

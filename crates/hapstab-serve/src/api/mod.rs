@@ -3,23 +3,41 @@
 
 //!
 //! One endpoint per file: `/api/region` in `region` (its request in `region_request`, the
-//! passive triangles it draws in `passive`, the robust K_max over a box in `robust_box`), `/api/point` in `point` (the clicked wall's margins and passivity in `wall_analyses`) and `/api/simulate` in
-//! `simulation`. The budget check and the plant of an answer, which all share, are here.
+//! passive triangles it draws in `passive`, the robust K_max over a box in `robust_box`),
+//! `/api/point` in `point` (the clicked wall's margins and passivity in `wall_analyses`),
+//! `/api/simulate` in `simulation`, and the analyses of `hapstab kmax`, `sweep`, `zwidth`,
+//! `map` and `passivity` in `kmax`, `sweep`, `zwidth`, `map` and `passivity`. The budget
+//! check, the physical loop of a request and the plant of an answer, which all share, are
+//! here.
 
 use serde::Serialize;
 
-use super::query::{ApiError, PlantSpec, clip};
+use super::query::{ApiError, PlantSpec, clip, fmt, lib_error};
 use hapstab::limits::{Budget, Cost};
+use hapstab::{AffineFamily, Loop};
 
+mod kmax;
+mod map;
 mod passive;
+mod passivity;
 mod point;
 mod region;
 mod region_request;
 mod robust_box;
 mod simulation;
+mod sweep;
 pub(crate) mod wall_analyses;
+mod zwidth;
 
-pub(crate) use point::{PointOut, point, point_budget, point_names, wall_point};
+pub(crate) use kmax::{kmax, kmax_names, parse_kmax};
+pub(crate) use map::{map, map_names, parse_map};
+pub(crate) use passivity::{parse_passivity, passivity, passivity_names};
+pub(crate) use sweep::{parse_sweep, sweep, sweep_names};
+pub(crate) use zwidth::{parse_zwidth, zwidth, zwidth_names};
+
+#[cfg(test)]
+pub(crate) use point::wall_point;
+pub(crate) use point::{PointOut, WallAt, point, point_budget, point_names, wall_at};
 pub(crate) use region::{RegionOut, region};
 #[cfg(test)]
 pub(crate) use region::{nominal_region_cost, robust_cost};
@@ -44,6 +62,39 @@ pub(crate) fn within_budget(
             ),
         )
     })
+}
+
+/// Refuses a computation on a request's loop beyond [`Budget::INTERACTIVE`], naming the
+/// delay that sets the degree of its p(z).
+pub(crate) fn loop_budget(spec: &PlantSpec, cost: Cost, what: &str) -> Result<(), ApiError> {
+    let (name, value) = match (&spec.general, spec.physical) {
+        (Some(g), _) if g.lp.delay.fraction > 0.0 => ("delay_time", fmt(g.lp.delay_time())),
+        _ => ("d", spec.d.to_string()),
+    };
+    within_budget(cost, what, name, &value)
+}
+
+/// The physical loop of a request and its family; the normalized mode is refused for the
+/// analyses in physical units (`what`: their name).
+pub(crate) fn physical_loop(
+    spec: &PlantSpec,
+    what: &str,
+) -> Result<(Loop, AffineFamily), ApiError> {
+    if spec.physical.is_none() {
+        return Err(ApiError::param(
+            "mode",
+            "normalized",
+            format!(
+                "{what} works in physical units: give mode=physical and the device, not gamma/delta"
+            ),
+        ));
+    }
+    if let Some(g) = &spec.general {
+        return Ok((g.lp.clone(), g.family.clone()));
+    }
+    let lp = wall_analyses::loop_of(spec)?;
+    let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
+    Ok((lp, fam))
 }
 
 /// γ, δ, d of an answer.

@@ -3,15 +3,16 @@
 
 use std::time::Instant;
 
-use hapstab::Loop;
 use hapstab::limits::point_cost;
 use hapstab::linear::linear_check;
 use hapstab::loop_analysis;
+use hapstab::loop_analysis::wall_units;
 use hapstab::params::Normalized;
 use hapstab::stability::Analysis;
+use hapstab::{AffineFamily, Loop, Wall};
 use serde::Serialize;
 
-use super::wall_analyses::wall_analyses;
+use super::wall_analyses::{loop_of, wall_analyses, wall_of};
 use super::within_budget;
 use crate::limits::*;
 use crate::query::{ApiError, Params, PlantSpec, lib_error};
@@ -63,6 +64,47 @@ pub(crate) fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), Api
         " (normalized damping β = BT/m)",
     )?;
     Ok((alpha, beta))
+}
+
+/// The wall of a request: its (α, β) in the page's units and the wall in the loop's units.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct WallAt {
+    /// (α, β), or a loop's wall units (a, b) beyond the paper's loop.
+    pub units: (f64, f64),
+    /// K in N/m and B in Ns/m (α and β for a normalized loop).
+    pub wall: Wall,
+}
+
+impl WallAt {
+    /// The wall at (α, β) in the page's units ([`wall_of`]).
+    pub(crate) fn of_units(spec: &PlantSpec, alpha: f64, beta: f64) -> Self {
+        WallAt {
+            units: (alpha, beta),
+            wall: wall_of(spec, alpha, beta),
+        }
+    }
+}
+
+/// The wall of a request ([`wall_point`]): given as K and B, they are kept as given and
+/// converted to the page's units as the command line converts them
+/// ([`hapstab::loop_analysis::wall_units`]), so that every analysis of the wall is the
+/// command line's; given as α and β, they are converted to K and B by [`wall_of`].
+pub(crate) fn wall_at(p: &Params, spec: &PlantSpec) -> Result<WallAt, ApiError> {
+    let units = wall_point(p, spec)?;
+    if !p.has("wall_stiffness") && !p.has("wall_damping") {
+        return Ok(WallAt::of_units(spec, units.0, units.1));
+    }
+    let wall = Wall {
+        stiffness: p.num("wall_stiffness")?,
+        damping: p.num("wall_damping")?,
+    };
+    let lp = loop_of(spec)?;
+    let units = match &spec.general {
+        Some(g) => wall_units(&lp, &g.family, wall),
+        None => AffineFamily::of_loop(&lp).and_then(|fam| wall_units(&lp, &fam, wall)),
+    }
+    .map_err(lib_error)?;
+    Ok(WallAt { units, wall })
 }
 
 /// Query names of `/api/point`.
@@ -140,14 +182,6 @@ pub(crate) fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
     )
 }
 
-/// The wall of a point in physical units, if the request is physical.
-pub(super) fn wall_out(spec: &PlantSpec, alpha: f64, beta: f64) -> Option<WallOut> {
-    spec.physical.map(|ph| WallOut {
-        stiffness: alpha * ph.k_per_alpha,
-        damping: beta * ph.b_per_beta,
-    })
-}
-
 /// The point's (α, β, γ, δ, d) (see [`PointOut::params`]).
 pub(super) fn point_params(
     spec: &PlantSpec,
@@ -158,8 +192,9 @@ pub(super) fn point_params(
 }
 
 /// Computes `/api/point`.
-pub(crate) fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut, ApiError> {
+pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> {
     let t0 = Instant::now();
+    let (alpha, beta) = at.units;
     let n = point_params(spec, alpha, beta)?;
     let a = match &spec.general {
         Some(g) => loop_analysis::analysis(&g.lp, &g.family, (alpha, beta)),
@@ -175,7 +210,7 @@ pub(crate) fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut,
             satisfied: lc.satisfied,
         }
     });
-    let (margins, passivity) = wall_analyses(spec, (alpha, beta), a.stable())?;
+    let (margins, passivity) = wall_analyses(spec, at.wall, a.stable())?;
     Ok(PointOut {
         passive: is_passive(passivity.verdict),
         passive_with_arm: passivity.with_arm.and_then(|w| is_passive(w.verdict)),
@@ -183,7 +218,10 @@ pub(crate) fn point(spec: &PlantSpec, alpha: f64, beta: f64) -> Result<PointOut,
         passivity,
         params: n,
         lp: spec.general.as_ref().map(|g| g.lp.clone()),
-        wall: wall_out(spec, alpha, beta),
+        wall: spec.physical.map(|_| WallOut {
+            stiffness: at.wall.stiffness,
+            damping: at.wall.damping,
+        }),
         verdict: a.verdict.as_str(),
         stable: a.stable(),
         spectral_radius: a.spectral_radius,

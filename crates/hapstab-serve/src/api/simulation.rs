@@ -10,7 +10,7 @@ use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, LoopMod
 use hapstab::simulation::{RunResult, SimModel, TraceClip, simulate_clipped};
 use serde::Serialize;
 
-use super::point::{point_names, point_params, wall_out, wall_point};
+use super::point::{point_names, point_params, wall_at};
 use super::within_budget;
 use crate::limits::*;
 use crate::query::{ApiError, Params, PlantSpec, lib_error, plant_spec};
@@ -28,6 +28,8 @@ pub(crate) struct SimReq {
     pub spec: PlantSpec,
     pub alpha: f64,
     pub beta: f64,
+    /// The wall in the loop's units (K and B as given, see [`super::point::wall_at`]).
+    pub wall: Wall,
     pub samples: usize,
     pub push: f64,
     pub velocity: f64,
@@ -46,7 +48,8 @@ const DEFAULT_CONTACT: &str = "unilateral";
 /// Validates a simulation request.
 pub(crate) fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
     let spec = plant_spec(p)?;
-    let (alpha, beta) = wall_point(p, &spec)?;
+    let at = wall_at(p, &spec)?;
+    let (alpha, beta) = at.units;
     let samples = match p.opt_count(
         "samples",
         MIN_SIM_SAMPLES,
@@ -99,6 +102,7 @@ pub(crate) fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
         spec,
         alpha,
         beta,
+        wall: at.wall,
         samples,
         push,
         velocity,
@@ -185,15 +189,9 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
             "normalized mode: shown for m = 1 kg and T = 1 ms (only the shape depends on α, β, γ, δ, d)",
         ),
     };
-    let model = match (&spec.general, wall_out(spec, req.alpha, req.beta)) {
-        (Some(g), Some(w)) => {
-            let wall = Wall {
-                stiffness: w.stiffness,
-                damping: w.damping,
-            };
-            SimModel::Loop(LoopModel::new(g.lp.clone(), wall).map_err(lib_error)?)
-        }
-        _ => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
+    let model = match &spec.general {
+        Some(g) => SimModel::Loop(LoopModel::new(g.lp.clone(), req.wall).map_err(lib_error)?),
+        None => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
     };
     let mut cfg = Config::new(model, req.samples);
     cfg.effects = Effects {

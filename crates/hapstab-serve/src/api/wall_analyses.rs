@@ -42,14 +42,14 @@ pub(crate) fn wall_of(spec: &PlantSpec, a: f64, b: f64) -> Wall {
     Wall { stiffness, damping }
 }
 
-/// The margins (withheld beside a verdict that is not stable) and the passivity of the wall.
+/// The margins (withheld beside a verdict that is not stable) and the passivity of the wall
+/// (in the loop's units, see [`wall_of`]).
 pub(crate) fn wall_analyses(
     spec: &PlantSpec,
-    (a, b): (f64, f64),
+    wall: Wall,
     stable: bool,
 ) -> Result<(Margins, Passivity), ApiError> {
     let lp = loop_of(spec)?;
-    let wall = wall_of(spec, a, b);
     let margins = margins_beside_verdict(&lp, wall, stable).map_err(lib_error)?;
     Ok((margins, passivity(&lp, wall).map_err(lib_error)?))
 }
