@@ -4,7 +4,7 @@ The exact ZOH of P(s) by partial fractions, Pd(z) = (1 - 1/z) * sum_i r_i z/(z -
 with r_i the residues of P(s)/s, evaluated in mpmath at 40 digits: the gain crossover
 (|L| = 1) with its phase margin and the phase crossover (Im L = 0) with its gain margin.
 Run: python3 benches/baseline/margins_referee.py (needs mpmath). Used by
-crates/hapstab-cli/tests/margins.rs.
+crates/hapstab-cli/tests/cli/margins.rs.
 """
 import mpmath as mp
 mp.mp.dps=40

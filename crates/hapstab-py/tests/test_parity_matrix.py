@@ -1,5 +1,5 @@
 """The parity matrix, Python against the command line: for every kind of loop of the
-command line's matrix against the explorer (crates/hapstab-cli/tests/serve_parity_matrix.rs:
+command line's matrix against the explorer (crates/hapstab-cli/tests/cli/serve_parity_matrix.rs:
 the paper's loop in physical and normalized units, a device without an arm, a two-mass device,
 a transfer function of order 5, the estimators average, low-pass and IIR, an actuator lag and a
 fractional delay), every analysis — check with its margins, K_max at a damping, over a band and

@@ -2,7 +2,7 @@
 //! operator's verdict) count the same operators alike; the plot is written; bad input is one
 //! line, exit 2.
 
-mod common;
+use crate::common;
 
 use common::{f, hapstab, json};
 

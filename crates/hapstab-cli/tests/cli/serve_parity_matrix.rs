@@ -12,10 +12,9 @@
 //! paper's normalized loop alone (a map over α, β, γ, δ) and of physical loops alone (K_max,
 //! sweep, Z-width) are refused by both front ends in one line.
 
-#[path = "../../hapstab-serve/tests/serve_support/mod.rs"]
-mod serve_support;
+use crate::serve_support;
 
-mod common;
+use crate::common;
 
 use std::cell::Cell;
 

@@ -3,10 +3,9 @@
 //! `passivity`, `kmax`, `kmax --robust --box` and `simulate` on the same loop and wall, and
 //! loop files passed between them. The explorer's own behaviour is tested in hapstab-serve.
 
-#[path = "../../hapstab-serve/tests/serve_support/mod.rs"]
-mod serve_support;
+use crate::serve_support;
 
-mod common;
+use crate::common;
 
 use serve_support::{PAPER_LOOP, PLANT, Server, TWO_MASS_LOOP, enc, raw_number};
 

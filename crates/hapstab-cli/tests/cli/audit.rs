@@ -7,7 +7,7 @@
 //! fixed damping, and from the audit's state-space referee (radius 0.99999217 of the
 //! crowded-roots loop, 40-digit eigenvalues).
 
-mod common;
+use crate::common;
 
 use common::{hapstab, json};
 use serde_json::Value;

@@ -2,7 +2,7 @@
 //! key, no -0), with the inputs under `input` and each command's documented keys (the human
 //! text, CSV, help and README examples: `human_output.rs`).
 
-mod common;
+use crate::common;
 
 use common::strict::strict;
 use common::{commands, stdout_in};

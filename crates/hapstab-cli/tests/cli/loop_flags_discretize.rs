@@ -1,7 +1,7 @@
 //! Binary tests of `hapstab discretize` with the loop flags: closed forms and published
 //! values (MATLAB's c2d documentation).
 
-mod common;
+use crate::common;
 
 use common::{floats, json, text};
 

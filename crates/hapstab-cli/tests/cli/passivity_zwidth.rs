@@ -3,7 +3,7 @@
 //! wall, the filters shrinking the Z-width, files written, and bad input refused in one line
 //! with exit code 2.
 
-mod common;
+use crate::common;
 
 use common::{hapstab, json};
 use serde_json::Value;

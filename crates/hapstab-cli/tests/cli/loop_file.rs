@@ -2,7 +2,7 @@
 //! command the same answer as the flags it came from; flags beside the file change its parts
 //! as those flags change the flags' loop; a malformed file is refused in one line, exit 2.
 
-mod common;
+use crate::common;
 
 use common::{hapstab, json};
 use serde_json::Value;

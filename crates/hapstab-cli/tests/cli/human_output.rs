@@ -3,7 +3,7 @@
 //! shell example of the README run as written, `simulate`'s JSON beside its wall, and six
 //! significant digits in human text.
 
-mod common;
+use crate::common;
 
 use common::strict::strict;
 use common::{commands, hapstab, stdout};

@@ -5,7 +5,7 @@
 //! `HAPSTAB_MAX_SECONDS` lowers the time budget so that the refusals can be shown on runs
 //! that would take minutes (each must be refused within a second, before any work).
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 use std::time::{Duration, Instant};

@@ -3,7 +3,7 @@
 //! `boundary` and `kmax`: closed forms, the paper's loop in physical units, boundary vertices
 //! on the stability boundary, the linear condition.
 
-mod common;
+use crate::common;
 
 use common::{check, f, floats, hapstab, json, radius, text};
 
@@ -221,7 +221,7 @@ fn kmax_text_leads_with_zero_damping() {
         .unwrap();
     assert!(hint.contains("needs the device to render B = "), "{hint}");
     // a band given: no hint
-    let banded = crate::text(&["kmax", "--no-arm", "--damping-range", "0:20"]);
+    let banded = common::text(&["kmax", "--no-arm", "--damping-range", "0:20"]);
     assert!(!banded.contains("--damping-range LO:HI"), "{banded}");
 }
 

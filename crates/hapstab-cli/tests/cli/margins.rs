@@ -5,7 +5,7 @@
 //! evaluation of |L| (numpy, 2·10⁶ log-spaced angles), or the verdict itself at walls and
 //! delays beside each margin (a margin is where the verdict changes).
 
-mod common;
+use crate::common;
 
 use common::{check_json, num, verdict};
 use serde_json::Value;

@@ -3,7 +3,7 @@
 //! and separation from a unilateral wall, and bad or hostile input (exit 2, one line on
 //! stderr, nothing written).
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! `sweep --param cutoff` varies FC of the family and order given, each point equal to
 //! `kmax` of the loop with that cut-off.
 
-mod common;
+use crate::common;
 
 use common::{f, json, num};
 use serde_json::{Value, json as js};

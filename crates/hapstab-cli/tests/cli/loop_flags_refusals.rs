@@ -2,7 +2,7 @@
 //! velocity estimators, fractional delay): contradictory flags
 //! and bad input are refused in one line naming the flag and the value (exit 2).
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 

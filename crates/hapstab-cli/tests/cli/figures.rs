@@ -3,7 +3,7 @@
 //! Expected values come from the library or from closed forms, never from the program's own
 //! output.
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within};

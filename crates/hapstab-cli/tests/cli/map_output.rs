@@ -1,7 +1,7 @@
 //! `hapstab map` files: the CSV against `check` at grid points, the NPY read back (by a
 //! reader written from the NumPy format specification) against the CSV, and the heatmap.
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! NaN: each must now give a right answer or an honest refusal (exit 2, one line), within
 //! bounded time and memory.
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 use std::time::{Duration, Instant};

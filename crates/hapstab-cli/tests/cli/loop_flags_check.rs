@@ -2,7 +2,7 @@
 //! velocity estimators, fractional delay) in `hapstab check`: identities between
 //! flag families, continuity, the loop described in words and in `--help`.
 
-mod common;
+use crate::common;
 
 use common::{check, f, radius, text};
 use serde_json::Value;

@@ -1,6 +1,6 @@
 //! Binary tests: verdicts against closed forms, JSON shape, and bad input (exit 2, one line).
 
-mod common;
+use crate::common;
 
 use common::hapstab;
 

@@ -6,12 +6,10 @@
 //! Screenshot: `target/tmp/serve_e2e_robust_kmax.png`. Skipped without Chromium and
 //! chromedriver, like hapstab-serve's `serve_e2e`, whose browser helpers it shares.
 
-#[path = "../../hapstab-serve/tests/e2e_browser/mod.rs"]
-mod e2e_browser;
-#[path = "../../hapstab-serve/tests/serve_support/mod.rs"]
-mod serve_support;
+use crate::e2e_browser;
+use crate::serve_support;
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

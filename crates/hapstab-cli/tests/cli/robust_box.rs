@@ -2,7 +2,7 @@
 //! The worst plant, given back to `kmax` as flags, has the reported K_max; the paper's box
 //! gives the paper search's K_max at its damping; a bad box is one line, exit 2.
 
-mod common;
+use crate::common;
 
 use common::{f, hapstab, json};
 

@@ -2,7 +2,7 @@
 //! (benches/baseline/identify_data.py) to the loop and its K_max; bad data, bad flags and a
 //! model that cannot fit are one line naming the column or the parameter, exit 2.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

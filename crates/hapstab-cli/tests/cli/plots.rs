@@ -3,7 +3,7 @@
 //! JSON, and bad input. Expected values come from independent commands, never from the
 //! command's own output.
 
-mod common;
+use crate::common;
 
 use common::{hapstab, json, num};
 use serde_json::Value;
