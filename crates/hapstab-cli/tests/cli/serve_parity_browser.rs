@@ -1,10 +1,10 @@
 //! End-to-end test of the explorer's robust K_max over a box in a real headless Chromium
-//! (chromedriver + fantoccini, as `serve_e2e`): a link with a box opens with the overlay on,
+//! (chromedriver + fantoccini, as hapstab-serve's `e2e`): a link with a box opens with the overlay on,
 //! the K_max the page draws is `hapstab kmax --robust --box … --json`'s, the command line's
 //! text (with what was checked) sits under the region and the marker is drawn; typing another
 //! end of the box redraws it with the command line's new K_max, and the link keeps the box.
 //! Screenshot: `target/tmp/serve_e2e_robust_kmax.png`. Skipped without Chromium and
-//! chromedriver, like hapstab-serve's `serve_e2e`, whose browser helpers it shares.
+//! chromedriver, like hapstab-serve's `e2e`, whose browser helpers it shares.
 
 use crate::e2e_browser;
 use crate::serve_support;

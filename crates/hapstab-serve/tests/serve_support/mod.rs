@@ -262,7 +262,7 @@ pub fn peak_rss_bytes(pid: u32) -> u64 {
 }
 
 // ---------------------------------------------------------------------------------------
-// Shared by the `serve_api_*` tests.
+// Shared by the endpoint tests (`tests/serve/api_*.rs`).
 // ---------------------------------------------------------------------------------------
 
 /// The paper's plant of most API tests, as a query.

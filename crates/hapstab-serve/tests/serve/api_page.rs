@@ -1,7 +1,7 @@
 //! API tests of `hapstab serve` against the real server on an ephemeral loopback port:
 //! the page is self-contained, and its exports (SVG, CSV, JSON) carry the library's numbers.
 
-mod serve_support;
+use crate::serve_support;
 
 use serve_support::{PLANT, Server, library_region, raw_number};
 

@@ -4,7 +4,7 @@
 //! at its damping is not (the command line's answer is compared in hapstab-cli's
 //! `serve_parity_matrix`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::passivity::{PassivityVerdict, passivity};
 use hapstab::{Delay, Loop, VelocityEstimator, Wall};

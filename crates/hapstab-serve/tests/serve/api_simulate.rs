@@ -2,7 +2,7 @@
 //! `/api/simulate` returns a decimated contact trace with the analysis's verdict, clipped
 //! where a blown-up contact leaves the start's scale.
 
-mod serve_support;
+use crate::serve_support;
 
 use serve_support::Server;
 

@@ -3,7 +3,7 @@
 //! paper's normalized loop), and the axes are refused where the loop has no such parameter
 //! (the command line's answer is compared in hapstab-cli's `serve_parity_matrix`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::loop_analysis::analysis;
 use hapstab::stability::{Analysis, Verdict};

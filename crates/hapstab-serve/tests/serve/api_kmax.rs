@@ -3,7 +3,7 @@
 //! walls just below and above K_max are stable and unstable by the library's verdict (the
 //! command line's answer is compared in hapstab-cli's `serve_parity_matrix`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::kmax::{KmaxQuery, NoiseModel, kmax};
 use hapstab::loop_analysis::analysis;

@@ -2,7 +2,7 @@
 //! and a bad or too costly box is one line, HTTP 400, naming the parameter (the answer is
 //! compared with `hapstab kmax --robust --box … --json` in hapstab-cli's `serve_parity`).
 
-mod serve_support;
+use crate::serve_support;
 
 use serve_support::{PAPER_LOOP, Server, enc};
 

@@ -2,7 +2,7 @@
 //! bad input is HTTP 400 with a JSON error naming the parameter and the value, other errors
 //! are JSON too, and the server survives timeouts and bursts of concurrent requests.
 
-mod serve_support;
+use crate::serve_support;
 
 use serve_support::{PLANT, Server, TWO_MASS_LOOP, enc, request};
 

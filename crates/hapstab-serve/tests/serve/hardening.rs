@@ -3,7 +3,7 @@
 //! the header-read timeout, and requests whose estimated cost is beyond one request's budget
 //! are refused before they start.
 
-mod serve_support;
+use crate::serve_support;
 
 use std::io::{Read, Write};
 use std::net::TcpStream;

@@ -2,7 +2,7 @@
 //! `/api/point` gives exactly the library's analysis (its margins and passivity are compared
 //! with the command line's in hapstab-cli's `serve_parity`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::Normalized;
 use hapstab::stability::Analysis;

@@ -3,7 +3,7 @@
 //! value), and bad parameters are refused naming them (the command line's answer is compared
 //! in hapstab-cli's `serve_parity_matrix`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::kmax::{KmaxQuery, kmax};
 use hapstab::{AffineFamily, Delay, Loop, VelocityEstimator};

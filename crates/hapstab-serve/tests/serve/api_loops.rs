@@ -3,7 +3,7 @@
 //! paper's is compared with `hapstab check` and `hapstab simulate` in hapstab-cli's
 //! `serve_parity`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::stability::Analysis;
 use hapstab::{Normalized, PlantParams};

@@ -22,8 +22,8 @@
 //! stays green elsewhere, unless HAPSTAB_E2E_REQUIRED=1 (set by `.ci/run`), where it fails.
 //! Override the paths with HAPSTAB_CHROMIUM / HAPSTAB_CHROMEDRIVER.
 
-mod e2e_browser;
-mod serve_support;
+use crate::e2e_browser;
+use crate::serve_support;
 
 use std::path::Path;
 

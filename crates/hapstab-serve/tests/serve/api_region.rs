@@ -4,7 +4,7 @@
 //! over the arm's stiffness are compared with the command line's in hapstab-cli's
 //! `serve_parity`).
 
-mod serve_support;
+use crate::serve_support;
 
 use hapstab::PlantParams;
 use serve_support::{Server, library_region, raw_number};
