@@ -86,6 +86,10 @@ pub struct ServeArgs {
     /// explorer to the network.
     #[arg(long, default_value = "127.0.0.1")]
     host: IpAddr,
+    /// A loop file (the `input.loop` of any `--json` report, the page's "Save loop", Python's
+    /// `Loop.save`): the printed address opens the page on that loop and its wall.
+    #[arg(long = "loop", value_name = "FILE")]
+    loop_file: Option<std::path::PathBuf>,
     /// Time limit of one computation in milliseconds (503 when exceeded).
     #[arg(long, default_value_t = limits::COMPUTE_TIMEOUT_MS, hide = true)]
     timeout_ms: u64,
@@ -148,11 +152,32 @@ pub enum ServeError {
     /// The bound socket's address could not be read.
     #[error("cannot read the listening address")]
     LocalAddr(#[source] std::io::Error),
+    /// The loop file given with `--loop` cannot be read or is not a loop.
+    #[error("--loop {path}: {message}")]
+    LoopFile {
+        /// The file as given.
+        path: String,
+        /// What is wrong with it, in one line.
+        message: String,
+    },
+}
+
+/// The page's query for the loop file of `--loop`, read before anything is bound.
+fn loop_query(path: &std::path::Path) -> Result<String, ServeError> {
+    let fail = |message: String| ServeError::LoopFile {
+        path: path.display().to_string(),
+        message,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    loop_io::open(&text)
+        .map(|o| o.query)
+        .map_err(|e| fail(e.message))
 }
 
 /// Runs the explorer until Ctrl-C: binds the address, prints the URL on standard output
 /// ("hapstab serve: listening on http://…/"), and answers every request.
 pub fn run(a: &ServeArgs) -> Result<(), ServeError> {
+    let query = a.loop_file.as_deref().map(loop_query).transpose()?;
     // rayon's workers do the parallel part of the computations: lower them too (ignored if
     // the global pool already exists)
     let _ = rayon::ThreadPoolBuilder::new()
@@ -163,10 +188,10 @@ pub fn run(a: &ServeArgs) -> Result<(), ServeError> {
         .max_blocking_threads(4 * a.jobs.max(1) + 4)
         .build()
         .map_err(ServeError::Runtime)?;
-    rt.block_on(serve(a))
+    rt.block_on(serve(a, query.as_deref()))
 }
 
-async fn serve(a: &ServeArgs) -> Result<(), ServeError> {
+async fn serve(a: &ServeArgs, query: Option<&str>) -> Result<(), ServeError> {
     let addr = SocketAddr::new(a.host, a.port);
     let listener = listen::bind(addr, limits::LISTEN_BACKLOG)
         .map_err(|source| ServeError::Listen { addr, source })?;
@@ -196,8 +221,9 @@ async fn serve(a: &ServeArgs) -> Result<(), ServeError> {
         IpAddr::V6(ip) => format!("[{ip}]"),
         IpAddr::V4(ip) => ip.to_string(),
     };
+    let page = query.map_or(String::new(), |q| format!("?{q}"));
     println!(
-        "hapstab serve: listening on http://{host}:{}/ (Ctrl-C to stop)",
+        "hapstab serve: listening on http://{host}:{}/{page} (Ctrl-C to stop)",
         local.port()
     );
     if !a.host.is_loopback() {

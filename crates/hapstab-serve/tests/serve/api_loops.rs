@@ -53,3 +53,46 @@ fn a_loop_with_the_papers_view_is_analysed_as_check_does() {
         );
     }
 }
+
+/// `hapstab serve --loop FILE` prints the page's address with the file's loop and wall in its
+/// query: a loop saved by "Save loop" (two-mass device, low-pass, lag, fractional delay)
+/// opens on the same loop, whose point answers as the original query's, bit for bit; a file
+/// that is not a loop is refused before anything listens, in one line naming the file and
+/// the field, exit 2.
+#[test]
+fn serve_opens_on_a_loop_file() {
+    let a = Server::start(&[]);
+    let query = "mode=physical&motor_mass=0.05&motor_damping=0.5&handle_mass=0.05\
+                 &transmission_stiffness=20000&transmission_damping=2&arm_mass=1&arm_damping=6\
+                 &arm_stiffness=350&force_lag=0.0002&period=0.001&delay_time=0.00137\
+                 &estimator=lowpass%3A200";
+    let wall = "&alpha=0.001&beta=0.02";
+    let saved = a.get(&format!("/api/export?{query}{wall}&format=loop"));
+    assert_eq!(saved.status, 200, "{}", saved.body);
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("device.json");
+    std::fs::write(&file, &saved.body).unwrap();
+    let b = Server::start(&["--loop", file.to_str().unwrap()]);
+    let (_, opened) = b
+        .listening
+        .split_once("/?")
+        .unwrap_or_else(|| panic!("no query in {:?}", b.listening));
+    let opened = opened.split_whitespace().next().unwrap();
+    let want = a.get(&format!("/api/point?{query}{wall}")).json();
+    let got = b.get(&format!("/api/point?{opened}")).json();
+    assert_eq!(got["verdict"], want["verdict"], "{opened}");
+    assert_eq!(got["spectral_radius"], want["spectral_radius"], "{opened}");
+    assert_eq!(got["margins"], want["margins"], "{opened}");
+    let bad = dir.path().join("bad.json");
+    let period = r#""period": 0.001"#;
+    assert!(saved.body.contains(period), "{}", saved.body);
+    std::fs::write(&bad, saved.body.replace(period, r#""period": -0.001"#)).unwrap();
+    let out = serve_support::server_with(&["--port", "0", "--loop", bad.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("bad.json") && err.contains("period"), "{err}");
+    assert!(out.stdout.is_empty(), "nothing listens: {:?}", out.stdout);
+}

@@ -36,6 +36,15 @@ fn server_command() -> Command {
 pub struct Server {
     child: Child,
     pub port: u16,
+    /// The line the server printed on startup ("hapstab serve: listening on http://…").
+    pub listening: String,
+}
+
+/// The server's command with arguments, as [`Server::start`] runs it (to see it refuse).
+pub fn server_with(args: &[&str]) -> Command {
+    let mut c = server_command();
+    c.args(args);
+    c
 }
 
 impl Server {
@@ -63,7 +72,11 @@ impl Server {
             line.contains("http://127.0.0.1:"),
             "binds loopback by default: {line}"
         );
-        Server { child, port }
+        Server {
+            child,
+            port,
+            listening: line,
+        }
     }
 
     /// The server's process id.
