@@ -12,7 +12,7 @@ N(z)/D(z) = C adj(zI − Φ)Γ / det(zI − Φ) by the Faddeev–LeVerrier recur
 p(z) = z^d D(z) Vd(z) + N(z) (K Vd(z) + B Vn(z)) and its roots (mpmath.polyroots). Prints the
 reference spectral radius beside python-control's, and beside hapstab's when --rust names a
 file of "id wall_kind radius" lines (HAPSTAB_CONTROL_DUMP=FILE cargo test -p hapstab --test
-python_control writes one). --write stores the reference in the fixture as
+engine python_control:: writes one). --write stores the reference in the fixture as
 `reference_radius` (the nearest double), the referee of tests/engine/python_control.rs where
 python-control and hapstab disagree.
 """

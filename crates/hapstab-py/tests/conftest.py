@@ -23,7 +23,7 @@ def reference():
     (crates/hapstab/tests/engine/python_reference.rs), regenerated here so that they match the
     library being bound."""
     subprocess.run(
-        ["cargo", "test", "-q", "-p", "hapstab", "--test", "python_reference"],
+        ["cargo", "test", "-q", "-p", "hapstab", "--test", "engine", "python_reference::"],
         cwd=ROOT,
         check=True,
         stdout=subprocess.DEVNULL,

@@ -69,14 +69,17 @@ impl CayleyFamily {
     pub fn line_polynomial(&self, line: &crate::boundary::WallLine) -> Vec<f64> {
         let (f, d) = (line.from, line.dir);
         let mixed = f.beta * d.alpha - f.alpha * d.beta;
-        let two = poly::add_scaled(&scaled(&self.p0_pk, d.alpha), d.beta, &self.p0_pb);
-        poly::add_scaled(&two, mixed, &self.pb_pk)
+        poly::weighted_sum_trimmed(&[
+            (d.alpha, &self.p0_pk),
+            (d.beta, &self.p0_pb),
+            (mixed, &self.pb_pk),
+        ])
     }
 
     /// The stiffness axis's crossing polynomial at damping b: [P0, PK] + b·[PB, PK], whose
     /// positive roots u = tan²(θ/2) are the angles at which a root of p crosses the circle.
     pub fn axis_polynomial(&self, b: f64) -> Vec<f64> {
-        poly::add_scaled(&self.p0_pk, b, &self.pb_pk)
+        poly::weighted_sum_trimmed(&[(1.0, &self.p0_pk), (b, &self.pb_pk)])
     }
 }
 
@@ -140,11 +143,6 @@ fn homogenized(c: &[f64], m: usize, variable: Variable) -> Vec<f64> {
     acc
 }
 
-/// c·x.
-fn scaled(c: &[f64], x: f64) -> Vec<f64> {
-    c.iter().map(|v| v * x).collect()
-}
-
 /// (Xe, Xo) with X(iω) = Xe(ω²) + iω·Xo(ω²).
 fn even_odd(x: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let sign = |m: usize| if m.is_multiple_of(2) { 1.0 } else { -1.0 };
@@ -160,7 +158,7 @@ fn even_odd(x: &[f64]) -> (Vec<f64>, Vec<f64>) {
 
 /// [X, Y] = Xo·Ye − Xe·Yo: Im(X conj Y) = ω·[X, Y] on the axis (module doc).
 fn bracket((xe, xo): &(Vec<f64>, Vec<f64>), (ye, yo): &(Vec<f64>, Vec<f64>)) -> Vec<f64> {
-    poly::add_scaled(&poly::mul(xo, ye), -1.0, &poly::mul(xe, yo))
+    poly::mul_diff_trimmed(xo, ye, xe, yo)
 }
 
 #[cfg(test)]

@@ -29,6 +29,52 @@ pub fn add_scaled(a: &[f64], s: f64, b: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// Σ w_i·p_i (ascending coefficients) with the leading coefficients that are rounding noise
+/// removed: a coefficient whose magnitude is within `ROUNDING_ULPS`·ε of the sum of its
+/// terms' magnitudes (Σ |w_i·p_i,j|, or the given `scale`) cannot be told from zero by this
+/// computation (a cancelling leading term, as in the derivative bracket a1′a2 − a1a2′ of two
+/// polynomials of one degree), and a root it would place near infinity is an artefact.
+pub fn weighted_sum_trimmed(terms: &[(f64, &[f64])]) -> Vec<f64> {
+    let n = terms.iter().map(|(_, p)| p.len()).max().unwrap_or(0);
+    let mut sum = vec![0.0; n];
+    let mut scale = vec![0.0; n];
+    for (w, p) in terms {
+        for (j, &c) in p.iter().enumerate() {
+            sum[j] += w * c;
+            scale[j] += (w * c).abs();
+        }
+    }
+    trim_rounding_lead(&mut sum, &scale);
+    sum
+}
+
+/// a·b − c·d (ascending coefficients) with the leading coefficients that are rounding noise
+/// removed, as [`weighted_sum_trimmed`] does, the scale of each coefficient being
+/// Σ |a_i·b_j| + |c_i·d_j| over its products.
+pub fn mul_diff_trimmed(a: &[f64], b: &[f64], c: &[f64], d: &[f64]) -> Vec<f64> {
+    let abs = |p: &[f64]| p.iter().map(|x| x.abs()).collect::<Vec<f64>>();
+    let mut out = add_scaled(&mul(a, b), -1.0, &mul(c, d));
+    let scale = add_scaled(&mul(&abs(a), &abs(b)), 1.0, &mul(&abs(c), &abs(d)));
+    trim_rounding_lead(&mut out, &scale);
+    out
+}
+
+/// Rounding errors of a few operations per coefficient, in units of ε (module doc of
+/// [`weighted_sum_trimmed`]).
+pub const ROUNDING_ULPS: f64 = 8.0;
+
+/// Removes the leading coefficients of `c` that lie within [`ROUNDING_ULPS`]·ε of `scale`,
+/// the sum of the magnitudes of the terms that formed them.
+pub fn trim_rounding_lead(c: &mut Vec<f64>, scale: &[f64]) {
+    while let Some(&last) = c.last() {
+        let j = c.len() - 1;
+        if last.abs() > ROUNDING_ULPS * f64::EPSILON * scale.get(j).copied().unwrap_or(0.0) {
+            break;
+        }
+        c.pop();
+    }
+}
+
 /// z^k · a(z).
 pub fn shift_up(a: &[f64], k: usize) -> Vec<f64> {
     let mut out = vec![0.0; k];
@@ -238,6 +284,33 @@ pub fn char_poly(a: &Mat) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// a1′a2 − a1a2′ of two cubics: the leading terms (3·a1₃)·a2₃ and a1₃·(3·a2₃) cancel in
+    /// exact arithmetic, rounding leaves 1.1e-16 of them, and that is removed, so no root is
+    /// placed near infinity; the other coefficients stay as they are.
+    #[test]
+    fn cancelled_leading_terms_are_trimmed() {
+        let a1 = [-0.5, 0.9, 0.8, -0.9];
+        let a2 = [-0.9, 0.1, 0.9, -0.2];
+        let d = |c: &[f64]| -> Vec<f64> {
+            c.iter()
+                .enumerate()
+                .skip(1)
+                .map(|(j, &v)| v * j as f64)
+                .collect()
+        };
+        let plain = add_scaled(&mul(&d(&a1), &a2), -1.0, &mul(&a1, &d(&a2)));
+        let trimmed = mul_diff_trimmed(&d(&a1), &a2, &a1, &d(&a2));
+        assert_eq!(plain.len(), 6);
+        assert!(plain[5] != 0.0 && plain[5].abs() < 1e-15, "{plain:?}");
+        assert_eq!(trimmed[..], plain[..5], "{trimmed:?}");
+        // a small but genuine leading coefficient stays
+        let kept = weighted_sum_trimmed(&[(1.0, &[1.0, 2.0, 1e-10]), (2.0, &[0.5, 0.0, 0.0])]);
+        assert_eq!(kept, vec![2.0, 2.0, 1e-10]);
+        // one that the sum cancels to rounding goes
+        let gone = weighted_sum_trimmed(&[(1.0, &[1.0, 2.0, 0.1 + 0.2]), (-1.0, &[0.0, 0.0, 0.3])]);
+        assert_eq!(gone, vec![1.0, 2.0]);
+    }
 
     #[test]
     fn three_at_once_are_bit_for_bit_each_alone_at_every_shape() {

@@ -7,7 +7,7 @@
 //! CI runs [`CI_CASES`] cases (well under two minutes on two cores). A longer run:
 //!
 //! ```sh
-//! HAPSTAB_FUZZ_CASES=20000 cargo test -p hapstab-cli --test cli_fuzz -- --nocapture
+//! HAPSTAB_FUZZ_CASES=20000 cargo test -p hapstab-cli --test cli cli_fuzz:: -- --nocapture
 //! ```
 
 use std::cell::RefCell;

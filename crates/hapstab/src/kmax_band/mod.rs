@@ -445,11 +445,7 @@ fn curve_candidates(
 ) -> Vec<AlphaBeta> {
     let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
     let mut out: Vec<AlphaBeta> = Vec::new();
-    let stationary = poly::add_scaled(
-        &poly::mul(&derivative(a1), a2),
-        -1.0,
-        &poly::mul(a1, &derivative(a2)),
-    );
+    let stationary = poly::mul_diff_trimmed(&derivative(a1), a2, a1, &derivative(a2));
     out.extend(
         positive_roots(&stationary)
             .into_iter()
@@ -473,7 +469,7 @@ fn line_corners(
         .flatten()
         .collect();
     for l in &lines {
-        let meet = poly::add_scaled(&poly::add_scaled(&scaled(a2, l.p0), l.pk, a1), l.pb, b1);
+        let meet = poly::weighted_sum_trimmed(&[(l.p0, a2), (l.pk, a1), (l.pb, b1)]);
         out.extend(
             positive_roots(&meet)
                 .into_iter()
