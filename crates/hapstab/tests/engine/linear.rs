@@ -4,6 +4,7 @@
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
+use crate::common::SplitMix;
 use hapstab::linear::{
     continuous_cubic_normalized, linear_alpha_limit, linear_condition, relative_error,
     routh_hurwitz, routh_hurwitz_normalized, validity_points,
@@ -21,22 +22,6 @@ fn stable(f: &PolyFamily, alpha: f64, beta: f64) -> bool {
     schur_stable(&f.coefficients(alpha, beta))
 }
 
-/// Deterministic uniform numbers in [0, 1) (splitmix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
-
 const FIG7_DELTAS: [f64; 4] = [0.0, 0.005, 0.01, 0.015];
 
 fn family(lp: &Loop) -> AffineFamily {
@@ -48,14 +33,14 @@ fn family(lp: &Loop) -> AffineFamily {
 /// (18) fails for some samples, and (22) is checked to be what (20) becomes without ε.
 #[test]
 fn eq18_implied_by_eq19_and_eq22() {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix(7);
     let (mut both, mut fails18) = (0, 0);
     for _ in 0..200_000 {
         let m = rng.range(0.01, 5.0);
         let b = rng.range(0.0, 20.0);
         let k = rng.range(0.0, 2000.0);
         let t = rng.range(1e-4, 2e-3);
-        let d = (rng.next() * 4.0) as usize;
+        let d = (rng.next_f64() * 4.0) as usize;
         let kw = rng.range(-3000.0, 3e4);
         let bw = rng.range(-40.0, 40.0);
         let p = Physical::new(
@@ -85,14 +70,14 @@ fn eq18_implied_by_eq19_and_eq22() {
 /// γ = 0) the condition (20) is (23): α < β/(d + ½).
 #[test]
 fn routh_hurwitz_normalized_matches_cubic_roots() {
-    let mut rng = Rng(11);
+    let mut rng = SplitMix(11);
     for _ in 0..2000 {
         let n = Normalized::new(
             rng.range(-0.2, 1.0),
             rng.range(-0.5, 1.5),
             rng.range(0.0, 0.01),
             rng.range(0.0, 0.05),
-            (rng.next() * 3.0) as usize,
+            (rng.next_f64() * 3.0) as usize,
         )
         .unwrap();
         let c = continuous_cubic_normalized(&n);

@@ -4,6 +4,7 @@
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
+use crate::common::SplitMix;
 use hapstab::boundary::stable_alpha_intervals;
 use hapstab::nyquist::{
     BoxOptions, PlantBox, RobustOptions, SweepInput, beta_bound, gamma_sweep, nyquist_gamma,
@@ -23,22 +24,6 @@ fn fam(gamma: f64, delta: f64, d: usize) -> PolyFamily {
 
 fn stable(f: &PolyFamily, alpha: f64, beta: f64) -> bool {
     schur_stable(&f.coefficients(alpha, beta))
-}
-
-/// Deterministic uniform numbers in [0, 1) (splitmix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
 }
 
 /// Remark 4: k = π² m/T² + b²/(4m) ≈ 987.0 kN/m for m = 0.1 kg, T = 1 ms, b = 1.5 Ns/m.
@@ -91,7 +76,7 @@ fn quarter_nyquist_region_in_left_half_plane_d1() {
 /// (α, β) and every d: a pole at z = −1, limit stable at best (Section VIII-B).
 #[test]
 fn pole_at_minus_one_at_nyquist() {
-    let mut rng = Rng(3);
+    let mut rng = SplitMix(3);
     for d in [0usize, 1, 2, 5] {
         let f = fam(PI2, 0.0, d);
         for _ in 0..50 {

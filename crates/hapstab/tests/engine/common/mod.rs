@@ -1,6 +1,7 @@
 //! Helpers shared by the library's integration tests.
 #![allow(dead_code)]
 
+pub mod general;
 pub mod loops;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): the seeded generator of the property tests.
