@@ -10,7 +10,6 @@ use serde::Serialize;
 use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
 use crate::output::{csv_num, eng, print_json, sig};
 use crate::wall_plot;
-use hapstab::loop_analysis::region;
 use hapstab_plot::{Marker, palette};
 
 /// Arguments of `hapstab boundary`.
@@ -257,22 +256,23 @@ fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOu
 /// Runs `hapstab boundary`.
 pub fn run(a: &BoundaryArgs) -> Result<()> {
     let rl = a.lp.resolve(false)?;
-    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
     let cost =
-        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(&fam));
+        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(fam));
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "the exact region")?;
-    let r = region(&rl.lp, &fam)?;
+    let r = sys.region()?;
     if let Some(path) = &a.csv {
-        write_csv(path, &r, (!rl.normalized).then_some(&fam))?;
+        write_csv(path, &r, (!rl.normalized).then_some(fam))?;
     }
-    let mut out = output(&rl, &fam, &r);
+    let mut out = output(&rl, fam, &r);
     if let Some(path) = &a.plot {
-        out.plot = wall_plot::save(figure(&rl, &fam, &r), path)?;
+        out.plot = wall_plot::save(figure(&rl, fam, &r), path)?;
     }
     if a.json {
         return print_json(&out);
     }
-    print_text(&rl, &fam, &r, &out);
+    print_text(&rl, fam, &r, &out);
     if let Some(path) = &a.csv {
         println!("vertices written to {}", path.display());
     }
@@ -336,16 +336,6 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
     }
     if let Some(p) = &out.physical {
         print_k_max(p);
-    }
-    if let (Some((pp, d)), false) = (paper, rl.normalized) {
-        println!(
-            "normalized  γ = {}, δ = {}, d = {d}: α_max = {} at β = {}, area {} (α·β)",
-            sig(pp.gamma, 6),
-            sig(pp.delta, 6),
-            sig(r.alpha_max, 6),
-            sig(r.beta_at_alpha_max, 6),
-            sig(r.area, 6)
-        );
     }
     // polygons are numbered from 0, as in the CSV's polygon column and the JSON arrays
     for (i, p) in r.polygons.iter().enumerate() {

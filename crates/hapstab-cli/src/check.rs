@@ -5,21 +5,17 @@
 
 use anyhow::Result;
 use clap::Args;
-use hapstab::boundary::Interval;
-use hapstab::margins::margins_beside_verdict;
+use hapstab::answer::{CheckAnswer, check_answer};
 use hapstab::margins::report::MarginsReport;
 use hapstab::params::Wall;
-use hapstab::{AffineFamily, Normalized};
-use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::model::{
-    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
-    resolve_loop_wall,
+    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop, resolve_loop_wall,
 };
 use crate::output::{eng, print_json, radius_text, sig};
 use crate::wall_plot;
-use hapstab::loop_analysis::{analysis, linear_k, pick_interval, stable_intervals, wall_units};
+use hapstab::System;
 
 /// Arguments of `hapstab check`.
 #[derive(Args, Debug)]
@@ -45,99 +41,25 @@ pub struct CheckArgs {
     json: bool,
 }
 
-/// The paper's normalized view of the point (Table I) with the linear condition.
-#[derive(Serialize)]
-struct PaperView {
-    /// The point in normalized units (used by the text output in both modes).
-    #[serde(skip)]
-    point: Normalized,
-    /// The same point in the output, for a loop given in physical units only (in normalized
-    /// mode it is the input).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    normalized: Option<Normalized>,
-    /// Stable α interval at the given β that contains α, or the one reaching furthest.
-    alpha_interval: Option<[f64; 2]>,
-    /// Linear condition (23): α < (β + δ)/(d + 1/2).
-    alpha_linear: f64,
-    /// Linear condition (22) in N/m: K < (b + B)/(t_d + T/2) (physical loops).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_linear: Option<f64>,
-}
-
+/// The library's check answer with the files --plot wrote.
 #[derive(Serialize)]
 struct CheckOut {
-    input: LoopInput,
-    stable: bool,
-    verdict: &'static str,
-    spectral_radius: f64,
-    roots: Vec<Complex64>,
-    /// Stable K interval in N/m at the given B (physical loops): the one containing K, or
-    /// the one reaching furthest; null when no K is stable at that B.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    k_interval: Option<Option<[f64; 2]>>,
     #[serde(flatten)]
-    paper: Option<PaperView>,
-    #[serde(flatten)]
-    margins: MarginsReport,
+    answer: CheckAnswer,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     plot: Vec<std::path::PathBuf>,
-}
-
-/// The margins of the wall in the report's form, or none with the reason when the check's
-/// verdict says the wall is not stable.
-fn margins_out(rl: &ResolvedLoop, w: Wall, stable: bool) -> Result<MarginsReport> {
-    Ok(MarginsReport::from(&margins_beside_verdict(
-        &rl.lp, w, stable,
-    )?))
-}
-
-/// The stable interval of the wall's stiffness in the loop's units (a, b) at its damping
-/// b: the one containing a, or the one reaching furthest.
-fn interval_units(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<Interval>> {
-    let (a, b) = wall_units(&rl.lp, fam, w)?;
-    Ok(pick_interval(&stable_intervals(&rl.lp, fam, b)?, a))
-}
-
-/// The same interval in N/m.
-fn k_interval(fam: &AffineFamily, iv: Option<Interval>) -> Option<[f64; 2]> {
-    iv.map(|iv| [fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0])
-}
-
-fn paper_view(rl: &ResolvedLoop, fam: &AffineFamily, w: Wall) -> Result<Option<PaperView>> {
-    let Some(pp) = rl.lp.paper_view() else {
-        return Ok(None);
-    };
-    let (alpha, beta) = wall_units(&rl.lp, fam, w)?;
-    let d = rl.lp.delay.samples;
-    let k_linear = if rl.normalized {
-        None
-    } else {
-        linear_k(&rl.lp, w.damping)
-    };
-    let point = Normalized::new(alpha, beta, pp.gamma, pp.delta, d)?;
-    Ok(Some(PaperView {
-        point,
-        normalized: (!rl.normalized).then_some(point),
-        alpha_interval: interval_units(rl, fam, w)?.map(|iv| [iv.lo, iv.hi]),
-        alpha_linear: hapstab::linear::linear_alpha_limit(beta, pp.delta, d),
-        k_linear,
-    }))
 }
 
 /// Refuses a check beyond the command-line budget: the roots and the interval grow as n²
 /// and n in the degree n of p(z), the margins of a stable wall (the Schur–Cohn test, O(n²),
 /// says whether they run) as n times the degree of the loop's parts without the pure delay,
 /// and a --plot draws the exact region. Blames the flag that sets most of the degree.
-fn check_budget(
-    a: &CheckArgs,
-    rl: &ResolvedLoop,
-    fam: &AffineFamily,
-    (alpha, beta): (f64, f64),
-) -> Result<()> {
+fn check_budget(a: &CheckArgs, rl: &ResolvedLoop, sys: &System, units: (f64, f64)) -> Result<()> {
+    let fam = sys.family();
     let n = fam.degree();
     let core = hapstab::limits::core_degree(fam);
-    let stable = hapstab::stability::schur_stable(&fam.coefficients(alpha, beta));
+    let stable = sys.decide(units).verdict == hapstab::Verdict::Stable;
     let mut cost = hapstab::limits::check_cost(n, core, stable);
     if a.plot.is_some() {
         cost = cost.then(hapstab::limits::region_cost_of_degree(n, core));
@@ -153,45 +75,33 @@ fn check_budget(
 /// Runs `hapstab check`.
 pub fn run(a: &CheckArgs) -> Result<()> {
     let rl = a.lp.resolve(a.wall.normalized())?;
-    let fam = AffineFamily::of_loop(&rl.lp)?;
-    let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
-    let units = wall_units(&rl.lp, &fam, w)?;
-    check_budget(a, &rl, &fam, units)?;
-    let analysis = analysis(&rl.lp, &fam, units)?;
-    let k_interval = if rl.normalized {
-        None
-    } else {
-        Some(k_interval(&fam, interval_units(&rl, &fam, w)?))
-    };
+    let sys = rl.system()?;
+    let fam = sys.family();
+    let w = resolve_loop_wall(&rl, fam, &a.wall)?;
+    let units = sys.wall_units(w)?;
+    check_budget(a, &rl, &sys, units)?;
     let mut out = CheckOut {
-        input: rl.input(Some(w)),
-        stable: analysis.stable(),
-        verdict: analysis.verdict.as_str(),
-        spectral_radius: analysis.spectral_radius,
-        roots: analysis.roots.clone(),
-        k_interval,
-        paper: paper_view(&rl, &fam, w)?,
-        margins: margins_out(&rl, w, analysis.stable())?,
+        answer: check_answer(&sys, rl.normalized, w)?,
         plot: Vec::new(),
     };
     if let Some(path) = &a.plot {
         let fig = crate::check_plot::CheckFigure {
             wall: units,
-            verdict: out.verdict,
-            roots: &out.roots,
-            spectral_radius: out.spectral_radius,
+            verdict: out.answer.verdict,
+            roots: &out.answer.roots,
+            spectral_radius: out.answer.spectral_radius,
         };
-        out.plot = crate::check_plot::save(&rl, &fam, &fig, path)?;
+        out.plot = crate::check_plot::save(&rl, &sys, &fig, path)?;
     }
     if a.json {
         print_json(&out)?;
     } else {
-        print_text(&rl, w, &out);
+        print_text(&rl, w, &out.answer);
         if !out.plot.is_empty() {
             println!("plot        {}", wall_plot::files_text(&out.plot));
         }
     }
-    if a.fail_unstable && !out.stable {
+    if a.fail_unstable && !out.answer.stable {
         use std::io::Write;
         let _ = std::io::stdout().flush();
         std::process::exit(1);
@@ -199,7 +109,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
     Ok(())
 }
 
-fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {
+fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckAnswer) {
     if !rl.normalized {
         for line in describe_loop(&rl.lp) {
             println!("{line}");
@@ -210,7 +120,8 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckOut) {
             eng(w.damping, "Ns/m", 6)
         );
     }
-    if let Some(p) = &o.paper {
+    // physical input speaks K, B; the paper's normalized view stays in the JSON
+    if let (Some(p), true) = (&o.paper, rl.normalized) {
         let n = &p.point;
         println!(
             "normalized  α = {}, β = {}, γ = {}, δ = {}, d = {}",
@@ -298,7 +209,7 @@ fn print_margins(rl: &ResolvedLoop, m: &MarginsReport) {
     }
 }
 
-fn print_alpha_interval(o: &CheckOut) {
+fn print_alpha_interval(o: &CheckAnswer) {
     let Some(p) = &o.paper else { return };
     let beta = sig(p.point.beta, 6);
     match p.alpha_interval {
@@ -312,7 +223,7 @@ fn print_alpha_interval(o: &CheckOut) {
     }
 }
 
-fn print_k_interval(w: Wall, o: &CheckOut) {
+fn print_k_interval(w: Wall, o: &CheckAnswer) {
     let b = eng(w.damping, "Ns/m", 6);
     let linear = o
         .paper

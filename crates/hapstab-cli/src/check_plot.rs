@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use hapstab::AffineFamily;
+use hapstab::System;
 use hapstab::region::StableRegion;
 use num_complex::Complex64;
 
@@ -37,14 +37,9 @@ pub struct CheckFigure<'a> {
 }
 
 /// Writes the four panels (module doc) to the file(s) that `path` names.
-pub fn save(
-    rl: &ResolvedLoop,
-    fam: &AffineFamily,
-    c: &CheckFigure,
-    path: &Path,
-) -> Result<Vec<PathBuf>> {
-    let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
-    let plane = wall_plot::plane(rl, fam);
+pub fn save(rl: &ResolvedLoop, sys: &System, c: &CheckFigure, path: &Path) -> Result<Vec<PathBuf>> {
+    let r = sys.region()?;
+    let plane = wall_plot::plane(rl, sys.family());
     let at = plane.point(c.wall.0, c.wall.1);
     let title = format!("Check of the wall {}: {}", plane.describe(at), c.verdict);
     let mut g = Grid::new(title, 2)

@@ -8,7 +8,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hapstab::AffineFamily;
 use hapstab::freqresp::{Closest, FrequencyResponse, Mark, frequency_response};
 use hapstab::margins::CrossingKind;
 use hapstab::params::Wall;
@@ -105,10 +104,11 @@ fn run(a: &FreqArgs, kind: Kind) -> Result<()> {
              --period, not --gamma/--delta"
         );
     }
-    let fam = AffineFamily::of_loop(&rl.lp)?;
-    let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
+    let w = resolve_loop_wall(&rl, fam, &a.wall)?;
     let n = fam.degree();
-    let cost = hapstab::limits::check_cost(n, hapstab::limits::core_degree(&fam), true);
+    let cost = hapstab::limits::check_cost(n, hapstab::limits::core_degree(fam), true);
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "the frequency response")?;
     let fr = frequency_response(&rl.lp, w, None)?;
     let mut plot = Vec::new();

@@ -3,7 +3,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use hapstab::AffineFamily;
+use hapstab::System;
 use serde::Serialize;
 
 use crate::model::{LoopArgs, ResolvedLoop, describe_loop};
@@ -118,8 +118,8 @@ struct KmaxOut {
 }
 
 /// The library's answer to the query, with the loop and the query echoed.
-fn answer(rl: &ResolvedLoop, fam: &AffineFamily, query: KmaxQuery) -> Result<KmaxOut> {
-    let answer = kmax_answer(&rl.lp, fam, query)?;
+fn answer(sys: &System, query: KmaxQuery) -> Result<KmaxOut> {
+    let answer = kmax_answer(sys, query)?;
     Ok(KmaxOut {
         wall_damping: answer.input.wall_damping,
         answer,
@@ -131,12 +131,12 @@ fn answer(rl: &ResolvedLoop, fam: &AffineFamily, query: KmaxQuery) -> Result<Kma
 /// and K_max at B = 0.
 fn figure(
     rl: &ResolvedLoop,
-    fam: &AffineFamily,
+    sys: &System,
     out: &KmaxOut,
     band: DampingRange,
 ) -> Result<hapstab_plot::Figure> {
-    let r = hapstab::loop_analysis::region(&rl.lp, fam)?;
-    let plane = wall_plot::plane(rl, fam);
+    let r = sys.region()?;
+    let plane = wall_plot::plane(rl, sys.family());
     let mut fig = wall_plot::region_figure(&plane, &r, "Largest stable stiffness K_max")
         .subtitle(wall_plot::loop_line(rl));
     let mut lines: Vec<f64> = match out.wall_damping {
@@ -285,13 +285,14 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         bail!("kmax works in physical units; for normalized parameters use `hapstab boundary`");
     }
     let query = query(a)?;
-    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
     let n = fam.degree();
     let mut cost = hapstab::limits::interval_cost(n);
     if a.wall_damping.is_none() || a.plot.is_some() {
         cost = cost.then(hapstab::limits::region_cost_of_degree(
             n,
-            hapstab::limits::core_degree(&fam),
+            hapstab::limits::core_degree(fam),
         ));
     }
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "K_max")?;
@@ -299,9 +300,9 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
         lo: 0.0,
         hi: f64::INFINITY,
     });
-    let mut out = answer(&rl, &fam, query)?;
+    let mut out = answer(&sys, query)?;
     if let Some(path) = &a.plot {
-        let fig = figure(&rl, &fam, &out, band)?;
+        let fig = figure(&rl, &sys, &out, band)?;
         out.plot = wall_plot::save(fig, path)?;
     }
     if a.json {

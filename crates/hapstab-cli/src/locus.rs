@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hapstab::AffineFamily;
 use hapstab::locus::{RootLocus, root_locus};
 use num_complex::Complex64;
 use serde::Serialize;
@@ -81,7 +80,8 @@ pub fn run(a: &LocusArgs) -> Result<()> {
     if !b.is_finite() {
         bail!("--wall-damping: wall damping B must be a finite number (got {b})");
     }
-    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
     let n = fam.degree();
     let per = hapstab::limits::roots_cost(n);
     let sweep = hapstab::limits::Cost {

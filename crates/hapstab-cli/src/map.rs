@@ -231,7 +231,8 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
         bail!("K and B axes map a physical loop; with --gamma/--delta grid alpha and beta");
     }
     let rl = a.lp.resolve(false)?;
-    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
     let n = fam.degree();
     let degree = crate::budget::degree_drivers(&a.lp, &rl.lp)
         .into_iter()
@@ -240,11 +241,11 @@ fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     let (flag, value) = degree.unwrap_or(("--delay", "0".into()));
     let (a_lo, b_lo) = fam.to_units(x.range.lo, y.range.lo);
     let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
-    let stable = stable_share(&fam, (a_lo, a_hi), (b_lo, b_hi));
+    let stable = stable_share(fam, (a_lo, a_hi), (b_lo, b_hi));
     check_budget(a, (x, y), n, stable, (flag, &value))?;
     let bar = map_bar(a, x, y, n);
     let m = wall_map_physical(
-        &fam,
+        fam,
         ((x.range.lo, x.range.hi), x.range.n),
         ((y.range.lo, y.range.hi), y.range.n),
         kind,

@@ -4,7 +4,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::model::{Delay, Loop, Plant, PlantModel as LibPlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Device, Effective, Normalized, Physical, Sampling, Wall};
-use hapstab::{AffineFamily, Param};
+use hapstab::{AffineFamily, Param, System};
 use serde::Serialize;
 
 use crate::output::{poly_text, sig};
@@ -452,6 +452,13 @@ pub struct ResolvedLoop {
     pub normalized: bool,
     /// The wall of the --loop file, in the loop's units, when it names one.
     pub wall: Option<Wall>,
+}
+
+impl ResolvedLoop {
+    /// The loop's analysis object (discretized and closed once).
+    pub fn system(&self) -> hapstab::Result<System> {
+        System::of(&self.lp)
+    }
 }
 
 impl LoopArgs {

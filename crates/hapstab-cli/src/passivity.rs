@@ -8,7 +8,7 @@ use crate::passivity_quantized::{
     QuantizationArgs, QuantizedInput, QuantizedOut, quantized_section,
 };
 use clap::Args;
-use hapstab::AffineFamily;
+
 use hapstab::answer::{PassivityAnswer, passivity_answer};
 use hapstab::params::Wall;
 use hapstab::passivity::{DeviceDamping, Passivity, PassivityVerdict};
@@ -48,13 +48,14 @@ struct PassivityOut {
 /// Runs `hapstab passivity`.
 pub fn run(a: &PassivityArgs) -> Result<()> {
     let rl = a.lp.resolve(a.wall.normalized())?;
-    let fam = AffineFamily::of_loop(&rl.lp)?;
-    let w = resolve_loop_wall(&rl, &fam, &a.wall)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
+    let w = resolve_loop_wall(&rl, fam, &a.wall)?;
     let n = fam.degree();
-    let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(&fam))
+    let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(fam))
         .then(hapstab::limits::roots_cost(n));
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "the passive region")?;
-    let (answer, p) = passivity_answer(&rl.lp, &fam, rl.normalized, w)?;
+    let (answer, p) = passivity_answer(&sys, rl.normalized, w)?;
     let quantized = quantized(a, &rl, w, &p)?;
     let out = PassivityOut {
         answer,

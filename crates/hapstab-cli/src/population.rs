@@ -96,7 +96,8 @@ pub fn run(a: &PopulationArgs) -> Result<()> {
             params: a.dists.clone(),
         }
     };
-    let fam = hapstab::AffineFamily::of_loop(&rl.lp)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
     let cost = hapstab::limits::population_cost(fam.degree(), a.samples);
     crate::budget::check_loop(&a.lp, &rl.lp, cost, "the population")?;
     let input = PopulationInput {

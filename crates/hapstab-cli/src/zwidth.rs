@@ -183,8 +183,9 @@ fn check_budget(a: &ZwidthArgs, loops: &[(String, ResolvedLoop)]) -> Result<()> 
     let mut cost = hapstab::limits::Cost::ZERO;
     let mut heaviest = (0, &loops[0].1);
     for (_, rl) in loops {
-        let fam = hapstab::AffineFamily::of_loop(&rl.lp)?;
-        cost = cost.then(hapstab::limits::zwidth_cost(&fam, rows));
+        let sys = rl.system()?;
+        let fam = sys.family();
+        cost = cost.then(hapstab::limits::zwidth_cost(fam, rows));
         if fam.degree() > heaviest.0 {
             heaviest = (fam.degree(), rl);
         }

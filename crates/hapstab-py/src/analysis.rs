@@ -1,11 +1,8 @@
 //! `check` and `region`: the exact analyses of Section V for one loop, through the
-//! library's `loop_analysis` (the same functions the command line calls).
+//! library's `System` (the same methods the command line calls).
 
 use hapstab::AffineFamily;
-use hapstab::boundary::Interval;
-use hapstab::loop_analysis::{
-    analysis, linear_k, pick_interval, region as loop_region, stable_intervals, wall_units,
-};
+use hapstab::answer::check_answer;
 use hapstab::region::{EdgeKind, Polygon, StableRegion};
 use num_complex::Complex64;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
@@ -13,6 +10,7 @@ use pyo3::prelude::*;
 
 use crate::errors::Context;
 use crate::loops::PyLoop;
+use crate::margins::{PyMargins, margins_object};
 use crate::text::num;
 use crate::wall::WallArgs;
 
@@ -44,6 +42,9 @@ pub struct PyCheck {
     pub alpha_linear: Option<f64>,
     /// The paper's loop: linear condition (22), K < (b + B)/(t_d + T/2) in N/m, else None.
     pub k_linear: Option<f64>,
+    /// The wall's margins beside the verdict (as `margins`; none for a wall that is not
+    /// stable).
+    pub margins: Py<PyMargins>,
 }
 
 #[pymethods]
@@ -66,14 +67,6 @@ pub(crate) fn interval_text(iv: Option<(f64, f64)>) -> String {
     })
 }
 
-fn pair(iv: Interval) -> (f64, f64) {
-    (iv.lo, iv.hi)
-}
-
-fn k_pair(fam: &AffineFamily, iv: Interval) -> (f64, f64) {
-    (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0)
-}
-
 /// Is the virtual wall F = K·y + B·v on this loop stable? The closed loop's characteristic
 /// polynomial p(z) = z^k·D(z)·Vd(z) + N(z)·(K·Vd(z) + B·Vn(z)) (eq. 9, generalized; for the
 /// paper's loop p(z) = z^{d+1}D(z) + N(z)((α + β)z − β)) is tested by the Schur–Cohn
@@ -93,36 +86,45 @@ pub fn check(
     py: Python<'_>,
 ) -> PyResult<PyCheck> {
     let lp = &r#loop.lp;
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let args = WallArgs {
         stiffness: wall_stiffness,
         damping: wall_damping,
         alpha,
         beta,
     };
-    let w = args.resolve(r#loop, &fam)?;
-    let (a, b) = wall_units(lp, &fam, w).py()?;
-    let n = fam.degree();
-    let cost = hapstab::limits::check_cost(n, 0, false);
-    crate::budget::check_loop(cost, lp, &fam, "the verdict")?;
-    let analysis = analysis(lp, &fam, (a, b)).py()?;
-    let interval = pick_interval(&stable_intervals(lp, &fam, b).py()?, a);
-    let paper = lp.paper_view();
-    let alpha_linear =
-        paper.map(|pp| hapstab::linear::linear_alpha_limit(b, pp.delta, lp.delay.samples));
+    let w = args.resolve(r#loop, fam)?;
+    let units = sys.wall_units(w).py()?;
+    let stable = sys.decide(units).verdict == hapstab::Verdict::Stable;
+    let core = hapstab::limits::core_degree(fam);
+    let cost = hapstab::limits::check_cost(fam.degree(), core, stable);
+    crate::budget::check_loop(cost, lp, fam, "the verdict and the margins")?;
+    let ans = py
+        .detach(|| check_answer(&sys, r#loop.normalized, w))
+        .py()?;
+    let paper = ans.paper.as_ref();
     Ok(PyCheck {
-        stable: analysis.stable(),
-        verdict: analysis.verdict.as_str().into(),
-        spectral_radius: analysis.spectral_radius,
-        roots: PyArray1::from_vec(py, analysis.roots).unbind(),
+        stable: ans.stable,
+        verdict: ans.verdict.into(),
+        spectral_radius: ans.spectral_radius,
         wall_stiffness: w.stiffness,
         wall_damping: w.damping,
-        k_interval: interval.map(|iv| k_pair(&fam, iv)),
-        alpha: paper.map(|_| a),
-        beta: paper.map(|_| b),
-        alpha_interval: paper.and(interval.map(pair)),
-        alpha_linear,
-        k_linear: linear_k(lp, w.damping),
+        // a normalized loop has m = T = 1: K = α, its interval the α interval
+        k_interval: match ans.k_interval {
+            Some(k) => k,
+            None => paper.and_then(|p| p.alpha_interval),
+        }
+        .map(|[lo, hi]| (lo, hi)),
+        alpha: paper.map(|p| p.point.alpha),
+        beta: paper.map(|p| p.point.beta),
+        alpha_interval: paper
+            .and_then(|p| p.alpha_interval)
+            .map(|[lo, hi]| (lo, hi)),
+        alpha_linear: paper.map(|p| p.alpha_linear),
+        k_linear: paper.and_then(|p| p.k_linear),
+        margins: Py::new(py, margins_object(ans.stable, ans.margins))?,
+        roots: PyArray1::from_vec(py, ans.roots).unbind(),
     })
 }
 
@@ -298,11 +300,12 @@ fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResu
 #[pyfunction]
 #[pyo3(signature = (r#loop))]
 pub fn region(r#loop: &PyLoop, py: Python<'_>) -> PyResult<PyRegion> {
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let lp = &r#loop.lp;
     let cost =
-        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(&fam));
-    crate::budget::check_loop(cost, lp, &fam, "the exact region")?;
-    let r = py.detach(|| loop_region(lp, &fam)).py()?;
-    region_object(py, &fam, &r)
+        hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(fam));
+    crate::budget::check_loop(cost, lp, fam, "the exact region")?;
+    let r = py.detach(|| sys.region()).py()?;
+    region_object(py, fam, &r)
 }

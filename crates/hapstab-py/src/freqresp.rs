@@ -129,7 +129,7 @@ fn response_object(py: Python<'_>, fr: FrequencyResponse) -> PyResult<PyFrequenc
         closest: fr
             .closest
             .map(|c| (c.distance, c.frequency_hz, Complex64::new(c.re, c.im))),
-        margins: Py::new(py, margins_object(fr.margins))?,
+        margins: Py::new(py, margins_object(fr.margins.stable, (&fr.margins).into()))?,
     })
 }
 
@@ -161,19 +161,20 @@ pub fn frequency_response(
         ));
     }
     let lp = &r#loop.lp;
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let w = WallArgs {
         stiffness: wall_stiffness,
         damping: wall_damping,
         alpha,
         beta,
     }
-    .resolve(r#loop, &fam)?;
+    .resolve(r#loop, fam)?;
     let n = fam.degree();
     check_loop(
-        check_cost(n, core_degree(&fam), true),
+        check_cost(n, core_degree(fam), true),
         lp,
-        &fam,
+        fam,
         "the frequency response",
     )?;
     let omega: Option<Vec<f64>> = match omega {

@@ -194,15 +194,15 @@ pub fn kmax(
         position_resolution,
         force_noise,
     )?;
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let n = fam.degree();
     let cost = match q {
         KmaxQuery::AtDamping(_) => hapstab::limits::interval_cost(n),
-        _ => hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(&fam)),
+        _ => hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(fam)),
     };
-    crate::budget::check_loop(cost, &r#loop.lp, &fam, "K_max")?;
-    let lp = &r#loop.lp;
-    let report = py.detach(|| hapstab::kmax::kmax(lp, &fam, q)).py()?;
+    crate::budget::check_loop(cost, &r#loop.lp, fam, "K_max")?;
+    let report = py.detach(|| hapstab::kmax::kmax(&sys, q)).py()?;
     let given_b = match q {
         KmaxQuery::AtDamping(b) => Some(b),
         _ => None,

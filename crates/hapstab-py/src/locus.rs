@@ -93,7 +93,8 @@ pub fn root_locus(
     }
     let b = finite("wall_damping", wall_damping)?;
     let lp = &r#loop.lp;
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let n = fam.degree();
     let samples = match wall_stiffness {
         Some(x) => shape_of(x)?.iter().product(),
@@ -112,7 +113,7 @@ pub fn root_locus(
             "the root locus",
             "give fewer stiffnesses",
         )?,
-        None => check_loop(cost, lp, &fam, "the root locus")?,
+        None => check_loop(cost, lp, fam, "the root locus")?,
     }
     let ks: Option<Vec<f64>> = wall_stiffness
         .map(|x| x.extract().map_err(|e| bad("wall_stiffness", e)))

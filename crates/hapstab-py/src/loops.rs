@@ -5,7 +5,7 @@
 use hapstab::Param;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass};
 use hapstab::params::{Arm, Device, Effective};
-use hapstab::{AffineFamily, PlantParams, VelocityEstimator};
+use hapstab::{PlantParams, System, VelocityEstimator};
 use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -630,7 +630,7 @@ impl PyLoop {
     /// (N/m per unit α, Ns/m per unit β) = (m/T², m/T): the wall's normalized units.
     #[getter]
     fn wall_scale(&self) -> PyResult<(f64, f64)> {
-        let s = self.family()?.scale;
+        let s = self.system()?.family().scale;
         Ok((s.stiffness, s.damping))
     }
 
@@ -656,8 +656,8 @@ impl PyLoop {
 }
 
 impl PyLoop {
-    /// The loop's affine family p(z) = P0 + a·PK + b·PB (eq. 9, generalized).
-    pub fn family(&self) -> PyResult<AffineFamily> {
-        AffineFamily::of_loop(&self.lp).py()
+    /// The loop's analysis object: discretized and closed once ([`System`]).
+    pub fn system(&self) -> PyResult<System> {
+        System::of(&self.lp).py()
     }
 }

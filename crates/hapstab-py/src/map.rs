@@ -84,7 +84,8 @@ pub fn stability_map<'py>(
     spectral_radius: bool,
     grid: Option<bool>,
 ) -> PyResult<PyStabilityMap> {
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let kind = if spectral_radius {
         MapKind::SpectralRadius
     } else {
@@ -103,7 +104,7 @@ pub fn stability_map<'py>(
     } else {
         16.0 * shape.iter().map(|&n| n as f64).product::<f64>()
     };
-    check_budget(&r#loop.lp, &fam, &shape, spectral_radius, inputs)?;
+    check_budget(&r#loop.lp, fam, &shape, spectral_radius, inputs)?;
     let extract = |x: &Bound<'py, PyAny>, kw: &str| {
         x.extract::<PyArrayLikeDyn<'py, f64, AllowTypeChange>>()
             .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("{kw}: {e}")))
@@ -113,9 +114,9 @@ pub fn stability_map<'py>(
     let a = in_units(&k, fam.scale.stiffness);
     let b = in_units(&b_in, fam.scale.damping);
     let values = if as_grid {
-        py.detach(|| wall_map_values(&fam, &a, &b, kind))
+        py.detach(|| wall_map_values(fam, &a, &b, kind))
     } else {
-        py.detach(|| wall_map_points(&fam, &a, &b, kind))
+        py.detach(|| wall_map_points(fam, &a, &b, kind))
     };
     let values = values.py()?;
     let copy = |x: &PyArrayLikeDyn<'py, f64, AllowTypeChange>| {

@@ -2,9 +2,8 @@
 //! library calls of the command line's `hapstab check` (the same verdict, then
 //! `hapstab::margins::margins_beside_verdict`): no margin for a wall that is not stable.
 
-use hapstab::loop_analysis::{analysis, wall_units};
 use hapstab::margins::report::MarginsReport;
-use hapstab::margins::{CrossingKind, Margins, margins_beside_verdict};
+use hapstab::margins::{CrossingKind, margins_beside_verdict};
 use pyo3::prelude::*;
 
 use crate::errors::Context;
@@ -80,13 +79,12 @@ impl PyMargins {
     }
 }
 
-/// The library's margins as the Python object.
 /// The Python object of the margins: the report every front end gives
-/// ([`MarginsReport`], `hapstab check --json`'s keys), crossings as (kind, Hz, value).
-pub(crate) fn margins_object(m: Margins) -> PyMargins {
-    let r = MarginsReport::from(&m);
+/// ([`MarginsReport`], `hapstab check --json`'s keys) beside the wall's verdict, crossings
+/// as (kind, Hz, value).
+pub(crate) fn margins_object(stable: bool, r: MarginsReport) -> PyMargins {
     PyMargins {
-        stable: m.stable,
+        stable,
         gain_margin: r.gain_margin,
         gain_margin_lower: r.gain_margin_lower,
         phase_crossover_hz: r.phase_crossover_hz,
@@ -130,21 +128,21 @@ pub fn margins(
     py: Python<'_>,
 ) -> PyResult<PyMargins> {
     let lp = &r#loop.lp;
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let args = WallArgs {
         stiffness: wall_stiffness,
         damping: wall_damping,
         alpha,
         beta,
     };
-    let w = args.resolve(r#loop, &fam)?;
-    let core = hapstab::limits::core_degree(&fam);
+    let w = args.resolve(r#loop, fam)?;
+    let core = hapstab::limits::core_degree(fam);
     let cost = hapstab::limits::margins_cost(fam.degree(), core);
-    crate::budget::check_loop(cost, lp, &fam, "the margins")?;
-    let units = wall_units(lp, &fam, w).py()?;
-    let verdict_stable = analysis(lp, &fam, units).py()?.stable();
+    crate::budget::check_loop(cost, lp, fam, "the margins")?;
+    let verdict_stable = sys.decide(sys.wall_units(w).py()?).verdict == hapstab::Verdict::Stable;
     let m = py
         .detach(|| margins_beside_verdict(lp, w, verdict_stable))
         .py()?;
-    Ok(margins_object(m))
+    Ok(margins_object(m.stable, MarginsReport::from(&m)))
 }

@@ -2,7 +2,6 @@
 //! for the paper's loop, Section VIII), the verdict for the device and its passive region,
 //! through the library calls of the command line's `hapstab passivity`.
 
-use hapstab::loop_analysis::{analysis, wall_units};
 use hapstab::model::Loop;
 use hapstab::params::Wall;
 use hapstab::passivity::{
@@ -232,21 +231,21 @@ pub fn passivity(
     device_damping: Option<f64>,
     py: Python<'_>,
 ) -> PyResult<PyPassivity> {
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let n = fam.degree();
-    let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(&fam))
+    let cost = hapstab::limits::passivity_cost(n, hapstab::limits::core_degree(fam))
         .then(hapstab::limits::roots_cost(n));
-    crate::budget::check_loop(cost, &r#loop.lp, &fam, "the passive region")?;
+    crate::budget::check_loop(cost, &r#loop.lp, fam, "the passive region")?;
     let args = WallArgs {
         stiffness: wall_stiffness,
         damping: wall_damping,
         alpha,
         beta,
     };
-    let w = args.resolve(r#loop, &fam)?;
+    let w = args.resolve(r#loop, fam)?;
     let device = device_of(r#loop, device_damping)?;
-    let units = wall_units(&r#loop.lp, &fam, w).py()?;
-    let stable = analysis(&r#loop.lp, &fam, units).py()?.stable();
+    let stable = sys.decide(sys.wall_units(w).py()?).verdict == hapstab::Verdict::Stable;
     let (p, region) = py.detach(|| compute(&r#loop.lp, w, device)).py()?;
     passivity_object(py, &p, stable, region.as_ref())
 }

@@ -57,7 +57,7 @@ macro_rules! results {
 
 results! {
     "Check" => PyCheck { stable, verdict, spectral_radius, roots, wall_stiffness, wall_damping,
-        k_interval, alpha, beta, alpha_interval, alpha_linear, k_linear },
+        k_interval, alpha, beta, alpha_interval, alpha_linear, k_linear, margins },
     "Edge" => PyEdge { start, stop, kind, theta_start, theta_end },
     "Region" => PyRegion { polygons, polygons_normalized, thetas, edges, k_max, b_at_k_max,
         k_max_attained, b_stable_near_k_max, k_stable_near_k_max, alpha_max, beta_at_alpha_max,

@@ -140,9 +140,10 @@ pub fn stability_probability(
 ) -> PyResult<Py<PyAny>> {
     let pop = population(distributions)?;
     let b = finite("wall_damping", wall_damping)?;
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let cost = hapstab::limits::population_cost(fam.degree(), samples);
-    crate::budget::check_loop(cost, &r#loop.lp, &fam, "the population")?;
+    crate::budget::check_loop(cost, &r#loop.lp, fam, "the population")?;
     let lp = &r#loop.lp;
     // a drawn value that a loop refuses comes from the distributions
     let own = swept("distributions");

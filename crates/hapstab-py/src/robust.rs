@@ -112,11 +112,12 @@ pub fn robust_kmax(
         verify,
         seed,
     };
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let lp = &r#loop.lp;
     let n = hapstab::robust::box_degree(lp, &sides).py_with(&swept("bounds"))?;
     let cost = hapstab::limits::robust_box_cost(n, sides.len(), &opts);
-    crate::budget::check_loop(cost, lp, &fam, "the robust K_max")?;
+    crate::budget::check_loop(cost, lp, fam, "the robust K_max")?;
     let r = py
         .detach(|| hapstab::robust::robust_kmax(lp, &sides, b, &opts))
         .py_with(&swept("bounds"))?;

@@ -296,14 +296,15 @@ pub fn simulate(
     saturation: Option<f64>,
     trace_rows: usize,
 ) -> PyResult<PySimulation> {
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let args = WallArgs {
         stiffness: wall_stiffness,
         damping: wall_damping,
         alpha,
         beta,
     };
-    let w = args.resolve(r#loop, &fam)?;
+    let w = args.resolve(r#loop, fam)?;
     let model = sim_model(&r#loop.lp, w)?;
     let period = r#loop.lp.period;
     let n =
@@ -315,7 +316,7 @@ pub fn simulate(
     )?
     .unwrap_or(n.max(DEFAULT_MAX_SAMPLES));
     check_budget(
-        &fam,
+        fam,
         (n, horizon),
         trace_rows,
         duration.is_some(),

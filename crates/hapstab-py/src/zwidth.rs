@@ -79,12 +79,13 @@ pub fn zwidth(
             finite("table_damping", b)?;
         }
     }
-    let fam = r#loop.family()?;
+    let sys = r#loop.system()?;
+    let fam = sys.family();
     let rows = table_damping.as_ref().map_or(8, Vec::len);
     crate::budget::check_loop(
-        hapstab::limits::zwidth_cost(&fam, rows),
+        hapstab::limits::zwidth_cost(fam, rows),
         &r#loop.lp,
-        &fam,
+        fam,
         "the Z-width",
     )?;
     let lp = &r#loop.lp;

@@ -8,7 +8,7 @@ use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use hapstab::params::{Arm, Device, Effective, PlantParams, Sampling};
-use hapstab::{AffineFamily, Delay, Loop, Param, Plant, PlantModel, TwoMass, VelocityEstimator};
+use hapstab::{Delay, Loop, Param, Plant, PlantModel, System, TwoMass, VelocityEstimator};
 use serde::Serialize;
 
 use crate::limits::{
@@ -347,14 +347,7 @@ pub struct PlantSpec {
     pub plant: PlantParams,
     pub d: usize,
     pub physical: Option<PhysicalSpec>,
-    pub general: Option<GeneralLoop>,
-}
-
-/// A loop beyond the paper's and its affine family p = P0 + a·PK + b·PB.
-#[derive(Debug, Clone)]
-pub struct GeneralLoop {
-    pub lp: Loop,
-    pub family: AffineFamily,
+    pub general: Option<System>,
 }
 
 impl PlantSpec {
@@ -362,7 +355,7 @@ impl PlantSpec {
     /// d of a paper loop of the same degree of p(z) (degree d + 3).
     pub fn cost_d(&self) -> usize {
         match &self.general {
-            Some(g) => g.family.degree().saturating_sub(3),
+            Some(g) => g.family().degree().saturating_sub(3),
             None => self.d,
         }
     }
@@ -720,13 +713,14 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     };
     let delay = general_delay(p, period)?;
     let lp = Loop::new(plant, period, delay, velocity).map_err(lib_error)?;
-    let family = AffineFamily::of_loop(&lp).map_err(lib_error)?;
-    Ok(general_plant_spec(lp, family))
+    let sys = System::new(lp).map_err(lib_error)?;
+    Ok(general_plant_spec(sys))
 }
 
 /// The [`PlantSpec`] of a general loop: its units for the page (K = a·k_per_alpha, B =
 /// b·b_per_beta) and its static stiffness.
-fn general_plant_spec(lp: Loop, family: AffineFamily) -> PlantSpec {
+fn general_plant_spec(sys: System) -> PlantSpec {
+    let lp = sys.lp();
     let (dev, arm_, eff) = match &lp.plant.model {
         PlantModel::MassSpringDamper(e) => {
             let arm = lp.plant.operator.unwrap_or(Arm::NONE);
@@ -739,7 +733,7 @@ fn general_plant_spec(lp: Loop, family: AffineFamily) -> PlantSpec {
         PlantModel::TwoMass(t) => (NO_DEVICE, t.arm, None),
         PlantModel::TransferFunction { .. } => (NO_DEVICE, Arm::NONE, None),
     };
-    let s = family.scale;
+    let s = sys.family().scale;
     let static_k = lp.plant.dc_stiffness().unwrap_or(0.0);
     let physical = PhysicalSpec {
         device_mass: dev.mass,
@@ -762,7 +756,7 @@ fn general_plant_spec(lp: Loop, family: AffineFamily) -> PlantSpec {
         },
         d: lp.delay.samples,
         physical: Some(physical),
-        general: Some(GeneralLoop { lp, family }),
+        general: Some(sys),
     }
 }
 

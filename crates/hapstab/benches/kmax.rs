@@ -53,18 +53,18 @@ fn bench_kmax(c: &mut Criterion) {
         });
         g.bench_with_input(BenchmarkId::new("query_at_damping", d), &lp, |bch, lp| {
             bch.iter(|| {
-                let fam = AffineFamily::of_loop(black_box(lp)).expect("family");
-                black_box(kmax(lp, &fam, KmaxQuery::AtDamping(5.0)).expect("kmax"))
+                let sys = hapstab::System::of(black_box(lp)).expect("system");
+                black_box(kmax(&sys, KmaxQuery::AtDamping(5.0)).expect("kmax"))
             })
         });
         g.bench_with_input(BenchmarkId::new("query_band", d), &lp, |bch, lp| {
             bch.iter(|| {
-                let fam = AffineFamily::of_loop(black_box(lp)).expect("family");
+                let sys = hapstab::System::of(black_box(lp)).expect("system");
                 let q = KmaxQuery::Band {
                     lo: 0.0,
                     hi: f64::INFINITY,
                 };
-                black_box(kmax(lp, &fam, q).expect("kmax"))
+                black_box(kmax(&sys, q).expect("kmax"))
             })
         });
     }

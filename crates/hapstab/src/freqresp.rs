@@ -22,12 +22,13 @@ use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
-use crate::loop_analysis::{analysis, wall_units};
 use crate::margins::frequency::{frequency_grid, loop_value, stability_margin};
 use crate::margins::{CrossingKind, Margins, margins_beside_verdict};
 use crate::model::Loop;
 use crate::param::Param;
 use crate::params::Wall;
+use crate::stability::Verdict;
+use crate::system::System;
 
 /// Log-spaced samples per decade of the default grid.
 pub const POINTS_PER_DECADE: usize = 200;
@@ -114,21 +115,18 @@ pub fn frequency_response(
     if let Some(w) = omega {
         check_omega(w)?;
     }
-    let fam = AffineFamily::of_loop(lp)?;
-    let units = wall_units(lp, &fam, wall)?;
-    let stable = analysis(lp, &fam, units)?.stable();
+    let sys = System::of(lp)?;
+    let fam = sys.family();
+    let stable = sys.decide(sys.wall_units(wall)?).verdict == Verdict::Stable;
     let margins = margins_beside_verdict(lp, wall, stable)?;
     let (a, b) = fam.to_units(wall.stiffness, wall.damping);
     let t = lp.period;
-    let (sm, sm_theta) = stability_margin(&fam, a, b);
+    let (sm, sm_theta) = stability_margin(fam, a, b);
     let thetas: Vec<f64> = match omega {
         Some(w) => w.iter().map(|w| w * t).collect(),
-        None => default_grid(&fam, a, b, &margins, sm_theta),
+        None => default_grid(fam, a, b, &margins, sm_theta),
     };
-    let values: Vec<Complex64> = thetas
-        .iter()
-        .map(|&th| loop_value(&fam, a, b, th))
-        .collect();
+    let values: Vec<Complex64> = thetas.iter().map(|&th| loop_value(fam, a, b, th)).collect();
     let phase_deg = unwrap_degrees(values.iter().map(|l| l.arg().to_degrees()));
     let hz = |th: f64| th / (2.0 * PI * t);
     let marks = margins
@@ -136,7 +134,7 @@ pub fn frequency_response(
         .iter()
         .filter(|c| c.theta > 0.0 && c.theta < PI)
         .map(|c| {
-            let l = loop_value(&fam, a, b, c.theta);
+            let l = loop_value(fam, a, b, c.theta);
             Mark {
                 kind: c.kind,
                 omega: c.theta / t,
@@ -154,7 +152,7 @@ pub fn frequency_response(
         })
         .collect();
     let closest = sm.is_finite().then(|| {
-        let l = loop_value(&fam, a, b, sm_theta);
+        let l = loop_value(fam, a, b, sm_theta);
         Closest {
             distance: sm,
             omega: sm_theta / t,

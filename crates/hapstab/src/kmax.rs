@@ -17,12 +17,11 @@
 use serde::Serialize;
 
 use crate::boundary::Interval;
-use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
-use crate::loop_analysis::{damping_units, k_max_at_damping, k_max_within, linear_k};
 use crate::model::Loop;
 use crate::param::Param;
 use crate::region::ConfirmedMax;
+use crate::system::System;
 
 /// Default position resolution Δ at the handle, in m (10 µm: a desktop haptic device's
 /// encoder step referred to the handle).
@@ -196,16 +195,13 @@ pub fn velocity_noise_gain(lp: &Loop) -> Option<f64> {
 
 /// The renderable band 0 ≤ B ≤ F_n·√12/(Δ·‖V‖₂) of a loop (see the module's doc) and
 /// K_max over it; None when the estimator's noise gain is unbounded.
-pub fn renderable_band(
-    lp: &Loop,
-    fam: &AffineFamily,
-    noise: NoiseModel,
-) -> Result<Option<RenderableBand>> {
-    let Some(gain) = velocity_noise_gain(lp) else {
+pub fn renderable_band(sys: &System, noise: NoiseModel) -> Result<Option<RenderableBand>> {
+    let fam = sys.family();
+    let Some(gain) = velocity_noise_gain(sys.lp()) else {
         return Ok(None);
     };
     let b_max = noise.force_noise * 12f64.sqrt() / (noise.position_resolution * gain);
-    let best = k_max_within(lp, fam, 0.0, damping_units(lp, fam, b_max)?)?;
+    let best = sys.k_max_within(0.0, sys.damping_units(b_max)?)?;
     let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
     Ok(Some(RenderableBand {
         noise,
@@ -220,13 +216,13 @@ pub fn renderable_band(
 /// K_max of a loop for a query (Section V: the stable stiffness intervals at a damping, or
 /// the stable region's largest stiffness within a damping band), with K_max at B = 0 beside
 /// a band and the linear condition (22) beside both for the paper's loop.
-pub fn kmax(lp: &Loop, fam: &AffineFamily, query: KmaxQuery) -> Result<KmaxReport> {
+pub fn kmax(sys: &System, query: KmaxQuery) -> Result<KmaxReport> {
     match query {
-        KmaxQuery::AtDamping(b) => at_damping(lp, fam, b),
-        KmaxQuery::Band { lo, hi } => within(lp, fam, lo, hi),
+        KmaxQuery::AtDamping(b) => at_damping(sys, b),
+        KmaxQuery::Band { lo, hi } => within(sys, lo, hi),
         KmaxQuery::Design(noise) => {
-            let mut report = within(lp, fam, 0.0, f64::INFINITY)?;
-            report.renderable = renderable_band(lp, fam, noise)?;
+            let mut report = within(sys, 0.0, f64::INFINITY)?;
+            report.renderable = renderable_band(sys, noise)?;
             Ok(report)
         }
     }
@@ -243,9 +239,10 @@ fn finite_damping(b: f64) -> Result<f64> {
     }
 }
 
-fn at_damping(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<KmaxReport> {
-    let bu = damping_units(lp, fam, finite_damping(b)?)?;
-    let best: Option<Interval> = k_max_at_damping(lp, fam, bu)?;
+fn at_damping(sys: &System, b: f64) -> Result<KmaxReport> {
+    let fam = sys.family();
+    let bu = sys.damping_units(finite_damping(b)?)?;
+    let best: Option<Interval> = sys.k_max_at_damping(bu);
     let k = |a: f64| fam.to_physical(a, 0.0).0;
     Ok(KmaxReport {
         k_max: best.map(|i| k(i.hi)),
@@ -255,24 +252,25 @@ fn at_damping(lp: &Loop, fam: &AffineFamily, b: f64) -> Result<KmaxReport> {
         k_stable_near_k_max: None,
         k_max_at_zero_damping: None,
         k_interval: best.map(|i| [k(i.lo), k(i.hi)]),
-        k_linear: linear_k(lp, b),
+        k_linear: sys.linear_k(b),
         renderable: None,
         k_max_units: best.map(|i| i.hi),
         b_units: best.map(|_| bu),
     })
 }
 
-fn within(lp: &Loop, fam: &AffineFamily, lo: f64, hi: f64) -> Result<KmaxReport> {
+fn within(sys: &System, lo: f64, hi: f64) -> Result<KmaxReport> {
+    let fam = sys.family();
     let units = |b: f64| -> Result<f64> {
         if b.is_finite() {
-            damping_units(lp, fam, b)
+            sys.damping_units(b)
         } else {
             Ok(b)
         }
     };
-    let best: Option<ConfirmedMax> = k_max_within(lp, fam, units(lo)?, units(hi)?)?;
+    let best: Option<ConfirmedMax> = sys.k_max_within(units(lo)?, units(hi)?)?;
     let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
-    let at_zero = k_max_at_damping(lp, fam, 0.0)?;
+    let at_zero = sys.k_max_at_damping(0.0);
     let supremum = best.filter(|p| !p.attained);
     Ok(KmaxReport {
         k_max: phys.map(|p| p.0),
@@ -282,7 +280,7 @@ fn within(lp: &Loop, fam: &AffineFamily, lo: f64, hi: f64) -> Result<KmaxReport>
         k_stable_near_k_max: supremum.map(|p| fam.to_physical(p.alpha_stable, 0.0).0),
         k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
         k_interval: None,
-        k_linear: phys.and_then(|p| linear_k(lp, p.1)),
+        k_linear: phys.and_then(|p| sys.linear_k(p.1)),
         renderable: None,
         k_max_units: best.map(|p| p.alpha),
         b_units: best.map(|p| p.beta),

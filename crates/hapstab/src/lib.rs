@@ -4,34 +4,51 @@
 //! held by a human operator, after Hulin, Preusche and Hirzinger, "Stability Boundary for
 //! Haptic Rendering: Influence of Human Operator" (IROS 2008).
 //!
-//! Modules follow the paper:
+//! A loop is described once ([`loop_spec::LoopSpec`]: plant, period, delay, velocity
+//! estimator, the defaults in one place; the form of a loop file), resolved to a validated
+//! [`Loop`], and analysed through one object, [`System`] (the loop with its closed-loop
+//! family p(z) = P0 + K·PK + B·PB, built once): the verdict at a wall, the stable stiffness
+//! intervals, the stable region, K_max, margins, passivity, the frequency response and the
+//! root locus. The answers every front end prints are the serde types of [`answer`].
+//!
+//! ```
+//! use hapstab::kmax::{KmaxQuery, kmax};
+//! use hapstab::loop_spec::LoopSpec;
+//! use hapstab::{System, Verdict, Wall};
+//! // the default loop: the default device held by the typical arm, T = 1 ms, no delay
+//! let sys = System::new(LoopSpec::default().resolve()?)?;
+//! let wall = Wall { stiffness: 2000.0, damping: 5.0 };
+//! assert_eq!(sys.decide(sys.wall_units(wall)?).verdict, Verdict::Stable);
+//! // the largest stable stiffness at B = 5 Ns/m lies above it
+//! let k_max = kmax(&sys, KmaxQuery::AtDamping(5.0))?.k_max.unwrap();
+//! assert!(k_max > 2000.0);
+//! # Ok::<(), hapstab::Error>(())
+//! ```
+//!
+//! The modules, beside the paper (its normalized view α = KT²/m, β = BT/m, γ, δ, d of
+//! Table I is a change of units on the same family):
 //!
 //! | module | paper |
 //! |---|---|
+//! | [`loop_spec`], [`model`] | the loop a user describes, and its validated form |
+//! | [`system`] | the analysis object: one loop, its family, every question about a wall |
 //! | [`params`] | Section II, eq. (1), Table I |
 //! | [`plant`] | Section III, eq. (2)–(6), (10) |
 //! | [`closed_loop`] | eq. (7)–(9) |
-//! | [`stability`] | Section V (roots inside the unit circle) |
+//! | [`verdict`], [`stability`] | Section V (roots inside the unit circle) |
 //! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |
 //! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
 //! | [`passivity`] | Section VIII, eq. (28), for any loop (Colgate & Schenkel 1997) |
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
 //! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
 //! | [`kmax`] | Section V: K_max at a damping, over a band, and over the renderable band |
-//! | [`answer`] | the answers of K_max, sweep, Z-width, map and passivity with their inputs, as every front end writes them |
+//! | [`answer`] | the answers of check, K_max, sweep, Z-width, map and passivity with their inputs, as every front end writes them |
 //! | [`population`] | beyond the paper: P(stable) over a population of operators |
 //! | [`robust`] | beyond the paper: robust K_max of any loop over a box of its parameters |
 //! | [`locus`] | the root locus in K at a fixed B, crossing the unit circle at K_max |
 //! | [`zwidth`] | Z-width of a device (Colgate & Brown 1994) |
 //! | [`sweep`] | K_max against a parameter of the loop |
 //! | [`identify`] | beyond the paper: the plant from a recording of force and position, with its uncertainty |
-//!
-//! ```
-//! use hapstab::{Normalized, Analysis, Verdict};
-//! // Pure mass, no delay: (α, β) = (0.1, 0.5) lies inside α < 2β(2 − β)/(2 + β).
-//! let a = Analysis::new(Normalized::new(0.1, 0.5, 0.0, 0.0, 0).unwrap()).unwrap();
-//! assert_eq!(a.verdict, Verdict::Stable);
-//! ```
 
 #![deny(missing_docs)]
 
@@ -54,7 +71,6 @@ pub mod limits;
 pub mod line_decomposition;
 pub mod linear;
 pub mod locus;
-pub mod loop_analysis;
 pub mod loop_spec;
 pub mod lowpass_design;
 pub mod map;
@@ -81,6 +97,7 @@ mod splitmix;
 pub mod stability;
 
 pub mod sweep;
+pub mod system;
 pub mod verdict;
 pub mod zoh;
 pub mod zwidth;
@@ -93,5 +110,6 @@ pub use params::{Arm, Device, Effective, Normalized, Physical, PlantParams, Samp
 pub use plant::DiscretePlant;
 pub use schur_cohn::schur_stable;
 pub use stability::{Analysis, is_stable};
+pub use system::System;
 pub use verdict::{Basis, Decision, MARGINAL_BAND, Verdict, decide};
 pub use zoh::{DiscreteLoop, DiscreteTf, WallScale};

@@ -1,10 +1,10 @@
 //! The root locus in the virtual stiffness K at a fixed virtual damping B: the roots of the
 //! characteristic polynomial p(z) = P0 + a·PK + b·PB (eq. 9, generalized; through the
-//! paper's family for the paper's loop, [`crate::loop_analysis::characteristic`]) as K sweeps
+//! paper's family for the paper's loop, [`crate::system::System::characteristic`]) as K sweeps
 //! from 0 to beyond K_max, with the unit circle as the stability boundary (Section V).
 //!
 //! The ends of the stable K interval at B are the engine's exact ones
-//! ([`crate::loop_analysis::k_max_at_damping`], Section V's D-decomposition), and the sweep
+//! ([`crate::system::System::k_max_at_damping`], Section V's D-decomposition), and the sweep
 //! holds them exactly: at the sample K = K_max a root lies on the unit circle (to the
 //! accuracy of the roots, about 1e-12 for a simple root). The default sweep is
 //! [`DEFAULT_SAMPLES`] uniform stiffnesses from 0 to [`OVERSHOOT`]·K_max with both interval
@@ -15,12 +15,11 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
-use crate::loop_analysis::{characteristic, damping_units, k_max_at_damping};
 use crate::model::Loop;
 use crate::param::Param;
 use crate::stability::roots;
+use crate::system::System;
 
 /// Uniform samples of the default sweep.
 pub const DEFAULT_SAMPLES: usize = 400;
@@ -67,9 +66,10 @@ pub fn root_locus(lp: &Loop, damping: f64, stiffness: Option<&[f64]>) -> Result<
     if let Some(ks) = stiffness {
         check_stiffness(ks)?;
     }
-    let fam = AffineFamily::of_loop(lp)?;
-    let bu = damping_units(lp, &fam, damping)?;
-    let iv = k_max_at_damping(lp, &fam, bu)?.filter(|iv| iv.hi.is_finite());
+    let sys = System::of(lp)?;
+    let fam = sys.family();
+    let bu = sys.damping_units(damping)?;
+    let iv = sys.k_max_at_damping(bu).filter(|iv| iv.hi.is_finite());
     let phys = |a: f64| fam.to_physical(a, 0.0).0;
     // The sweep in wall units: the interval ends exactly as the engine gives them.
     let (units, k_max_index) = match stiffness {
@@ -90,7 +90,7 @@ pub fn root_locus(lp: &Loop, damping: f64, stiffness: Option<&[f64]>) -> Result<
     };
     let mut all: Vec<Vec<Complex64>> = Vec::with_capacity(units.len());
     for &a in &units {
-        let mut r = roots(&characteristic(lp, &fam, (a, bu))?)?;
+        let mut r = roots(&sys.characteristic((a, bu)))?;
         if let Some(prev) = all.last() {
             track(prev, &mut r);
         }

@@ -18,7 +18,6 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::AffineFamily;
 use crate::error::{Error, Result};
 use crate::kmax::{KmaxQuery, kmax};
 use crate::model::Loop;
@@ -26,6 +25,7 @@ use crate::param::Param;
 use crate::ranges::RatioLimits;
 use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
+use crate::system::System;
 
 /// The default range of the arm mass m_H in kg (the typical arm's 1 kg within it).
 pub const DEFAULT_ARM_MASS: [f64; 2] = [0.5, 2.0];
@@ -208,9 +208,8 @@ pub fn wall_probability(
         .par_iter()
         .map(|v| -> Result<bool> {
             let l = loop_of(lp, &params, v)?;
-            let fam = AffineFamily::of_loop(&l)?;
-            let (a, b) = crate::loop_analysis::wall_units(&l, &fam, wall)?;
-            let d = crate::verdict::decide(&fam, a, b, &mut fam.coefficients(a, b));
+            let sys = System::new(l)?;
+            let d = sys.decide(sys.wall_units(wall)?);
             Ok(d.verdict == crate::verdict::Verdict::Stable)
         })
         .collect::<Result<_>>()?;
@@ -308,8 +307,7 @@ fn applies(lp: &Loop, pop: &Population, params: &[SweepParam], seed: u64) -> Res
 /// One operator's stable K interval at B in N/m (NaN, NaN where none is).
 fn interval(lp: &Loop, params: &[SweepParam], values: &[f64], b: f64) -> Result<[f64; 2]> {
     let l = loop_of(lp, params, values)?;
-    let fam = AffineFamily::of_loop(&l)?;
-    let r = kmax(&l, &fam, KmaxQuery::AtDamping(b))?;
+    let r = kmax(&System::new(l)?, KmaxQuery::AtDamping(b))?;
     Ok(r.k_interval.unwrap_or([f64::NAN, f64::NAN]))
 }
 

@@ -23,16 +23,16 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::AffineFamily;
+use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
 use crate::kmax::{KmaxQuery, kmax};
-use crate::loop_analysis::wall_units;
 use crate::model::Loop;
 use crate::param::Param;
 use crate::params::Wall;
 use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
-use crate::verdict::{Verdict, decide};
+use crate::system::System;
+use crate::verdict::Verdict;
 
 /// Box parameters beyond which only the centre and the random samples are taken (2^8 = 256
 /// corners at most).
@@ -209,8 +209,7 @@ fn loop_at(lp: &Loop, sides: &[BoxSide], u: &[f64]) -> Result<Loop> {
 /// The exact stable K interval at damping B (N/m) reaching furthest, of the loop at u.
 fn evaluate(lp: &Loop, sides: &[BoxSide], b: f64, u: Vec<f64>) -> Result<Eval> {
     let l = loop_at(lp, sides, &u)?;
-    let fam = AffineFamily::of_loop(&l)?;
-    let r = kmax(&l, &fam, KmaxQuery::AtDamping(b))?;
+    let r = kmax(&System::new(l)?, KmaxQuery::AtDamping(b))?;
     Ok(Eval {
         u,
         interval: r.k_interval,
@@ -287,9 +286,8 @@ fn verify(
         .par_iter()
         .map(|u| -> Result<Option<Eval>> {
             let l = loop_at(lp, sides, u)?;
-            let fam = AffineFamily::of_loop(&l)?;
-            let (a, bu) = wall_units(&l, &fam, wall)?;
-            let v = decide(&fam, a, bu, &mut fam.coefficients(a, bu)).verdict;
+            let sys = System::new(l)?;
+            let v = sys.decide(sys.wall_units(wall)?).verdict;
             if v == Verdict::Stable {
                 return Ok(None);
             }
@@ -311,8 +309,7 @@ pub fn robust_kmax(
     opts: &RobustOptions,
 ) -> Result<RobustKmax> {
     check_box(lp, sides)?;
-    let fam = AffineFamily::of_loop(lp)?;
-    let nominal = kmax(lp, &fam, KmaxQuery::AtDamping(b))?;
+    let nominal = kmax(&System::of(lp)?, KmaxQuery::AtDamping(b))?;
     let mut evals = sample(lp, sides, b, opts)?;
     for start in worst(&evals, REFINE_STARTS) {
         evals.extend(refine(lp, sides, b, start)?);

@@ -5,13 +5,13 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use hapstab::Normalized;
 use hapstab::params::Wall;
 use hapstab::simulation::{
     BoundarySearch, Config, Effects, EmpiricalPoint, Initial, LoopModel, MIN_REL_TOLERANCE, Model,
     Outcome, SimModel, StableWhen, empirical_boundary,
 };
 use hapstab::zoh::WallScale;
-use hapstab::{AffineFamily, Normalized};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -280,13 +280,14 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     let units = Units {
         physical: !rl.normalized,
     };
-    let fam = AffineFamily::of_loop(&rl.lp)?;
+    let sys = rl.system()?;
+    let fam = sys.family();
     let (model, pm) = boundary_template(a, &rl)?;
     let (template, settings) = a.run.config(model.clone(), units.physical)?;
     let n = fam.degree();
-    let region_cost = hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(&fam));
+    let region_cost = hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(fam));
     crate::budget::check_loop(&a.lp, &rl.lp, region_cost, "the exact region")?;
-    let region = hapstab::loop_analysis::region(&rl.lp, &fam)?;
+    let region = sys.region()?;
     let betas = beta_values(a, &region)?;
     // every β: the α grid's runs and a bisection of about log2(1/rel-tol) more
     let runs = betas.len() as f64 * (a.grid as f64 + (1.0 / a.rel_tol).log2().max(1.0));

@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use hapstab::Normalized;
 use hapstab::params::Wall;
 use hapstab::simulation::{
     Config, Effects, Initial, LoopModel, MAX_TRACE_ROWS, Model, RunResult, SimModel, Trace,
     simulate,
 };
-use hapstab::{AffineFamily, Normalized};
 use serde::Serialize;
 
 use super::run_args::RunSettings;
@@ -137,8 +137,9 @@ pub(super) struct SimLoop {
 impl SimLoop {
     fn resolve(lp: &LoopArgs, wall: &WallArgs, run: &RunArgs) -> Result<Self> {
         let rl = lp.resolve(wall.normalized())?;
-        let fam = AffineFamily::of_loop(&rl.lp)?;
-        let w = resolve_loop_wall(&rl, &fam, wall)?;
+        let sys = rl.system()?;
+        let fam = sys.family();
+        let w = resolve_loop_wall(&rl, fam, wall)?;
         friction_defined(&rl, run)?;
         let model = if rl.lp.paper_view().is_some() {
             let pm = resolve_point(&lp.plant, &wall.over_file(&rl))?;

@@ -57,7 +57,7 @@ pub(super) fn outcome_summary(r: &RunResult, units: Units) -> String {
 fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
     let normalized = o.normalized.as_ref();
     if units.physical || normalized.is_none() {
-        // physical input speaks K, B and the loop; the paper's normalized view beside it
+        // physical input speaks K, B and the loop
         for line in describe_loop(&sl.rl.lp) {
             println!("{line}");
         }
@@ -67,26 +67,17 @@ fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
             eng(sl.wall.damping, "Ns/m", 6)
         );
     }
-    let Some(n) = normalized else {
+    // physical input speaks K, B; the paper's normalized view stays in the JSON
+    let (Some(n), false) = (normalized, units.physical) else {
         return;
     };
     println!(
-        "{}α = {}, β = {}, γ = {}, δ = {}, d = {}{}",
-        if units.physical {
-            "normalized  "
-        } else {
-            "model       "
-        },
+        "model       α = {}, β = {}, γ = {}, δ = {}, d = {} (normalized: time in samples, forces as T²F/m)",
         sig(n.alpha, 6),
         sig(n.beta, 6),
         sig(n.gamma, 6),
         sig(n.delta, 6),
         n.d,
-        if units.physical {
-            ""
-        } else {
-            " (normalized: time in samples, forces as T²F/m)"
-        }
     );
 }
 

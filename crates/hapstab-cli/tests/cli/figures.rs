@@ -6,9 +6,8 @@
 use crate::common;
 
 use common::hapstab;
-use hapstab::loop_analysis::{damping_units, k_max_at_damping, k_max_within};
+use hapstab::Effective;
 use hapstab::model::Loop;
-use hapstab::{AffineFamily, Effective};
 use serde_json::Value;
 
 /// Runs the binary, asserts success and an empty standard error (not a terminal: no
@@ -42,10 +41,9 @@ fn default_loop(d: usize) -> Loop {
 #[test]
 fn kmax_by_default_keeps_the_damping_non_negative() {
     let lp = default_loop(200);
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    let best = k_max_within(&lp, &fam, 0.0, f64::INFINITY)
-        .unwrap()
-        .unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
+    let fam = sys.family();
+    let best = sys.k_max_within(0.0, f64::INFINITY).unwrap().unwrap();
     let (k, b) = fam.to_physical(best.alpha, best.beta);
     let v = json(&["kmax", "--delay", "200"]);
     let (k_cli, b_cli) = (f(&v["k_max"]), f(&v["b_at_k_max"]));
@@ -57,12 +55,13 @@ fn kmax_by_default_keeps_the_damping_non_negative() {
     );
     // without a band the region's maximum lies at a negative B for this delay: the band
     // changes the answer
-    let free = k_max_within(&lp, &fam, f64::NEG_INFINITY, f64::INFINITY)
+    let free = sys
+        .k_max_within(f64::NEG_INFINITY, f64::INFINITY)
         .unwrap()
         .unwrap();
     assert!(free.beta < 0.0 && free.alpha > best.alpha);
     // K_max at B = 0 (the plant's own damping only)
-    let at0 = k_max_at_damping(&lp, &fam, 0.0).unwrap().unwrap();
+    let at0 = sys.k_max_at_damping(0.0).unwrap();
     let k0 = fam.to_physical(at0.hi, 0.0).0;
     assert!((f(&v["k_max_at_zero_damping"]) - k0).abs() <= 1e-12 * k0);
 }
@@ -70,9 +69,10 @@ fn kmax_by_default_keeps_the_damping_non_negative() {
 #[test]
 fn kmax_damping_range_bounds_the_damping() {
     let lp = default_loop(0);
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    let hi = damping_units(&lp, &fam, 50.0).unwrap();
-    let best = k_max_within(&lp, &fam, 0.0, hi).unwrap().unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
+    let fam = sys.family();
+    let hi = sys.damping_units(50.0).unwrap();
+    let best = sys.k_max_within(0.0, hi).unwrap().unwrap();
     let (k, b) = fam.to_physical(best.alpha, best.beta);
     let v = json(&["kmax", "--damping-range", "0:50"]);
     assert!((f(&v["k_max"]) - k).abs() <= 1e-12 * k);
@@ -315,8 +315,9 @@ fn boundary_plot_is_in_k_and_b_with_k_max_marked() {
     assert!(svg.contains("virtual stiffness K (N/m)"));
     assert!(svg.contains("virtual damping B (Ns/m)"));
     let lp = default_loop(1);
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    let r = hapstab::loop_analysis::region(&lp, &fam).unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
+    let fam = sys.family();
+    let r = sys.region().unwrap();
     let want = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
     assert_at(&svg, "K_max", WHOLE, want);
     // PNG by the extension
@@ -353,8 +354,8 @@ fn boundary_plot_of_the_normalized_loop_is_in_alpha_and_beta() {
         1,
     )
     .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    let r = hapstab::loop_analysis::region(&lp, &fam).unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
+    let r = sys.region().unwrap();
     assert_at(&svg, "α_max", WHOLE, (r.alpha_max, r.beta_at_alpha_max));
 }
 
@@ -414,14 +415,15 @@ fn kmax_plot_marks_k_max_within_the_damping_range() {
     assert!(svg.contains("virtual stiffness K (N/m)"));
     assert!(svg.contains("virtual damping B (Ns/m)"));
     let lp = default_loop(2);
-    let fam = AffineFamily::of_loop(&lp).unwrap();
-    let hi = damping_units(&lp, &fam, 300.0).unwrap();
-    let best = k_max_within(&lp, &fam, 0.0, hi).unwrap().unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
+    let fam = sys.family();
+    let hi = sys.damping_units(300.0).unwrap();
+    let best = sys.k_max_within(0.0, hi).unwrap().unwrap();
     // the markers sit at their points (K_max's circle, B = 0's triangle); tags on a damping
     // line are lifted off it
     let k_max_at = fam.to_physical(best.alpha, best.beta);
     assert_marker_at(&svg, VERMILLION, WHOLE, k_max_at);
-    let at0 = k_max_at_damping(&lp, &fam, 0.0).unwrap().unwrap();
+    let at0 = sys.k_max_at_damping(0.0).unwrap();
     let b0_at = (fam.to_physical(at0.hi, 0.0).0, 0.0);
     assert_marker_at(&svg, GREEN, WHOLE, b0_at);
     // the B = 0 tag is written above its point, clear of the dashed line at B = 0: its text

@@ -173,7 +173,7 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
 }
 
 /// The region's vertices, given back as walls, have a root on the unit circle and the
-/// verdict and radius of `hapstab::loop_analysis::analysis`.
+/// verdict and radius of `hapstab::System::analysis`.
 fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
     let poly = j["region"]["polygons"][0].as_array().unwrap();
     assert!(poly.len() > 10, "{j}");
@@ -181,7 +181,7 @@ fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
     // of roots near 1, where roots of the z-coefficients are ill-conditioned: sample the rest.
     let gamma = j["params"]["gamma"].as_f64().unwrap();
     let lp = two_mass_loop();
-    let fam = hapstab::AffineFamily::of_loop(&lp).unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
     let arcs: Vec<&serde_json::Value> = poly
         .iter()
         .filter(|v| (v[0].as_f64().unwrap() + gamma).abs() > 1e-6 * gamma)
@@ -195,7 +195,7 @@ fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
         let rho = p["spectral_radius"].as_f64().unwrap();
         assert!((rho - 1.0).abs() < 1e-6, "vertex ({a}, {b}): rho {rho}");
         // on the boundary too, the verdict is check's (`hapstab::loop_analysis::analysis`)
-        let an = hapstab::loop_analysis::analysis(&lp, &fam, (a, b)).unwrap();
+        let an = sys.analysis((a, b)).unwrap();
         assert_eq!(p["verdict"], an.verdict.as_str(), "vertex ({a}, {b})");
         // (serde_json's float parser may be an ulp off the server's shortest form)
         assert!(

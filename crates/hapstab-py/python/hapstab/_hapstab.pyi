@@ -192,6 +192,8 @@ class Check:
     alpha_interval: Optional[Tuple[float, float]]
     alpha_linear: Optional[float]
     k_linear: Optional[float]
+    margins: Margins
+    """The wall's margins beside the verdict (as `margins`; none for a wall that is not stable)."""
 
 class Edge:
     start: int

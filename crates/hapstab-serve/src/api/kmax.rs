@@ -107,12 +107,13 @@ pub(crate) fn parse_kmax(p: &Params) -> Result<KmaxReq, ApiError> {
 
 /// Computes `/api/kmax` within the interactive budget.
 pub(crate) fn kmax(req: &KmaxReq) -> Result<KmaxAnswer, ApiError> {
-    let (lp, fam) = physical_loop(&req.spec, "K_max")?;
+    let sys = physical_loop(&req.spec, "K_max")?;
+    let fam = sys.family();
     let n = fam.degree();
     let mut cost = interval_cost(n);
     if !matches!(req.query, KmaxQuery::AtDamping(_)) {
-        cost = cost.then(region_cost_of_degree(n, core_degree(&fam)));
+        cost = cost.then(region_cost_of_degree(n, core_degree(fam)));
     }
     loop_budget(&req.spec, cost, "K_max")?;
-    kmax_answer(&lp, &fam, req.query).map_err(lib_error)
+    kmax_answer(&sys, req.query).map_err(lib_error)
 }

@@ -6,11 +6,11 @@
 
 use std::time::Instant;
 
+use hapstab::Normalized;
 use hapstab::answer::{MapInput, MapSummary};
 use hapstab::limits::map_cost_of_degree;
 use hapstab::loop_spec::LoopInput;
 use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map_physical};
-use hapstab::{Loop, Normalized};
 use serde::Serialize;
 
 use super::{physical_loop, within_budget};
@@ -204,18 +204,19 @@ pub(crate) fn map(req: &MapReq) -> Result<MapOut, ApiError> {
             (m.stable, m.radius, input)
         }
         _ => {
-            let (lp, fam): (Loop, _) = physical_loop(&req.spec, "the map over K and B")?;
+            let sys = physical_loop(&req.spec, "the map over K and B")?;
+            let (lp, fam) = (sys.lp(), sys.family());
             map_budget(req, fam.degree())?;
             let (x, y) = (&req.x.range, &req.y.range);
             let m = wall_map_physical(
-                &fam,
+                fam,
                 ((x.lo, x.hi), x.n),
                 ((y.lo, y.hi), y.n),
                 req.kind,
                 &|_| {},
             )
             .map_err(lib_error)?;
-            (m.stable, m.radius, LoopInput::new(&lp, false, None))
+            (m.stable, m.radius, LoopInput::new(lp, false, None))
         }
     };
     Ok(MapOut {

@@ -13,8 +13,8 @@
 use serde::Serialize;
 
 use super::query::{ApiError, PlantSpec, clip, fmt, lib_error};
+use hapstab::System;
 use hapstab::limits::{Budget, Cost};
-use hapstab::{AffineFamily, Loop};
 
 mod kmax;
 mod map;
@@ -68,7 +68,7 @@ pub(crate) fn within_budget(
 /// delay that sets the degree of its p(z).
 pub(crate) fn loop_budget(spec: &PlantSpec, cost: Cost, what: &str) -> Result<(), ApiError> {
     let (name, value) = match (&spec.general, spec.physical) {
-        (Some(g), _) if g.lp.delay.fraction > 0.0 => ("delay_time", fmt(g.lp.delay_time())),
+        (Some(g), _) if g.lp().delay.fraction > 0.0 => ("delay_time", fmt(g.lp().delay_time())),
         _ => ("d", spec.d.to_string()),
     };
     within_budget(cost, what, name, &value)
@@ -76,10 +76,7 @@ pub(crate) fn loop_budget(spec: &PlantSpec, cost: Cost, what: &str) -> Result<()
 
 /// The physical loop of a request and its family; the normalized mode is refused for the
 /// analyses in physical units (`what`: their name).
-pub(crate) fn physical_loop(
-    spec: &PlantSpec,
-    what: &str,
-) -> Result<(Loop, AffineFamily), ApiError> {
+pub(crate) fn physical_loop(spec: &PlantSpec, what: &str) -> Result<System, ApiError> {
     if spec.physical.is_none() {
         return Err(ApiError::param(
             "mode",
@@ -90,11 +87,9 @@ pub(crate) fn physical_loop(
         ));
     }
     if let Some(g) = &spec.general {
-        return Ok((g.lp.clone(), g.family.clone()));
+        return Ok(g.clone());
     }
-    let lp = wall_analyses::loop_of(spec)?;
-    let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
-    Ok((lp, fam))
+    System::new(wall_analyses::loop_of(spec)?).map_err(lib_error)
 }
 
 /// γ, δ, d of an answer.

@@ -27,7 +27,7 @@ pub(crate) struct PassiveOut {
 fn units_of(spec: &PlantSpec, k: f64, b: f64) -> [f64; 2] {
     match (&spec.general, spec.physical) {
         (Some(g), _) => {
-            let (a, bb) = g.family.to_units(k, b);
+            let (a, bb) = g.family().to_units(k, b);
             [a, bb]
         }
         (None, Some(ph)) => [k / ph.k_per_alpha, b / ph.b_per_beta],

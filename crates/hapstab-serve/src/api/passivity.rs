@@ -6,7 +6,7 @@
 
 use hapstab::answer::{PassivityAnswer, passivity_answer};
 use hapstab::limits::{core_degree, passivity_cost, roots_cost};
-use hapstab::{AffineFamily, Wall};
+use hapstab::{System, Wall};
 
 use super::loop_budget;
 use super::point::{point_names, wall_at};
@@ -35,13 +35,13 @@ pub(crate) fn parse_passivity(p: &Params) -> Result<PassivityReq, ApiError> {
 
 /// Computes `/api/passivity` within the interactive budget.
 pub(crate) fn passivity(req: &PassivityReq) -> Result<PassivityAnswer, ApiError> {
-    let lp = loop_of(&req.spec)?;
-    let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
+    let sys = System::new(loop_of(&req.spec)?).map_err(lib_error)?;
+    let fam = sys.family();
     let n = fam.degree();
-    let cost = passivity_cost(n, core_degree(&fam)).then(roots_cost(n));
+    let cost = passivity_cost(n, core_degree(fam)).then(roots_cost(n));
     loop_budget(&req.spec, cost, "the passive region")?;
     let normalized = req.spec.physical.is_none();
-    passivity_answer(&lp, &fam, normalized, req.wall)
+    passivity_answer(&sys, normalized, req.wall)
         .map(|(answer, _)| answer)
         .map_err(lib_error)
 }

@@ -5,11 +5,9 @@ use std::time::Instant;
 
 use hapstab::limits::point_cost;
 use hapstab::linear::linear_check;
-use hapstab::loop_analysis;
-use hapstab::loop_analysis::wall_units;
 use hapstab::params::Normalized;
 use hapstab::stability::Analysis;
-use hapstab::{AffineFamily, Loop, Wall};
+use hapstab::{Loop, System, Wall};
 use serde::Serialize;
 
 use super::wall_analyses::{loop_of, wall_analyses, wall_of};
@@ -87,7 +85,7 @@ impl WallAt {
 
 /// The wall of a request ([`wall_point`]): given as K and B, they are kept as given and
 /// converted to the page's units as the command line converts them
-/// ([`hapstab::loop_analysis::wall_units`]), so that every analysis of the wall is the
+/// ([`hapstab::System::wall_units`]), so that every analysis of the wall is the
 /// command line's; given as α and β, they are converted to K and B by [`wall_of`].
 pub(crate) fn wall_at(p: &Params, spec: &PlantSpec) -> Result<WallAt, ApiError> {
     let units = wall_point(p, spec)?;
@@ -98,10 +96,9 @@ pub(crate) fn wall_at(p: &Params, spec: &PlantSpec) -> Result<WallAt, ApiError> 
         stiffness: p.num("wall_stiffness")?,
         damping: p.num("wall_damping")?,
     };
-    let lp = loop_of(spec)?;
     let units = match &spec.general {
-        Some(g) => wall_units(&lp, &g.family, wall),
-        None => AffineFamily::of_loop(&lp).and_then(|fam| wall_units(&lp, &fam, wall)),
+        Some(g) => g.wall_units(wall),
+        None => System::new(loop_of(spec)?).and_then(|sys| sys.wall_units(wall)),
     }
     .map_err(lib_error)?;
     Ok(WallAt { units, wall })
@@ -197,7 +194,7 @@ pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> 
     let (alpha, beta) = at.units;
     let n = point_params(spec, alpha, beta)?;
     let a = match &spec.general {
-        Some(g) => loop_analysis::analysis(&g.lp, &g.family, (alpha, beta)),
+        Some(g) => g.analysis((alpha, beta)),
         None => Analysis::new(n),
     }
     .map_err(lib_error)?;
@@ -217,7 +214,7 @@ pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> 
         margins: MarginsReport::from(&margins),
         passivity,
         params: n,
-        lp: spec.general.as_ref().map(|g| g.lp.clone()),
+        lp: spec.general.as_ref().map(|g| g.lp().clone()),
         wall: spec.physical.map(|_| WallOut {
             stiffness: at.wall.stiffness,
             damping: at.wall.damping,

@@ -8,10 +8,9 @@ use hapstab::boundary::AlphaBeta;
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
 use hapstab::linear::linear_alpha_limit;
-use hapstab::loop_analysis;
 use hapstab::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
 use hapstab::region::{EdgeKind, stable_region};
-use hapstab::{AffineFamily, Loop, PolyFamily};
+use hapstab::{Loop, PolyFamily, System};
 use serde::Serialize;
 
 use super::PlantOut;
@@ -19,7 +18,7 @@ use super::passive::{PassiveOut, passive_regions};
 use super::region_request::RegionReq;
 use super::robust_box::{RobustBoxOut, robust_box_out};
 use crate::limits::*;
-use crate::query::{ApiError, GeneralLoop, PhysicalSpec, fmt, lib_error};
+use crate::query::{ApiError, PhysicalSpec, fmt, lib_error};
 use crate::robust_box::RobustBoxAnswer;
 use hapstab_plot::simplify::simplify_polygon;
 
@@ -141,8 +140,8 @@ pub(crate) struct RegionOut {
 }
 
 /// The design K_max answer of a loop (`hapstab kmax` without a damping).
-fn design_kmax(lp: &Loop, fam: &AffineFamily) -> Result<KmaxReport, ApiError> {
-    kmax(lp, fam, KmaxQuery::Design(NoiseModel::default())).map_err(lib_error)
+fn design_kmax(sys: &System) -> Result<KmaxReport, ApiError> {
+    kmax(sys, KmaxQuery::Design(NoiseModel::default())).map_err(lib_error)
 }
 
 /// The paper's loop of a physical query: the device held by the arm (eq. 1), as the
@@ -244,9 +243,9 @@ fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
 
 /// `/api/region` for a loop beyond the paper's: the exact region of its family in wall
 /// units and its passive regions; the paper's linear condition does not apply.
-fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiError> {
+fn general_region(req: &RegionReq, g: &System) -> Result<RegionOut, ApiError> {
     let t0 = Instant::now();
-    let r = loop_analysis::region(&g.lp, &g.family).map_err(lib_error)?;
+    let r = g.region().map_err(lib_error)?;
     let region = region_json(&r, req.tol);
     let (passive, passive_with_arm) = passive_regions(&req.spec)?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -254,13 +253,13 @@ fn general_region(req: &RegionReq, g: &GeneralLoop) -> Result<RegionOut, ApiErro
     Ok(RegionOut {
         params: PlantOut::from(&req.spec),
         physical: req.spec.physical,
-        lp: Some(g.lp.clone()),
+        lp: Some(g.lp().clone()),
         region,
         linear: None,
         passive,
         passive_with_arm,
         robust: None,
-        kmax: Some(design_kmax(&g.lp, &g.family)?),
+        kmax: Some(design_kmax(g)?),
         robust_kmax_text: rk.as_ref().map(|r| r.text.clone()),
         robust_kmax: rk.map(|r| r.answer),
         warnings: Vec::new(),
@@ -358,9 +357,7 @@ pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         .physical
         .as_ref()
         .map(|p| -> Result<KmaxReport, ApiError> {
-            let lp = paper_loop(p, spec.d)?;
-            let fam = AffineFamily::of_loop(&lp).map_err(lib_error)?;
-            design_kmax(&lp, &fam)
+            design_kmax(&System::new(paper_loop(p, spec.d)?).map_err(lib_error)?)
         })
         .transpose()?;
     let (rk, t_rk) = robust_kmax(req)?;

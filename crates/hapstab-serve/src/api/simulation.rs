@@ -190,7 +190,7 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
         ),
     };
     let model = match &spec.general {
-        Some(g) => SimModel::Loop(LoopModel::new(g.lp.clone(), req.wall).map_err(lib_error)?),
+        Some(g) => SimModel::Loop(LoopModel::new(g.lp().clone(), req.wall).map_err(lib_error)?),
         None => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
     };
     let mut cfg = Config::new(model, req.samples);
@@ -208,7 +208,7 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     let trace = run.trace.take().unwrap_or_default();
     Ok(SimOut {
         params: n,
-        lp: spec.general.as_ref().map(|g| g.lp.clone()),
+        lp: spec.general.as_ref().map(|g| g.lp().clone()),
         mass,
         period,
         units_note,

@@ -48,16 +48,17 @@ pub(crate) fn parse_sweep(p: &Params) -> Result<SweepReq, ApiError> {
 
 /// Computes `/api/sweep` within the interactive budget.
 pub(crate) fn sweep(req: &SweepReq) -> Result<SweepAnswer, ApiError> {
-    let (lp, _) = physical_loop(&req.spec, "the sweep")?;
+    let sys = physical_loop(&req.spec, "the sweep")?;
+    let lp = sys.lp();
     let r = &req.range;
-    let cost = sweep_cost(&lp, r.param, &r.values(), req.at);
+    let cost = sweep_cost(lp, r.param, &r.values(), req.at);
     within_budget(
         cost,
         &format!("the sweep of {} points", r.n),
         "n",
         &r.n.to_string(),
     )?;
-    sweep_answer(&lp, r, req.at, &|_| {}).map_err(|e| {
+    sweep_answer(lp, r, req.at, &|_| {}).map_err(|e| {
         let name = r.param.name();
         ApiError::param(
             "param",

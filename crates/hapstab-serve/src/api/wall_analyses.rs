@@ -12,7 +12,7 @@ use crate::query::{ApiError, PlantSpec, lib_error};
 /// device held by its arm, eq. 1) or in normalized units (m = T = 1, Table I).
 pub(crate) fn loop_of(spec: &PlantSpec) -> Result<Loop, ApiError> {
     if let Some(g) = &spec.general {
-        return Ok(g.lp.clone());
+        return Ok(g.lp().clone());
     }
     let Some(ph) = spec.physical else {
         return Loop::normalized(spec.plant, spec.d).map_err(lib_error);
@@ -35,7 +35,7 @@ pub(crate) fn loop_of(spec: &PlantSpec) -> Result<Loop, ApiError> {
 /// normalized loop, where m = T = 1).
 pub(crate) fn wall_of(spec: &PlantSpec, a: f64, b: f64) -> Wall {
     let (stiffness, damping) = match (&spec.general, spec.physical) {
-        (Some(g), _) => g.family.to_physical(a, b),
+        (Some(g), _) => g.family().to_physical(a, b),
         (None, Some(ph)) => (a * ph.k_per_alpha, b * ph.b_per_beta),
         (None, None) => (a, b),
     };

@@ -60,13 +60,14 @@ pub(crate) fn parse_zwidth(p: &Params) -> Result<ZwidthReq, ApiError> {
 /// Computes `/api/zwidth` within the interactive budget: one loop, labelled by its velocity
 /// estimator as `hapstab zwidth` labels its base loop.
 pub(crate) fn zwidth(req: &ZwidthReq) -> Result<ZwidthAnswer, ApiError> {
-    let (lp, fam) = physical_loop(&req.spec, "the Z-width")?;
+    let sys = physical_loop(&req.spec, "the Z-width")?;
+    let (lp, fam) = (sys.lp(), sys.family());
     let rows = req
         .table_damping
         .as_ref()
         .map_or(DEFAULT_TABLE_ROWS, Vec::len);
-    loop_budget(&req.spec, zwidth_cost(&fam, rows), "the Z-width")?;
-    let one = ZwidthLoop::new(lp.velocity.to_string(), &lp, req.table_damping.as_deref())
+    loop_budget(&req.spec, zwidth_cost(fam, rows), "the Z-width")?;
+    let one = ZwidthLoop::new(lp.velocity.to_string(), lp, req.table_damping.as_deref())
         .map_err(lib_error)?;
     Ok(ZwidthAnswer {
         input: ZwidthInput {

@@ -6,9 +6,8 @@
 use crate::serve_support;
 
 use hapstab::kmax::{KmaxQuery, NoiseModel, kmax};
-use hapstab::loop_analysis::analysis;
 use hapstab::stability::Verdict;
-use hapstab::{AffineFamily, Delay, Loop, VelocityEstimator};
+use hapstab::{Delay, Loop, System, VelocityEstimator};
 use serve_support::{PAPER_LOOP, Server};
 
 /// The loop of [`PAPER_LOOP`], built by the library: the default device held by the typical
@@ -24,34 +23,31 @@ fn paper_loop() -> Loop {
     .unwrap()
 }
 
-fn stable(lp: &Loop, fam: &AffineFamily, k: f64, b: f64) -> bool {
-    let units = hapstab::loop_analysis::wall_units(
-        lp,
-        fam,
-        hapstab::Wall {
+fn stable(sys: &System, k: f64, b: f64) -> bool {
+    let units = sys
+        .wall_units(hapstab::Wall {
             stiffness: k,
             damping: b,
-        },
-    )
-    .unwrap();
-    analysis(lp, fam, units).unwrap().verdict == Verdict::Stable
+        })
+        .unwrap();
+    sys.analysis(units).unwrap().verdict == Verdict::Stable
 }
 
 #[test]
 fn kmax_three_ways_is_the_library_s() {
     let s = Server::start(&[]);
     let lp = paper_loop();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let sys = System::of(&lp).unwrap();
     // at one damping: K_max is the top of the stable interval
     let r = s.get(&format!("/api/kmax?{PAPER_LOOP}&wall_damping=5"));
     assert_eq!(r.status, 200, "{}", r.body);
     let j = r.json();
-    let lib = kmax(&lp, &fam, KmaxQuery::AtDamping(5.0)).unwrap();
+    let lib = kmax(&sys, KmaxQuery::AtDamping(5.0)).unwrap();
     let k = j["k_max"].as_f64().unwrap();
     assert_eq!(Some(k), lib.k_max);
     assert_eq!(j["input"]["wall_damping"], 5.0);
-    assert!(stable(&lp, &fam, k * (1.0 - 1e-6), 5.0));
-    assert!(!stable(&lp, &fam, k * (1.0 + 1e-6), 5.0));
+    assert!(stable(&sys, k * (1.0 - 1e-6), 5.0));
+    assert!(!stable(&sys, k * (1.0 + 1e-6), 5.0));
     // the paper's normalized view: α_max = K_max T²/m
     let alpha = j["normalized"]["alpha_max"].as_f64().unwrap();
     assert!((alpha - k * 1e-6 / 1.1).abs() <= 1e-12 * alpha, "{j}");
@@ -61,7 +57,7 @@ fn kmax_three_ways_is_the_library_s() {
             "/api/kmax?{PAPER_LOOP}&damping_lo=0&damping_hi=20"
         ))
         .json();
-    let lib = kmax(&lp, &fam, KmaxQuery::Band { lo: 0.0, hi: 20.0 }).unwrap();
+    let lib = kmax(&sys, KmaxQuery::Band { lo: 0.0, hi: 20.0 }).unwrap();
     assert_eq!(band["k_max"].as_f64(), lib.k_max);
     assert_eq!(band["b_at_k_max"].as_f64(), lib.b_at_k_max);
     assert_eq!(
@@ -69,7 +65,7 @@ fn kmax_three_ways_is_the_library_s() {
         serde_json::json!([0.0, 20.0])
     );
     let all = s.get(&format!("/api/kmax?{PAPER_LOOP}")).json();
-    let lib = kmax(&lp, &fam, KmaxQuery::Design(NoiseModel::default())).unwrap();
+    let lib = kmax(&sys, KmaxQuery::Design(NoiseModel::default())).unwrap();
     assert_eq!(all["k_max"].as_f64(), lib.k_max);
     assert_eq!(
         all["k_max_at_zero_damping"].as_f64(),

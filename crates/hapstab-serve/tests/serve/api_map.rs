@@ -5,9 +5,8 @@
 
 use crate::serve_support;
 
-use hapstab::loop_analysis::analysis;
 use hapstab::stability::{Analysis, Verdict};
-use hapstab::{AffineFamily, Delay, Loop, Normalized, VelocityEstimator};
+use hapstab::{Delay, Loop, Normalized, VelocityEstimator};
 use serve_support::{PAPER_LOOP, PLANT, Server};
 
 #[test]
@@ -27,7 +26,8 @@ fn a_wall_map_is_the_verdict_at_each_wall() {
         VelocityEstimator::Backward,
     )
     .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
+    let fam = sys.family();
     let stable = j["stable"].as_array().unwrap();
     let radius = j["spectral_radius"].as_array().unwrap();
     let mut count = 0;
@@ -35,7 +35,7 @@ fn a_wall_map_is_the_verdict_at_each_wall() {
         for ix in 0..5 {
             let (k, b) = (ix as f64 * 10000.0, iy as f64 * 20.0 / 3.0);
             let (a, bb) = fam.to_units(k, b);
-            let an = analysis(&lp, &fam, (a, bb)).unwrap();
+            let an = sys.analysis((a, bb)).unwrap();
             let i = iy * 5 + ix;
             // the verdict away from the boundary, where both decide the same way
             if (an.spectral_radius - 1.0).abs() > 1e-6 {

@@ -6,7 +6,7 @@
 use crate::serve_support;
 
 use hapstab::kmax::{KmaxQuery, kmax};
-use hapstab::{AffineFamily, Delay, Loop, VelocityEstimator};
+use hapstab::{Delay, Loop, VelocityEstimator};
 use serve_support::{PAPER_LOOP, Server};
 
 #[test]
@@ -32,8 +32,8 @@ fn each_point_is_the_kmax_of_its_loop() {
             VelocityEstimator::Backward,
         )
         .unwrap();
-        let fam = AffineFamily::of_loop(&lp).unwrap();
-        let lib = kmax(&lp, &fam, KmaxQuery::AtDamping(2.0)).unwrap();
+        let sys = hapstab::System::of(&lp).unwrap();
+        let lib = kmax(&sys, KmaxQuery::AtDamping(2.0)).unwrap();
         let k = p["k_max"].as_f64().unwrap();
         let want = lib.k_max.unwrap();
         assert!((k - want).abs() <= 1e-9 * want, "d = {d}: {k} vs {want}");

@@ -6,7 +6,7 @@
 use crate::serve_support;
 
 use hapstab::kmax::{KmaxQuery, kmax};
-use hapstab::{AffineFamily, Delay, Loop, VelocityEstimator};
+use hapstab::{Delay, Loop, VelocityEstimator};
 use serve_support::{PAPER_LOOP, Server};
 
 #[test]
@@ -29,7 +29,7 @@ fn zwidth_is_the_library_s() {
         VelocityEstimator::Backward,
     )
     .unwrap();
-    let fam = AffineFamily::of_loop(&lp).unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
     let lib = hapstab::zwidth::zwidth(&lp, Some(&[0.0, 2.0, 5.0])).unwrap();
     assert_eq!(z["stable_area"].as_f64(), Some(lib.stable_area));
     assert_eq!(
@@ -37,10 +37,7 @@ fn zwidth_is_the_library_s() {
         lib.k_max.map(|w| w.stiffness)
     );
     for (row, b) in z["table"].as_array().unwrap().iter().zip([0.0, 2.0, 5.0]) {
-        let k = kmax(&lp, &fam, KmaxQuery::AtDamping(b))
-            .unwrap()
-            .k_max
-            .unwrap();
+        let k = kmax(&sys, KmaxQuery::AtDamping(b)).unwrap().k_max.unwrap();
         let got = row["k_max"].as_f64().unwrap();
         assert!((got - k).abs() <= 1e-9 * k, "B = {b}: {got} vs {k}");
     }

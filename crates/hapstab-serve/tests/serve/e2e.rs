@@ -30,12 +30,11 @@ use std::path::Path;
 use e2e_browser::{Browser, R, attr, wait_for};
 use fantoccini::key::Key;
 use fantoccini::{Client, Locator};
-use hapstab::loop_analysis;
 use hapstab::region::stable_region;
 use hapstab::stability::Analysis;
 use hapstab::{
-    AffineFamily, Arm, Delay, Device, Effective, Loop, Normalized, Plant, PlantModel, PlantParams,
-    PolyFamily, TwoMass, VelocityEstimator,
+    Arm, Delay, Device, Effective, Loop, Normalized, Plant, PlantModel, PlantParams, PolyFamily,
+    TwoMass, VelocityEstimator,
 };
 use serde_json::json;
 use serve_support::Server;
@@ -546,8 +545,7 @@ fn two_mass_loop(estimator: &str) -> Loop {
 
 /// The loop's region as `hapstab boundary` computes it.
 fn loop_alpha_max(lp: &Loop) -> R<f64> {
-    let fam = AffineFamily::of_loop(lp)?;
-    Ok(loop_analysis::region(lp, &fam)?.alpha_max)
+    Ok(hapstab::System::of(lp)?.region()?.alpha_max)
 }
 
 /// The URL of the two-mass loop (arm defaults: the typical arm).
@@ -571,8 +569,9 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     est.clear().await?;
     est.send_keys("lowpass:60").await?;
     let lp = two_mass_loop("lowpass:60");
-    let fam = AffineFamily::of_loop(&lp)?;
-    let lib = loop_analysis::region(&lp, &fam)?.alpha_max;
+    let sys = hapstab::System::of(&lp)?;
+    let fam = sys.family();
+    let lib = sys.region()?.alpha_max;
     let am1 = wait_for(20, "the redrawn loop region", || async {
         match settled(c).await {
             Err(e) if e.to_string().contains("the page shows an error") => Err(e),
@@ -590,7 +589,7 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     );
     // Click a wall: the loop's verdict, every root of its p(z), a simulated contact.
     let (verdict, a, b) = click_plot_for_verdict(c, "the loop's point verdict").await?;
-    let an = loop_analysis::analysis(&lp, &fam, (a, b))?;
+    let an = sys.analysis((a, b))?;
     assert_eq!(verdict, an.verdict.as_str(), "verdict at ({a}, {b})");
     let roots = c.find_all(Locator::Css("#roots circle.root")).await?;
     assert_eq!(roots.len(), fam.degree(), "every root of the loop's p(z)");

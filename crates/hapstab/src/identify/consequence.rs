@@ -29,11 +29,11 @@ use serde::Serialize;
 use super::Identification;
 use super::error::IdResult;
 use super::propagate::{Propagated, delta_method, loop_at};
-use crate::closed_loop::AffineFamily;
 use crate::kmax::{KmaxQuery, NoiseModel, RenderableBand, kmax, renderable_band};
 use crate::model::VelocityEstimator;
 use crate::robust::{BoxSide, RobustKmax, RobustOptions, robust_kmax};
 use crate::splitmix::SplitMix;
+use crate::system::System;
 
 /// Free parameters beyond which the range over the box is not formed (2^8 = 256 corners).
 pub const MAX_CORNER_PARAMS: usize = 8;
@@ -88,16 +88,15 @@ pub fn band_noise(id: &Identification) -> NoiseModel {
 
 /// K_max over the renderable band of one loop under `noise`.
 fn band_of(lp: &crate::Loop, noise: NoiseModel) -> Option<RenderableBand> {
-    let fam = AffineFamily::of_loop(lp).ok()?;
-    renderable_band(lp, &fam, noise).ok().flatten()
+    let sys = System::of(lp).ok()?;
+    renderable_band(&sys, noise).ok().flatten()
 }
 
 /// K_max over the renderable band of the identified loop with its delta-method interval.
 fn band_limit(id: &Identification, velocity: &VelocityEstimator) -> IdResult<Option<BandLimit>> {
     let noise = band_noise(id);
     let lp = id.to_loop(velocity.clone())?;
-    let fam = AffineFamily::of_loop(&lp)?;
-    let Some(band) = renderable_band(&lp, &fam, noise)? else {
+    let Some(band) = renderable_band(&System::new(lp)?, noise)? else {
         return Ok(None);
     };
     let interval = delta_method(id, velocity, |lp| band_of(lp, noise)?.k_max);
@@ -106,8 +105,7 @@ fn band_limit(id: &Identification, velocity: &VelocityEstimator) -> IdResult<Opt
 
 /// K_max at B = 0 of one loop in N/m.
 fn k_max_at_zero(lp: &crate::Loop) -> crate::Result<Option<f64>> {
-    let fam = AffineFamily::of_loop(lp)?;
-    Ok(kmax(lp, &fam, KmaxQuery::AtDamping(0.0))?.k_max)
+    Ok(kmax(&System::of(lp)?, KmaxQuery::AtDamping(0.0))?.k_max)
 }
 
 /// K_max at B = 0 of the identified loop with the velocity estimator `velocity`, its spread

@@ -140,8 +140,8 @@ fn the_consequence_brackets_the_true_k_max() {
     let truth = {
         let lp = hapstab::Loop::paper(hapstab::Effective::new(0.6, 7.5, 350.0).unwrap(), 1e-3, 0)
             .unwrap();
-        let fam = hapstab::AffineFamily::of_loop(&lp).unwrap();
-        hapstab::kmax::kmax(&lp, &fam, hapstab::kmax::KmaxQuery::AtDamping(0.0))
+        let sys = hapstab::System::of(&lp).unwrap();
+        hapstab::kmax::kmax(&sys, hapstab::kmax::KmaxQuery::AtDamping(0.0))
             .unwrap()
             .k_max
             .unwrap()
@@ -167,9 +167,9 @@ fn the_consequence_brackets_the_true_k_max() {
     // inside the band's interval
     let lp =
         hapstab::Loop::paper(hapstab::Effective::new(0.6, 7.5, 350.0).unwrap(), 1e-3, 0).unwrap();
-    let fam = hapstab::AffineFamily::of_loop(&lp).unwrap();
+    let sys = hapstab::System::of(&lp).unwrap();
     let noise = hapstab::kmax::NoiseModel::default();
-    let band_truth = hapstab::kmax::renderable_band(&lp, &fam, noise)
+    let band_truth = hapstab::kmax::renderable_band(&sys, noise)
         .unwrap()
         .unwrap()
         .k_max

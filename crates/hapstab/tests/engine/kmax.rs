@@ -6,12 +6,12 @@
 use crate::common;
 use common::SplitMix;
 use common::loops::{random_loop, verdict};
+use hapstab::Verdict;
 use hapstab::kmax::{
     KmaxQuery, NoiseModel, RenderableBand, kmax, renderable_band, velocity_noise_gain,
 };
 use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
 use hapstab::params::Effective;
-use hapstab::{AffineFamily, Verdict};
 
 fn device(m: f64, b: f64, period: f64, velocity: VelocityEstimator) -> Loop {
     let plant = Plant::mass_spring_damper(Effective::new(m, b, 0.0).unwrap()).unwrap();
@@ -55,8 +55,8 @@ fn noise_gain_of_an_unstable_filter_is_none() {
 }
 
 fn band_of(lp: &Loop, noise: NoiseModel) -> RenderableBand {
-    let fam = AffineFamily::of_loop(lp).unwrap();
-    renderable_band(lp, &fam, noise).unwrap().unwrap()
+    let sys = hapstab::System::of(lp).unwrap();
+    renderable_band(&sys, noise).unwrap().unwrap()
 }
 
 #[test]
@@ -108,11 +108,11 @@ fn design_query_is_the_three_separate_answers() {
         if lp.delay.samples > 20 {
             continue;
         }
-        let fam = AffineFamily::of_loop(&lp).unwrap();
-        let design = kmax(&lp, &fam, KmaxQuery::Design(NoiseModel::default())).unwrap();
+        let sys = hapstab::System::of(&lp).unwrap();
+        let fam = sys.family();
+        let design = kmax(&sys, KmaxQuery::Design(NoiseModel::default())).unwrap();
         let all = kmax(
-            &lp,
-            &fam,
+            &sys,
             KmaxQuery::Band {
                 lo: 0.0,
                 hi: f64::INFINITY,
@@ -121,7 +121,7 @@ fn design_query_is_the_three_separate_answers() {
         .unwrap();
         assert_eq!(design.k_max, all.k_max);
         assert_eq!(design.b_at_k_max, all.b_at_k_max);
-        let zero = kmax(&lp, &fam, KmaxQuery::AtDamping(0.0)).unwrap();
+        let zero = kmax(&sys, KmaxQuery::AtDamping(0.0)).unwrap();
         assert_eq!(design.k_max_at_zero_damping, zero.k_max);
         let Some(rb) = design.renderable else {
             continue;
@@ -141,7 +141,7 @@ fn design_query_is_the_three_separate_answers() {
             marginal += usize::from(inside == Verdict::Marginal || outside == Verdict::Marginal);
             // at the band's edge it is the top of the exact stable interval there
             if b == rb.b_max {
-                let at = kmax(&lp, &fam, KmaxQuery::AtDamping(b)).unwrap();
+                let at = kmax(&sys, KmaxQuery::AtDamping(b)).unwrap();
                 assert!(close(k, at.k_max.unwrap(), 1e-9), "loop {i}: {k} vs {at:?}");
             }
             checked += 1;

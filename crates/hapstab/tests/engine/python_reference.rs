@@ -10,14 +10,12 @@
 //! map agrees with the checks where a check's wall lies on the map, and K_max at a damping is
 //! the upper end of the stable interval the check reports there.
 
+use hapstab::System;
 use hapstab::boundary::Interval;
-use hapstab::loop_analysis::{
-    analysis, damping_units, k_max_at_damping, k_max_within, pick_interval, region,
-    stable_intervals, wall_units,
-};
 use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Device, Effective, Wall};
+use hapstab::system::pick_interval;
 use hapstab::{AffineFamily, PlantParams};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
@@ -155,10 +153,11 @@ fn pair(iv: Option<Interval>, fam: &AffineFamily) -> Value {
 }
 
 /// One check at a wall, as `hapstab.check` reports it.
-fn check_at(lp: &Loop, fam: &AffineFamily, w: Wall) -> Value {
-    let (a, b) = wall_units(lp, fam, w).unwrap();
-    let an = analysis(lp, fam, (a, b)).unwrap();
-    let iv = pick_interval(&stable_intervals(lp, fam, b).unwrap(), a);
+fn check_at(sys: &System, w: Wall) -> Value {
+    let fam = sys.family();
+    let (a, b) = sys.wall_units(w).unwrap();
+    let an = sys.analysis((a, b)).unwrap();
+    let iv = pick_interval(&sys.stable_intervals(b), a);
     json!({
         "wall": [w.stiffness, w.damping],
         "spectral_radius": an.spectral_radius,
@@ -168,8 +167,9 @@ fn check_at(lp: &Loop, fam: &AffineFamily, w: Wall) -> Value {
 }
 
 /// The region's α_max, K_max and sizes, as `hapstab.region` reports them.
-fn region_of(lp: &Loop, fam: &AffineFamily) -> Value {
-    let r = region(lp, fam).unwrap();
+fn region_of(sys: &System) -> Value {
+    let fam = sys.family();
+    let r = sys.region().unwrap();
     let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
     json!({
         "alpha_max": r.alpha_max,
@@ -227,13 +227,14 @@ fn discretization(lp: &Loop, w: Wall) -> Value {
 
 /// Everything the Python side compares for one loop, and the internal cross-checks.
 fn reference(rng: &mut StdRng, id: usize, kind: &str, lp: &Loop, extra: Value) -> Value {
-    let fam = AffineFamily::of_loop(lp).unwrap();
-    let reg = region_of(lp, &fam);
+    let sys = System::of(lp).unwrap();
+    let fam = sys.family();
+    let reg = region_of(&sys);
     let (k_max, b_at) = (
         reg["k_max"].as_f64().unwrap(),
         reg["b_at_k_max"].as_f64().unwrap(),
     );
-    let (map, x, y) = map_of(&fam, k_max, b_at);
+    let (map, x, y) = map_of(fam, k_max, b_at);
     let mut checks = Vec::new();
     let mut kmax_at = Vec::new();
     for _ in 0..4 {
@@ -242,17 +243,17 @@ fn reference(rng: &mut StdRng, id: usize, kind: &str, lp: &Loop, extra: Value) -
             stiffness: map["wall_stiffness"][ix].as_f64().unwrap(),
             damping: map["wall_damping"][iy].as_f64().unwrap(),
         };
-        let c = check_at(lp, &fam, w);
-        let bu = damping_units(lp, &fam, w.damping).unwrap();
-        let best = k_max_at_damping(lp, &fam, bu).unwrap();
+        let c = check_at(&sys, w);
+        let bu = sys.damping_units(w.damping).unwrap();
+        let best = sys.k_max_at_damping(bu);
         assert_map_agrees(&map, &c, ix, iy, x, y);
-        kmax_at.push(json!({"wall_damping": w.damping, "k_max": best.map(|iv| fam.to_physical(iv.hi, 0.0).0), "k_interval": pair(best, &fam)}));
+        kmax_at.push(json!({"wall_damping": w.damping, "k_max": best.map(|iv| fam.to_physical(iv.hi, 0.0).0), "k_interval": pair(best, fam)}));
         checks.push(c);
     }
     let band = (0.0, 0.5 * b_at.abs());
-    let blo = damping_units(lp, &fam, band.0).unwrap();
-    let bhi = damping_units(lp, &fam, band.1).unwrap();
-    let within = k_max_within(lp, &fam, blo, bhi).unwrap().map(|p| {
+    let blo = sys.damping_units(band.0).unwrap();
+    let bhi = sys.damping_units(band.1).unwrap();
+    let within = sys.k_max_within(blo, bhi).unwrap().map(|p| {
         let (k, b) = fam.to_physical(p.alpha, p.beta);
         json!({"alpha_max": p.alpha, "k_max": k, "b_at_k_max": b})
     });

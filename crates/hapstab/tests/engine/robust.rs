@@ -7,12 +7,11 @@
 use crate::common;
 use common::SplitMix;
 use common::loops::random_loop;
-use hapstab::loop_analysis::{analysis, wall_units};
+use hapstab::Verdict;
 use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
 use hapstab::params::{Effective, Wall};
 use hapstab::robust::{BoxSide, RobustOptions, robust_kmax};
 use hapstab::sweep::SweepParam;
-use hapstab::{AffineFamily, Verdict};
 
 fn one_mass(m: f64, b: f64, k: f64) -> Loop {
     let plant = Plant::mass_spring_damper(Effective::new(m, b, k).unwrap()).unwrap();
@@ -30,14 +29,12 @@ fn side(param: SweepParam, lo: f64, hi: f64) -> BoxSide {
 }
 
 fn verdict_at(lp: &Loop, k: f64, b: f64) -> Verdict {
-    let fam = AffineFamily::of_loop(lp).unwrap();
+    let sys = hapstab::System::of(lp).unwrap();
     let w = Wall {
         stiffness: k,
         damping: b,
     };
-    analysis(lp, &fam, wall_units(lp, &fam, w).unwrap())
-        .unwrap()
-        .verdict
+    sys.analysis(sys.wall_units(w).unwrap()).unwrap().verdict
 }
 
 /// The worst plant rebuilt from the report's values.
@@ -124,8 +121,8 @@ fn seeded_loops_and_boxes_verify_independently() {
             );
             let v = verdict_at(&l, k - 1e-6 * k.abs(), b);
             if v == Verdict::Unstable {
-                let fam = AffineFamily::of_loop(&l).unwrap();
-                let own = hapstab::kmax::kmax(&l, &fam, hapstab::kmax::KmaxQuery::AtDamping(b));
+                let sys = hapstab::System::of(&l).unwrap();
+                let own = hapstab::kmax::kmax(&sys, hapstab::kmax::KmaxQuery::AtDamping(b));
                 panic!("loop {i}: robust {r:?}\nplant {l:?}: {own:?}");
             }
         }

@@ -25,8 +25,8 @@
 //! disagreement to FILE.
 
 use hapstab::AffineFamily;
+use hapstab::System;
 use hapstab::boundary::AlphaBeta;
-use hapstab::loop_analysis::{analysis, damping_units, region, stable_intervals, wall_units};
 use hapstab::map::{MapKind, wall_map_points};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
 use hapstab::params::Wall;
@@ -211,13 +211,13 @@ fn verdict_agrees(w: &RefWall, v: Verdict) -> bool {
 }
 
 /// (a) The point analysis at every wall.
-fn check_analysis(t: &mut Tally, c: &Case, lp: &Loop, fam: &AffineFamily) {
+fn check_analysis(t: &mut Tally, c: &Case, sys: &System) {
     for w in &c.walls {
         let wall = Wall {
             stiffness: w.stiffness,
             damping: w.damping,
         };
-        let an = wall_units(lp, fam, wall).and_then(|ab| analysis(lp, fam, ab));
+        let an = sys.wall_units(wall).and_then(|ab| sys.analysis(ab));
         let an = match an {
             Ok(an) => an,
             Err(e) => {
@@ -299,8 +299,8 @@ fn check_map(t: &mut Tally, c: &Case, fam: &AffineFamily) {
 }
 
 /// (c) The exact region against every wall further than its chord tolerance from its edges.
-fn check_region(t: &mut Tally, c: &Case, lp: &Loop, fam: &AffineFamily) {
-    let r: StableRegion = match region(lp, fam) {
+fn check_region(t: &mut Tally, c: &Case, sys: &System) {
+    let r: StableRegion = match sys.region() {
         Ok(r) => r,
         Err(e) => {
             t.check("(c) region refused", false, || {
@@ -316,7 +316,7 @@ fn check_region(t: &mut Tally, c: &Case, lp: &Loop, fam: &AffineFamily) {
             stiffness: w.stiffness,
             damping: w.damping,
         };
-        let Ok((alpha, beta)) = wall_units(lp, fam, wall) else {
+        let Ok((alpha, beta)) = sys.wall_units(wall) else {
             continue;
         };
         let p = AlphaBeta { alpha, beta };
@@ -362,12 +362,13 @@ type Ends = Vec<(f64, f64)>;
 /// (d) The stable stiffness intervals at the fixture's dampings; hapstab's intervals wholly
 /// within 0 < |K| < `scan_floor` (N/m), where the referee's grid has no point (it has K = 0),
 /// are set aside.
-fn check_intervals(t: &mut Tally, c: &Case, lp: &Loop, fam: &AffineFamily, scan_floor: f64) {
+fn check_intervals(t: &mut Tally, c: &Case, sys: &System, scan_floor: f64) {
     for level in &c.intervals {
-        let all: Vec<(f64, f64)> = damping_units(lp, fam, level.damping)
-            .and_then(|b| stable_intervals(lp, fam, b))
+        let all: Vec<(f64, f64)> = sys
+            .damping_units(level.damping)
+            .map(|b| sys.stable_intervals(b))
             .map(|ivs| {
-                let k = |a: f64| fam.to_physical(a, 0.0).0;
+                let k = |a: f64| sys.family().to_physical(a, 0.0).0;
                 ivs.iter().map(|iv| (k(iv.lo), k(iv.hi))).collect()
             })
             .unwrap_or_default();
@@ -427,7 +428,7 @@ fn check_loop(c: &Case, scan_decades: [f64; 2]) -> Tally {
             )
         });
     }
-    let fam = match AffineFamily::of_loop(&lp) {
+    let sys = match System::new(lp) {
         Ok(f) => f,
         Err(e) => {
             t.check("loop refused", false, || {
@@ -436,11 +437,11 @@ fn check_loop(c: &Case, scan_decades: [f64; 2]) -> Tally {
             return t;
         }
     };
-    check_analysis(&mut t, c, &lp, &fam);
-    check_map(&mut t, c, &fam);
-    check_region(&mut t, c, &lp, &fam);
+    check_analysis(&mut t, c, &sys);
+    check_map(&mut t, c, sys.family());
+    check_region(&mut t, c, &sys);
     let scan_floor = c.wall_scale.stiffness * 10f64.powf(scan_decades[0]);
-    check_intervals(&mut t, c, &lp, &fam, scan_floor);
+    check_intervals(&mut t, c, &sys, scan_floor);
     t
 }
 

@@ -3,14 +3,16 @@
 //! `/api/sweep`, `/api/zwidth`, `/api/map` and `/api/passivity` give the same objects under
 //! the same keys (the command line adds the files it wrote, the explorer the map's grid).
 
+mod check;
+
+pub use check::{CheckAnswer, CheckPaperView, check_answer};
+
 use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::kmax::{KmaxQuery, KmaxReport, kmax};
-use crate::loop_analysis::{analysis, wall_units};
 use crate::loop_spec::LoopInput;
 use crate::model::Loop;
 use crate::params::Wall;
@@ -20,6 +22,7 @@ use crate::passivity::{
 };
 use crate::stability::Verdict;
 use crate::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange, sweep_param};
+use crate::system::System;
 use crate::zwidth::ZWidth;
 
 /// The paper's normalized view of a K_max answer (Table I): α_max and its β beside the
@@ -67,8 +70,9 @@ pub struct KmaxAnswer {
 
 /// K_max of a physical loop for a query ([`kmax`]), its inputs echoed: at a damping, over a
 /// band of damping, or the design query (over B ≥ 0, beside B = 0 and the renderable band).
-pub fn kmax_answer(lp: &Loop, fam: &AffineFamily, query: KmaxQuery) -> Result<KmaxAnswer> {
-    let report = kmax(lp, fam, query)?;
+pub fn kmax_answer(sys: &System, query: KmaxQuery) -> Result<KmaxAnswer> {
+    let lp = sys.lp();
+    let report = kmax(sys, query)?;
     let (wall_damping, damping_range) = match query {
         KmaxQuery::AtDamping(b) => (Some(b), None),
         KmaxQuery::Band { lo, hi } => (None, Some([Some(lo), hi.is_finite().then_some(hi)])),
@@ -284,15 +288,14 @@ pub struct PassivityAnswer {
 /// says whether the loop is the paper's normalized one (m = T = 1). Also returns the library's
 /// [`Passivity`] it is read from.
 pub fn passivity_answer(
-    lp: &Loop,
-    fam: &AffineFamily,
+    sys: &System,
     normalized: bool,
     w: Wall,
 ) -> Result<(PassivityAnswer, Passivity)> {
+    let lp = sys.lp();
     let sw = SampledWall::new(lp)?;
     let p = passivity_with(&sw, lp, w);
-    let units = wall_units(lp, fam, w)?;
-    let stable = analysis(lp, fam, units)?.verdict == Verdict::Stable;
+    let stable = sys.decide(sys.wall_units(w)?).verdict == Verdict::Stable;
     let (device_damping, note, region) = match &p.device {
         DeviceDamping::Known { damping } => {
             let r = passive_region(&sw, *damping)?;
