@@ -173,7 +173,7 @@ fn boundary_text_speaks_physical_units() {
     let k_kn: f64 = k_line.split_whitespace().nth(2).unwrap().parse().unwrap();
     assert!(k_line.contains("kN/m at B = "), "{k_line}");
     // the paper's normalized view is in the JSON only: K_max = α_max m/T²
-    let alpha = f(&json(&["boundary", "--no-arm", "--json"])["normalized"]["alpha_max"]);
+    let alpha = f(&json(&["boundary", "--no-arm"])["normalized"]["alpha_max"]);
     // the default device alone: m = 0.1 kg, T = 1 ms
     let (m, t) = (0.1, 1e-3);
     assert!(
