@@ -11,7 +11,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, stable_alpha_intervals};
+use crate::boundary::AlphaBeta;
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::Loop;
@@ -20,7 +20,8 @@ use crate::passivity::{
     DeviceDamping, PassiveRegion, SampledWall, device_damping, k_max_passive_at, passive_k_max,
     passive_region,
 };
-use crate::region::{StableRegion, alpha_max_within, stable_region};
+use crate::region::StableRegion;
+use crate::system::System;
 
 /// The linear stability condition (22): K < (b + B)/t_r with t_r = t_d + T/2.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -93,12 +94,13 @@ pub const DEFAULT_TABLE_ROWS: usize = 11;
 /// The Z-width of a loop; `dampings` are the table's B values in Ns/m (None:
 /// [`DEFAULT_TABLE_ROWS`] values from 0 in steps of 1/11 of the largest stable B).
 pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
-    let fam = AffineFamily::of_loop(lp)?;
-    let region = stable_region(&fam)?;
+    let sys = System::of(lp)?;
+    let fam = sys.family();
+    let region = sys.region()?;
     let stable: Vec<Vec<Wall>> = region
         .polygons
         .iter()
-        .map(|p| p.vertices.iter().map(|v| physical(&fam, *v)).collect())
+        .map(|p| p.vertices.iter().map(|v| physical(fam, *v)).collect())
         .collect();
     let device = device_damping(&lp.plant);
     let b_dev = match &device {
@@ -109,7 +111,7 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
     let passive = b_dev.map(|b| passive_region(&sw, b)).transpose()?;
     // the linear condition (22) is a stability condition: the arm's damping counts; it is
     // the paper's loop's (backward difference, whole delay, no lag, as
-    // `loop_analysis::linear_k`), not a filtered or lagged loop's
+    // `System::linear_k`), not a filtered or lagged loop's
     let b_eff = b_dev.map(|b| lp.plant.effective_damping().unwrap_or(b));
     let linear = b_eff
         .filter(|_| lp.paper_view().is_some())
@@ -123,24 +125,26 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
     };
     let table = rows
         .par_iter()
-        .map(|&b| table_row(&fam, &sw, b_dev, linear, b))
-        .collect();
+        .map(|&b| table_row(&sys, &sw, b_dev, linear, b))
+        .collect::<Result<_>>()?;
     Ok(ZWidth {
         period: lp.period,
         delay_time: lp.delay_time(),
         device_damping: device,
         stable_area: region.area * fam.scale.stiffness * fam.scale.damping,
-        k_max: k_max_of(&fam, &region),
-        k_max_nonnegative_damping: alpha_max_within(&fam, &region, 0.0, f64::INFINITY)?.map(|p| {
-            physical(
-                &fam,
-                AlphaBeta {
-                    alpha: p.alpha,
-                    beta: p.beta,
-                },
-            )
-        }),
-        passive_inside_stable: passive.as_ref().map(|p| passive_inside(&fam, &sw, p)),
+        k_max: k_max_of(fam, &region),
+        k_max_nonnegative_damping: sys
+            .k_max_within_region(&region, 0.0, f64::INFINITY)?
+            .map(|p| {
+                physical(
+                    fam,
+                    AlphaBeta {
+                        alpha: p.alpha,
+                        beta: p.beta,
+                    },
+                )
+            }),
+        passive_inside_stable: passive.as_ref().map(|p| passive_inside(&sys, &sw, p)),
         k_max_passive_with_arm: b_dev
             .and(lp.plant.effective_damping())
             .and_then(|b| passive_k_max(&sw, b)),
@@ -184,24 +188,25 @@ fn default_dampings(stable: &[Vec<Wall>]) -> Vec<f64> {
 }
 
 fn table_row(
-    fam: &AffineFamily,
+    sys: &System,
     sw: &SampledWall,
     b_dev: Option<f64>,
     linear: Option<LinearCondition>,
     damping: f64,
-) -> ZWidthRow {
-    let (_, beta) = fam.to_units(0.0, damping);
-    let top = stable_alpha_intervals(fam, beta)
+) -> Result<ZWidthRow> {
+    let scale = sys.family().scale;
+    let top = sys
+        .stable_intervals(sys.damping_units(damping)?)
         .into_iter()
         .filter(|iv| iv.hi.is_finite())
         .max_by(|x, y| x.hi.total_cmp(&y.hi));
-    ZWidthRow {
+    Ok(ZWidthRow {
         damping,
-        k_max: top.map(|iv| iv.hi * fam.scale.stiffness),
-        k_min: top.map(|iv| iv.lo * fam.scale.stiffness),
+        k_max: top.map(|iv| iv.hi * scale.stiffness),
+        k_min: top.map(|iv| iv.lo * scale.stiffness),
         k_max_passive: b_dev.and_then(|b| k_max_passive_at(sw, b, damping)),
         k_linear: linear.map(|l| l.k_at(damping)),
-    }
+    })
 }
 
 /// Fraction of the way from the region's origin corner toward each test point: strictly
@@ -215,7 +220,7 @@ const ON_DC_LINE: f64 = 1e-9;
 
 /// Every vertex ray and edge midpoint of the passive polygon, scaled strictly inside, tested
 /// with Schur–Cohn (points on the line W(1) = 0 are skipped, see [`ON_DC_LINE`]).
-fn passive_inside(fam: &AffineFamily, sw: &SampledWall, p: &PassiveRegion) -> bool {
+fn passive_inside(sys: &System, sw: &SampledWall, p: &PassiveRegion) -> bool {
     let v = &p.vertices;
     let n = v.len();
     let floor = ON_DC_LINE * p.k_max.abs();
@@ -235,8 +240,12 @@ fn passive_inside(fam: &AffineFamily, sw: &SampledWall, p: &PassiveRegion) -> bo
                 if dc <= floor {
                     return true;
                 }
-                let (x, y) = fam.to_units(k, bb);
-                crate::verdict::stable(fam, x, y, &mut fam.coefficients(x, y))
+                let w = Wall {
+                    stiffness: k,
+                    damping: bb,
+                };
+                sys.wall_units(w)
+                    .is_ok_and(|u| sys.decide(u).verdict == crate::verdict::Verdict::Stable)
             })
         })
     })
