@@ -206,7 +206,8 @@ def test_margins_equal_the_command_line(hapstab_cli, cases):
     for lp, flags, wall in cases:
         want = run_cli(hapstab_cli, "check", flags, wall)
         got = hs.margins(lp, *wall)
-        assert got.stable == want["stable"] == hs.check(lp, *wall).stable
+        checked = hs.check(lp, *wall)
+        assert got.stable == want["stable"] == checked.stable == checked.margins.stable
         for key in ("gain_margin", "gain_margin_lower", "phase_crossover_hz",
                     "stiffness_margin", "stiffness_margin_lower", "stiffness_crossover_hz",
                     "phase_margin_deg", "gain_crossover_hz", "delay_margin",
@@ -214,9 +215,11 @@ def test_margins_equal_the_command_line(hapstab_cli, cases):
                     "delay_margin_at_least", "stability_margin", "stability_margin_hz",
                     "peak_gain", "peak_gain_hz"):
             assert getattr(got, key) == want.get(key), (flags, wall, key)
+            # check's margins are the same report
+            assert getattr(checked.margins, key) == want.get(key), (flags, wall, key)
         want_crossings = [(c["kind"], c["frequency_hz"], c["value"]) for c in want["crossings"]]
-        assert got.crossings == want_crossings
-        assert got.notes == want["margin_notes"]
+        assert got.crossings == want_crossings == checked.margins.crossings
+        assert got.notes == want["margin_notes"] == checked.margins.notes
         if got.stable:
             seen_stable += 1
             assert got.gain_margin > 1

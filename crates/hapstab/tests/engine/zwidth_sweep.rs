@@ -236,3 +236,32 @@ fn shared_passive_kmax_equals_each_points_own() {
         }
     }
 }
+
+/// Never contradict yourself: Z-width's K_max and its table answer what `kmax` and
+/// `boundary` answer for the same loop, bit for bit — the paper's loop (analysed in α, β)
+/// and a filtered one.
+#[test]
+fn zwidth_agrees_with_kmax_and_the_region_bit_for_bit() {
+    use hapstab::System;
+    use hapstab::kmax::{KmaxQuery, kmax};
+    let held = Loop::paper(Effective::new(1.1, 7.5, 350.0).unwrap(), T, 1).unwrap();
+    let filtered = phantom(
+        VelocityEstimator::LowPass { cutoff_hz: 100.0 },
+        Delay::samples(2).unwrap(),
+    );
+    for lp in [held, filtered] {
+        let dampings = [0.0, 3.0, 11.0];
+        let z = zwidth(&lp, Some(&dampings)).unwrap();
+        let sys = System::of(&lp).unwrap();
+        let r = sys.region().unwrap();
+        let (k, b) = sys.family().to_physical(r.alpha_max, r.beta_at_alpha_max);
+        let zk = z.k_max.unwrap();
+        assert_eq!((zk.stiffness, zk.damping), (k, b), "{lp:?}");
+        for row in &z.table {
+            let at = kmax(&sys, KmaxQuery::AtDamping(row.damping)).unwrap();
+            let interval = at.k_interval.filter(|i| i[1].is_finite());
+            assert_eq!(row.k_max, interval.map(|i| i[1]), "B = {}", row.damping);
+            assert_eq!(row.k_min, interval.map(|i| i[0]), "B = {}", row.damping);
+        }
+    }
+}
