@@ -3,9 +3,10 @@
 //! estimator, actuator lag), each validated by the library when constructed.
 
 use hapstab::Param;
+use hapstab::loop_spec::{LoopSpec, PlantSpec, VelocitySpec};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass};
 use hapstab::params::{Arm, Device, Effective};
-use hapstab::{PlantParams, System, VelocityEstimator};
+use hapstab::{PlantParams, System};
 use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -377,18 +378,6 @@ pub struct PyLoop {
     pub normalized: bool,
 }
 
-/// The delay from the keyword arguments (seconds or whole samples, not both).
-fn delay_of(delay: Option<f64>, delay_samples: Option<usize>, period: f64) -> PyResult<Delay> {
-    match (delay, delay_samples) {
-        (Some(_), Some(_)) => Err(bad(
-            "delay, delay_samples",
-            "give the delay either in seconds (delay) or in whole samples (delay_samples)",
-        )),
-        (None, Some(d)) => Delay::samples(d).py_with(&[(Param::Delay, "delay_samples")]),
-        (t, None) => Delay::from_time(t.unwrap_or(0.0), period).py(),
-    }
-}
-
 #[pymethods]
 impl PyLoop {
     #[new]
@@ -404,17 +393,35 @@ impl PyLoop {
     ) -> PyResult<Self> {
         let (model, operator) = plant_model(plant)?;
         hapstab::params::Sampling::new(period, 0).py()?;
-        if let PlantModel::MassSpringDamper(e) = &model {
-            // γ = kT²/m and δ = bT/m must be finite (Table I): a mass far too small for the
-            // period is named here rather than as an overflow of the discretization.
-            PlantParams::from_physical(e, period).py_with(&[
-                (Param::Mass, "plant.mass"),
-                (Param::Damping, "plant.damping"),
-                (Param::Stiffness, "plant.stiffness"),
-            ])?;
-        }
-        let plant = Plant::new(model, force_lag).py_with(&[
+        let (delay, delay_time) = match (delay, delay_samples) {
+            (Some(_), Some(_)) => {
+                return Err(bad(
+                    "delay, delay_samples",
+                    "give the delay either in seconds (delay) or in whole samples (delay_samples)",
+                ));
+            }
+            (None, Some(d)) => (
+                Some(Delay::samples(d).py_with(&[(Param::Delay, "delay_samples")])?),
+                None,
+            ),
+            (t, None) => (None, t),
+        };
+        // the loop file's form: one set of defaults and checks for every front end
+        let spec = LoopSpec {
+            plant: Some(PlantSpec {
+                model,
+                force_lag,
+                operator,
+            }),
+            period: Some(period),
+            delay,
+            delay_time,
+            velocity: Some(VelocitySpec::Text(velocity.into())),
+        };
+        let lp = spec.resolve().py_with(&[
             (Param::Mass, "plant.mass"),
+            (Param::Damping, "plant.damping"),
+            (Param::Stiffness, "plant.stiffness"),
             (Param::MotorMass, "plant.motor_mass"),
             (Param::HandleMass, "plant.handle_mass"),
             (Param::ArmMass, "plant.arm_mass"),
@@ -423,14 +430,8 @@ impl PyLoop {
                 "plant.handle_mass + plant.arm_mass",
             ),
         ])?;
-        let plant = match operator {
-            Some(arm) => plant.with_operator(arm).py()?,
-            None => plant,
-        };
-        let velocity: VelocityEstimator = velocity.parse().py()?;
-        let delay = delay_of(delay, delay_samples, period)?;
         Ok(Self {
-            lp: Loop::new(plant, period, delay, velocity).py()?,
+            lp,
             normalized: false,
         })
     }

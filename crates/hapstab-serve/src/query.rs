@@ -7,8 +7,9 @@ use std::collections::BTreeMap;
 use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
+use hapstab::loop_spec::{LoopSpec, VelocitySpec};
 use hapstab::params::{Arm, Device, Effective, PlantParams, Sampling};
-use hapstab::{Delay, Loop, Param, Plant, PlantModel, System, TwoMass, VelocityEstimator};
+use hapstab::{Delay, Param, Plant, PlantModel, System, TwoMass, VelocityEstimator};
 use serde::Serialize;
 
 use crate::limits::{
@@ -694,7 +695,13 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
         PlantModel::TwoMass(_) => "motor_mass",
         PlantModel::MassSpringDamper(_) => "device_mass",
     };
-    let plant = Plant::new(model, lag).map_err(|e| {
+    // the device held by an arm names its operator: passivity counts the device's own damping
+    let operator = match &model {
+        PlantModel::MassSpringDamper(_) if arm(p)? != Arm::NONE => Some(arm(p)?),
+        _ => None,
+    };
+    // the plant's own errors name the query parameter the user typed
+    Plant::new(model.clone(), lag).map_err(|e| {
         let given = e.param().and_then(Param::query).filter(|n| p.has(n));
         let name = given.unwrap_or(fallback);
         let v = p.raw(name).unwrap_or("");
@@ -704,15 +711,19 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
             format!("parameter '{name}' (got '{}'): {e}", clip(v)),
         )
     })?;
-    // the device held by an arm names its operator: passivity counts the device's own damping
-    let plant = match &plant.model {
-        PlantModel::MassSpringDamper(_) if arm(p)? != Arm::NONE => {
-            plant.with_operator(arm(p)?).map_err(lib_error)?
-        }
-        _ => plant,
+    // the loop file's form: one set of defaults and checks for every front end
+    let spec = LoopSpec {
+        plant: Some(hapstab::loop_spec::PlantSpec {
+            model,
+            force_lag: lag,
+            operator,
+        }),
+        period: Some(period),
+        delay: Some(general_delay(p, period)?),
+        delay_time: None,
+        velocity: Some(VelocitySpec::Estimator(velocity)),
     };
-    let delay = general_delay(p, period)?;
-    let lp = Loop::new(plant, period, delay, velocity).map_err(lib_error)?;
+    let lp = spec.resolve().map_err(lib_error)?;
     let sys = System::new(lp).map_err(lib_error)?;
     Ok(general_plant_spec(sys))
 }
