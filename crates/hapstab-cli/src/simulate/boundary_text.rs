@@ -4,7 +4,7 @@
 
 use hapstab::simulation::{Outcome, StableWhen};
 
-use super::boundary::SimboundaryOut;
+use super::boundary_out::SimboundaryOut;
 use super::run_args::RunSettings;
 use super::{Units, describe_effects};
 use crate::model::{ResolvedLoop, describe_loop};

@@ -19,12 +19,15 @@ use crate::model::{LoopArgs, ResolvedLoop};
 use crate::output::sig;
 
 mod boundary;
+mod boundary_out;
 mod boundary_plot;
+mod boundary_scan;
 mod boundary_text;
 mod log;
 mod run;
 mod run_args;
 mod run_plot;
+mod run_plot_panels;
 mod run_text;
 
 pub use boundary::{SimboundaryArgs, run_simboundary};

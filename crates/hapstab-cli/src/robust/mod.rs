@@ -1,18 +1,24 @@
 //! Robust K_max across a range of plants (beyond the paper): the largest virtual stiffness
 //! that stays stable for every plant of a box, e.g. from the ungrabbed device to a device
 //! held firmly by an arm. Wired into `hapstab kmax --robust`.
+//!
+//! Parts: [`json`] is the `--json` answer, [`text`] the printed one.
+
+mod json;
+mod text;
 
 use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::limits::{box_plants, robust_kmax_cost};
-use hapstab::nyquist::{BoxOptions, PlantBox, RobustKmax, robust_kmax_with_progress};
+use hapstab::nyquist::{BoxOptions, PlantBox, robust_kmax_with_progress};
 use hapstab::params::{Arm, Device};
-use serde::Serialize;
 
 use crate::budget::{self, Driver};
 use crate::model::PlantArgs;
-use crate::output::{eng, print_json, sig};
+use crate::output::sig;
 use crate::progress::Bar;
+use json::json_out;
+use text::print_text;
 
 /// Default of `--box-samples`.
 const DEFAULT_BOX_SAMPLES: usize = 33;
@@ -57,124 +63,6 @@ fn parse_span(s: &str) -> Result<Span, String> {
         _ => Err(format!("'{}' is not a finite number (in '{s}')", t.trim())),
     };
     Ok(Span([num(lo)?, num(hi)?]))
-}
-
-/// The box as given, after defaults: physical (kg, Ns/m, N/m) or normalized (γ, δ).
-#[derive(Serialize)]
-#[serde(untagged)]
-enum BoxInput {
-    Physical {
-        mass: [f64; 2],
-        damping: [f64; 2],
-        stiffness: [f64; 2],
-        period: f64,
-        d: usize,
-    },
-    Normalized {
-        gamma: [f64; 2],
-        delta: [f64; 2],
-        d: usize,
-    },
-}
-
-#[derive(Serialize)]
-struct RobustInput {
-    #[serde(rename = "box")]
-    plant_box: BoxInput,
-    box_samples: usize,
-}
-
-/// The plant of the box that limits K_max.
-#[derive(Serialize)]
-#[serde(untagged)]
-enum WorstPlant {
-    Physical {
-        mass: f64,
-        damping: f64,
-        stiffness: f64,
-    },
-    Normalized {
-        gamma: f64,
-        delta: f64,
-    },
-}
-
-/// `kmax --robust --json` of a physical box (N/m, Ns/m).
-#[derive(Serialize)]
-struct PhysicalOut {
-    input: RobustInput,
-    k_max: f64,
-    b_at_k_max: f64,
-    /// Lower end of the robust K interval at that B.
-    k_min: f64,
-    worst_plant: WorstPlant,
-    /// Linear condition (22) for the worst plant at the same B.
-    k_linear_worst: f64,
-    /// K_max and its B normalized with the smallest mass of the box: K T²/m, B T/m.
-    normalized_at_min_mass: hapstab::boundary::AlphaBeta,
-    plants_sampled: usize,
-}
-
-/// `kmax --robust --json` of a normalized box (α, β).
-#[derive(Serialize)]
-struct NormalizedOut {
-    input: RobustInput,
-    alpha_max: f64,
-    beta_at_alpha_max: f64,
-    alpha_min: f64,
-    worst_plant: WorstPlant,
-    /// Linear condition (23) for the worst plant at the same β.
-    alpha_linear_worst: f64,
-    plants_sampled: usize,
-}
-
-fn json_out(r: &RobustKmax, samples: usize, normalized: bool) -> Result<()> {
-    let pb = &r.plant_box;
-    let [m, b, k] = r.worst_plant;
-    let k_linear_worst = (b + r.damping_at_max) / ((pb.d as f64 + 0.5) * pb.period);
-    if normalized {
-        let input = RobustInput {
-            plant_box: BoxInput::Normalized {
-                gamma: pb.stiffness,
-                delta: pb.damping,
-                d: pb.d,
-            },
-            box_samples: samples,
-        };
-        return print_json(&NormalizedOut {
-            input,
-            alpha_max: r.stiffness_max,
-            beta_at_alpha_max: r.damping_at_max,
-            alpha_min: r.stiffness_min,
-            worst_plant: WorstPlant::Normalized { gamma: k, delta: b },
-            alpha_linear_worst: k_linear_worst,
-            plants_sampled: r.plants_sampled,
-        });
-    }
-    let input = RobustInput {
-        plant_box: BoxInput::Physical {
-            mass: pb.mass,
-            damping: pb.damping,
-            stiffness: pb.stiffness,
-            period: pb.period,
-            d: pb.d,
-        },
-        box_samples: samples,
-    };
-    print_json(&PhysicalOut {
-        input,
-        k_max: r.stiffness_max,
-        b_at_k_max: r.damping_at_max,
-        k_min: r.stiffness_min,
-        worst_plant: WorstPlant::Physical {
-            mass: m,
-            damping: b,
-            stiffness: k,
-        },
-        k_linear_worst,
-        normalized_at_min_mass: r.normalized_at_min_mass,
-        plants_sampled: r.plants_sampled,
-    })
 }
 
 /// Runs the robust K_max search of `hapstab kmax --robust` on the box described by the
@@ -244,62 +132,6 @@ pub fn run_robust(plant: &PlantArgs, b: &RobustArgs, json: bool) -> Result<()> {
     }
     print_text(&r, normalized);
     Ok(())
-}
-
-fn print_text(r: &RobustKmax, normalized: bool) {
-    let pb = &r.plant_box;
-    let [m, b, k] = r.worst_plant;
-    let k_linear_worst = (b + r.damping_at_max) / ((pb.d as f64 + 0.5) * pb.period);
-    if normalized {
-        println!(
-            "box         γ ∈ [{}, {}], δ ∈ [{}, {}], d = {} ({} plants sampled)",
-            sig(pb.stiffness[0], 6),
-            sig(pb.stiffness[1], 6),
-            sig(pb.damping[0], 6),
-            sig(pb.damping[1], 6),
-            pb.d,
-            r.plants_sampled
-        );
-        println!(
-            "robust      α_max = {} at β = {} (limited by γ = {}, δ = {})",
-            sig(r.stiffness_max, 6),
-            sig(r.damping_at_max, 6),
-            sig(k, 6),
-            sig(b, 6)
-        );
-        println!(
-            "linear      (23) for that plant at the same β: α < {}",
-            sig(k_linear_worst, 6)
-        );
-    } else {
-        println!(
-            "box         m ∈ [{}, {}], b ∈ [{}, {}], k ∈ [{}, {}]; T = {}, d = {} ({} plants sampled)",
-            eng(pb.mass[0], "kg", 6),
-            eng(pb.mass[1], "kg", 6),
-            eng(pb.damping[0], "Ns/m", 6),
-            eng(pb.damping[1], "Ns/m", 6),
-            eng(pb.stiffness[0], "N/m", 6),
-            eng(pb.stiffness[1], "N/m", 6),
-            eng(pb.period, "s", 6),
-            pb.d,
-            r.plants_sampled
-        );
-        println!(
-            "robust      K_max = {} at B = {}, stable for every plant of the box",
-            eng(r.stiffness_max, "N/m", 6),
-            eng(r.damping_at_max, "Ns/m", 6)
-        );
-        println!(
-            "            limited by m = {}, b = {}, k = {}",
-            eng(m, "kg", 6),
-            eng(b, "Ns/m", 6),
-            eng(k, "N/m", 6)
-        );
-        println!(
-            "linear      (22) for that plant at the same B: K < {}",
-            eng(k_linear_worst, "N/m", 6)
-        );
-    }
 }
 
 /// Samples of a range: one when it is a single value.
