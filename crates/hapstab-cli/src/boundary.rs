@@ -4,10 +4,11 @@
 use anyhow::{Context, Result};
 use clap::Args;
 use hapstab::AffineFamily;
+use hapstab::answer::{PhysicalRegion, RegionAnswer, region_answer};
 use hapstab::region::{EdgeKind, StableRegion};
 use serde::Serialize;
 
-use crate::model::{LoopArgs, LoopInput, ResolvedLoop, describe_loop};
+use crate::model::{LoopArgs, ResolvedLoop, describe_loop};
 use crate::output::{csv_num, eng, print_json, sig};
 use crate::wall_plot;
 use hapstab_plot::{Marker, palette};
@@ -31,84 +32,11 @@ pub struct BoundaryArgs {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct EdgeOut {
-    start: usize,
-    #[serde(flatten)]
-    kind: EdgeKind,
-}
-
-/// The region of a physical loop in N/m and Ns/m.
-#[derive(Serialize)]
-struct PhysicalRegion {
-    /// K_max in N/m.
-    k_max: f64,
-    /// B at K_max in Ns/m.
-    b_at_k_max: f64,
-    /// False where K_max is a supremum: a corner of the region that only the damping
-    /// `b_at_k_max` touches, approached as B → `b_at_k_max`.
-    k_max_attained: bool,
-    /// A damping (Ns/m) at which `k_stable_near_k_max` is stable: `b_at_k_max` when K_max is
-    /// attained, one beside it for a supremum.
-    b_stable_near_k_max: f64,
-    /// A stiffness (N/m) within 1e-6 of K_max that the verdict confirms stable at
-    /// `b_stable_near_k_max`.
-    k_stable_near_k_max: f64,
-    /// Area of the stable region in N²·s/m².
-    area: f64,
-    /// The polygons as arrays of [K, B] in N/m and Ns/m (counter-clockwise, first vertex
-    /// not repeated).
-    polygons: Vec<Vec<[f64; 2]>>,
-    /// K and B of one wall unit: N/m per unit a and Ns/m per unit b (m/T² and m/T for the
-    /// paper's plant: per unit α and β).
-    wall_units: WallUnits,
-}
-
-#[derive(Serialize)]
-struct WallUnits {
-    stiffness: f64,
-    damping: f64,
-}
-
-/// The region of the paper's loop in normalized units.
-#[derive(Serialize)]
-struct NormalizedRegion {
-    /// Largest stable α.
-    alpha_max: f64,
-    /// β at which it is reached.
-    beta_at_alpha_max: f64,
-    /// Area in α·β.
-    area: f64,
-    /// Closed polygons, each an array of [alpha, beta] (counter-clockwise, first vertex not
-    /// repeated).
-    polygons: Vec<Vec<[f64; 2]>>,
-}
-
-/// The normalized view of the paper's loop given in physical units (Table I).
-#[derive(Serialize)]
-struct NormalizedView {
-    gamma: f64,
-    delta: f64,
-    d: usize,
-    alpha_max: f64,
-    beta_at_alpha_max: f64,
-    area: f64,
-}
-
-/// `boundary --json`: the region in N/m and Ns/m for a physical loop, in α and β for the
-/// normalized one, with the edges of each polygon.
+/// The library's region answer with the files --plot wrote.
 #[derive(Serialize)]
 struct BoundaryOut {
-    input: LoopInput,
     #[serde(flatten)]
-    physical: Option<PhysicalRegion>,
-    #[serde(flatten)]
-    units: Option<NormalizedRegion>,
-    /// Edge labels per polygon.
-    edges: Vec<Vec<EdgeOut>>,
-    /// The paper's loop given in physical units: its normalized view.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    normalized: Option<NormalizedView>,
+    answer: RegionAnswer,
     /// Files written by --plot.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     plot: Vec<std::path::PathBuf>,
@@ -184,75 +112,6 @@ fn write_vertices(
     Ok(())
 }
 
-fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
-    let (k_max, b_at_k_max) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
-    let (kpa, bpb) = fam.to_physical(1.0, 1.0);
-    PhysicalRegion {
-        k_max,
-        b_at_k_max,
-        k_max_attained: r.alpha_max_attained,
-        b_stable_near_k_max: fam.to_physical(0.0, r.beta_stable).1,
-        k_stable_near_k_max: fam.to_physical(r.alpha_stable, 0.0).0,
-        area: r.area * kpa * bpb,
-        polygons: polygons(r, |a, b| {
-            let (k, b) = fam.to_physical(a, b);
-            [k, b]
-        }),
-        wall_units: WallUnits {
-            stiffness: kpa,
-            damping: bpb,
-        },
-    }
-}
-
-/// The polygons' vertices mapped by `f` from (α, β) (or wall units).
-fn polygons(r: &StableRegion, f: impl Fn(f64, f64) -> [f64; 2]) -> Vec<Vec<[f64; 2]>> {
-    r.polygons
-        .iter()
-        .map(|p| p.vertices.iter().map(|v| f(v.alpha, v.beta)).collect())
-        .collect()
-}
-
-fn output(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> BoundaryOut {
-    let physical = !rl.normalized;
-    BoundaryOut {
-        input: rl.input(None),
-        physical: physical.then(|| physical_region(fam, r)),
-        units: (!physical).then(|| NormalizedRegion {
-            alpha_max: r.alpha_max,
-            beta_at_alpha_max: r.beta_at_alpha_max,
-            area: r.area,
-            polygons: polygons(r, |a, b| [a, b]),
-        }),
-        edges: r
-            .polygons
-            .iter()
-            .map(|p| {
-                p.edges
-                    .iter()
-                    .map(|e| EdgeOut {
-                        start: e.start,
-                        kind: e.kind,
-                    })
-                    .collect()
-            })
-            .collect(),
-        normalized: rl
-            .lp
-            .paper_view()
-            .filter(|_| physical)
-            .map(|pp| NormalizedView {
-                gamma: pp.gamma,
-                delta: pp.delta,
-                d: rl.lp.delay.samples,
-                alpha_max: r.alpha_max,
-                beta_at_alpha_max: r.beta_at_alpha_max,
-                area: r.area,
-            }),
-        plot: Vec::new(),
-    }
-}
-
 /// Runs `hapstab boundary`.
 pub fn run(a: &BoundaryArgs) -> Result<()> {
     let rl = a.lp.resolve(false)?;
@@ -265,7 +124,10 @@ pub fn run(a: &BoundaryArgs) -> Result<()> {
     if let Some(path) = &a.csv {
         write_csv(path, &r, (!rl.normalized).then_some(fam))?;
     }
-    let mut out = output(&rl, fam, &r);
+    let mut out = BoundaryOut {
+        answer: region_answer(&sys, rl.normalized, &r),
+        plot: Vec::new(),
+    };
     if let Some(path) = &a.plot {
         out.plot = wall_plot::save(figure(&rl, fam, &r), path)?;
     }
@@ -334,7 +196,7 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         println!("empty: no wall (K, B) makes this loop stable");
         return;
     }
-    if let Some(p) = &out.physical {
+    if let Some(p) = &out.answer.physical {
         print_k_max(p);
     }
     // polygons are numbered from 0, as in the CSV's polygon column and the JSON arrays

@@ -5,6 +5,7 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::Param;
+use hapstab::loop_spec::{LoopSpec, PlantSpec, VelocitySpec};
 use hapstab::model::{Delay, Loop, Plant, PlantModel as LibPlantModel, TwoMass, VelocityEstimator};
 use hapstab::spec::excerpt_list;
 
@@ -160,24 +161,30 @@ impl LoopArgs {
             Some(p) => p.model.clone(),
             None => self.plant_model()?,
         };
-        if let LibPlantModel::MassSpringDamper(eff) = &model {
-            // γ = kT²/m and δ = bT/m must be finite: a mass so small (or a stiffness so
-            // large) that they overflow is refused here, naming the physical parameter
-            hapstab::PlantParams::from_physical(eff, period)?;
-        }
-        let mut plant =
-            Plant::new(model, self.force_lag.unwrap_or(0.0)).map_err(|e| tf_context(self, e))?;
+        let force_lag = self.force_lag.unwrap_or(0.0);
+        // the plant's own errors name the flag the user typed
+        Plant::new(model.clone(), force_lag).map_err(|e| tf_context(self, e))?;
         let operator = match base {
             Some(p) => p.operator,
             None => self.plant.operator(),
-        };
-        if let (LibPlantModel::MassSpringDamper(_), Some(arm)) = (&plant.model, operator) {
-            plant = plant.with_operator(arm)?;
         }
-        let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
+        .filter(|_| matches!(model, LibPlantModel::MassSpringDamper(_)));
+        // the loop file's form: one set of defaults and checks for every front end
+        let spec = LoopSpec {
+            plant: Some(PlantSpec {
+                model,
+                force_lag,
+                operator,
+            }),
+            period: Some(period),
+            delay: Some(self.delay(period)?),
+            delay_time: None,
+            velocity: Some(VelocitySpec::Estimator(
+                self.velocity.clone().unwrap_or(VelocityEstimator::Backward),
+            )),
+        };
         Ok(ResolvedLoop {
-            lp: Loop::new(plant, period, self.delay(period)?, velocity)
-                .map_err(|e| self.with_flag(e))?,
+            lp: spec.resolve().map_err(|e| self.with_flag(e))?,
             normalized: false,
             wall: None,
         })

@@ -4,8 +4,13 @@
 //! the same keys (the command line adds the files it wrote, the explorer the map's grid).
 
 mod check;
+mod region;
 
 pub use check::{CheckAnswer, CheckPaperView, check_answer};
+pub use region::{
+    NormalizedRegion, PhysicalRegion, RegionAnswer, RegionEdge, RegionPaperView, WallUnitsOut,
+    region_answer,
+};
 
 use std::time::Instant;
 

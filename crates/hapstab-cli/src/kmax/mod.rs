@@ -6,12 +6,14 @@ use clap::Args;
 use hapstab::System;
 use serde::Serialize;
 
-use crate::model::{LoopArgs, ResolvedLoop, describe_loop};
+mod plot;
+mod text;
+
+use crate::model::LoopArgs;
 use crate::output::{eng, print_json};
-use crate::wall_plot::{self, Plane};
+use crate::wall_plot;
 use hapstab::answer::{KmaxAnswer, kmax_answer};
-use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, RenderableBand};
-use hapstab_plot::{Marker, palette};
+use hapstab::kmax::{KmaxQuery, NoiseModel};
 
 /// A band of virtual damping lo ≤ B ≤ hi in Ns/m (`LO:HI`; `inf` for no upper bound).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,90 +129,6 @@ fn answer(sys: &System, query: KmaxQuery) -> Result<KmaxOut> {
     })
 }
 
-/// The stable region with K_max marked at its B, the damping band or the given B dashed,
-/// and K_max at B = 0.
-fn figure(
-    rl: &ResolvedLoop,
-    sys: &System,
-    out: &KmaxOut,
-    band: DampingRange,
-) -> Result<hapstab_plot::Figure> {
-    let r = sys.region()?;
-    let plane = wall_plot::plane(rl, sys.family());
-    let mut fig = wall_plot::region_figure(&plane, &r, "Largest stable stiffness K_max")
-        .subtitle(wall_plot::loop_line(rl));
-    let mut lines: Vec<f64> = match out.wall_damping {
-        Some(b) => vec![b],
-        None => [band.lo, band.hi]
-            .into_iter()
-            .filter(|b| b.is_finite())
-            .collect(),
-    };
-    if let Some(rb) = &out.answer.report.renderable {
-        lines.push(rb.b_max);
-    }
-    let band_lines = lines.len() - usize::from(out.answer.report.renderable.is_some());
-    for (i, b) in lines[..band_lines].iter().enumerate() {
-        let label = match out.wall_damping {
-            Some(_) => "the given B".to_string(),
-            None => format!("damping range {}", band_text(band)),
-        };
-        wall_plot::damping_line(&mut fig, *b, (i == 0).then_some(label.as_str()));
-    }
-    // the renderable band's top after the band's lines (each spans the ranges drawn so far)
-    if let Some(rb) = &out.answer.report.renderable {
-        mark_renderable(&mut fig, rb, &plane);
-    }
-    // a tag on a damping line is lifted off it (the marker stays at its point)
-    let on_line = |b: f64| {
-        lines
-            .iter()
-            .any(|l| (l - b).abs() <= 1e-9 * l.abs().max(1.0))
-    };
-    let tag = |fig: &mut hapstab_plot::Figure, at: (f64, f64), style, legend: &str, text| {
-        if on_line(at.1) {
-            wall_plot::mark_above(fig, at, style, legend, text)
-        } else {
-            wall_plot::mark(fig, at, style.0, style.1, legend, text)
-        }
-    };
-    if let Some(k) = out.answer.report.k_max_at_zero_damping {
-        tag(
-            &mut fig,
-            (k, 0.0),
-            (Marker::Triangle, palette::GREEN),
-            &format!("K_max at B = 0: {}", eng(k, "N/m", 6)),
-            "B = 0",
-        );
-    }
-    let b_best = out.answer.report.b_at_k_max.or(out.wall_damping);
-    if let (Some(k), Some(b)) = (out.answer.report.k_max, b_best) {
-        tag(
-            &mut fig,
-            (k, b),
-            (Marker::Circle, palette::VERMILLION),
-            &format!("K_max: {}", plane.describe((k, b))),
-            "K_max",
-        );
-    }
-    Ok(fig)
-}
-
-/// The renderable band's top B_r dashed, and K_max over the band marked above it.
-fn mark_renderable(fig: &mut hapstab_plot::Figure, rb: &RenderableBand, plane: &Plane) {
-    let label = format!("renderable band 0 ≤ B ≤ {}", eng(rb.b_max, "Ns/m", 6));
-    wall_plot::damping_line(fig, rb.b_max, Some(label.as_str()));
-    if let (Some(k), Some(b)) = (rb.k_max, rb.b_at_k_max) {
-        wall_plot::mark_above(
-            fig,
-            (k, b),
-            (Marker::Square, palette::PURPLE),
-            &format!("K_max over the renderable band: {}", plane.describe((k, b))),
-            "",
-        );
-    }
-}
-
 fn band_text(band: DampingRange) -> String {
     let hi = if band.hi.is_finite() {
         eng(band.hi, "Ns/m", 6)
@@ -302,125 +220,12 @@ pub fn run(a: &KmaxArgs) -> Result<()> {
     });
     let mut out = answer(&sys, query)?;
     if let Some(path) = &a.plot {
-        let fig = figure(&rl, &sys, &out, band)?;
+        let fig = plot::figure(&rl, &sys, &out, band)?;
         out.plot = wall_plot::save(fig, path)?;
     }
     if a.json {
         return print_json(&out);
     }
-    print_text(&rl, &out, band, a.wall_damping.is_none());
+    text::print_text(&rl, &out, band, a.wall_damping.is_none());
     Ok(())
-}
-
-/// The human-readable answer of `kmax`: the loop, K_max with where it is reached (or why no
-/// stiffness is stable), the plot's files, and over a damping band K_max at B = 0 as well.
-fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: bool) {
-    for line in describe_loop(&rl.lp) {
-        println!("{line}");
-    }
-    let r = &out.answer.report;
-    // the pure spring first: the number a device renders without virtual damping
-    if over_band {
-        match r.k_max_at_zero_damping {
-            Some(k) => println!(
-                "K_max = {} at B = 0 (no virtual damping, the plant's own damping only)",
-                kt(k)
-            ),
-            None => println!("no stiffness is stable at B = 0"),
-        }
-    }
-    if let Some(rb) = &r.renderable {
-        print_renderable(rl, rb);
-    }
-    print_main(r, out.wall_damping, band);
-    if over_band
-        && band.lo == 0.0
-        && band.hi == f64::INFINITY
-        && let Some(b) = r.b_at_k_max.filter(|&b| b > 0.0)
-        && r.renderable.as_ref().is_none_or(|rb| b > rb.b_max)
-    {
-        println!(
-            "            (that needs the device to render B = {}; --damping-range LO:HI \
-             gives K_max over the dampings yours renders)",
-            bt(b)
-        );
-    }
-    if !out.plot.is_empty() {
-        println!("plot written to {}", wall_plot::files_text(&out.plot));
-    }
-}
-
-fn kt(k: f64) -> String {
-    eng(k, "N/m", 6)
-}
-
-fn bt(b: f64) -> String {
-    eng(b, "Ns/m", 6)
-}
-
-/// K_max over the renderable band and how the band is set.
-fn print_renderable(rl: &ResolvedLoop, rb: &RenderableBand) {
-    let band = format!("the renderable band 0 ≤ B ≤ {}", bt(rb.b_max));
-    match (rb.k_max, rb.b_at_k_max) {
-        (Some(k), Some(b)) => println!(
-            "K_max = {}, {} B = {} (largest over {band})",
-            kt(k),
-            if rb.k_max_attained == Some(false) {
-                "approached as"
-            } else {
-                "reached at"
-            },
-            bt(b)
-        ),
-        _ => println!("no stiffness is stable over {band}"),
-    }
-    println!(
-        "            (the damper's force noise stays ≤ {} RMS there: {} position steps through \
-         the {} estimator, noise gain {} s⁻¹; --position-resolution, --force-noise)",
-        eng(rb.noise.force_noise, "N", 6),
-        eng(rb.noise.position_resolution, "m", 6),
-        rl.lp.velocity,
-        crate::output::sig(rb.velocity_noise_gain, 6),
-    );
-}
-
-/// K_max at the given B, or over the band with where it is reached.
-fn print_main(r: &KmaxReport, wall_damping: Option<f64>, band: DampingRange) {
-    let linear = |what: &str| {
-        r.k_linear
-            .map(|k| format!("; linear condition (22){what}: {}", kt(k)))
-            .unwrap_or_default()
-    };
-    match (r.k_max, wall_damping, r.b_at_k_max) {
-        (None, None, _) => println!("no stiffness is stable for {}", band_text(band)),
-        (None, Some(b), _) => println!("no stiffness is stable at B = {}", bt(b)),
-        (Some(k), Some(b), _) => println!(
-            "K_max = {} at B = {} (stable for {} < K < {}){}",
-            kt(k),
-            bt(b),
-            r.k_interval.map_or("—".into(), |i| kt(i[0])),
-            kt(k),
-            linear("")
-        ),
-        (Some(k), None, Some(b)) if r.k_max_attained == Some(false) => println!(
-            "K_max = {}, approached as B → {} (largest over {}: a supremum, a corner of the \
-             region that no stiffness at exactly that B reaches; K = {} is stable at B = {}){}",
-            kt(k),
-            bt(b),
-            band_text(band),
-            r.k_stable_near_k_max
-                .map_or("—".into(), |k| eng(k, "N/m", 10)),
-            r.b_stable_near_k_max
-                .map_or("—".into(), |b| eng(b, "Ns/m", 10)),
-            linear(" at that B")
-        ),
-        (Some(k), None, Some(b)) => println!(
-            "K_max = {}, reached at B = {} (largest over {}){}",
-            kt(k),
-            bt(b),
-            band_text(band),
-            linear(" at that B")
-        ),
-        _ => {}
-    }
 }
