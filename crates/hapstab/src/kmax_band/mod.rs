@@ -191,7 +191,7 @@ fn sorted_candidates(
         let slack = CORNER_REACH * p.alpha.abs().max(p.beta.abs());
         p.alpha > floor - slack && p.beta >= b_lo - slack && p.beta <= b_hi + slack
     };
-    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf, &keep)
+    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf, &keep, floor, (b_lo, b_hi))
         .into_iter()
         .filter(|p| p.beta >= b_lo && p.beta <= b_hi && p.alpha.is_finite())
         .collect();
@@ -437,11 +437,14 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
     confirm_max(fam, cand, band, f.alpha.abs().max(f.beta.abs()))
 }
 
-/// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered.
+/// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered but for
+/// the corners of a line that stays below `floor` over the band ([`line_below`]).
 fn curve_candidates(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     keep: &dyn Fn(AlphaBeta) -> bool,
+    floor: f64,
+    band: (f64, f64),
 ) -> Vec<AlphaBeta> {
     let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
     let mut out: Vec<AlphaBeta> = Vec::new();
@@ -451,16 +454,19 @@ fn curve_candidates(
             .into_iter()
             .filter_map(|u| curve_point(fam, angle(u))),
     );
-    out.extend(line_corners(fam, cf, keep));
+    out.extend(line_corners(fam, cf, keep, floor, band));
     out
 }
 
 /// The corners on the z = ±1 lines (item 3 of the module doc): where the curve meets each
-/// line, where the lines meet, and the curve's ends.
+/// line (not sought on a line that stays below `floor` over the band, [`line_below`]), where
+/// the lines meet, and the curve's ends.
 fn line_corners(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     keep: &dyn Fn(AlphaBeta) -> bool,
+    floor: f64,
+    band: (f64, f64),
 ) -> Vec<AlphaBeta> {
     let (a1, a2, b1) = (&cf.p0_pb, &cf.pb_pk, &poly_neg(&cf.p0_pk));
     let mut out: Vec<AlphaBeta> = Vec::new();
@@ -468,7 +474,7 @@ fn line_corners(
         .into_iter()
         .flatten()
         .collect();
-    for l in &lines {
+    for l in lines.iter().filter(|l| !line_below(l, floor, band)) {
         let meet = poly::weighted_sum_trimmed(&[(l.p0, a2), (l.pk, a1), (l.pb, b1)]);
         out.extend(
             positive_roots(&meet)
@@ -485,6 +491,29 @@ fn line_corners(
             .filter_map(|one| curve_end(fam, one)),
     );
     out
+}
+
+/// A line's corners with the curve lie on it, so where its stiffness a stays below the floor
+/// over the band by more than this (relative) their candidates fall below it too: the
+/// candidates' own slack ([`CORNER_REACH`]) a thousand times over.
+const LINE_BELOW_REL: f64 = 1e-3;
+
+/// The line's stiffness a = −(p0 + b·pb)/pk stays below `floor` (by [`LINE_BELOW_REL`]) for
+/// every damping b of the band: none of its corners can be a candidate above the floor (the
+/// search takes candidates above the current answer only), and the roots of its meeting
+/// polynomial are not sought. For the z = 1 line of a loop whose velocity estimate vanishes at
+/// DC (pb = 0, a = −p0/pk below every stable stiffness) this holds over any band.
+fn line_below(l: &RootLine, floor: f64, (b_lo, b_hi): (f64, f64)) -> bool {
+    if l.pk == 0.0 || !floor.is_finite() {
+        return false;
+    }
+    let at = |b: f64| -(l.p0 + b * l.pb) / l.pk;
+    let top = if l.pb == 0.0 {
+        at(0.0)
+    } else {
+        at(b_lo).max(at(b_hi))
+    };
+    top.is_finite() && top < floor - LINE_BELOW_REL * floor.abs().max(top.abs())
 }
 
 /// θ = 2·atan(√u).
