@@ -37,6 +37,17 @@ pub(crate) fn located_crossings(
     cf: &CayleyFamily,
     line: &WallLine,
 ) -> Vec<LineCrossing> {
+    located_crossings_with_roots(fam, cf, line).0
+}
+
+/// [`located_crossings`] with every positive root u = tan²(θ/2) of the line's crossing
+/// polynomial ([`CayleyFamily::line_polynomial`]), increasing, including those whose crossing
+/// is dropped (t not finite).
+pub(crate) fn located_crossings_with_roots(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    line: &WallLine,
+) -> (Vec<LineCrossing>, Vec<f64>) {
     let mut out: Vec<LineCrossing> = Vec::new();
     for (l, theta) in [(plus_one_line(fam), 0.0), (minus_one_line(fam), PI)] {
         if let Some(t) = l.and_then(|l| root_line_t(&l, line)) {
@@ -45,7 +56,8 @@ pub(crate) fn located_crossings(
     }
     let [(e0, o0), (ek, ok), (eb, ob)] = &cf.parts;
     let (f, d) = (line.from, line.dir);
-    for u in crate::real_roots::positive_roots(&cf.line_polynomial(line)) {
+    let roots = crate::real_roots::positive_roots(&cf.line_polynomial(line));
+    for &u in &roots {
         let at = |c: &[f64]| eval_real(c, u).0;
         let (ke, ko, be, bo) = (at(ek), at(ok), at(eb), at(ob));
         let qe = at(e0) + f.alpha * ke + f.beta * be;
@@ -58,7 +70,7 @@ pub(crate) fn located_crossings(
         }
     }
     out.sort_by(|a, b| a.t.total_cmp(&b.t));
-    out
+    (out, roots)
 }
 
 /// A complex-pair crossing polished on the circle (Newton's method on Im(Q conj PK), the

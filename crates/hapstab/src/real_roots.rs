@@ -40,6 +40,21 @@ const GEOMETRIC_RATIO: f64 = 8.0;
 /// increasing (see the module doc). Exact zeros at x = 0 are not positive roots and are
 /// dropped; an identically zero polynomial has none.
 pub fn positive_roots(c: &[f64]) -> Vec<f64> {
+    let Some(p) = normalized(c).filter(|p| p.len() > 1) else {
+        return Vec::new();
+    };
+    let (lo, hi) = root_bounds(&p);
+    cascade(&p, &[(lo, hi)])
+}
+
+/// The distinct real roots of the polynomial with ascending coefficients `c` inside the open
+/// intervals `windows` (disjoint, increasing, within [0, ∞]), increasing: the cascade of the
+/// module doc run on the windows alone (between consecutive roots of p′ inside a window, and
+/// the window's ends, p is monotone), so that roots outside them cost nothing. A root on a
+/// window's end may be reported or not. Each window is first cut by Descartes' rule of signs
+/// into intervals holding one root or none ([`isolated`]), the cascade taking over where that
+/// is not sure.
+pub fn positive_roots_within(c: &[f64], windows: &[(f64, f64)]) -> Vec<f64> {
     let Some(p) = normalized(c) else {
         return Vec::new();
     };
@@ -48,11 +63,222 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
         return Vec::new();
     }
     let (lo, hi) = root_bounds(&p);
+    // the windows clipped to the bounds of the roots' moduli
+    let spans: Vec<(f64, f64)> = windows
+        .iter()
+        .map(|&(a, b)| (a.max(lo), b.min(hi)))
+        .filter(|(a, b)| a < b)
+        .collect();
+    let mut scratch = Scratch::default();
+    let (mut roots, mut found) = (Vec::new(), Vec::new());
+    for &span in &spans {
+        match isolated(&p, span) {
+            Some(ends) => roots_between_ends(&p, &ends, NEWTON_DONE, &mut scratch, &mut found),
+            None => found = cascade(&p, &[span]),
+        }
+        roots.extend_from_slice(&found);
+    }
+    roots.dedup();
+    roots
+}
+
+/// Subintervals isolated by Descartes' rule of signs at most, per span: the Vincent–Collins–
+/// Akritas bisection (Collins & Akritas 1976).
+const ISOLATION_NODES: usize = 48;
+
+/// Points cutting the span (l, r) into intervals that hold no root of p or exactly one, with
+/// p's sign changing across it (Descartes' rule of signs on each, [`sign_variations`],
+/// bisected while it counts two or more), every cut's sign of p above its rounding; None
+/// where a sign is not sure or the bisection does not settle within [`ISOLATION_NODES`] (the
+/// cascade decides then).
+fn isolated(p: &[f64], (l, r): (f64, f64)) -> Option<Vec<f64>> {
+    sure_sign(p, l)?;
+    sure_sign(p, r)?;
+    let mut ends: Vec<f64> = vec![l];
+    let mut budget = ISOLATION_NODES;
+    bisected(p, (l, r), &mut budget, &mut ends)?;
+    Some(ends)
+}
+
+/// [`isolated`] on (l, r), whose ends' signs are sure, l already in `ends`.
+fn bisected(p: &[f64], (l, r): (f64, f64), budget: &mut usize, ends: &mut Vec<f64>) -> Option<()> {
+    *budget = budget.checked_sub(1)?;
+    match sign_variations(p, l, r)? {
+        0 => {}
+        1 => {
+            // exactly one root: the sign changes across it
+            (sure_sign(p, l)? != sure_sign(p, r)?).then_some(())?;
+        }
+        _ => {
+            let m = middle(l, r);
+            (m > l && m < r).then_some(())?;
+            sure_sign(p, m)?;
+            bisected(p, (l, m), budget, ends)?;
+            return bisected(p, (m, r), budget, ends);
+        }
+    }
+    ends.push(r);
+    Some(())
+}
+
+/// The Taylor shifts, scaling and reversal of [`sign_variations`] and the evaluation of
+/// [`sure_sign`] err by at most about 4n·ε times the same computation on the coefficients'
+/// magnitudes (a first-order bound of two shifts of n additions each); a sign counts only
+/// where its value exceeds twice that, this many ulps per degree.
+const ULPS_PER_DEGREE: f64 = 8.0;
+
+/// The sign of c(x) (true: positive) at 0 < x < ∞ where the value exceeds its rounding bound
+/// ([`ULPS_PER_DEGREE`]), by Horner's rule below 1 and on the reversed polynomial above.
+pub(crate) fn sure_sign(c: &[f64], x: f64) -> Option<bool> {
+    let (mut v, mut m) = (0.0_f64, 0.0_f64);
+    let step = |(v, m): (f64, f64), a: f64, y: f64| (v * y + a, m * y + a.abs());
+    if x <= 1.0 {
+        for &a in c.iter().rev() {
+            (v, m) = step((v, m), a, x);
+        }
+    } else {
+        for &a in c {
+            (v, m) = step((v, m), a, 1.0 / x);
+        }
+    }
+    let bound = ULPS_PER_DEGREE * c.len() as f64 * f64::EPSILON * m;
+    (v.is_finite() && m.is_finite() && v.abs() > bound).then_some(v > 0.0)
+}
+
+/// The sign variations of (1 + x)^n·c(l + (r − l)/(1 + x)) (ascending c of degree n,
+/// 0 ≤ l < r < ∞; r = ∞: of c(l + x)), whose positive roots are c's roots in (l, r): by
+/// Descartes' rule of signs at least the number of c's roots there, of the same parity, and
+/// exactly it when 0 or 1. None where a nonzero coefficient lies within its rounding bound
+/// ([`ULPS_PER_DEGREE`]) or is not finite.
+pub(crate) fn sign_variations(c: &[f64], l: f64, r: f64) -> Option<usize> {
+    // each coefficient with the same computation on the magnitudes (l ≥ 0: it bounds the
+    // magnitudes of the terms summed)
+    let mut v: Vec<(f64, f64)> = c.iter().map(|&a| (a, a.abs())).collect();
+    shift(&mut v, l);
+    if r.is_finite() {
+        // x ↦ (r − l)·y, then y = 1/(1 + x): a reversal and a shift by 1
+        let w = r - l;
+        let mut f = 1.0;
+        for (a, b) in v.iter_mut() {
+            *a *= f;
+            *b *= f;
+            f *= w;
+        }
+        v.reverse();
+        shift(&mut v, 1.0);
+    }
+    let tol = ULPS_PER_DEGREE * c.len() as f64 * f64::EPSILON;
+    let mut last: Option<bool> = None;
+    let mut count = 0;
+    for &(a, b) in &v {
+        if !(a.is_finite() && b.is_finite()) || (b != 0.0 && a.abs() <= tol * b) {
+            return None;
+        }
+        if b == 0.0 {
+            continue; // an exact zero
+        }
+        let positive = a > 0.0;
+        count += usize::from(last.is_some_and(|s| s != positive));
+        last = Some(positive);
+    }
+    Some(count)
+}
+
+/// Degrees up to which [`shift`] reads its binomials from one table (exact in doubles up to
+/// C(56, 28) < 2^53; the stationary polynomial of a degree-28 loop has degree 54); above, the
+/// shift is the synthetic division.
+const BINOMIAL_DEGREE: usize = 56;
+
+/// Pascal's triangle up to [`BINOMIAL_DEGREE`] by columns: row k holds C(j, k) at j ≥ k.
+fn binomials() -> &'static [[f64; BINOMIAL_DEGREE + 1]] {
+    static TABLE: std::sync::OnceLock<Vec<[f64; BINOMIAL_DEGREE + 1]>> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut cols = vec![[0.0; BINOMIAL_DEGREE + 1]; BINOMIAL_DEGREE + 1];
+        for j in 0..=BINOMIAL_DEGREE {
+            cols[0][j] = 1.0;
+            for k in 1..=j {
+                cols[k][j] = cols[k - 1][j - 1] + cols[k][j - 1];
+            }
+        }
+        cols
+    })
+}
+
+/// Independent partial sums of a coefficient of [`shift`], so that its additions overlap.
+const PARTIAL_SUMS: usize = 4;
+
+/// c(x) ↦ c(x + s) in place on the pairs (value, magnitude bound): with e_j = s^j·c_j,
+/// c'_k = s^{−k}·Σ_j C(j, k)·e_j, each coefficient a sum of independent terms, where the
+/// synthetic division's chain of dependent steps waits on every one
+/// ([`crate::poly::taylor_shift`]; used beyond [`BINOMIAL_DEGREE`] or where a power of s
+/// leaves the doubles' range).
+fn shift(c: &mut [(f64, f64)], s: f64) {
+    let n = c.len();
+    if s == 0.0 || n == 0 {
+        return;
+    }
+    let mut e = [0.0_f64; BINOMIAL_DEGREE + 1];
+    let mut m = [0.0_f64; BINOMIAL_DEGREE + 1];
+    let mut inv = [0.0_f64; BINOMIAL_DEGREE + 1];
+    let fits = n <= BINOMIAL_DEGREE + 1 && {
+        let (mut p, mut q) = (1.0_f64, 1.0_f64);
+        for j in 0..n {
+            (e[j], m[j], inv[j]) = (p * c[j].0, p.abs() * c[j].1, q);
+            p *= s;
+            q /= s;
+        }
+        p.is_normal() && q.is_normal()
+    };
+    if !fits {
+        for i in 0..n {
+            for j in (i..n - 1).rev() {
+                c[j].0 += s * c[j + 1].0;
+                c[j].1 += s * c[j + 1].1;
+            }
+        }
+        return;
+    }
+    let table = binomials();
+    for k in 0..n {
+        let row = &table[k][k..n];
+        let (ek, mk) = (&e[k..n], &m[k..n]);
+        let (mut v, mut w) = ([0.0; PARTIAL_SUMS], [0.0; PARTIAL_SUMS]);
+        let mut chunks = row
+            .chunks_exact(PARTIAL_SUMS)
+            .zip(ek.chunks_exact(PARTIAL_SUMS));
+        for (r, x) in chunks.by_ref() {
+            for l in 0..PARTIAL_SUMS {
+                v[l] += r[l] * x[l];
+            }
+        }
+        for (r, x) in mk
+            .chunks_exact(PARTIAL_SUMS)
+            .zip(row.chunks_exact(PARTIAL_SUMS))
+        {
+            for l in 0..PARTIAL_SUMS {
+                w[l] += r[l] * x[l];
+            }
+        }
+        let tail = row.len() - row.len() % PARTIAL_SUMS;
+        let (mut tv, mut tw) = (0.0, 0.0);
+        for j in tail..row.len() {
+            tv += row[j] * ek[j];
+            tw += row[j] * mk[j];
+        }
+        let sv: f64 = v.iter().sum::<f64>() + tv;
+        let sw: f64 = w.iter().sum::<f64>() + tw;
+        c[k] = (sv * inv[k], sw * inv[k].abs());
+    }
+}
+
+/// The roots of the normalized p of degree ≥ 1 inside the spans (module doc).
+fn cascade(p: &[f64], spans: &[(f64, f64)]) -> Vec<f64> {
+    let n = p.len() - 1;
     // The cascade: the k-th derivative (scaled) at chain[starts[k]..], down to the linear one,
     // in one buffer.
     let mut chain = Vec::with_capacity((n + 1) * (n + 2) / 2);
     let mut starts = Vec::with_capacity(n);
-    chain.extend_from_slice(&p);
+    chain.extend_from_slice(p);
     starts.push(0);
     for k in 1..n {
         let from = starts[k - 1];
@@ -64,21 +290,28 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
     }
     let mut scratch = Scratch::default();
     let mut roots: Vec<f64> = Vec::new();
+    let mut found: Vec<f64> = Vec::new();
+    let mut next: Vec<f64> = Vec::new();
     let mut ends: Vec<f64> = Vec::with_capacity(n + 2);
     for (level, &start) in starts.iter().enumerate().rev() {
         let q = &chain[start..start + n + 1 - level];
-        ends.clear();
-        ends.push(lo);
-        ends.extend(roots.iter().copied().filter(|&r| r > lo && r < hi));
-        ends.push(hi);
         // a derivative's roots only bound the next level's brackets
         let done = if level == 0 {
             NEWTON_DONE
         } else {
             BRACKET_DONE
         };
-        roots_between_ends(q, &ends, done, &mut scratch, &mut roots);
-        roots.dedup();
+        next.clear();
+        for &(lo, hi) in spans {
+            ends.clear();
+            ends.push(lo);
+            ends.extend(roots.iter().copied().filter(|&r| r > lo && r < hi));
+            ends.push(hi);
+            roots_between_ends(q, &ends, done, &mut scratch, &mut found);
+            next.extend_from_slice(&found);
+        }
+        next.dedup();
+        std::mem::swap(&mut roots, &mut next);
     }
     roots
 }
@@ -428,5 +661,48 @@ mod tests {
         assert!(positive_roots(&[0.0; 4]).is_empty());
         assert!(positive_roots(&[5.0]).is_empty());
         assert_eq!(positive_roots(&[-2.0, 1.0]), vec![2.0]);
+    }
+}
+#[cfg(test)]
+mod window_tests {
+    use super::*;
+
+    #[test]
+    fn roots_within_windows_are_the_roots_there() {
+        // roots 0.1 … 9.1 and a complex pair near 3
+        let mut p = vec![1.0];
+        for j in 0..10 {
+            p = crate::poly::mul(&p, &[-(0.1 + j as f64), 1.0]);
+        }
+        p = crate::poly::mul(&p, &[9.01, -6.0, 1.0]);
+        let all = positive_roots(&p);
+        assert_eq!(all.len(), 10, "{all:?}");
+        let windows = [(0.0, 0.5), (1.5, 4.5), (8.5, f64::INFINITY)];
+        let got = positive_roots_within(&p, &windows);
+        let want: Vec<f64> = all
+            .iter()
+            .copied()
+            .filter(|r| windows.iter().any(|&(l, h)| *r > l && *r < h))
+            .collect();
+        assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
+        // ten roots a unit apart and a complex pair 0.1 from one of them are ill-conditioned:
+        // p's rounding near 3.1 is flat over about 1e-9 of it, and the two brackets'
+        // iterations stop anywhere in that band
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= 1e-8 * w, "{g} vs {w}");
+        }
+    }
+
+    #[test]
+    fn shift_matches_synthetic_division() {
+        let c = [3.0, -2.0, 0.5, 7.0, -1.25, 2.0];
+        for s in [1.0, 0.3, 2.5] {
+            let want = crate::poly::taylor_shift(&c, s);
+            let mut got: Vec<(f64, f64)> = c.iter().map(|&a| (a, a.abs())).collect();
+            shift(&mut got, s);
+            for (g, w) in got.iter().zip(&want) {
+                assert!((g.0 - w).abs() <= 1e-12 * w.abs().max(1.0), "{g:?} {w}");
+            }
+        }
     }
 }

@@ -18,7 +18,9 @@
 //!    the answer that does not reach down to its level is bounded by arcs of the curve above
 //!    that level (between the level's crossings) or has its top at a corner on a line; a
 //!    sampled point of such an arc, or such a corner, that may lie on the region's boundary
-//!    has the exact stable intervals at its damping tested.
+//!    has the exact stable intervals at its damping tested. The curve's stationary points and
+//!    corners are then sought only where the curve may lie above that level
+//!    ([`windows::above_windows`]).
 //!
 //! Where a cap's top is not found, the curve's candidates are taken from the highest down:
 //! on the curve a(u) = [P0, PB]/[PB, PK] and b(u) = −[P0, PK]/[PB, PK] in u = tan²(θ/2)
@@ -36,13 +38,15 @@ use crate::boundary::{
 use crate::cayley::CayleyFamily;
 use crate::closed_loop::{AffineFamily, SHIFTED_THETA};
 use crate::line_decomposition::{
-    located_crossings, stable_intervals, stable_intervals_located, stable_intervals_with_angles,
+    located_crossings_with_roots, stable_intervals, stable_intervals_located,
+    stable_intervals_with_angles,
 };
 use crate::poly;
-use crate::real_roots::positive_roots;
+use crate::real_roots::positive_roots_within;
 use crate::region::{ConfirmedMax, confirm_max};
 
 mod cap;
+mod windows;
 use cap::{Level, cap_by_levels, cap_top};
 
 /// Relative distance of the walls beside K_max that the point test must find inside (below)
@@ -111,7 +115,7 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
             exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
         });
     }
-    let cands = sorted_candidates(fam, cf, (b_lo, b_hi), f64::NEG_INFINITY);
+    let cands = sorted_candidates(fam, cf, (b_lo, b_hi), f64::NEG_INFINITY, &WHOLE_AXIS);
     match highest_candidate(fam, cf, &cands, None, (b_lo, b_hi)) {
         Some(f) => Start::Found(f),
         None if cands.is_empty() => Start::NoneStable,
@@ -128,15 +132,18 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
     let mut cands: Option<Vec<AlphaBeta>> = None;
     for _ in 0..CAP_ROUNDS {
         let cap = match certificate(fam, cf, found.alpha, band) {
-            Certificate::Holds(thetas) => match separate_component(fam, cf, found, thetas, band) {
-                Some(f) => {
-                    found = f;
-                    continue;
+            Certificate::Holds { thetas, roots } => {
+                match separate_component(fam, cf, found, (thetas, &roots), band) {
+                    Some(f) => {
+                        found = f;
+                        continue;
+                    }
+                    None => {
+                        return confirmed(fam, found, band)
+                            .map_or(BandMax::Undecided, BandMax::Max);
+                    }
                 }
-                None => {
-                    return confirmed(fam, found, band).map_or(BandMax::Undecided, BandMax::Max);
-                }
-            },
+            }
             Certificate::Other => None,
             Certificate::Cap { alpha, ends } => Some(Level { a: alpha, ends }),
         };
@@ -170,7 +177,8 @@ fn next_top(
         .and_then(|c| exact_top(fam, cf, c.alpha, c.beta).map(|a| (a, c.beta)))
         .map(exact)
         .or_else(|| {
-            let list = cands.get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha));
+            let list = cands
+                .get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha, &WHOLE_AXIS));
             highest_candidate(fam, cf, list, Some(found), band).filter(|f| f.alpha > found.alpha)
         })
         .or_else(|| {
@@ -179,19 +187,25 @@ fn next_top(
         })
 }
 
-/// The curve's candidates inside the band above `floor`, highest first.
+/// The whole positive u axis, as windows of [`positive_roots_within`].
+const WHOLE_AXIS: [(f64, f64); 1] = [(0.0, f64::INFINITY)];
+
+/// The curve's candidates inside the band above `floor`, highest first, sought in the windows
+/// of u outside which the curve lies below the floor ([`WHOLE_AXIS`] or
+/// [`windows::above_windows`]).
 fn sorted_candidates(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     (b_lo, b_hi): (f64, f64),
     floor: f64,
+    windows: &[(f64, f64)],
 ) -> Vec<AlphaBeta> {
     // located candidates far below the floor or outside the band are not polished
     let keep = |p: AlphaBeta| {
         let slack = CORNER_REACH * p.alpha.abs().max(p.beta.abs());
         p.alpha > floor - slack && p.beta >= b_lo - slack && p.beta <= b_hi + slack
     };
-    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf, &keep)
+    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf, &keep, floor, (b_lo, b_hi), windows)
         .into_iter()
         .filter(|p| p.beta >= b_lo && p.beta <= b_hi && p.alpha.is_finite())
         .collect();
@@ -300,9 +314,9 @@ fn closes_on(fam: &AffineFamily, cf: &CayleyFamily, c: AlphaBeta, band: (f64, f6
 
 /// What the damping axis at a stiffness just above K_max holds inside the band.
 enum Certificate {
-    /// No stable wall: K_max is certified on the level, whose crossings' angles θ are kept
-    /// for [`separate_component`].
-    Holds(Vec<f64>),
+    /// No stable wall: K_max is certified on the level, whose crossings' angles θ and the
+    /// positive roots u of its crossing polynomial are kept for [`separate_component`].
+    Holds { thetas: Vec<f64>, roots: Vec<f64> },
     /// One stable damping interval inside the band (its ends' dampings and angles θ, 0 or π
     /// on the z = ±1 lines): a cap of the region above, closing at its top.
     Cap { alpha: f64, ends: [(f64, f64); 2] },
@@ -320,13 +334,16 @@ fn certificate(
     let above = alpha + CERTIFY_REL * alpha.abs().max(f64::MIN_POSITIVE);
     let axis = damping_axis(above);
     let known = |t: f64| (0.0..=std::f64::consts::PI).contains(&t);
-    let located = located_crossings(fam, cf, &axis);
+    let (located, roots) = located_crossings_with_roots(fam, cf, &axis);
     let hits: Vec<(Interval, [f64; 2])> = stable_intervals_located(fam, &axis, &located)
         .into_iter()
         .filter(|(iv, _)| iv.lo < hi && iv.hi > lo)
         .collect();
     match hits.as_slice() {
-        [] => Certificate::Holds(located.iter().map(|c| c.theta).collect()),
+        [] => Certificate::Holds {
+            thetas: located.iter().map(|c| c.theta).collect(),
+            roots,
+        },
         [(iv, [t0, t1])] if iv.lo >= lo && iv.hi <= hi && known(*t0) && known(*t1) => {
             Certificate::Cap {
                 alpha: above,
@@ -352,7 +369,7 @@ fn separate_component(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     found: Found,
-    level_thetas: Vec<f64>,
+    (level_thetas, level_roots): (Vec<f64>, &[f64]),
     (lo, hi): (f64, f64),
 ) -> Option<Found> {
     use std::f64::consts::PI;
@@ -386,7 +403,8 @@ fn separate_component(
     }
     // an island whose boundary the samples miss: its top, bottom or sides are among the
     // curve's stationary points and corners
-    let cands = sorted_candidates(fam, cf, (lo, hi), level);
+    let windows = windows::above_windows(cf, level, level_roots);
+    let cands = sorted_candidates(fam, cf, (lo, hi), level, &windows);
     highest_candidate(fam, cf, &cands, Some(found), (lo, hi)).filter(|f| f.alpha > level)
 }
 
@@ -437,30 +455,39 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
     confirm_max(fam, cand, band, f.alpha.abs().max(f.beta.abs()))
 }
 
-/// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered.
+/// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered but for
+/// the corners of a line that stays below `floor` over the band ([`line_below`]), their roots
+/// u sought in `windows` ([`positive_roots_within`]).
 fn curve_candidates(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     keep: &dyn Fn(AlphaBeta) -> bool,
+    floor: f64,
+    band: (f64, f64),
+    windows: &[(f64, f64)],
 ) -> Vec<AlphaBeta> {
     let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
     let mut out: Vec<AlphaBeta> = Vec::new();
     let stationary = poly::mul_diff_trimmed(&derivative(a1), a2, a1, &derivative(a2));
     out.extend(
-        positive_roots(&stationary)
+        positive_roots_within(&stationary, windows)
             .into_iter()
             .filter_map(|u| curve_point(fam, angle(u))),
     );
-    out.extend(line_corners(fam, cf, keep));
+    out.extend(line_corners(fam, cf, keep, floor, band, windows));
     out
 }
 
 /// The corners on the z = ±1 lines (item 3 of the module doc): where the curve meets each
-/// line, where the lines meet, and the curve's ends.
+/// line (not sought on a line that stays below `floor` over the band, [`line_below`], nor
+/// outside `windows`), where the lines meet, and the curve's ends.
 fn line_corners(
     fam: &AffineFamily,
     cf: &CayleyFamily,
     keep: &dyn Fn(AlphaBeta) -> bool,
+    floor: f64,
+    band: (f64, f64),
+    windows: &[(f64, f64)],
 ) -> Vec<AlphaBeta> {
     let (a1, a2, b1) = (&cf.p0_pb, &cf.pb_pk, &poly_neg(&cf.p0_pk));
     let mut out: Vec<AlphaBeta> = Vec::new();
@@ -468,10 +495,10 @@ fn line_corners(
         .into_iter()
         .flatten()
         .collect();
-    for l in &lines {
+    for l in lines.iter().filter(|l| !line_below(l, floor, band)) {
         let meet = poly::weighted_sum_trimmed(&[(l.p0, a2), (l.pk, a1), (l.pb, b1)]);
         out.extend(
-            positive_roots(&meet)
+            positive_roots_within(&meet, windows)
                 .into_iter()
                 .filter_map(|u| corner_on_line(fam, l, angle(u), keep)),
         );
@@ -485,6 +512,29 @@ fn line_corners(
             .filter_map(|one| curve_end(fam, one)),
     );
     out
+}
+
+/// A line's corners with the curve lie on it, so where its stiffness a stays below the floor
+/// over the band by more than this (relative) their candidates fall below it too: the
+/// candidates' own slack ([`CORNER_REACH`]) a thousand times over.
+const LINE_BELOW_REL: f64 = 1e-3;
+
+/// The line's stiffness a = −(p0 + b·pb)/pk stays below `floor` (by [`LINE_BELOW_REL`]) for
+/// every damping b of the band: none of its corners can be a candidate above the floor (the
+/// search takes candidates above the current answer only), and the roots of its meeting
+/// polynomial are not sought. For the z = 1 line of a loop whose velocity estimate vanishes at
+/// DC (pb = 0, a = −p0/pk below every stable stiffness) this holds over any band.
+fn line_below(l: &RootLine, floor: f64, (b_lo, b_hi): (f64, f64)) -> bool {
+    if l.pk == 0.0 || !floor.is_finite() {
+        return false;
+    }
+    let at = |b: f64| -(l.p0 + b * l.pb) / l.pk;
+    let top = if l.pb == 0.0 {
+        at(0.0)
+    } else {
+        at(b_lo).max(at(b_hi))
+    };
+    top.is_finite() && top < floor - LINE_BELOW_REL * floor.abs().max(top.abs())
 }
 
 /// θ = 2·atan(√u).
