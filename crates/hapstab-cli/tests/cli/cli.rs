@@ -284,12 +284,11 @@ fn messages_name_the_flag_the_path_and_the_physical_parameter() {
         &["boundary", "--csv", "/nonexistent-dir/x.csv"],
         "/nonexistent-dir/x.csv",
     );
-    // a mass so small that the normalized values overflow blames the mass
-    bad(&["check", "--mass", "1e-320"], "mass m = 1e-320");
-    bad(
-        &["check", "--mass", "1e-320", "--stiffness", "1"],
-        "mass m = 1e-320",
-    );
+    // a mass so small that the normalized values would overflow is refused by the plant's
+    // range first, naming the flag, the range and the value
+    let range = "--mass: mass m must be in [1e-6, 1e6] kg (got 1e-320)";
+    bad(&["check", "--mass", "1e-320"], range);
+    bad(&["check", "--mass", "1e-320", "--stiffness", "1"], range);
 }
 
 #[test]
