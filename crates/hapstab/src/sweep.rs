@@ -8,7 +8,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boundary::stable_alpha_intervals;
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite};
 use crate::kmax_band::{BandMax, k_max_band};
@@ -19,6 +18,7 @@ use crate::passivity::{
     DeviceDamping, SampledWall, device_damping, k_max_passive_at, passive_k_max,
 };
 use crate::region::{alpha_max_within, stable_region_with};
+use crate::system::System;
 
 /// Chord tolerance of the regions a sweep computes (relative to their size): a sweep reports
 /// only K_max, which is refined exactly on its arc (da/dθ = 0) whatever the chords, so the
@@ -556,25 +556,29 @@ impl PassiveKmax {
 
 /// The largest stable K and its B in physical units.
 fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
-    let fam = AffineFamily::of_loop(lp)?;
+    // through the loop's System: the same family and units as `kmax` and `boundary`
+    let sys = System::of(lp)?;
+    let units = |b: f64| -> Result<f64> {
+        if b.is_finite() {
+            sys.damping_units(b)
+        } else {
+            Ok(b)
+        }
+    };
     let best = match at {
         KmaxAt::Damping { damping } => {
-            let (_, beta) = fam.to_units(0.0, damping);
-            stable_alpha_intervals(&fam, beta)
+            let beta = units(damping)?;
+            sys.stable_intervals(beta)
                 .iter()
                 .map(|iv| iv.hi)
                 .filter(|h| h.is_finite())
                 .reduce(f64::max)
                 .map(|a| (a, beta))
         }
-        KmaxAt::Overall => band_kmax(&fam, f64::NEG_INFINITY, f64::INFINITY)?,
-        KmaxAt::Band { lo, hi } => {
-            let (_, b0) = fam.to_units(0.0, lo);
-            let (_, b1) = fam.to_units(0.0, hi);
-            band_kmax(&fam, b0, b1)?
-        }
+        KmaxAt::Overall => band_kmax(sys.verdict_family(), f64::NEG_INFINITY, f64::INFINITY)?,
+        KmaxAt::Band { lo, hi } => band_kmax(sys.verdict_family(), units(lo)?, units(hi)?)?,
     };
-    Ok(best.map(|(a, b)| fam.to_physical(a, b)))
+    Ok(best.map(|(a, b)| sys.family().to_physical(a, b)))
 }
 
 /// K_max over a damping band in wall units and its damping: from the D-decomposition's

@@ -58,6 +58,16 @@ impl System {
         &self.family
     }
 
+    /// The family the verdict, the intervals and the region are computed in: the paper's
+    /// family in (α, β) for the paper's loop, else [`System::family`] (both in the same wall
+    /// units; convert with [`System::family`]'s [`AffineFamily::to_physical`]).
+    pub fn verdict_family(&self) -> &AffineFamily {
+        match &self.paper {
+            Some(pf) => pf,
+            None => &self.family,
+        }
+    }
+
     /// The wall in the family's units (a, b): for the paper's loop the (α, β) of Table I
     /// exactly as [`Physical::normalized`] forms them (α = KT²/m, β = BT/m), so that every
     /// front end reports the same α and β; otherwise (K/k_u, B/(k_u T))
@@ -105,10 +115,7 @@ impl System {
     /// argument principle where that is not sure), without the roots; for the paper's loop
     /// through the paper's family, as [`System::analysis`] decides it.
     pub fn decide(&self, (a, b): (f64, f64)) -> Decision {
-        let fam: &AffineFamily = match &self.paper {
-            Some(pf) => pf,
-            None => &self.family,
-        };
+        let fam = self.verdict_family();
         decide(fam, a, b, &mut fam.coefficients(a, b))
     }
 

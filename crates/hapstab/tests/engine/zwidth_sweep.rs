@@ -265,3 +265,38 @@ fn zwidth_agrees_with_kmax_and_the_region_bit_for_bit() {
         }
     }
 }
+
+/// Never contradict yourself: every point of a sweep answers what `kmax` answers for the
+/// loop at that value, bit for bit — at a damping, over a band and overall, on the paper's
+/// loop (analysed in α, β) and on a filtered loop.
+#[test]
+fn sweep_points_equal_kmax_bit_for_bit() {
+    use hapstab::System;
+    use hapstab::kmax::{KmaxQuery, kmax};
+    let held = Loop::paper(Effective::new(1.1, 7.5, 350.0).unwrap(), T, 1).unwrap();
+    let filtered = phantom(
+        VelocityEstimator::LowPass { cutoff_hz: 100.0 },
+        Delay::samples(1).unwrap(),
+    );
+    let r: SweepRange = "arm-stiffness:100:1500:3".parse().unwrap();
+    let r_delay: SweepRange = "delay-time:0.001:0.004:3".parse().unwrap();
+    for (lp, r) in [(held, &r), (filtered, &r_delay)] {
+        let ats = [
+            (KmaxAt::Damping { damping: 4.0 }, KmaxQuery::AtDamping(4.0)),
+            (
+                KmaxAt::Band { lo: 0.0, hi: 6.0 },
+                KmaxQuery::Band { lo: 0.0, hi: 6.0 },
+            ),
+        ];
+        for (at, q) in ats {
+            for p in sweep_param(&lp, r, at, &|_| {}).unwrap() {
+                let l = r.param.apply(&lp, p.value).unwrap();
+                let want = kmax(&System::of(&l).unwrap(), q).unwrap();
+                assert_eq!(p.k_max, want.k_max, "{at:?} at {}", p.value);
+                if let KmaxAt::Band { .. } = at {
+                    assert_eq!(p.b_at_k_max, want.b_at_k_max, "{at:?} at {}", p.value);
+                }
+            }
+        }
+    }
+}
