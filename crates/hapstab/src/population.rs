@@ -208,8 +208,7 @@ pub fn wall_probability(
         .par_iter()
         .map(|v| -> Result<bool> {
             let l = loop_of(lp, &params, v)?;
-            let sys = System::new(l)?;
-            let d = sys.decide(sys.wall_units(wall)?);
+            let d = System::decide_wall(&l, wall)?;
             Ok(d.verdict == crate::verdict::Verdict::Stable)
         })
         .collect::<Result<_>>()?;

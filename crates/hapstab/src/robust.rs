@@ -286,8 +286,7 @@ fn verify(
         .par_iter()
         .map(|u| -> Result<Option<Eval>> {
             let l = loop_at(lp, sides, u)?;
-            let sys = System::new(l)?;
-            let v = sys.decide(sys.wall_units(wall)?).verdict;
+            let v = System::decide_wall(&l, wall)?.verdict;
             if v == Verdict::Stable {
                 return Ok(None);
             }

@@ -73,12 +73,28 @@ impl System {
     /// front end reports the same α and β; otherwise (K/k_u, B/(k_u T))
     /// ([`AffineFamily::to_units`]).
     pub fn wall_units(&self, w: Wall) -> Result<(f64, f64)> {
-        if let (Some(_), PlantModel::MassSpringDamper(e)) = (&self.paper, &self.lp.plant.model) {
-            let sampling = Sampling::new(self.lp.period, self.lp.delay.samples)?;
-            let n = Physical::new(*e, w, sampling)?.normalized()?;
-            return Ok((n.alpha, n.beta));
+        match self.paper {
+            Some(_) => paper_units(&self.lp, w),
+            None => Ok(self.family.to_units(w.stiffness, w.damping)),
         }
-        Ok(self.family.to_units(w.stiffness, w.damping))
+    }
+
+    /// `System::new(lp)?.decide(wall_units(w))` without forming the parts of the System the
+    /// verdict does not need (one family instead of two for the paper's loop): for the many
+    /// plants of a population or a robust search. The same family, units and verdict.
+    pub fn decide_wall(lp: &Loop, w: Wall) -> Result<Decision> {
+        match lp.paper_view() {
+            Some(pp) => {
+                let pf = PolyFamily::new(pp, lp.delay.samples)?;
+                let (a, b) = paper_units(lp, w)?;
+                Ok(decide(&pf, a, b, &mut pf.coefficients(a, b)))
+            }
+            None => {
+                let fam = AffineFamily::of_loop(lp)?;
+                let (a, b) = fam.to_units(w.stiffness, w.damping);
+                Ok(decide(&fam, a, b, &mut fam.coefficients(a, b)))
+            }
+        }
     }
 
     /// A wall damping B in Ns/m in the family's units b, formed as [`System::wall_units`]
@@ -189,6 +205,20 @@ impl System {
         let p = Physical::new(*e, wall, sampling).ok()?;
         Some(crate::linear::linear_stiffness_limit(&p))
     }
+}
+
+/// The paper's (α, β) of a wall (Table I) exactly as [`Physical::normalized`] forms them, for a
+/// loop with the paper's view.
+fn paper_units(lp: &Loop, w: Wall) -> Result<(f64, f64)> {
+    let PlantModel::MassSpringDamper(e) = &lp.plant.model else {
+        return Err(crate::error::Error::Invalid {
+            param: crate::param::Param::Operator,
+            reason: "the paper's units need a mass-spring-damper plant".into(),
+        });
+    };
+    let sampling = Sampling::new(lp.period, lp.delay.samples)?;
+    let n = Physical::new(*e, w, sampling)?.normalized()?;
+    Ok((n.alpha, n.beta))
 }
 
 /// The stable interval that contains a, or else the one reaching furthest (largest upper
