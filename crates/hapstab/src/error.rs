@@ -162,3 +162,17 @@ pub(crate) fn non_negative(param: Param, value: f64) -> Result<f64> {
         Err(Error::Negative { param, value })
     }
 }
+
+/// Checks that `value` is finite, >= 0 and <= `max` (`range` says the interval in words).
+pub(crate) fn at_most(param: Param, value: f64, max: f64, range: &'static str) -> Result<f64> {
+    non_negative(param, value)?;
+    if value <= max {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange {
+            param,
+            value,
+            range,
+        })
+    }
+}

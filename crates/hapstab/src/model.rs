@@ -11,7 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 pub use crate::delay::Delay;
-use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::error::{Error, Result, at_most, finite, non_negative, positive};
 use crate::lowpass_design::{Family, NamedLowPass};
 use crate::param::Param;
 use crate::params::{Effective, MAX_DELAY, PlantParams};
@@ -133,15 +133,18 @@ pub struct Loop {
     pub velocity: VelocityEstimator,
 }
 
+/// Longest actuator lag τ in s: no actuator is slower, and near 1e300 s 1 − e^(−T/τ) underflows.
+pub const MAX_FORCE_LAG: f64 = 1e3;
+
 impl Plant {
     /// The paper's plant 1/(ms² + bs + k) (eq. 1).
     pub fn mass_spring_damper(plant: Effective) -> Result<Self> {
         Self::new(PlantModel::MassSpringDamper(plant), 0.0)
     }
 
-    /// Validates the model's parameters and the lag τ >= 0.
+    /// Validates the model's parameters and the lag 0 <= τ <= [`MAX_FORCE_LAG`].
     pub fn new(model: PlantModel, force_lag: f64) -> Result<Self> {
-        non_negative(Param::ForceLag, force_lag)?;
+        at_most(Param::ForceLag, force_lag, MAX_FORCE_LAG, "[0, 1e3] s")?;
         validate_model(&model)?;
         Ok(Self {
             model,

@@ -289,6 +289,12 @@ fn messages_name_the_flag_the_path_and_the_physical_parameter() {
     let range = "--mass: mass m must be in [1e-6, 1e6] kg (got 1e-320)";
     bad(&["check", "--mass", "1e-320"], range);
     bad(&["check", "--mass", "1e-320", "--stiffness", "1"], range);
+    // an actuator lag beyond any actuator (near 1e300 s its discretization underflows: the
+    // check hung) is refused, naming the flag and the value
+    bad(
+        &["check", "--force-lag", "1e308"],
+        "--force-lag: force lag tau must be in [0, 1e3] s (got 1e308)",
+    );
 }
 
 #[test]
