@@ -27,6 +27,8 @@ pub struct PyRootLocus {
     pub k_max_index: Option<usize>,
     /// The root of p(z) closest to the unit circle at K = K_max: where the locus crosses it.
     pub crossing: Option<Complex64>,
+    /// The frequency of the oscillation at K_max in Hz (|arg z|/(2πT) of that root), or None.
+    pub crossing_frequency_hz: Option<f64>,
     /// The stiffnesses K of the sweep in N/m.
     pub wall_stiffness: Py<PyArray1<f64>>,
     /// The roots of p(z), one row per K (complex, shape (len(K), degree)), branch-ordered.
@@ -62,6 +64,7 @@ fn locus_object(py: Python<'_>, rl: RootLocus) -> PyResult<PyRootLocus> {
         k_interval: rl.k_interval.map(|[lo, hi]| (lo, hi)),
         k_max_index: rl.k_max_index,
         crossing: rl.crossing,
+        crossing_frequency_hz: rl.crossing_frequency_hz,
         wall_stiffness: PyArray1::from_vec(py, rl.stiffness).unbind(),
         roots: PyArray1::from_vec(py, flat).reshape([rows, cols])?.unbind(),
         spectral_radius: PyArray1::from_vec(py, rl.spectral_radius).unbind(),

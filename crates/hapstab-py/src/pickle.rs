@@ -80,7 +80,7 @@ results! {
     "FrequencyResponse" => PyFrequencyResponse { period, nyquist_hz, omega, frequency_hz,
         response, magnitude_db, phase_deg, marks, closest, margins },
     "RootLocus" => PyRootLocus { wall_damping, k_max, k_interval, k_max_index, crossing,
-        wall_stiffness, roots, spectral_radius },
+        crossing_frequency_hz, wall_stiffness, roots, spectral_radius },
     "StabilityMap" => PyStabilityMap { stable, spectral_radius, wall_stiffness, wall_damping,
         grid },
     "Margins" => PyMargins { stable, gain_margin, gain_margin_lower, phase_crossover_hz,

@@ -46,6 +46,8 @@ pub struct RootLocus {
     pub k_max_index: Option<usize>,
     /// The root of p(z) closest to the unit circle at K = K_max: where the locus crosses it.
     pub crossing: Option<Complex64>,
+    /// The frequency of the oscillation at K_max, |arg z|/(2πT) in Hz of that root.
+    pub crossing_frequency_hz: Option<f64>,
     /// The virtual stiffnesses K of the sweep in N/m.
     pub stiffness: Vec<f64>,
     /// For each K, the roots of p(z) (degree of p each), branch-ordered.
@@ -108,6 +110,8 @@ pub fn root_locus(lp: &Loop, damping: f64, stiffness: Option<&[f64]>) -> Result<
         k_interval: iv.map(|iv| [phys(iv.lo), phys(iv.hi)]),
         k_max_index,
         crossing,
+        crossing_frequency_hz: crossing
+            .map(|z| z.arg().abs() / (2.0 * std::f64::consts::PI * lp.period)),
         stiffness: units.iter().map(|&a| phys(a)).collect(),
         spectral_radius: all
             .iter()

@@ -83,13 +83,32 @@ impl AxisRange {
 
     /// The i-th grid value.
     pub fn value(&self, i: usize) -> f64 {
-        self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64
+        crate::grid::evenly_spaced_at(self.lo, self.hi, self.n, i)
     }
 
     /// Grid spacing.
     pub fn step(&self) -> f64 {
         (self.hi - self.lo) / (self.n - 1) as f64
     }
+}
+
+/// Points per axis of the sample that estimates a map's stable share.
+pub const SHARE_SAMPLES: usize = 8;
+
+/// The share of stable walls on an 8 × 8 sample of a map's window (a, b ranges in the
+/// family's units), which sets the map's cost estimate (the Schur–Cohn test,
+/// O(n²) each): a stable point costs a full test, an unstable one a small part of it.
+pub fn stable_share(fam: &AffineFamily, (a0, a1): (f64, f64), (b0, b1): (f64, f64)) -> f64 {
+    let at = |lo: f64, hi: f64, i: usize| crate::grid::evenly_spaced_at(lo, hi, SHARE_SAMPLES, i);
+    let mut stable = 0usize;
+    for i in 0..SHARE_SAMPLES {
+        for j in 0..SHARE_SAMPLES {
+            let c = fam.coefficients(at(a0, a1, i), at(b0, b1, j));
+            stable += usize::from(crate::stability::schur_stable(&c));
+        }
+    }
+    // one stable point in the sample stands for at least its share of the grid
+    (stable as f64 + 0.5) / (SHARE_SAMPLES * SHARE_SAMPLES) as f64
 }
 
 /// A map specification: two axes and the fixed values of the other parameters.

@@ -343,7 +343,7 @@ impl SweepRange {
 
     /// The i-th value.
     pub fn value(&self, i: usize) -> f64 {
-        self.lo + (self.hi - self.lo) * i as f64 / (self.n - 1) as f64
+        crate::grid::evenly_spaced_at(self.lo, self.hi, self.n, i)
     }
 
     /// All values.

@@ -35,6 +35,7 @@
 use serde::Serialize;
 
 use crate::error::{Error, Result};
+pub use crate::matrix_exp::exp_and_integral;
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator, strip_leading_zeros};
 use crate::param::Param;
 use crate::params::Effective;
@@ -67,66 +68,6 @@ impl WallScale {
         stiffness: 1.0,
         damping: 1.0,
     };
-}
-
-/// Taylor terms are summed until they fall below this fraction of the sum: one ulp.
-const TAYLOR_REL: f64 = 1e-17;
-/// Scaling target of the Taylor series: ‖A h‖ ≤ 1/2 makes 20 terms exact to 1e-19.
-const TAYLOR_NORM: f64 = 0.5;
-
-/// E(h) = e^{Ah} − I and Ψ(h) = ∫₀ʰ e^{As} ds by scaled Taylor series and exact doubling.
-pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
-    let n = a.len();
-    if h == 0.0 {
-        return (vec![vec![0.0; n]; n], vec![vec![0.0; n]; n]);
-    }
-    let norm = poly::norm1(a) * h;
-    let mut k = 0;
-    while norm * 0.5_f64.powi(k) > TAYLOR_NORM && k < 1100 {
-        k += 1;
-    }
-    let s = h * 0.5_f64.powi(k);
-    let psi_s = psi_series(a, s);
-    let mut e = poly::mat_mul(a, &psi_s);
-    let mut psi = psi_s;
-    for _ in 0..k {
-        let two_plus_e = add_identity(&e, 2.0);
-        psi = poly::mat_mul(&two_plus_e, &psi);
-        e = poly::mat_mul(&e, &two_plus_e);
-    }
-    (e, psi)
-}
-
-/// Ψ(s) = s Σ_j (As)^j/(j + 1)! for ‖As‖ ≤ 1/2.
-fn psi_series(a: &Mat, s: f64) -> Mat {
-    let n = a.len();
-    let as_: Mat = a
-        .iter()
-        .map(|r| r.iter().map(|x| x * s).collect())
-        .collect();
-    let mut term = poly::identity(n); // (As)^j / (j+1)!
-    let mut sum = poly::identity(n);
-    for j in 1..40 {
-        term = poly::mat_mul(&as_, &term);
-        let f = 1.0 / (j + 1) as f64;
-        for row in term.iter_mut() {
-            for x in row.iter_mut() {
-                *x *= f;
-            }
-        }
-        let tn = poly::norm1(&term);
-        for (sr, tr) in sum.iter_mut().zip(&term) {
-            for (x, t) in sr.iter_mut().zip(tr) {
-                *x += t;
-            }
-        }
-        if tn <= TAYLOR_REL * poly::norm1(&sum) {
-            break;
-        }
-    }
-    sum.iter()
-        .map(|r| r.iter().map(|x| x * s).collect())
-        .collect()
 }
 
 fn add_identity(e: &Mat, c: f64) -> Mat {

@@ -103,7 +103,7 @@ pub fn run(a: &LocusArgs) -> Result<()> {
     if let Some(path) = &a.plot {
         let title = format!("Root locus in K at B = {} Ns/m", sig(b, 4));
         let sub = crate::wall_plot::loop_line(&rl);
-        plot = figure(&locus, rl.lp.period, &title, &sub)
+        plot = figure(&locus, &title, &sub)
             .save_as(path)
             .with_context(|| format!("--plot {}", path.display()))?;
     }
@@ -111,12 +111,15 @@ pub fn run(a: &LocusArgs) -> Result<()> {
         write_csv(path, &locus)
             .with_context(|| format!("--csv: cannot write {}", path.display()))?;
     }
-    let crossing = locus.crossing.map(|z| CrossingOut {
-        re: z.re,
-        im: z.im,
-        modulus: z.norm(),
-        frequency_hz: z.arg().abs() / (2.0 * std::f64::consts::PI * rl.lp.period),
-    });
+    let crossing = locus
+        .crossing
+        .zip(locus.crossing_frequency_hz)
+        .map(|(z, frequency_hz)| CrossingOut {
+            re: z.re,
+            im: z.im,
+            modulus: z.norm(),
+            frequency_hz,
+        });
     if a.json {
         return print_json(&LocusOut {
             input: rl.input(None),

@@ -17,7 +17,7 @@ pub(super) const PANEL: (u32, u32) = (840, 800);
 pub(super) const ZOOM_RADIUS: f64 = 0.5;
 
 /// The z-plane with every branch, and beside it a zoom on the crossing at K_max.
-pub(super) fn figure(l: &RootLocus, period: f64, title: &str, subtitle: &str) -> Grid {
+pub(super) fn figure(l: &RootLocus, title: &str, subtitle: &str) -> Grid {
     let reach = l
         .spectral_radius
         .iter()
@@ -31,9 +31,9 @@ pub(super) fn figure(l: &RootLocus, period: f64, title: &str, subtitle: &str) ->
     let mut g = Grid::new(title, if zoom.is_some() { 2 } else { 1 })
         .subtitle(subtitle)
         .panel_size(PANEL.0, PANEL.1);
-    g.push(panel(l, period, full, "z-plane", true));
+    g.push(panel(l, full, "z-plane", true));
     if let Some(b) = zoom {
-        g.push(panel(l, period, b, "near the crossing at K_max", false));
+        g.push(panel(l, b, "near the crossing at K_max", false));
     }
     g
 }
@@ -62,7 +62,7 @@ pub(super) fn zoom_box(l: &RootLocus) -> Option<[f64; 4]> {
 
 /// One panel: the unit circle, each branch as a line, the roots at K = 0 and the roots on
 /// the circle at K_max, in the window [x0, x1, y0, y1].
-pub(super) fn panel(l: &RootLocus, period: f64, w: [f64; 4], title: &str, legend: bool) -> Figure {
+pub(super) fn panel(l: &RootLocus, w: [f64; 4], title: &str, legend: bool) -> Figure {
     let mut fig = Figure::new(title)
         .x_label("Re z")
         .y_label("Im z")
@@ -107,12 +107,12 @@ pub(super) fn panel(l: &RootLocus, period: f64, w: [f64; 4], title: &str, legend
                 .label("K = 0"),
         );
     }
-    mark_crossing(&mut fig, l, period, w);
+    mark_crossing(&mut fig, l, w);
     fig
 }
 
 /// The roots on the unit circle at K_max, with the value written beside the upper one.
-pub(super) fn mark_crossing(fig: &mut Figure, l: &RootLocus, period: f64, w: [f64; 4]) {
+pub(super) fn mark_crossing(fig: &mut Figure, l: &RootLocus, w: [f64; 4]) {
     let (Some(i), Some(k)) = (l.k_max_index, l.k_max) else {
         return;
     };
@@ -121,9 +121,7 @@ pub(super) fn mark_crossing(fig: &mut Figure, l: &RootLocus, period: f64, w: [f6
         .filter(|z| (z.norm() - 1.0).abs() < 1e-6)
         .map(|z| (z.re, z.im))
         .collect();
-    let f = l.crossing.map_or(f64::NAN, |z| {
-        z.arg().abs() / (2.0 * std::f64::consts::PI * period)
-    });
+    let f = l.crossing_frequency_hz.unwrap_or(f64::NAN);
     fig.add(
         Series::scatter(on.clone(), Marker::Circle)
             .color(palette::VERMILLION)

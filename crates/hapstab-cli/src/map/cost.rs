@@ -2,7 +2,6 @@
 //! the stable share of its window, refused beyond the budget.
 
 use anyhow::Result;
-use hapstab::AffineFamily;
 use hapstab::limits::map_cost_of_degree;
 
 use super::MapArgs;
@@ -42,22 +41,4 @@ pub(super) fn check_budget(
             },
         ],
     )
-}
-
-/// Points per axis of the sample that estimates a map's stable share.
-pub(super) const SHARE_SAMPLES: usize = 8;
-
-/// The share of stable walls on an 8 × 8 sample of the map's window (the Schur–Cohn test,
-/// O(n²) each): a stable point costs a full test, an unstable one a small part of it.
-pub(super) fn stable_share(fam: &AffineFamily, (a0, a1): (f64, f64), (b0, b1): (f64, f64)) -> f64 {
-    let at = |lo: f64, hi: f64, i: usize| lo + (hi - lo) * i as f64 / (SHARE_SAMPLES - 1) as f64;
-    let mut stable = 0usize;
-    for i in 0..SHARE_SAMPLES {
-        for j in 0..SHARE_SAMPLES {
-            let c = fam.coefficients(at(a0, a1, i), at(b0, b1, j));
-            stable += usize::from(hapstab::stability::schur_stable(&c));
-        }
-    }
-    // one stable point in the sample stands for at least its share of the grid
-    (stable as f64 + 0.5) / (SHARE_SAMPLES * SHARE_SAMPLES) as f64
 }

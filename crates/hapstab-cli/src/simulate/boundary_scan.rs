@@ -159,11 +159,5 @@ pub(super) fn beta_values(
         bail!("--beta-max ({hi}) must be >= --beta-min ({lo})");
     }
     let n = a.beta_count;
-    Ok(if n == 1 {
-        vec![lo]
-    } else {
-        (0..n)
-            .map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
-            .collect()
-    })
+    Ok(hapstab::grid::evenly_spaced(lo, hi, n))
 }

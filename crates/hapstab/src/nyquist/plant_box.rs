@@ -141,9 +141,7 @@ fn linspace(r: [f64; 2], n: usize) -> Vec<f64> {
     if r[1] <= r[0] || n <= 1 {
         return vec![r[0]];
     }
-    (0..n)
-        .map(|i| r[0] + (r[1] - r[0]) * i as f64 / (n - 1) as f64)
-        .collect()
+    crate::grid::evenly_spaced(r[0], r[1], n)
 }
 
 /// The robust K-interval at virtual damping B over every plant sampled in the box, with the

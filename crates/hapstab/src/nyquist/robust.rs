@@ -105,11 +105,7 @@ pub(super) fn gamma_samples(lo: f64, hi: f64, n: usize, delta: f64) -> (Vec<f64>
     let mut degenerate = Vec::new();
     let mut gs = Vec::with_capacity(n);
     for i in 0..n {
-        let mut g = if n == 1 {
-            lo
-        } else {
-            lo + (hi - lo) * i as f64 / (n - 1) as f64
-        };
+        let mut g = crate::grid::evenly_spaced_at(lo, hi, n, i);
         let pp = PlantParams { gamma: g, delta };
         if unit_circle_pole(pp).is_some() {
             degenerate.push(g);

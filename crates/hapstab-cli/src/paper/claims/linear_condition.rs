@@ -13,11 +13,7 @@ use crate::paper::compute::{FIG7_DELTAS, GAMMA_ARM, Key, Results};
 
 /// (number of grid points satisfying (19) and (22), number of those violating (18)).
 pub fn eq18_grid() -> Result<(usize, usize)> {
-    let lin = |lo: f64, hi: f64, n: usize| -> Vec<f64> {
-        (0..n)
-            .map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
-            .collect()
-    };
+    let lin = hapstab::grid::evenly_spaced;
     let (mut sat, mut viol) = (0, 0);
     for &gamma in &[0.0, 1e-3, 0.05, 2.0] {
         for &delta in &[0.0, 0.015, 0.2, 1.0] {
