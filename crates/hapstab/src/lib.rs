@@ -61,6 +61,7 @@ pub mod circle;
 pub mod closed_loop;
 pub mod delay;
 pub mod error;
+pub mod extent;
 pub mod extremum;
 pub mod freqresp;
 pub mod grid;

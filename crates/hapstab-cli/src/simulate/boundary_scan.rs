@@ -140,16 +140,10 @@ pub(super) fn beta_values(
     region: &hapstab::region::StableRegion,
 ) -> Result<Vec<f64>> {
     let top = region
-        .polygons
-        .iter()
-        .flat_map(|p| p.vertices.iter().map(|v| v.beta))
-        .filter(|b| b.is_finite())
-        .fold(f64::NEG_INFINITY, f64::max);
-    let top = if top.is_finite() && top > 0.0 {
-        top
-    } else {
-        1.0
-    };
+        .extent()
+        .map(|e| e.y_max)
+        .filter(|t| t.is_finite() && *t > 0.0)
+        .unwrap_or(1.0);
     let lo = a.beta_min.unwrap_or(0.1 * top);
     let hi = a.beta_max.unwrap_or(0.9 * top);
     if !(lo.is_finite() && hi.is_finite()) {

@@ -5,7 +5,9 @@
 //!
 //! The panels themselves are drawn in [`super::run_plot_panels`].
 
-use hapstab::simulation::{ClippedTrace, Config, Outcome, RunResult, SimModel, Trace};
+use hapstab::simulation::{
+    ClippedTrace, Config, Outcome, RunResult, SETTLING_BAND, SimModel, Trace,
+};
 use hapstab_plot::Grid;
 
 use super::Units;
@@ -69,33 +71,12 @@ pub(super) fn scaled_unit(max_abs: f64, unit: &str) -> (f64, String) {
     (f, format!("{p}{unit}"))
 }
 
-/// The position the run settles at: 0, or the last position when that is not within 10⁻⁶
-/// of the peak of 0 (a push against the wall).
-pub(super) fn rest(x: &[f64]) -> f64 {
-    let last = x.last().copied().unwrap_or(0.0);
-    if last.abs() <= 1e-6 * max_abs(x) {
-        0.0
-    } else {
-        last
-    }
-}
-
-/// The end of a decaying run's transient: 1.3 times the last time its distance from rest
-/// exceeds 2 % of the largest, at least 50 samples, at most the run.
+/// The end of a decaying run's transient as the zoomed panel shows it: 1.3 times the 2 %
+/// settling time ([`Trace::settling_time`]), at least 50 samples, at most the run.
 pub(super) fn transient_end(tr: &Trace, period: f64, t_end: f64) -> f64 {
-    let x0 = rest(&tr.position);
-    let peak = tr
-        .position
-        .iter()
-        .fold(0.0f64, |m, x| m.max((x - x0).abs()));
-    let last = tr
-        .time
-        .iter()
-        .zip(&tr.position)
-        .filter(|(_, x)| (**x - x0).abs() > 0.02 * peak)
-        .map(|(t, _)| *t)
-        .fold(0.0, f64::max);
-    (1.3 * last).max(50.0 * period).min(t_end)
+    (1.3 * tr.settling_time(SETTLING_BAND))
+        .max(50.0 * period)
+        .min(t_end)
 }
 
 /// The largest magnitude in `v` (0 for none).

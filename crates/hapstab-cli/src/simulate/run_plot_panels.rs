@@ -5,7 +5,7 @@ use hapstab::simulation::{Config, Contact, RunResult, Trace};
 use hapstab_plot::{Figure, Legend, Series, palette};
 
 use super::run_args::RunSettings;
-use super::run_plot::{PLOT_BUCKETS, extent, max_abs, rest, scaled_unit};
+use super::run_plot::{PLOT_BUCKETS, extent, max_abs, scaled_unit};
 use super::{Units, describe_effects};
 use crate::output::sig;
 
@@ -148,7 +148,7 @@ impl Panels<'_> {
     /// window: how the transient decays and where the verdict was judged.
     pub(super) fn envelope(&self, r: &RunResult, units: Units) -> Figure {
         let (tr, t_end) = (self.tr, self.t_end);
-        let x0 = rest(&tr.position);
+        let x0 = tr.rest_position();
         let (xs, xunit) = scaled_unit(max_abs(&tr.position), "m");
         // the largest distance in each of about 500 stretches: the envelope, without the dips
         // of every zero crossing

@@ -13,17 +13,9 @@ pub(super) fn points(v: &[Wall]) -> Vec<(f64, f64)> {
 pub(super) type Extent = (f64, f64, f64, f64);
 
 pub(super) fn extent<'a>(polys: impl IntoIterator<Item = &'a Vec<Wall>>) -> Option<Extent> {
-    let mut e: Option<Extent> = None;
-    for w in polys.into_iter().flatten() {
-        let (k0, k1, b0, b1) = e.unwrap_or((w.stiffness, w.stiffness, w.damping, w.damping));
-        e = Some((
-            k0.min(w.stiffness),
-            k1.max(w.stiffness),
-            b0.min(w.damping),
-            b1.max(w.damping),
-        ));
-    }
-    e
+    let walls = polys.into_iter().flatten();
+    hapstab::extent::Extent::of(walls.map(|w| (w.stiffness, w.damping)))
+        .map(|e| (e.x_min, e.x_max, e.y_min, e.y_max))
 }
 
 /// Two panels: every loop's stable region (light) and passive region (dark) with K_max marked

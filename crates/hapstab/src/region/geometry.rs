@@ -232,14 +232,6 @@ pub(super) fn box_polygon(x0: f64, x1: f64, y0: f64, y1: f64) -> Convex {
 }
 
 pub(super) fn bbox(points: impl Iterator<Item = P>) -> Option<(f64, f64, f64, f64)> {
-    let mut points = points;
-    let first = points.next()?;
-    let (mut x0, mut x1, mut y0, mut y1) = (first.x, first.x, first.y, first.y);
-    for p in points {
-        x0 = x0.min(p.x);
-        x1 = x1.max(p.x);
-        y0 = y0.min(p.y);
-        y1 = y1.max(p.y);
-    }
-    Some((x0, x1, y0, y1))
+    crate::extent::Extent::of(points.map(|p| (p.x, p.y)))
+        .map(|e| (e.x_min, e.x_max, e.y_min, e.y_max))
 }

@@ -155,11 +155,17 @@ impl StableRegion {
     /// The region's size, the scale its chord tolerance is relative to: the larger side of
     /// the polygons' bounding box (0 when empty).
     pub fn size(&self) -> f64 {
-        let pts = self
-            .polygons
-            .iter()
-            .flat_map(|q| q.vertices.iter().map(|v| P::of(*v)));
-        bbox(pts).map_or(0.0, |(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0))
+        self.extent().map_or(0.0, |e| e.larger_side())
+    }
+
+    /// The bounding box of the polygons' vertices, x = α (stiffness) and y = β (damping) in
+    /// the family's units (None when empty).
+    pub fn extent(&self) -> Option<crate::extent::Extent> {
+        crate::extent::Extent::of(
+            self.polygons
+                .iter()
+                .flat_map(|q| q.vertices.iter().map(|v| (v.alpha, v.beta))),
+        )
     }
 
     /// Euclidean distance from a wall to the nearest polygon edge (infinite when empty).

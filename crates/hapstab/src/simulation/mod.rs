@@ -75,6 +75,7 @@ mod boundary;
 mod clip;
 mod filter;
 mod growth;
+mod settling;
 mod simulator;
 mod stepper;
 pub mod verdict;
@@ -87,6 +88,7 @@ pub use clip::{
     CLIP_FACTOR, ClippedTrace, TraceClip, clip_growing_trace, simulate_clipped, start_scale,
 };
 pub use growth::{LinearGrowth, linear_growth, linear_growth_of};
+pub use settling::SETTLING_BAND;
 pub use simulator::Simulator;
 pub use verdict::{
     ContactSummary, LimitCycle, LinearReference, LoopFacts, Outcome, RunLog, RunVerdict,

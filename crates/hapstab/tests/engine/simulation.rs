@@ -608,3 +608,33 @@ fn quantization_sustains_limit_cycles_inside_the_linear_region() {
         assert!(sim > 0.8 * lin && sim <= lin * (1.0 + 1e-2), "{pt:?}");
     }
 }
+
+/// A trace of x(t) on t = k·dt, k = 0 … n − 1 (velocity and forces zero: unused here).
+fn trace_of(x: impl Fn(f64) -> f64, dt: f64, n: usize) -> hapstab::simulation::Trace {
+    let time: Vec<f64> = (0..n).map(|k| k as f64 * dt).collect();
+    let position: Vec<f64> = time.iter().map(|&t| x(t)).collect();
+    hapstab::simulation::Trace {
+        velocity: vec![0.0; n],
+        wall_force: vec![0.0; n],
+        human_force: vec![0.0; n],
+        time,
+        position,
+    }
+}
+
+#[test]
+fn settling_time_of_an_exponential_is_ln_fifty() {
+    // x = e^{-t} decays to 0: it leaves the 2 % band for good at t = ln 50 (closed form)
+    let tr = trace_of(|t| (-t).exp(), 1e-3, 20_001);
+    assert_eq!(tr.rest_position(), 0.0);
+    let ts = tr.settling_time(hapstab::simulation::SETTLING_BAND);
+    assert!((ts - 50f64.ln()).abs() <= 1e-3, "settling time {ts}");
+    // a push held against the wall, x = 0.01(1 − e^{-t}): rest at the last position, the
+    // distance from it 0.01·e^{-t}(1 − e^{t − 20}) leaves the band at ln 50 as well
+    let held = trace_of(|t| 0.01 * (1.0 - (-t).exp()), 1e-3, 20_001);
+    assert_eq!(held.rest_position(), *held.position.last().unwrap());
+    let ts = held.settling_time(hapstab::simulation::SETTLING_BAND);
+    assert!((ts - 50f64.ln()).abs() <= 2e-3, "held settling time {ts}");
+    // a trace that never moves has settled from the start
+    assert_eq!(trace_of(|_| 0.0, 1e-3, 10).settling_time(0.02), 0.0);
+}

@@ -45,13 +45,12 @@ pub struct Region {
     pub source: Source,
 }
 
+/// (α_min, β_min, β_max) of the outline (infinite when it is empty).
 pub(super) fn extent(rings: &[Vec<(f64, f64)>]) -> (f64, f64, f64) {
-    let pts = || rings.iter().flatten();
-    (
-        pts().map(|p| p.0).fold(f64::INFINITY, f64::min),
-        pts().map(|p| p.1).fold(f64::INFINITY, f64::min),
-        pts().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
-    )
+    hapstab::extent::Extent::of(rings.iter().flatten().copied())
+        .map_or((f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY), |e| {
+            (e.x_min, e.y_min, e.y_max)
+        })
 }
 
 /// The stable region of one key: exact polygons, or the β-slice outline when
