@@ -49,8 +49,8 @@ struct Summary {
     seconds: f64,
 }
 
-fn notes(results: &compute::Results, rows: &[report::AlphaRow]) -> Vec<String> {
-    let mut n = vec![
+fn notes() -> Vec<String> {
+    vec![
         "Regions are the exact polygons of hapstab::region::stable_region (every vertex is a point where p(z) has a root on the unit circle); \
          for drawing, outlines are thinned by Douglas–Peucker to 1e-4 of the axis range (a tenth of a pixel)."
             .to_string(),
@@ -61,21 +61,7 @@ fn notes(results: &compute::Results, rows: &[report::AlphaRow]) -> Vec<String> {
             .to_string(),
         "At δ = 0, γ = π² every (α, β) is limit stable (a root at z = −1), so Figs. 8 and 10 draw the limit γ = π²(1 − 1e-6)."
             .to_string(),
-    ];
-    let slices: Vec<String> = rows
-        .iter()
-        .filter(|r| r.source == compute::Source::Slices)
-        .map(|r| format!("(γ = {}, δ = {}, d = {})", r.gamma, r.delta, r.d))
-        .collect();
-    if !slices.is_empty() {
-        n.push(format!(
-            "hapstab::region::stable_region returned no polygon for {}, although these regions are not empty; their outlines go through the exact \
-             stable α-intervals of 121 or more β-slices (hapstab::nyquist::robust_region over the single γ): vertices exact, edges chords.",
-            slices.join(", ")
-        ));
-    }
-    let _ = results;
-    n
+    ]
 }
 
 /// Runs `hapstab paper`.
@@ -113,7 +99,7 @@ pub fn run(a: &PaperArgs) -> Result<()> {
         claims: claim_list,
         robust: report::robust_rows(&results)?,
         figures: figure_rows(&figs, &saved),
-        notes: notes(&results, &rows),
+        notes: notes(),
         alpha_max: rows,
     };
     let mut files: Vec<String> = saved

@@ -12,7 +12,7 @@ use hapstab::{PlantParams, PolyFamily};
 use super::{Claim, Verdict};
 use crate::output::sig;
 use crate::paper::compute::{
-    DELTA_NYQUIST, Key, Region, Results, RobustKey, Source, passive_gamma_hi, sweep_gamma,
+    DELTA_NYQUIST, Key, Region, Results, RobustKey, passive_gamma_hi, sweep_gamma,
 };
 
 /// Area of the polygon over the area of the triangle spanned by its rightmost vertex and the
@@ -98,12 +98,7 @@ pub(super) fn c7(r: &Results) -> Result<Claim> {
         values,
         verdict: Verdict::from(ok),
         note: format!(
-            "reproduced when α_max ≤ 1e-9 at γ = π²/4, the area at γ = π²(1 − 1e-6) is within 1 % of the triangle through its corners, and the robust region has no interior point{}",
-            if nyq.source == Source::Slices {
-                "; the region at γ = π²(1 − 1e-6) is outlined from exact per-β intervals because stable_region returned no polygon"
-            } else {
-                ""
-            }
+            "reproduced when α_max ≤ 1e-9 at γ = π²/4, the area at γ = π²(1 − 1e-6) is within 1 % of the triangle through its corners, and the robust region has no interior point"
         ),
     })
 }

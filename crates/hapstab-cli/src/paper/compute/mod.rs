@@ -20,7 +20,7 @@ use hapstab::nyquist::{
 use serde::Serialize;
 
 pub use jobs::{jobs, passive_gamma_hi, run};
-pub use region::{Region, Source};
+pub use region::Region;
 
 /// Upper end of the human-arm stiffness range of eq. (15): γ < 1·10⁻³.
 pub const GAMMA_ARM: f64 = 1e-3;

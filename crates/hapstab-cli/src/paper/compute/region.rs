@@ -2,22 +2,10 @@
 
 use anyhow::{Context, Result};
 use hapstab::PolyFamily;
-use hapstab::nyquist::{RobustOptions, robust_region};
 use hapstab::region::stable_region;
 use serde::Serialize;
 
 use super::Key;
-
-/// How a region's outline was obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Source {
-    /// `hapstab::region::stable_region`: exact polygons.
-    Exact,
-    /// `stable_region` returned no polygon: outline through exact per-β α-intervals
-    /// (`hapstab::nyquist::robust_region` over the single γ).
-    Slices,
-}
 
 /// A stable region ready for drawing and tabulating.
 #[derive(Debug, Clone, Serialize)]
@@ -41,8 +29,6 @@ pub struct Region {
     pub beta_min: f64,
     /// Largest β of the outline.
     pub beta_max: f64,
-    /// Where the outline comes from.
-    pub source: Source,
 }
 
 /// (α_min, β_min, β_max) of the outline (infinite when it is empty).
@@ -53,52 +39,25 @@ pub(super) fn extent(rings: &[Vec<(f64, f64)>]) -> (f64, f64, f64) {
         })
 }
 
-/// The stable region of one key: exact polygons, or the β-slice outline when
-/// `stable_region` finds none (see [`Source::Slices`]).
+/// The exact stable region of one key ([`stable_region`]'s polygons).
 pub fn region(key: Key) -> Result<Region> {
     let fam = PolyFamily::new(key.plant()?, key.d)?;
-    let r = stable_region(&fam)?;
-    if !r.polygons.is_empty() {
-        let rings: Vec<Vec<(f64, f64)>> = r
-            .polygons
-            .iter()
-            .map(|p| p.vertices.iter().map(|v| (v.alpha, v.beta)).collect())
-            .collect();
-        let (alpha_min, beta_min, beta_max) = extent(&rings);
-        return Ok(Region {
-            key,
-            vertices: rings.iter().map(Vec::len).sum(),
-            rings,
-            alpha_max: r.alpha_max,
-            beta_at_alpha_max: r.beta_at_alpha_max,
-            area: r.area,
-            alpha_min,
-            beta_min,
-            beta_max,
-            source: Source::Exact,
-        });
-    }
-    let opts = RobustOptions {
-        gamma_samples: 2,
-        beta_samples: 121,
-        refine_gamma: false,
-        refine_beta_rounds: 3,
-    };
-    let s = robust_region(key.delta, key.d, key.gamma, key.gamma, opts)
-        .with_context(|| format!("stable region of {key:?} by slices"))?;
-    let ring: Vec<(f64, f64)> = s.polygon.iter().map(|v| (v.alpha, v.beta)).collect();
-    let rings = if ring.len() >= 3 { vec![ring] } else { vec![] };
+    let r = stable_region(&fam).with_context(|| format!("stable region of {key:?}"))?;
+    let rings: Vec<Vec<(f64, f64)>> = r
+        .polygons
+        .iter()
+        .map(|p| p.vertices.iter().map(|v| (v.alpha, v.beta)).collect())
+        .collect();
     let (alpha_min, beta_min, beta_max) = extent(&rings);
     Ok(Region {
         key,
         vertices: rings.iter().map(Vec::len).sum(),
         rings,
-        alpha_max: s.alpha_max,
-        beta_at_alpha_max: s.beta_at_alpha_max,
-        area: s.area,
+        alpha_max: r.alpha_max,
+        beta_at_alpha_max: r.beta_at_alpha_max,
+        area: r.area,
         alpha_min,
         beta_min,
         beta_max,
-        source: Source::Slices,
     })
 }

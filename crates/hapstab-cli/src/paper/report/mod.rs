@@ -14,7 +14,7 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use super::claims::Claim;
-use super::compute::{Key, Results, RobustKey, Source};
+use super::compute::{Key, Results, RobustKey};
 use html::html_report;
 use markdown::markdown;
 
@@ -37,8 +37,6 @@ pub struct AlphaRow {
     pub area: f64,
     /// Outline vertices.
     pub vertices: usize,
-    /// Where the outline comes from.
-    pub source: Source,
 }
 
 /// One row of the robust-region table.
@@ -116,7 +114,6 @@ pub fn alpha_rows(r: &Results, shown: &[(Key, Vec<&'static str>)]) -> Result<Vec
                 beta_at_alpha_max: reg.beta_at_alpha_max,
                 area: reg.area,
                 vertices: reg.vertices,
-                source: reg.source,
             })
         })
         .collect()

@@ -3,7 +3,6 @@
 
 use super::{AlphaRow, RobustRow};
 use crate::output::sig;
-use crate::paper::compute::Source;
 
 pub(super) fn g(x: f64) -> String {
     if x.is_nan() { "—".into() } else { sig(x, 6) }
@@ -20,7 +19,7 @@ pub(super) fn alpha_cells(r: &AlphaRow, text: &dyn Fn(&str) -> String) -> [Strin
         g(r.alpha_max),
         g(r.beta_at_alpha_max),
         g(r.area),
-        format!("{} ({} vertices)", source_text(r.source), r.vertices),
+        format!("exact polygon ({} vertices)", r.vertices),
     ]
 }
 
@@ -39,11 +38,4 @@ pub(super) fn robust_cells(r: &RobustRow) -> [String; 7] {
         g(r.beta_at_alpha_max),
         g(r.area),
     ]
-}
-
-pub(super) fn source_text(s: Source) -> &'static str {
-    match s {
-        Source::Exact => "exact polygon",
-        Source::Slices => "β-slices (see notes)",
-    }
 }
