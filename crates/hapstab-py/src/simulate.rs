@@ -114,16 +114,7 @@ fn effects(
             ));
         }
     };
-    let friction = match (coulomb_friction, static_friction) {
-        (None, None) => None,
-        (c, s) => {
-            let coulomb = c.unwrap_or(0.0);
-            Some(Friction {
-                coulomb,
-                stiction: s.unwrap_or(coulomb),
-            })
-        }
-    };
+    let friction = Friction::from_parts(coulomb_friction, static_friction);
     let e = Effects {
         contact,
         wall_position,

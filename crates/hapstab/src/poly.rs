@@ -21,6 +21,11 @@ pub fn mul(a: &[f64], b: &[f64]) -> Vec<f64> {
     out
 }
 
+/// Ascending coefficients of the monic polynomial Π (x − r) with the given real roots.
+pub fn from_real_roots(roots: &[f64]) -> Vec<f64> {
+    roots.iter().fold(vec![1.0], |c, &r| mul(&c, &[-r, 1.0]))
+}
+
 /// a + s·b, padded to the longer length.
 pub fn add_scaled(a: &[f64], s: f64, b: &[f64]) -> Vec<f64> {
     let n = a.len().max(b.len());

@@ -464,22 +464,9 @@ pub fn companion(c: &[f64]) -> Result<Vec<Complex64>> {
 mod tests {
     use super::*;
 
-    fn poly_from_roots(rs: &[f64]) -> Vec<f64> {
-        let mut c = vec![1.0];
-        for &r in rs {
-            let mut n = vec![0.0; c.len() + 1];
-            for (i, ci) in c.iter().enumerate() {
-                n[i + 1] += ci;
-                n[i] -= r * ci;
-            }
-            c = n;
-        }
-        c
-    }
-
     #[test]
     fn roots_spread_over_six_decades() {
-        let c = poly_from_roots(&[1e-3, 10.0, -1e3]);
+        let c = crate::poly::from_real_roots(&[1e-3, 10.0, -1e3]);
         let r = aberth(&c).unwrap();
         let mut m: Vec<f64> = r.iter().map(|e| e.z.norm()).collect();
         m.sort_by(f64::total_cmp);

@@ -606,16 +606,10 @@ fn iterate(p: &[f64], brackets: &mut [Bracket], active: &mut Vec<usize>) {
 mod tests {
     use super::*;
 
-    /// Ascending coefficients of Π (x − r).
-    fn from_roots(rs: &[f64]) -> Vec<f64> {
-        rs.iter()
-            .fold(vec![1.0], |p, &r| crate::poly::mul(&p, &[-r, 1.0]))
-    }
-
     #[test]
     fn finds_every_positive_root_to_full_precision() {
         let rs = [1e-12, 3e-5, 0.5, 0.75, 2.0, 7e3];
-        let mut p = from_roots(&rs);
+        let mut p = crate::poly::from_real_roots(&rs);
         // a complex pair and a negative root that must not be reported
         p = crate::poly::mul(&p, &[2.0, 1.0, 1.0]);
         p = crate::poly::mul(&p, &[3.0, 1.0]);
@@ -630,7 +624,7 @@ mod tests {
     fn close_pairs_and_wide_scales() {
         // Wilkinson-like cluster: roots 1, 1 + 1e-6 and widely scaled ones
         let rs = [1e-15, 1.0, 1.000001, 1e15];
-        let got = positive_roots(&from_roots(&rs));
+        let got = positive_roots(&crate::poly::from_real_roots(&rs));
         assert_eq!(got.len(), 4, "{got:?}");
         for (g, r) in got.iter().zip(rs) {
             assert!((g - r).abs() <= 1e-9 * r, "{g} vs {r}");
@@ -645,7 +639,7 @@ mod tests {
         rs.extend((0..6).map(|j| 2.0 * (1.0 + 0.05 * j as f64)));
         rs.extend([0.99, 1.01]);
         rs.sort_by(f64::total_cmp);
-        let got = positive_roots(&from_roots(&rs));
+        let got = positive_roots(&crate::poly::from_real_roots(&rs));
         assert_eq!(got.len(), rs.len(), "{got:?}");
         for (g, r) in got.iter().zip(&rs) {
             // the cluster is ill-conditioned: rounding the coefficients alone moves its roots

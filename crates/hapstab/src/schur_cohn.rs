@@ -163,37 +163,24 @@ fn run<'a>(a: &'a mut [f64], b: &'a mut [f64], eta: f64) -> SchurCohn {
 mod tests {
     use super::*;
 
-    fn poly_from_roots(rs: &[f64]) -> Vec<f64> {
-        let mut c = vec![1.0];
-        for &r in rs {
-            let mut n = vec![0.0; c.len() + 1];
-            for (i, ci) in c.iter().enumerate() {
-                n[i + 1] += ci;
-                n[i] -= r * ci;
-            }
-            c = n;
-        }
-        c
-    }
-
     #[test]
     fn known_roots_are_decided_surely() {
-        let s = schur_cohn(&poly_from_roots(&[0.5, -0.9, 0.99]), 1.0, 0.0);
+        let s = schur_cohn(&crate::poly::from_real_roots(&[0.5, -0.9, 0.99]), 1.0, 0.0);
         assert!(s.stable && s.sure, "{s:?}");
-        let u = schur_cohn(&poly_from_roots(&[0.5, -1.01, 0.2]), 1.0, 0.0);
+        let u = schur_cohn(&crate::poly::from_real_roots(&[0.5, -1.01, 0.2]), 1.0, 0.0);
         assert!(!u.stable && u.sure, "{u:?}");
         // scaled: roots inside 0.98 but not inside 0.95
-        let c = poly_from_roots(&[0.3, -0.97]);
+        let c = crate::poly::from_real_roots(&[0.3, -0.97]);
         assert!(schur_cohn(&c, 0.98, 0.0).stable);
         assert!(!schur_cohn(&c, 0.95, 0.0).stable);
     }
 
     #[test]
     fn a_root_on_the_circle_is_never_sure() {
-        let c = poly_from_roots(&[0.5, 1.0, 0.2]);
+        let c = crate::poly::from_real_roots(&[0.5, 1.0, 0.2]);
         assert!(!schur_cohn(&c, 1.0, 0.0).sure);
         // a root 1e-12 inside is decided by rounding alone, not against a 1e-10 perturbation
-        let c = poly_from_roots(&[0.5, 1.0 - 1e-12]);
+        let c = crate::poly::from_real_roots(&[0.5, 1.0 - 1e-12]);
         assert!(!schur_cohn(&c, 1.0, 1e-10).sure);
     }
 }

@@ -261,22 +261,9 @@ pub fn is_stable(params: &Normalized) -> Result<bool> {
 mod tests {
     use super::*;
 
-    fn poly_from_roots(rs: &[f64]) -> Vec<f64> {
-        let mut c = vec![1.0];
-        for &r in rs {
-            let mut n = vec![0.0; c.len() + 1];
-            for (i, ci) in c.iter().enumerate() {
-                n[i + 1] += ci;
-                n[i] -= r * ci;
-            }
-            c = n;
-        }
-        c
-    }
-
     #[test]
     fn roots_of_known_polynomial() {
-        let r = roots(&poly_from_roots(&[0.5, -0.25, 0.75])).unwrap();
+        let r = roots(&crate::poly::from_real_roots(&[0.5, -0.25, 0.75])).unwrap();
         let mut re: Vec<f64> = r.iter().map(|z| z.re).collect();
         re.sort_by(f64::total_cmp);
         assert!((re[0] + 0.25).abs() < 1e-15 && (re[2] - 0.75).abs() < 1e-15);

@@ -232,14 +232,9 @@ fn undecided() -> Decision {
 mod tests {
     use super::*;
 
-    fn poly_from_roots(rs: &[f64]) -> Vec<f64> {
-        rs.iter()
-            .fold(vec![1.0], |c, &r| crate::poly::mul(&c, &[-r, 1.0]))
-    }
-
     #[test]
     fn the_band_decides_roots_near_the_circle() {
-        let v = |rs: &[f64]| decide_coefficients(&poly_from_roots(rs)).verdict;
+        let v = |rs: &[f64]| decide_coefficients(&crate::poly::from_real_roots(rs)).verdict;
         assert_eq!(v(&[0.5, -0.9, 0.99]), Verdict::Stable);
         assert_eq!(v(&[0.5, -1.01, 0.2]), Verdict::Unstable);
         assert_eq!(v(&[0.5, 1.0]), Verdict::Marginal);

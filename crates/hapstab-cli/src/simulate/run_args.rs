@@ -132,19 +132,10 @@ impl RunArgs {
                 _ => Ok(v),
             }
         };
-        let friction = match (
+        let friction = Friction::from_parts(
             finite("--coulomb", self.coulomb)?,
             finite("--stiction", self.stiction)?,
-        ) {
-            (None, None) => None,
-            (c, s) => {
-                let coulomb = c.unwrap_or(0.0);
-                Some(Friction {
-                    coulomb,
-                    stiction: s.unwrap_or(coulomb),
-                })
-            }
-        };
+        );
         let effects = Effects {
             contact: match (self.unilateral, self.no_pull) {
                 (false, _) => Contact::Bilateral,

@@ -332,6 +332,24 @@ pub struct Friction {
     pub stiction: f64,
 }
 
+impl Friction {
+    /// The friction a user's optional forces describe: none when neither is given; a missing
+    /// Coulomb force is 0 and a missing static force equals the Coulomb force (no breakaway
+    /// peak). Validated with the other effects ([`Effects::validate`]).
+    pub fn from_parts(coulomb: Option<f64>, stiction: Option<f64>) -> Option<Self> {
+        match (coulomb, stiction) {
+            (None, None) => None,
+            (c, s) => {
+                let coulomb = c.unwrap_or(0.0);
+                Some(Self {
+                    coulomb,
+                    stiction: s.unwrap_or(coulomb),
+                })
+            }
+        }
+    }
+}
+
 /// The optional nonlinear effects of Section II's list ("static friction, or quantization
 /// and saturation of sensors and actuators") and Remark 1's unilateral wall.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
