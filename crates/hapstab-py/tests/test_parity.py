@@ -217,3 +217,16 @@ def test_sweep_zwidth_and_simulate(hapstab_cli, case):
     assert s.outcome == si["outcome"], name
     assert s.measured_growth_per_sample == si["measured_growth_per_sample"], name
     assert s.final_position == si["final_position"], name
+
+
+def test_locus_crossing_frequency(hapstab_cli):
+    """The root locus's crossing frequency is one number: the command line's JSON and Python
+    give the same double, and it is |arg z|/(2πT) of the crossing root (numpy's angle)."""
+    lp = hs.Loop.paper(delay=1e-3)
+    py = hs.root_locus(lp, 2.0)
+    out = cli(hapstab_cli, "locus", "--delay", "1", "--wall-damping", "2")
+    assert py.crossing is not None
+    assert out["crossing"]["frequency_hz"] == py.crossing_frequency_hz
+    want = abs(np.angle(py.crossing)) / (2 * math.pi * 1e-3)
+    assert abs(py.crossing_frequency_hz - want) <= 1e-12 * want
+    assert abs(out["crossing"]["re"] - py.crossing.real) == 0.0

@@ -485,6 +485,8 @@ class RootLocus:
     """Index of the sample K = K_max in wall_stiffness."""
     crossing: Optional[complex]
     """The root closest to the unit circle at K = K_max."""
+    crossing_frequency_hz: Optional[float]
+    """The frequency of the oscillation at K_max, |arg z|/(2πT) of that root, Hz."""
     wall_stiffness: Float64Array
     roots: Complex128Array
     """Shape (len(wall_stiffness), degree of p), branch-ordered."""
