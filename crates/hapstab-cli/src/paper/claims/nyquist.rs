@@ -97,9 +97,8 @@ pub(super) fn c7(r: &Results) -> Result<Claim> {
         ),
         values,
         verdict: Verdict::from(ok),
-        note: format!(
-            "reproduced when α_max ≤ 1e-9 at γ = π²/4, the area at γ = π²(1 − 1e-6) is within 1 % of the triangle through its corners, and the robust region has no interior point"
-        ),
+        note: "reproduced when α_max ≤ 1e-9 at γ = π²/4, the area at γ = π²(1 − 1e-6) is within 1 % of the triangle through its corners, and the robust region has no interior point"
+            .to_string(),
     })
 }
 
