@@ -86,15 +86,8 @@ pub fn check(
     py: Python<'_>,
 ) -> PyResult<PyCheck> {
     let lp = &r#loop.lp;
-    let sys = r#loop.system()?;
+    let (sys, w) = WallArgs::system_and_wall(r#loop, wall_stiffness, wall_damping, alpha, beta)?;
     let fam = sys.family();
-    let args = WallArgs {
-        stiffness: wall_stiffness,
-        damping: wall_damping,
-        alpha,
-        beta,
-    };
-    let w = args.resolve(r#loop, fam)?;
     let units = sys.wall_units(w).py()?;
     let stable = sys.decide(units).verdict == hapstab::Verdict::Stable;
     let core = hapstab::limits::core_degree(fam);

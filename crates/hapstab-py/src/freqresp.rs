@@ -161,15 +161,8 @@ pub fn frequency_response(
         ));
     }
     let lp = &r#loop.lp;
-    let sys = r#loop.system()?;
+    let (sys, w) = WallArgs::system_and_wall(r#loop, wall_stiffness, wall_damping, alpha, beta)?;
     let fam = sys.family();
-    let w = WallArgs {
-        stiffness: wall_stiffness,
-        damping: wall_damping,
-        alpha,
-        beta,
-    }
-    .resolve(r#loop, fam)?;
     let n = fam.degree();
     check_loop(
         check_cost(n, core_degree(fam), true),

@@ -128,15 +128,8 @@ pub fn margins(
     py: Python<'_>,
 ) -> PyResult<PyMargins> {
     let lp = &r#loop.lp;
-    let sys = r#loop.system()?;
+    let (sys, w) = WallArgs::system_and_wall(r#loop, wall_stiffness, wall_damping, alpha, beta)?;
     let fam = sys.family();
-    let args = WallArgs {
-        stiffness: wall_stiffness,
-        damping: wall_damping,
-        alpha,
-        beta,
-    };
-    let w = args.resolve(r#loop, fam)?;
     let core = hapstab::limits::core_degree(fam);
     let cost = hapstab::limits::margins_cost(fam.degree(), core);
     crate::budget::check_loop(cost, lp, fam, "the margins")?;

@@ -287,15 +287,8 @@ pub fn simulate(
     saturation: Option<f64>,
     trace_rows: usize,
 ) -> PyResult<PySimulation> {
-    let sys = r#loop.system()?;
+    let (sys, w) = WallArgs::system_and_wall(r#loop, wall_stiffness, wall_damping, alpha, beta)?;
     let fam = sys.family();
-    let args = WallArgs {
-        stiffness: wall_stiffness,
-        damping: wall_damping,
-        alpha,
-        beta,
-    };
-    let w = args.resolve(r#loop, fam)?;
     let model = sim_model(&r#loop.lp, w)?;
     let period = r#loop.lp.period;
     let n =

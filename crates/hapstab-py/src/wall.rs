@@ -2,6 +2,7 @@
 //! the paper's normalized α = KT²/m and β = BT/m (Table I).
 
 use hapstab::AffineFamily;
+use hapstab::System;
 use hapstab::model::PlantModel;
 use hapstab::params::Wall;
 use pyo3::prelude::*;
@@ -19,6 +20,26 @@ pub struct WallArgs {
 }
 
 impl WallArgs {
+    /// The loop's analysis object and the wall on it, from a call's wall keywords
+    /// (wall_stiffness, wall_damping, alpha, beta), checked by [`WallArgs::resolve`].
+    pub fn system_and_wall(
+        lp: &PyLoop,
+        stiffness: Option<f64>,
+        damping: Option<f64>,
+        alpha: Option<f64>,
+        beta: Option<f64>,
+    ) -> PyResult<(System, Wall)> {
+        let sys = lp.system()?;
+        let args = Self {
+            stiffness,
+            damping,
+            alpha,
+            beta,
+        };
+        let w = args.resolve(lp, sys.family())?;
+        Ok((sys, w))
+    }
+
     /// The wall in N/m and Ns/m. α, β on a physical mass-spring-damper loop convert by
     /// K = α·m/T², B = β·m/T; on a normalized loop they are K and B.
     pub fn resolve(&self, lp: &PyLoop, fam: &AffineFamily) -> PyResult<Wall> {
