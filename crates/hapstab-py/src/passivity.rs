@@ -5,8 +5,8 @@
 use hapstab::model::Loop;
 use hapstab::params::Wall;
 use hapstab::passivity::{
-    DeviceDamping, PassiveRegion, Passivity, PassivityVerdict, SampledWall, device_damping,
-    passive_region, passivity_of_device, passivity_with,
+    DeviceDamping, PassiveRegion, Passivity, SampledWall, device_damping, passive_region,
+    passivity_of_device, passivity_with,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -102,15 +102,6 @@ impl PyPassivity {
     }
 }
 
-fn verdict_str(v: PassivityVerdict) -> &'static str {
-    match v {
-        PassivityVerdict::Passive => "passive",
-        PassivityVerdict::Boundary => "boundary",
-        PassivityVerdict::NotPassive => "not_passive",
-        PassivityVerdict::NotApplicable => "not_applicable",
-    }
-}
-
 /// The device damper that replaces the plant's own: the given b unless the argument does not
 /// hold for the loop at all (an actuator lag: the held force is filtered); None without one.
 fn device_of(lp: &PyLoop, given: Option<f64>) -> PyResult<Option<DeviceDamping>> {
@@ -168,12 +159,9 @@ fn passivity_object(
         dc_stiffness: p.dc_stiffness,
         device_damping,
         effective_damping: p.with_arm.map(|a| a.damping),
-        effective_verdict: p.with_arm.map(|a| verdict_str(a.verdict).into()),
-        meets: match p.verdict {
-            PassivityVerdict::NotApplicable => None,
-            v => Some(v == PassivityVerdict::Passive),
-        },
-        verdict: verdict_str(p.verdict).into(),
+        effective_verdict: p.with_arm.map(|a| a.verdict.as_str().into()),
+        meets: p.verdict.meets(),
+        verdict: p.verdict.as_str().into(),
         note,
         stable,
         passive_region,

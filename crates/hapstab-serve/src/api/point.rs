@@ -15,7 +15,7 @@ use super::within_budget;
 use crate::limits::*;
 use crate::query::{ApiError, Params, PlantSpec, lib_error};
 use hapstab::margins::report::MarginsReport;
-use hapstab::passivity::{Passivity, PassivityVerdict};
+use hapstab::passivity::Passivity;
 
 /// α and β of a point; in physical mode optionally given as K (N/m) and B (Ns/m).
 pub(crate) fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), ApiError> {
@@ -160,15 +160,6 @@ pub(crate) struct PointOut {
     pub server_ms: f64,
 }
 
-/// Passive (true), not (false), or the condition does not apply (None).
-fn is_passive(v: PassivityVerdict) -> Option<bool> {
-    match v {
-        PassivityVerdict::Passive => Some(true),
-        PassivityVerdict::Boundary | PassivityVerdict::NotPassive => Some(false),
-        PassivityVerdict::NotApplicable => None,
-    }
-}
-
 /// Refuses a point whose roots would cost more than one request may.
 pub(crate) fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
     within_budget(
@@ -209,8 +200,8 @@ pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> 
     });
     let (margins, passivity) = wall_analyses(spec, at.wall, a.stable())?;
     Ok(PointOut {
-        passive: is_passive(passivity.verdict),
-        passive_with_arm: passivity.with_arm.and_then(|w| is_passive(w.verdict)),
+        passive: passivity.verdict.meets(),
+        passive_with_arm: passivity.with_arm.and_then(|w| w.verdict.meets()),
         margins: MarginsReport::from(&margins),
         passivity,
         params: n,

@@ -317,10 +317,7 @@ pub fn passivity_answer(
         device_damping,
         effective_damping: p.with_arm.map(|a| a.damping),
         effective_verdict: p.with_arm.map(|a| a.verdict),
-        meets: match p.verdict {
-            PassivityVerdict::NotApplicable => None,
-            v => Some(v == PassivityVerdict::Passive),
-        },
+        meets: p.verdict.meets(),
         verdict: p.verdict,
         note,
         stable,

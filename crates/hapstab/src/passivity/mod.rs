@@ -107,6 +107,27 @@ pub enum PassivityVerdict {
     NotApplicable,
 }
 
+impl PassivityVerdict {
+    /// The verdict's name in every report (its serde name).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PassivityVerdict::Passive => "passive",
+            PassivityVerdict::Boundary => "boundary",
+            PassivityVerdict::NotPassive => "not_passive",
+            PassivityVerdict::NotApplicable => "not_applicable",
+        }
+    }
+
+    /// Whether the wall meets Colgate's condition (eq. 28) as every report states it: true
+    /// when passive, false on the boundary or below it, None where it does not apply.
+    pub fn meets(self) -> Option<bool> {
+        match self {
+            PassivityVerdict::NotApplicable => None,
+            v => Some(v == PassivityVerdict::Passive),
+        }
+    }
+}
+
 /// The passivity of one wall on one loop.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Passivity {

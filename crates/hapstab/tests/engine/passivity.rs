@@ -669,3 +669,18 @@ fn passive_stiffness_scales_with_the_device_damping() {
     }
     assert!(compared >= 30, "only {compared} loops compared");
 }
+
+#[test]
+fn verdict_names_are_the_serialized_ones_and_meets_follows_the_verdict() {
+    use hapstab::passivity::PassivityVerdict as V;
+    for (v, meets) in [
+        (V::Passive, Some(true)),
+        (V::Boundary, Some(false)),
+        (V::NotPassive, Some(false)),
+        (V::NotApplicable, None),
+    ] {
+        let json = serde_json::to_string(&v).expect("serializes");
+        assert_eq!(json, format!("\"{}\"", v.as_str()));
+        assert_eq!(v.meets(), meets, "{v:?}");
+    }
+}
