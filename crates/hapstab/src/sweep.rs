@@ -450,19 +450,25 @@ where
         .collect();
     let passive: Vec<PassiveKmax> = firsts
         .par_iter()
+        .with_max_len(1)
         .map(|&i| PassiveKmax::of(&loops[i], &keys[i], at))
         .collect();
+    // one point per task, the longest delays (the costliest points: p's degree grows with
+    // them) first, so that the threads finish together
+    let mut order: Vec<usize> = (0..loops.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(loops[i].delay.samples));
     let done = AtomicUsize::new(0);
-    Ok(values
+    let mut computed: Vec<(usize, SweepPoint)> = order
         .par_iter()
-        .zip(loops.par_iter())
-        .zip(slot.par_iter())
-        .map(|((&v, lp), &s)| {
-            let p = sweep_point(v, lp, at, passive[s]);
+        .with_max_len(1)
+        .map(|&i| {
+            let p = sweep_point(values[i], &loops[i], at, passive[slot[i]]);
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            p
+            (i, p)
         })
-        .collect())
+        .collect();
+    computed.sort_by_key(|(i, _)| *i);
+    Ok(computed.into_iter().map(|(_, p)| p).collect())
 }
 
 /// The sweep of one parameter of a base loop (see [`SweepParam::apply`]).
