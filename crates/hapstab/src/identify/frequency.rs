@@ -26,7 +26,7 @@
 
 use std::f64::consts::PI;
 
-use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
+use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra_lm::{DMatrix, DVector, Dyn, Owned};
 use num_complex::Complex64;
 
@@ -34,7 +34,7 @@ use super::arx::{Structure, structure, to_physical};
 use super::data::CsvText;
 use super::error::{IdResult, IdentifyError};
 use super::model::{Domain, ModelSpec};
-use super::output_error::{Coord, TOLERANCE, central_jacobian};
+use super::output_error::{Coord, central_jacobian, minimized};
 use crate::model::{Loop, VelocityEstimator};
 use crate::poly;
 use crate::zoh::DiscreteLoop;
@@ -367,17 +367,5 @@ pub(crate) fn refine<'a>(
         residuals: None,
     };
     problem.set_params(&DVector::from_vec(x0));
-    let (problem, report) = LevenbergMarquardt::new()
-        .with_ftol(TOLERANCE)
-        .with_xtol(TOLERANCE)
-        .with_gtol(0.0)
-        .with_patience(200)
-        .minimize(problem);
-    if !report.termination.was_successful() {
-        return Err(IdentifyError::NoFit(format!(
-            "the frequency-response fit stopped without converging ({:?})",
-            report.termination
-        )));
-    }
-    Ok((problem, report.number_of_evaluations))
+    minimized(problem, "frequency-response")
 }

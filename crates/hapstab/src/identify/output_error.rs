@@ -256,6 +256,24 @@ pub fn refine(
     };
     // the optimiser asks for the residuals at the start without setting them first
     problem.set_params(&DVector::from_vec(x0));
+    let (problem, evaluations) = minimized(problem, "output-error")?;
+    finish(&problem, spec, evaluations)
+}
+
+/// The Levenberg–Marquardt minimum of a fit's residuals (Moré's MINPACK algorithm, the
+/// `levenberg_marquardt` crate) to [`TOLERANCE`] in the residual and the step, with the
+/// number of evaluations; an error naming the fit (`what`) where it stops without converging.
+pub(crate) fn minimized<P>(problem: P, what: &str) -> IdResult<(P, usize)>
+where
+    P: LeastSquaresProblem<
+            f64,
+            Dyn,
+            Dyn,
+            ResidualStorage = Owned<f64, Dyn>,
+            JacobianStorage = Owned<f64, Dyn, Dyn>,
+            ParameterStorage = Owned<f64, Dyn>,
+        >,
+{
     let (problem, report) = LevenbergMarquardt::new()
         .with_ftol(TOLERANCE)
         .with_xtol(TOLERANCE)
@@ -264,11 +282,11 @@ pub fn refine(
         .minimize(problem);
     if !report.termination.was_successful() {
         return Err(IdentifyError::NoFit(format!(
-            "the output-error fit stopped without converging ({:?})",
+            "the {what} fit stopped without converging ({:?})",
             report.termination
         )));
     }
-    finish(&problem, spec, report.number_of_evaluations)
+    Ok((problem, report.number_of_evaluations))
 }
 
 /// The fit at the optimiser's last point, checked to be a physical plant.
