@@ -261,20 +261,9 @@ pub fn identify(
         fit_force_lag,
         quantization,
     )?;
-    let velocity: VelocityEstimator = velocity
-        .parse()
-        .map_err(|e: hapstab::Error| bad("velocity", e))?;
-    if draws == 0 {
-        return Err(bad("draws", "must be at least 1"));
-    }
-    let (id, lim) = py
-        .detach(|| {
-            let id = identify_runs(&records, &spec)?;
-            let lim = stiffness_limit(&id, &velocity, draws, seed)?;
-            Ok::<_, IdentifyError>((id, lim))
-        })
-        .map_err(to_py)?;
-    result(py, &id, &lim, velocity)
+    fitted(py, velocity, (draws, seed), || {
+        identify_runs(&records, &spec)
+    })
 }
 
 /// The Python result of an identification and its K_max.
@@ -376,6 +365,20 @@ pub fn identify_frequency(
         fit_force_lag,
         0.0,
     )?;
+    fitted(py, velocity, (draws, seed), || {
+        identify_frequency_lib(&rec, &spec)
+    })
+}
+
+/// The common end of `identify` and `identify_frequency`: the velocity estimate and the draw
+/// count checked, then the fit and its K_max with the parameters' uncertainty (`draws`
+/// bootstrap draws from `seed`) run without the GIL.
+fn fitted(
+    py: Python<'_>,
+    velocity: &str,
+    (draws, seed): (usize, u64),
+    fit: impl FnOnce() -> Result<Identification, IdentifyError> + Send,
+) -> PyResult<PyIdentification> {
     let velocity: VelocityEstimator = velocity
         .parse()
         .map_err(|e: hapstab::Error| bad("velocity", e))?;
@@ -384,7 +387,7 @@ pub fn identify_frequency(
     }
     let (id, lim) = py
         .detach(|| {
-            let id = identify_frequency_lib(&rec, &spec)?;
+            let id = fit()?;
             let lim = stiffness_limit(&id, &velocity, draws, seed)?;
             Ok::<_, IdentifyError>((id, lim))
         })
