@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite};
-use crate::kmax_band::{BandMax, k_max_band};
+use crate::kmax_band::{BandMax, CurveTop, k_max_band_near};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
 use crate::param::Param;
 use crate::params::{Arm, Effective};
@@ -453,23 +453,45 @@ where
         .with_max_len(1)
         .map(|&i| PassiveKmax::of(&loops[i], &keys[i], at))
         .collect();
-    // one point per task, the longest delays (the costliest points: p's degree grows with
-    // them) first, so that the threads finish together
-    let mut order: Vec<usize> = (0..loops.len()).collect();
-    order.sort_by_key(|&i| std::cmp::Reverse(loops[i].delay.samples));
+    // Runs of neighbouring points, each computed in order from the previous point's top on
+    // the curve (the warm start of `k_max_band_near`, the run's first point cold), one run
+    // per task, the runs with the longest delays (the costliest points: p's degree grows
+    // with them) first. The runs, and so every answer to the last bit, depend neither on the
+    // number of threads nor on their timing.
+    let runs: Vec<std::ops::Range<usize>> = (0..values.len())
+        .step_by(SWEEP_RUN)
+        .map(|i| i..(i + SWEEP_RUN).min(values.len()))
+        .collect();
+    let cost = |r: &std::ops::Range<usize>| -> usize {
+        r.clone().map(|i| loops[i].delay.samples + 8).sum()
+    };
+    let mut order: Vec<usize> = (0..runs.len()).collect();
+    order.sort_by_key(|&j| std::cmp::Reverse(cost(&runs[j])));
     let done = AtomicUsize::new(0);
-    let mut computed: Vec<(usize, SweepPoint)> = order
+    let mut computed: Vec<(usize, Vec<SweepPoint>)> = order
         .par_iter()
         .with_max_len(1)
-        .map(|&i| {
-            let p = sweep_point(values[i], &loops[i], at, passive[slot[i]]);
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            (i, p)
+        .map(|&j| {
+            let mut near = None;
+            let points = runs[j]
+                .clone()
+                .map(|i| {
+                    let p = sweep_point(values[i], &loops[i], at, passive[slot[i]], &mut near);
+                    progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                    p
+                })
+                .collect();
+            (j, points)
         })
         .collect();
-    computed.sort_by_key(|(i, _)| *i);
-    Ok(computed.into_iter().map(|(_, p)| p).collect())
+    computed.sort_by_key(|(j, _)| *j);
+    Ok(computed.into_iter().flat_map(|(_, p)| p).collect())
 }
+
+/// Neighbouring points of a sweep computed in order on one thread, each warm-started from the
+/// previous one's top on the curve (a point's cost is about d + 8 units for d samples of
+/// delay; a run's first point starts cold).
+const SWEEP_RUN: usize = 5;
 
 /// The sweep of one parameter of a base loop (see [`SweepParam::apply`]).
 pub fn sweep_param(
@@ -486,7 +508,13 @@ pub fn sweep_param(
     )
 }
 
-fn sweep_point(value: f64, lp: &Loop, at: KmaxAt, passive: PassiveKmax) -> SweepPoint {
+fn sweep_point(
+    value: f64,
+    lp: &Loop,
+    at: KmaxAt,
+    passive: PassiveKmax,
+    near: &mut Option<CurveTop>,
+) -> SweepPoint {
     let mut p = SweepPoint {
         value,
         k_max: None,
@@ -495,7 +523,7 @@ fn sweep_point(value: f64, lp: &Loop, at: KmaxAt, passive: PassiveKmax) -> Sweep
         k_max_passive_with_arm: passive.with_arm,
         note: None,
     };
-    match stable_kmax(lp, at) {
+    match stable_kmax(lp, at, near) {
         Ok(Some((k, b))) => {
             p.k_max = Some(k);
             p.b_at_k_max = Some(b);
@@ -561,7 +589,9 @@ impl PassiveKmax {
 }
 
 /// The largest stable K and its B in physical units.
-fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
+/// `near`: the previous point's top on the curve, the warm start of [`k_max_band_near`], replaced by
+/// this point's.
+fn stable_kmax(lp: &Loop, at: KmaxAt, near: &mut Option<CurveTop>) -> Result<Option<(f64, f64)>> {
     // through the loop's System: the same family and units as `kmax` and `boundary`
     let sys = System::of(lp)?;
     let units = |b: f64| -> Result<f64> {
@@ -581,16 +611,26 @@ fn stable_kmax(lp: &Loop, at: KmaxAt) -> Result<Option<(f64, f64)>> {
                 .reduce(f64::max)
                 .map(|a| (a, beta))
         }
-        KmaxAt::Overall => band_kmax(sys.verdict_family(), f64::NEG_INFINITY, f64::INFINITY)?,
-        KmaxAt::Band { lo, hi } => band_kmax(sys.verdict_family(), units(lo)?, units(hi)?)?,
+        KmaxAt::Overall => band_kmax(
+            sys.verdict_family(),
+            (f64::NEG_INFINITY, f64::INFINITY),
+            near,
+        )?,
+        KmaxAt::Band { lo, hi } => band_kmax(sys.verdict_family(), (units(lo)?, units(hi)?), near)?,
     };
     Ok(best.map(|(a, b)| sys.family().to_physical(a, b)))
 }
 
 /// K_max over a damping band in wall units and its damping: from the D-decomposition's
 /// candidates ([`k_max_band`]), else from the region at the sweep's tolerance.
-fn band_kmax(fam: &AffineFamily, b0: f64, b1: f64) -> Result<Option<(f64, f64)>> {
-    Ok(match k_max_band(fam, b0, b1) {
+fn band_kmax(
+    fam: &AffineFamily,
+    (b0, b1): (f64, f64),
+    near: &mut Option<CurveTop>,
+) -> Result<Option<(f64, f64)>> {
+    let (answer, top) = k_max_band_near(fam, b0, b1, *near);
+    *near = top;
+    Ok(match answer {
         BandMax::Max(p) => Some((p.alpha, p.beta)),
         BandMax::NoneStable => None,
         BandMax::Undecided => {

@@ -9,6 +9,18 @@ use super::*;
 /// lines): the smooth top of one arc, the corner where two arcs meet, where an arc meets a
 /// line, or where the two lines meet.
 pub(super) fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Option<AlphaBeta> {
+    cap_top_with_arcs(fam, a, ends).map(|(p, _)| p)
+}
+
+/// [`cap_top`] with the angles of the two arcs that meet at a corner top, or the angle of a
+/// smooth top and NaN (both NaN for a top on a line): where a neighbouring loop's search
+/// starts ([`corner_from`], [`smooth_from`]).
+pub(super) fn cap_top_with_arcs(
+    fam: &AffineFamily,
+    a: f64,
+    ends: [(f64, f64); 2],
+) -> Option<(AlphaBeta, [f64; 2])> {
+    let none = |p: AlphaBeta| (p, [f64::NAN; 2]);
     let on_curve = |t: f64| t > 0.0 && t < std::f64::consts::PI;
     let line_at = |t: f64| {
         if t == 0.0 {
@@ -19,10 +31,12 @@ pub(super) fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Opti
     };
     let [(b1, t1), (b2, t2)] = ends;
     match (on_curve(t1), on_curve(t2)) {
-        (true, true) => smooth_top(fam, a, (b1, b2), (t1, t2)).or_else(|| cap_corner(fam, a, ends)),
-        (true, false) => arc_meets_line(fam, a, t1, &line_at(t2)?),
-        (false, true) => arc_meets_line(fam, a, t2, &line_at(t1)?),
-        (false, false) => lines_meet(&line_at(t1)?, &line_at(t2)?),
+        (true, true) => {
+            smooth_top(fam, a, (b1, b2), (t1, t2)).or_else(|| cap_corner(fam, a, [t1, t2]))
+        }
+        (true, false) => arc_meets_line(fam, a, t1, &line_at(t2)?).map(none),
+        (false, true) => arc_meets_line(fam, a, t2, &line_at(t1)?).map(none),
+        (false, false) => lines_meet(&line_at(t1)?, &line_at(t2)?).map(none),
     }
 }
 
@@ -37,7 +51,7 @@ fn smooth_top(
     a: f64,
     (b1, b2): (f64, f64),
     (t1, t2): (f64, f64),
-) -> Option<AlphaBeta> {
+) -> Option<(AlphaBeta, [f64; 2])> {
     let (lo, hi) = (t1.min(t2), t1.max(t2));
     let slope = |t: f64| dalpha_dtheta(fam, t);
     if !(slope(lo) > 0.0 && slope(hi) < 0.0) {
@@ -50,8 +64,35 @@ fn smooth_top(
     if !above {
         return None;
     }
-    let p = curve_point(fam, crate::bracket::sign_change(lo, hi, slope))?;
-    (p.alpha >= a && p.beta >= b1.min(b2) && p.beta <= b1.max(b2)).then_some(p)
+    let t = crate::bracket::sign_change(lo, hi, slope);
+    let p = curve_point(fam, t)?;
+    (p.alpha >= a && p.beta >= b1.min(b2) && p.beta <= b1.max(b2)).then_some((p, [t, f64::NAN]))
+}
+
+/// Widening steps of [`smooth_from`]'s search for a stationary point around an angle: from
+/// 1e-3 of the angle, doubling.
+const SMOOTH_STEPS: usize = 8;
+
+/// The smooth top of an arc near the angle θ (a neighbouring loop's smooth top): the
+/// stationary point of a(θ) between the nearest angles around θ where da/dθ is positive below
+/// and negative above, by Brent's method; with its angle.
+pub(super) fn smooth_from(fam: &AffineFamily, theta: f64) -> Option<(AlphaBeta, [f64; 2])> {
+    use std::f64::consts::PI;
+    if !(theta > 0.0 && theta < PI) {
+        return None;
+    }
+    let slope = |t: f64| dalpha_dtheta(fam, t);
+    let mut h = 1e-3 * theta.min(PI - theta);
+    let (lo, hi) = (0..SMOOTH_STEPS).find_map(|_| {
+        let (lo, hi) = (
+            (theta - h).max(0.5 * theta),
+            (theta + h).min(0.5 * (theta + PI)),
+        );
+        h *= 2.0;
+        (slope(lo) > 0.0 && slope(hi) < 0.0).then_some((lo, hi))
+    })?;
+    let t = crate::bracket::sign_change(lo, hi, slope);
+    Some((curve_point(fam, t)?, [t, f64::NAN]))
 }
 
 /// Where the arc through θ at stiffness a meets a z = ±1 line, by the secant method on the
@@ -85,13 +126,24 @@ const NEAR: f64 = 1e-10;
 /// Newton steps at most on the meeting of two arcs, and on a point of an arc at a stiffness.
 const CAP_STEPS: usize = 60;
 
+/// The corner where two arcs of the curve meet, followed from the angles `arcs` near a
+/// stiffness a0 (a neighbouring loop's corner), as [`cap_corner`]; with the arcs' angles there.
+pub(super) fn corner_from(
+    fam: &AffineFamily,
+    a0: f64,
+    arcs: [f64; 2],
+) -> Option<(AlphaBeta, [f64; 2])> {
+    cap_corner(fam, a0, arcs)
+}
+
 /// The corner where a cap closes: the two arcs through its ends (angles θ1, θ2 at stiffness
 /// a0) meet at the stiffness a where b(θ2(a)) − b(θ1(a)) = 0, by Newton's method in a (each
-/// arc followed by Newton's method in θ on a(θ) = a). None where an arc turns back (a smooth
-/// top that the stationary points should have held) or the iteration does not settle.
-fn cap_corner(fam: &AffineFamily, a0: f64, ends: [(f64, f64); 2]) -> Option<AlphaBeta> {
+/// arc followed by Newton's method in θ on a(θ) = a), with the two arcs' angles there. None
+/// where an arc turns back (a smooth top that the stationary points should have held) or the
+/// iteration does not settle.
+fn cap_corner(fam: &AffineFamily, a0: f64, [t1, t2]: [f64; 2]) -> Option<(AlphaBeta, [f64; 2])> {
     let mut a = a0;
-    let mut arcs = (arc_at(fam, ends[0].1, a)?, arc_at(fam, ends[1].1, a)?);
+    let mut arcs = (arc_at(fam, t1, a)?, arc_at(fam, t2, a)?);
     let mut last = f64::INFINITY;
     for _ in 0..CAP_STEPS {
         let ((t1, b1, s1), (t2, b2, s2)) = arcs;
@@ -112,10 +164,11 @@ fn cap_corner(fam: &AffineFamily, a0: f64, ends: [(f64, f64); 2]) -> Option<Alph
         if step.abs() <= SETTLED * a.abs()
             || (step.abs() >= 0.5 * last && step.abs() <= NEAR * a.abs())
         {
-            return Some(AlphaBeta {
+            let p = AlphaBeta {
                 alpha: a,
                 beta: arcs.0.1,
-            });
+            };
+            return Some((p, [arcs.0.0, arcs.1.0]));
         }
         last = step.abs();
     }

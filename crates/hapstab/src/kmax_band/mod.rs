@@ -47,7 +47,7 @@ use crate::region::{ConfirmedMax, confirm_max};
 
 mod cap;
 mod windows;
-use cap::{Level, cap_by_levels, cap_top};
+use cap::{Level, cap_by_levels, cap_top_with_arcs};
 
 /// Relative distance of the walls beside K_max that the point test must find inside (below)
 /// and not inside (above): the region's confirmation distance.
@@ -79,14 +79,74 @@ pub enum BandMax {
 /// K_max over b_lo ≤ b ≤ b_hi (wall units; either end may be infinite) from the
 /// D-decomposition's candidates (module doc).
 pub fn k_max_band(fam: &AffineFamily, b_lo: f64, b_hi: f64) -> BandMax {
+    k_max_band_near(fam, b_lo, b_hi, None).0
+}
+
+/// A top of the stable region on the curve — a smooth top of one arc or a corner where two
+/// arcs meet — with its stiffness and the arcs' angles θ: what [`k_max_band_near`] starts a
+/// neighbouring loop's search from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveTop {
+    /// The top's stiffness, wall units.
+    pub alpha: f64,
+    /// The angles of the two arcs that meet there; of a smooth top, its angle and NaN.
+    pub arcs: [f64; 2],
+}
+
+/// [`k_max_band`] warm-started from a neighbouring loop's top on the curve (a sweep's previous
+/// point): the two arcs of a corner followed from its angles to where they meet in this loop
+/// ([`cap::corner_from`]), or the stationary point of a(θ) nearest a smooth top's angle
+/// ([`cap::smooth_from`]), taken as the start where the exact stable intervals at its damping
+/// reach it and the certificate above it holds — two line decompositions where the climb from
+/// B = 0 takes four; else the cold start. Returns the answer with its own top on the curve,
+/// where it is one.
+pub fn k_max_band_near(
+    fam: &AffineFamily,
+    b_lo: f64,
+    b_hi: f64,
+    near: Option<CurveTop>,
+) -> (BandMax, Option<CurveTop>) {
     let Some(cf) = CayleyFamily::new(fam) else {
-        return BandMax::Undecided;
+        return (BandMax::Undecided, None);
     };
     let band = (b_lo, b_hi);
+    if let Some(warm) = near.and_then(|c| warm_start(fam, &cf, c, band)) {
+        return warm;
+    }
     match start(fam, &cf, band) {
-        Start::Found(found) => ascend(fam, &cf, found, band),
-        Start::NoneStable => BandMax::NoneStable,
-        Start::Undecided => BandMax::Undecided,
+        Start::Found(found) => ascend(fam, &cf, found, band, None),
+        Start::NoneStable => (BandMax::NoneStable, None),
+        Start::Undecided => (BandMax::Undecided, None),
+    }
+}
+
+/// The search from a neighbouring loop's top on the curve (see [`k_max_band_near`]), taken only
+/// where the certificate above the corner holds: the band's edges, which the cold start
+/// climbs from, then lie below it.
+fn warm_start(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    near: CurveTop,
+    band: (f64, f64),
+) -> Option<(BandMax, Option<CurveTop>)> {
+    let (p, arcs) = if near.arcs[1].is_finite() {
+        cap::corner_from(fam, near.alpha, near.arcs)?
+    } else {
+        cap::smooth_from(fam, near.arcs[0])?
+    };
+    if !(p.beta >= band.0 && p.beta <= band.1) {
+        return None;
+    }
+    let alpha = exact_top(fam, cf, p.alpha, p.beta)?;
+    let found = Found {
+        alpha,
+        beta: p.beta,
+        exact: true,
+        arcs,
+    };
+    match certificate(fam, cf, found.alpha, band) {
+        c @ Certificate::Holds { .. } => Some(ascend(fam, cf, found, band, Some(c))),
+        _ => None,
     }
 }
 
@@ -113,6 +173,7 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
             alpha: iv.hi,
             beta: b,
             exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
+            arcs: NO_ARCS,
         });
     }
     let cands = sorted_candidates(fam, cf, (b_lo, b_hi), f64::NEG_INFINITY, &WHOLE_AXIS);
@@ -127,11 +188,21 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
 /// current answer is a cap of the region, whose top ([`cap_top`]) is the next answer once the
 /// point test confirms it; where a cap's top is not found or not confirmed, the curve's
 /// candidates above the current answer ([`highest_candidate`]) give the next, and failing
-/// them the cap's levels ([`cap_by_levels`]).
-fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f64)) -> BandMax {
+/// them the cap's levels ([`cap_by_levels`]). `first`: the certificate at `found`, where
+/// it is known. The answer with its corner top, where it is one.
+fn ascend(
+    fam: &AffineFamily,
+    cf: &CayleyFamily,
+    mut found: Found,
+    band: (f64, f64),
+    mut first: Option<Certificate>,
+) -> (BandMax, Option<CurveTop>) {
     let mut cands: Option<Vec<AlphaBeta>> = None;
     for _ in 0..CAP_ROUNDS {
-        let cap = match certificate(fam, cf, found.alpha, band) {
+        let cert = first
+            .take()
+            .unwrap_or_else(|| certificate(fam, cf, found.alpha, band));
+        let cap = match cert {
             Certificate::Holds { thetas, roots } => {
                 match separate_component(fam, cf, found, (thetas, &roots), band) {
                     Some(f) => {
@@ -139,8 +210,13 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
                         continue;
                     }
                     None => {
-                        return confirmed(fam, found, band)
-                            .map_or(BandMax::Undecided, BandMax::Max);
+                        let answer =
+                            confirmed(fam, found, band).map_or(BandMax::Undecided, BandMax::Max);
+                        let top = found.arcs[0].is_finite().then_some(CurveTop {
+                            alpha: found.alpha,
+                            arcs: found.arcs,
+                        });
+                        return (answer, top);
                     }
                 }
             }
@@ -149,10 +225,10 @@ fn ascend(fam: &AffineFamily, cf: &CayleyFamily, mut found: Found, band: (f64, f
         };
         match next_top(fam, cf, found, cap, &mut cands, band) {
             Some(f) => found = f,
-            None => return BandMax::Undecided,
+            None => return (BandMax::Undecided, None),
         }
     }
-    BandMax::Undecided
+    (BandMax::Undecided, None)
 }
 
 /// The next top above `found`: the cap's top where [`cap_top`] finds it and the exact stable
@@ -170,19 +246,24 @@ fn next_top(
         alpha,
         beta,
         exact: true,
+        arcs: NO_ARCS,
     };
     let inside = |b: f64| b >= band.0 && b <= band.1;
-    let top = cap.and_then(|c| cap_top(fam, c.a, c.ends));
-    top.filter(|c| c.alpha > found.alpha && inside(c.beta))
-        .and_then(|c| exact_top(fam, cf, c.alpha, c.beta).map(|a| (a, c.beta)))
-        .map(exact)
+    let top = cap.and_then(|c| cap_top_with_arcs(fam, c.a, c.ends));
+    top.filter(|(c, _)| c.alpha > found.alpha && inside(c.beta))
+        .and_then(|(c, arcs)| {
+            exact_top(fam, cf, c.alpha, c.beta).map(|a| Found {
+                arcs,
+                ..exact((a, c.beta))
+            })
+        })
         .or_else(|| {
             let list = cands
                 .get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha, &WHOLE_AXIS));
             highest_candidate(fam, cf, list, Some(found), band).filter(|f| f.alpha > found.alpha)
         })
         .or_else(|| {
-            let guess = top.map_or(f64::NAN, |c| c.alpha);
+            let guess = top.map_or(f64::NAN, |(c, _)| c.alpha);
             cap_by_levels(fam, cf, cap?, guess).map(exact)
         })
 }
@@ -248,7 +329,13 @@ struct Found {
     /// The top of the exact stable interval at `beta` (see [`exact_top`]); false for a
     /// corner that the region only closes on (a supremum).
     exact: bool,
+    /// Where it is a top on the curve: the angles of the two arcs that meet there, or of a
+    /// smooth top and NaN ([`NO_ARCS`] else).
+    arcs: [f64; 2],
 }
+
+/// [`Found::arcs`] of a top that is not on the curve, or whose arcs are not known.
+const NO_ARCS: [f64; 2] = [f64::NAN; 2];
 
 /// The highest of a floor (a top found already) and the candidates that the region reaches
 /// (attained) or closes on (a supremum), taking candidates from the highest down.
@@ -275,6 +362,7 @@ fn highest_candidate(
                 alpha: iv.hi,
                 beta: c.beta,
                 exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
+                arcs: NO_ARCS,
             });
         }
         if at.is_some_and(|a| a >= c.alpha - ATTAINED_REL * c.alpha.abs()) {
@@ -285,6 +373,7 @@ fn highest_candidate(
                 alpha: c.alpha,
                 beta: c.beta,
                 exact: false,
+                arcs: NO_ARCS,
             });
         }
     }
@@ -398,6 +487,7 @@ fn separate_component(
                 alpha: iv.hi,
                 beta: p.beta,
                 exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
+                arcs: NO_ARCS,
             });
         }
     }

@@ -92,6 +92,7 @@ fn check_band(i: usize, fam: &AffineFamily, (lo, hi): (f64, f64)) -> Option<bool
         return None; // scanned: the region answers for it
     }
     let fast = k_max_band(fam, lo, hi);
+    check_warm_start(i, fam, (lo, hi), fast);
     let region = stable_region(fam).ok()?;
     let reference = alpha_max_within(fam, &region, lo, hi);
     match (fast, reference) {
@@ -137,6 +138,28 @@ fn check_band(i: usize, fam: &AffineFamily, (lo, hi): (f64, f64)) -> Option<bool
         (BandMax::NoneStable, Ok(None)) => Some(true),
         (BandMax::Undecided, _) => Some(false),
         (f, r) => panic!("loop {i}: {f:?} vs region {r:?}"),
+    }
+}
+
+/// The search warm-started from a top near the loop's own (its stiffness 1e-3 lower, its
+/// angles 1e-4 off, as a neighbouring loop's in a sweep) gives the cold search's answer.
+fn check_warm_start(i: usize, fam: &AffineFamily, (lo, hi): (f64, f64), cold: BandMax) {
+    use hapstab::kmax_band::{CurveTop, k_max_band_near};
+    let Some(top) = k_max_band_near(fam, lo, hi, None).1 else {
+        return;
+    };
+    let near = CurveTop {
+        alpha: top.alpha * (1.0 - 1e-3),
+        arcs: top.arcs.map(|t| t * (1.0 + 1e-4)),
+    };
+    match (k_max_band_near(fam, lo, hi, Some(near)).0, cold) {
+        (BandMax::Max(w), BandMax::Max(c)) => {
+            assert!(
+                close(w.alpha, c.alpha),
+                "loop {i}: warm {w:?} vs cold {c:?}"
+            );
+        }
+        (w, c) => assert_eq!(w, c, "loop {i}"),
     }
 }
 
@@ -210,4 +233,76 @@ fn a_cap_far_above_its_level_closes_on_the_regions_top() {
     );
     assert!(inside(&fam, fast.alpha * (1.0 - BESIDE), fast.beta));
     assert!(!inside(&fam, fast.alpha * (1.0 + BESIDE), fast.beta));
+}
+
+/// The warm start a sweep uses: each loop's search started from the previous loop's top on the
+/// curve (`k_max_band_near`) gives the cold search's K_max to 1e-9, confirmed by the point
+/// test on both sides, along two 50-point sweeps of the benchmarks' general loop (the delay
+/// 0–10 ms; the arm stiffness 0–2000 N/m at d = 10), where most tops hand on a warm start.
+#[test]
+fn the_warm_start_from_the_previous_top_gives_the_cold_answer() {
+    use hapstab::kmax_band::k_max_band_near;
+    use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+    use hapstab::params::Arm;
+    let family = |delay: Delay, arm_stiffness: f64| {
+        let plant = Plant::new(
+            PlantModel::TwoMass(TwoMass {
+                motor_mass: 0.05,
+                motor_damping: 0.5,
+                handle_mass: 0.05,
+                transmission_stiffness: 2e4,
+                transmission_damping: 2.0,
+                arm: Arm {
+                    stiffness: arm_stiffness,
+                    ..Arm::TYPICAL
+                },
+            }),
+            2e-4,
+        )
+        .unwrap();
+        let velocity = VelocityEstimator::LowPass { cutoff_hz: 200.0 };
+        AffineFamily::of_loop(&Loop::new(plant, 1e-3, delay, velocity).unwrap()).unwrap()
+    };
+    let delays = (0..50).map(|j| {
+        family(
+            Delay::from_time(0.01 * j as f64 / 49.0, 1e-3).unwrap(),
+            350.0,
+        )
+    });
+    let arms = (0..50).map(|j| family(Delay::samples(10).unwrap(), 2000.0 * j as f64 / 49.0));
+    for (name, fams) in [
+        ("delay", delays.collect::<Vec<_>>()),
+        ("arm", arms.collect()),
+    ] {
+        let (mut near, mut handed) = (None, 0);
+        for (j, fam) in fams.iter().enumerate() {
+            let (warm, top) = k_max_band_near(fam, f64::NEG_INFINITY, f64::INFINITY, near);
+            let BandMax::Max(cold) = k_max_band(fam, f64::NEG_INFINITY, f64::INFINITY) else {
+                panic!("{name} {j}: cold search undecided");
+            };
+            let BandMax::Max(warm) = warm else {
+                panic!("{name} {j}: warm search undecided");
+            };
+            assert!(
+                close(warm.alpha, cold.alpha),
+                "{name} {j}: {} vs {}",
+                warm.alpha,
+                cold.alpha
+            );
+            assert!(
+                inside(fam, warm.alpha * (1.0 - BESIDE), warm.beta),
+                "{name} {j}"
+            );
+            assert!(
+                !inside(fam, warm.alpha * (1.0 + BESIDE), warm.beta),
+                "{name} {j}"
+            );
+            handed += usize::from(top.is_some());
+            near = top;
+        }
+        assert!(
+            handed >= 30,
+            "{name}: {handed} of 50 tops hand on a warm start"
+        );
+    }
 }
