@@ -14,7 +14,7 @@ pub(super) fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Opti
 
 /// [`cap_top`] with the angles of the two arcs that meet at a corner top, or the angle of a
 /// smooth top and NaN (both NaN for a top on a line): where a neighbouring loop's search
-/// starts ([`corner_from`], [`smooth_from`]).
+/// starts ([`cap_corner`], [`smooth_from`]).
 pub(super) fn cap_top_with_arcs(
     fam: &AffineFamily,
     a: f64,
@@ -126,22 +126,16 @@ const NEAR: f64 = 1e-10;
 /// Newton steps at most on the meeting of two arcs, and on a point of an arc at a stiffness.
 const CAP_STEPS: usize = 60;
 
-/// The corner where two arcs of the curve meet, followed from the angles `arcs` near a
-/// stiffness a0 (a neighbouring loop's corner), as [`cap_corner`]; with the arcs' angles there.
-pub(super) fn corner_from(
-    fam: &AffineFamily,
-    a0: f64,
-    arcs: [f64; 2],
-) -> Option<(AlphaBeta, [f64; 2])> {
-    cap_corner(fam, a0, arcs)
-}
-
-/// The corner where a cap closes: the two arcs through its ends (angles θ1, θ2 at stiffness
-/// a0) meet at the stiffness a where b(θ2(a)) − b(θ1(a)) = 0, by Newton's method in a (each
+/// The corner where a cap closes (or a neighbouring loop's corner moves to): the two arcs
+/// through its ends (angles θ1, θ2 at stiffness a0) meet at the stiffness a where b(θ2(a)) − b(θ1(a)) = 0, by Newton's method in a (each
 /// arc followed by Newton's method in θ on a(θ) = a), with the two arcs' angles there. None
 /// where an arc turns back (a smooth top that the stationary points should have held) or the
 /// iteration does not settle.
-fn cap_corner(fam: &AffineFamily, a0: f64, [t1, t2]: [f64; 2]) -> Option<(AlphaBeta, [f64; 2])> {
+pub(super) fn cap_corner(
+    fam: &AffineFamily,
+    a0: f64,
+    [t1, t2]: [f64; 2],
+) -> Option<(AlphaBeta, [f64; 2])> {
     let mut a = a0;
     let mut arcs = (arc_at(fam, t1, a)?, arc_at(fam, t2, a)?);
     let mut last = f64::INFINITY;

@@ -95,11 +95,11 @@ pub struct CurveTop {
 
 /// [`k_max_band`] warm-started from a neighbouring loop's top on the curve (a sweep's previous
 /// point): the two arcs of a corner followed from its angles to where they meet in this loop
-/// ([`cap::corner_from`]), or the stationary point of a(θ) nearest a smooth top's angle
-/// ([`cap::smooth_from`]), taken as the start where the exact stable intervals at its damping
-/// reach it and the certificate above it holds — two line decompositions where the climb from
-/// B = 0 takes four; else the cold start. Returns the answer with its own top on the curve,
-/// where it is one.
+/// (the cap corner's Newton iteration), or the stationary point of a(θ) nearest a smooth
+/// top's angle (Brent's method on da/dθ), taken as the start where the exact stable intervals
+/// at its damping reach it and the certificate above it holds — two line decompositions where
+/// the climb from B = 0 takes four; else the cold start. Returns the answer with its own top
+/// on the curve, where it is one.
 pub fn k_max_band_near(
     fam: &AffineFamily,
     b_lo: f64,
@@ -121,7 +121,7 @@ pub fn k_max_band_near(
 }
 
 /// The search from a neighbouring loop's top on the curve (see [`k_max_band_near`]), taken only
-/// where the certificate above the corner holds: the band's edges, which the cold start
+/// where the certificate above its top holds: the band's edges, which the cold start
 /// climbs from, then lie below it.
 fn warm_start(
     fam: &AffineFamily,
@@ -130,7 +130,7 @@ fn warm_start(
     band: (f64, f64),
 ) -> Option<(BandMax, Option<CurveTop>)> {
     let (p, arcs) = if near.arcs[1].is_finite() {
-        cap::corner_from(fam, near.alpha, near.arcs)?
+        cap::cap_corner(fam, near.alpha, near.arcs)?
     } else {
         cap::smooth_from(fam, near.arcs[0])?
     };
@@ -189,7 +189,7 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
 /// point test confirms it; where a cap's top is not found or not confirmed, the curve's
 /// candidates above the current answer ([`highest_candidate`]) give the next, and failing
 /// them the cap's levels ([`cap_by_levels`]). `first`: the certificate at `found`, where
-/// it is known. The answer with its corner top, where it is one.
+/// it is known. The answer with its top on the curve, where it is one.
 fn ascend(
     fam: &AffineFamily,
     cf: &CayleyFamily,

@@ -202,22 +202,12 @@ fn kmax_without_the_polygon_on_ten_thousand_loops() {
 /// decided, equals the region's polygon, and the point test confirms it on both sides.
 #[test]
 fn a_cap_far_above_its_level_closes_on_the_regions_top() {
-    use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
-    let plant = Plant::new(
-        PlantModel::TwoMass(TwoMass {
-            motor_mass: 0.05,
-            motor_damping: 0.5,
-            handle_mass: 0.05,
-            transmission_stiffness: 2e4,
-            transmission_damping: 2.0,
-            arm: hapstab::params::Arm::TYPICAL,
-        }),
-        2e-4,
-    )
-    .unwrap();
+    use hapstab::model::Delay;
     let delay = Delay::from_time(0.38 / 49.0, 1e-3).unwrap();
-    let velocity = VelocityEstimator::LowPass { cutoff_hz: 200.0 };
-    let fam = AffineFamily::of_loop(&Loop::new(plant, 1e-3, delay, velocity).unwrap()).unwrap();
+    let fam = common::general::family(&common::general::bench_loop(
+        hapstab::params::Arm::TYPICAL,
+        delay,
+    ));
     let BandMax::Max(fast) = k_max_band(&fam, f64::NEG_INFINITY, f64::INFINITY) else {
         panic!("undecided");
     };
@@ -241,27 +231,18 @@ fn a_cap_far_above_its_level_closes_on_the_regions_top() {
 /// 0–10 ms; the arm stiffness 0–2000 N/m at d = 10), where most tops hand on a warm start.
 #[test]
 fn the_warm_start_from_the_previous_top_gives_the_cold_answer() {
+    use common::general::{bench_loop, family as of};
     use hapstab::kmax_band::k_max_band_near;
-    use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+    use hapstab::model::Delay;
     use hapstab::params::Arm;
-    let family = |delay: Delay, arm_stiffness: f64| {
-        let plant = Plant::new(
-            PlantModel::TwoMass(TwoMass {
-                motor_mass: 0.05,
-                motor_damping: 0.5,
-                handle_mass: 0.05,
-                transmission_stiffness: 2e4,
-                transmission_damping: 2.0,
-                arm: Arm {
-                    stiffness: arm_stiffness,
-                    ..Arm::TYPICAL
-                },
-            }),
-            2e-4,
-        )
-        .unwrap();
-        let velocity = VelocityEstimator::LowPass { cutoff_hz: 200.0 };
-        AffineFamily::of_loop(&Loop::new(plant, 1e-3, delay, velocity).unwrap()).unwrap()
+    let family = |delay: Delay, stiffness: f64| {
+        of(&bench_loop(
+            Arm {
+                stiffness,
+                ..Arm::TYPICAL
+            },
+            delay,
+        ))
     };
     let delays = (0..50).map(|j| {
         family(

@@ -89,6 +89,11 @@ pub fn paper_plant() -> Plant {
 
 /// A two-mass device (50 g motor and handle, 20 kN/m transmission) held by the typical arm.
 pub fn two_mass_plant() -> Plant {
+    two_mass_held_by(Arm::TYPICAL, 0.0)
+}
+
+/// The same device held by `arm`, its force through a lag of time constant `lag` s.
+pub fn two_mass_held_by(arm: Arm, lag: f64) -> Plant {
     Plant::new(
         PlantModel::TwoMass(TwoMass {
             motor_mass: 0.05,
@@ -96,11 +101,22 @@ pub fn two_mass_plant() -> Plant {
             handle_mass: 0.05,
             transmission_stiffness: 2e4,
             transmission_damping: 2.0,
-            arm: Arm::TYPICAL,
+            arm,
         }),
-        0.0,
+        lag,
     )
     .unwrap()
+}
+
+/// The benchmarks' general loop (`benches/common/general_loop.rs`): the two-mass device held
+/// by `arm` behind a 0.2 ms actuator lag and `delay`, a 200 Hz low-pass velocity estimate,
+/// T = 1 ms.
+pub fn bench_loop(arm: Arm, delay: Delay) -> Loop {
+    with(
+        two_mass_held_by(arm, 2e-4),
+        delay,
+        VelocityEstimator::LowPass { cutoff_hz: 200.0 },
+    )
 }
 
 /// P(s) = (2s + 400)/(0.1s⁴ + 8s³ + 900s² + 4e4 s + 1e5).
