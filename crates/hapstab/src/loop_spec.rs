@@ -15,7 +15,9 @@
 //! [`crate::spec`]). The paper's loop in normalized units is `{"gamma": γ, "delta": δ,
 //! "d": d}` with an optional wall `"alpha"`, `"beta"` (Table I), as reports echo it.
 //! Every value goes through [`Loop::new`]'s checks; a field of the wrong kind or an unknown
-//! field is named by its path ("loop.plant.model.mass: invalid type: …").
+//! field is named by its path ("loop.plant.model.mass: invalid type: …"); beside the loop of a
+//! report's `input` stand its analysis's own settings (a sweep's parameter, ...), which are
+//! not read: the command's flags give them.
 
 use std::path::Path;
 
@@ -249,7 +251,10 @@ pub fn parse(text: &str) -> Result<LoadedLoop> {
         Some(inner) => {
             // the report's delay_time beside the loop repeats the loop's delay
             let echoed = doc.remove("delay_time");
-            if let Some((k, _)) = doc.iter().next() {
+            // beside a report's loop stand its analysis's own settings (a sweep's parameter
+            // and damping constraint, ...), which the command's flags give anew; a loop file
+            // holds nothing else
+            if let Some((k, _)) = doc.iter().next().filter(|_| prefix.is_empty()) {
                 return Err(invalid(
                     &format!("{prefix}{k}"),
                     "is not a part of a loop file",

@@ -48,6 +48,12 @@ fn saved_loops_load_back_bit_for_bit() {
         assert_eq!(parse(&v["loop"].to_string()).unwrap().lp, lp);
         let report = serde_json::json!({"input": v, "verdict": "stable"});
         assert_eq!(parse(&report.to_string()).unwrap().lp, lp);
+        // a sweep's report: its parameter and damping constraint beside the loop
+        let mut input = v.clone();
+        input["param"] = serde_json::json!({"name": "arm-stiffness", "values": [0.0, 1.0]});
+        input["k_max_at"] = serde_json::json!("overall");
+        let sweep = serde_json::json!({"input": input, "points": []});
+        assert_eq!(parse(&sweep.to_string()).unwrap().lp, lp);
     }
     assert!(tried >= 300, "only {tried} loops");
 }
