@@ -129,7 +129,12 @@ impl Figure {
             .margin(px(14.0))
             .margin_right(px(28.0))
             .x_label_area_size(px(80.0))
-            .y_label_area_size(px(120.0));
+            // a narrow log range's labels carry more digits (`narrow_ticks`)
+            .y_label_area_size(px(if self.y_log10 && log_ticks(y0, y1).len() < 2 {
+                175.0
+            } else {
+                120.0
+            }));
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
         let linear = tick_formatter(x0, x1);
         let xfmt = |v: &f64| match self.x_log10 {
@@ -169,7 +174,17 @@ impl Figure {
         (x0, x1): (f64, f64),
         (y0, y1): (f64, f64),
     ) -> Drawn<(), DB> {
-        let ticks = log_ticks(y0, y1);
+        let mut ticks = log_ticks(y0, y1);
+        // a range too narrow for two 1 … 9 × 10ⁿ ticks gets evenly spaced round values, each
+        // label with the digits that tell it from its neighbour
+        let narrow = ticks.len() < 2;
+        let step = if narrow {
+            let (values, step) = narrow_ticks(y0, y1);
+            ticks = values.into_iter().map(|v| (v, false)).collect();
+            step
+        } else {
+            f64::NAN
+        };
         let font = (FONT, self.px(25.0)).into_font();
         let style = font.color(&BLACK).pos(Pos::new(HPos::Right, VPos::Center));
         for (v, decade) in ticks {
@@ -179,7 +194,12 @@ impl Figure {
                 vec![(x0, ly), (x1, ly)],
                 RGBColor(grey, grey, grey).stroke_width(1),
             )))?;
-            let label = log_tick_label(v);
+            let label = if narrow {
+                let digits = (v.abs() / step).log10().ceil().max(0.0) as usize + 1;
+                crate::text::sig(v, digits)
+            } else {
+                log_tick_label(v)
+            };
             let gap = -(self.px(12.0) as i32);
             chart.draw_series(std::iter::once(
                 EmptyElement::at((x0, ly))
@@ -403,6 +423,27 @@ fn log_ticks(lo: f64, hi: f64) -> Vec<(f64, bool)> {
     }
 }
 
+/// Ticks of a log axis over [lo, hi] (log10 of the values) too narrow for two 1 … 9 × 10ⁿ
+/// ticks: the multiples of a 1, 2 or 5 × 10ᵏ step, about five of them, with the step (none
+/// for an empty range).
+fn narrow_ticks(lo: f64, hi: f64) -> (Vec<f64>, f64) {
+    let (a, b) = (10f64.powf(lo), 10f64.powf(hi));
+    let raw = (b - a) / 5.0;
+    if !(raw > 0.0 && raw.is_finite()) {
+        return (Vec::new(), f64::NAN);
+    }
+    let magnitude = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * magnitude)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * magnitude);
+    let (first, last) = ((a / step).ceil(), (b / step).floor());
+    let count = (last - first).max(-1.0) as i64 + 1;
+    let ticks = (0..count).map(|k| (first + k as f64) * step).collect();
+    (ticks, step)
+}
+
 /// A log-axis tick label with its own engineering prefix: 500, 2k, 50k, 1M, 0.01.
 fn log_tick_label(v: f64) -> String {
     let (scale, prefix) = match v {
@@ -444,7 +485,21 @@ fn tick_formatter(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{log_tick_label, log_ticks};
+    use super::{log_tick_label, log_ticks, narrow_ticks};
+
+    #[test]
+    fn a_narrow_log_range_gets_round_evenly_spaced_ticks() {
+        // K_max from 9443.894 to 9443.918 N/m: no 1 … 9 × 10ⁿ value inside
+        let (lo, hi) = (9443.894f64.log10(), 9443.918f64.log10());
+        assert!(log_ticks(lo, hi).len() < 2);
+        let (t, step) = narrow_ticks(lo, hi);
+        assert!((step - 0.005).abs() < 1e-12, "{step}");
+        assert_eq!(t.len(), 5, "{t:?}");
+        assert!(
+            (t[0] - 9443.895).abs() < 1e-6 && (t[4] - 9443.915).abs() < 1e-6,
+            "{t:?}"
+        );
+    }
 
     #[test]
     fn log_ticks_at_one_two_five_per_decade() {
