@@ -468,20 +468,28 @@ where
     let mut order: Vec<usize> = (0..runs.len()).collect();
     order.sort_by_key(|&j| std::cmp::Reverse(cost(&runs[j])));
     let done = AtomicUsize::new(0);
-    let mut computed: Vec<(usize, Vec<SweepPoint>)> = order
-        .par_iter()
+    // one worker per thread takes the next run in that order (list scheduling): which
+    // thread computes a run does not change its answers
+    let next = AtomicUsize::new(0);
+    let workers = rayon::current_num_threads().clamp(1, runs.len().max(1));
+    let mut computed: Vec<(usize, Vec<SweepPoint>)> = (0..workers)
+        .into_par_iter()
         .with_max_len(1)
-        .map(|&j| {
-            let mut near = None;
-            let points = runs[j]
-                .clone()
-                .map(|i| {
-                    let p = sweep_point(values[i], &loops[i], at, passive[slot[i]], &mut near);
-                    progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-                    p
-                })
-                .collect();
-            (j, points)
+        .flat_map_iter(|_| {
+            let mut mine = Vec::new();
+            while let Some(&j) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
+                let mut near = None;
+                let points: Vec<SweepPoint> = runs[j]
+                    .clone()
+                    .map(|i| {
+                        let p = sweep_point(values[i], &loops[i], at, passive[slot[i]], &mut near);
+                        progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                        p
+                    })
+                    .collect();
+                mine.push((j, points));
+            }
+            mine
         })
         .collect();
     computed.sort_by_key(|(j, _)| *j);
