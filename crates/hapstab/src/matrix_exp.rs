@@ -49,6 +49,20 @@ pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
     (rows(&e, n), rows(&psi, n))
 }
 
+/// E(s + t) = E(s) + E(t) + E(s)·E(t) of E(s) = e^{As} − I and E(t): the doubling of the
+/// module doc for two different steps (e^{A(s+t)} = e^{As}·e^{At}), formed without I like it.
+pub fn exp_joined(e_s: &Mat, e_t: &Mat) -> Mat {
+    let n = e_s.len();
+    let flat = |m: &Mat| -> Vec<f64> { m.iter().flatten().copied().collect() };
+    let (x, y) = (flat(e_s), flat(e_t));
+    let mut out = vec![0.0; n * n];
+    mul_into(&mut out, &x, &y, n);
+    for ((o, a), b) in out.iter_mut().zip(&x).zip(&y) {
+        *o += a + b;
+    }
+    rows(&out, n)
+}
+
 /// Ψ(s) = s Σ_j (As)^j/(j + 1)! for ‖As‖ ≤ 1/2 (row-major, order n).
 fn psi_series(a: &[f64], n: usize, s: f64) -> Vec<f64> {
     let as_: Vec<f64> = a.iter().map(|x| x * s).collect();

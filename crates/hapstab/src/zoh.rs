@@ -284,8 +284,7 @@ impl DiscreteLoop {
     /// Discretizes a loop exactly (see the module doc).
     pub fn new(lp: &Loop) -> Result<Self> {
         let ss = StateSpace::of_plant(&lp.plant, lp.period)?;
-        let (e1, psi1) = exp_and_integral(&ss.a, 1.0);
-        let (gamma0, gamma1) = split_hold(&ss.a, &psi1, &ss.b, lp.delay.fraction);
+        let (e1, gamma0, gamma1) = held_over_sample(&ss.a, &ss.b, lp.delay.fraction);
         let (velocity_num, velocity_den) = lp.velocity.per_sample_filter(lp.period);
         let scale = lp.wall_scale();
         let dl = Self {
@@ -558,6 +557,21 @@ fn observable_start(ss: &StateSpace, position: f64, velocity: f64) -> Vec<f64> {
         Ok(x) => x.iter().copied().collect(),
         Err(_) => vec![0.0; n],
     }
+}
+
+/// Φ − I = E(1) and the inputs (Γ0, Γ1) of [`split_hold`] over one sample delayed by a
+/// fraction λ: for λ > 0 from the two parts of the sample alone, E(1) joining E(1 − λ) and
+/// E(λ) ([`crate::matrix_exp::exp_joined`]), so that two exponentials serve where three did.
+fn held_over_sample(a: &Mat, b: &[f64], lambda: f64) -> (Mat, Vec<f64>, Vec<f64>) {
+    if lambda == 0.0 {
+        let (e1, psi1) = exp_and_integral(a, 1.0);
+        return (e1, poly::mat_vec(&psi1, b), vec![0.0; b.len()]);
+    }
+    let (e_rest, psi_rest) = exp_and_integral(a, 1.0 - lambda);
+    let (e_l, psi_l) = exp_and_integral(a, lambda);
+    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &poly::mat_vec(&psi_l, b));
+    let e1 = crate::matrix_exp::exp_joined(&e_rest, &e_l);
+    (e1, poly::mat_vec(&psi_rest, b), g1)
 }
 
 /// The inputs (Γ0, Γ1) of a force held over one sample and delayed by a fraction λ of it

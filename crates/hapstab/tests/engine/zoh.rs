@@ -419,3 +419,40 @@ fn two_mass_equals_its_transfer_function() {
         }
     }
 }
+
+/// Φ − I of a damped oscillator sampled fast, whatever the fraction of a sample the delay
+/// takes (with a fraction, Φ − I is joined from the two parts of the sample): the closed form
+/// e^{A} = e^{−σ}[cos ω·I + (sin ω/ω)(A + σI)] of A = [[0, 1], [−γ, −δ]] in normalized time,
+/// σ = δ/2, ω = √(γ − σ²), written with expm1 and sin² so that its own digits survive the − I.
+#[test]
+fn transition_minus_identity_is_the_closed_form_for_every_fraction() {
+    let (m, b, k, t) = (1.1, 7.5, 350.0, 1e-3);
+    let (gamma, delta): (f64, f64) = (k * t * t / m, b * t / m);
+    let (sigma, omega) = (delta / 2.0, (gamma - delta * delta / 4.0).sqrt());
+    let (decay, sinc) = ((-sigma).exp(), omega.sin() / omega);
+    let diagonal = (-sigma).exp_m1() * omega.cos() - 2.0 * (omega / 2.0).sin().powi(2);
+    let want = [
+        [diagonal + decay * sigma * sinc, decay * sinc],
+        [-gamma * decay * sinc, diagonal - decay * sigma * sinc],
+    ];
+    for fraction in [0.0, 1e-9, 0.3, 0.5, 0.999_999] {
+        let lp = with(
+            Plant::mass_spring_damper(Effective::new(m, b, k).unwrap()).unwrap(),
+            Delay {
+                samples: 1,
+                fraction,
+            },
+            VelocityEstimator::Backward,
+        );
+        let e = lp.discretize().unwrap().phi_minus_identity;
+        for (i, row) in want.iter().enumerate() {
+            for (j, w) in row.iter().enumerate() {
+                assert!(
+                    (e[i][j] - w).abs() <= 1e-14 * w.abs(),
+                    "λ = {fraction}: E[{i}][{j}] = {} vs {w}",
+                    e[i][j]
+                );
+            }
+        }
+    }
+}
