@@ -139,8 +139,18 @@ pub(super) fn cap_corner(
     let mut a = a0;
     let mut arcs = (arc_at(fam, t1, a)?, arc_at(fam, t2, a)?);
     let mut last = f64::INFINITY;
+    let mut gap = f64::INFINITY;
+    let slope0 = arcs.0.2.abs().max(arcs.1.2.abs());
     for _ in 0..CAP_STEPS {
         let ((t1, b1, s1), (t2, b2, s2)) = arcs;
+        if (b2 - b1).abs() > STALLED * gap && s1.abs().max(s2.abs()) > TURNING * slope0 {
+            // the arcs do not close in and one steepens: it turns back at its smooth top first
+            let steeper = if s1.abs() > s2.abs() { t1 } else { t2 };
+            if let Some(top) = smooth_from(fam, steeper).filter(|(p, _)| p.alpha >= a0) {
+                return Some(top);
+            }
+        }
+        gap = (b2 - b1).abs();
         let mut step = (b2 - b1) / (s2 - s1);
         if !step.is_finite() {
             return None;
@@ -271,6 +281,16 @@ pub(super) fn cap_by_levels(
     let b = 0.5 * (lo.ends[0].0 + lo.ends[1].0);
     exact_top(fam, cf, lo.a, b).map(|a| (a, b))
 }
+
+/// A Newton step of [`cap_corner`] that leaves the gap between the two arcs above this
+/// fraction of the last has stalled (Newton's method near a simple corner shrinks it by
+/// orders of magnitude per step); with one arc steepening ([`TURNING`]), that arc approaches
+/// its smooth top, where db/da diverges, before the arcs meet.
+const STALLED: f64 = 0.9;
+
+/// An arc whose db/da has grown this many times over [`cap_corner`]'s start approaches its
+/// smooth top (da/dθ = 0).
+const TURNING: f64 = 3.0;
 
 /// Halvings of a Newton step in a that leaves an arc before the corner search gives up.
 const DAMPING_HALVINGS: usize = 40;

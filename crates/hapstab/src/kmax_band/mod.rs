@@ -314,8 +314,19 @@ fn top_interval(fam: &AffineFamily, cf: &CayleyFamily, b: f64) -> Option<Interva
 
 /// A top at damping b that the exact stable intervals there reach: their highest end within
 /// [`ATTAINED_REL`] of a, in an interval holding a·(1 − [`CONFIRM_REL`]) (the wall the
-/// answer reports stable). The exact end, or None.
+/// answer reports stable). The exact end, or None — at once where the wall at
+/// a·(1 − [`CONFIRM_REL`]/2), which such an interval holds, has a root surely outside the
+/// circle ([`surely_outside`]: a stationary point or corner that is not the region's top, for
+/// one Schur–Cohn recursion instead of a line decomposition).
 fn exact_top(fam: &AffineFamily, cf: &CayleyFamily, a: f64, b: f64) -> Option<f64> {
+    let mut coeffs = vec![0.0; fam.degree() + 1];
+    let below = AlphaBeta {
+        alpha: a - 0.5 * CONFIRM_REL * a.abs(),
+        beta: b,
+    };
+    if surely_outside(fam, below, &mut coeffs) {
+        return None;
+    }
     let iv = top_interval(fam, cf, b)?;
     let reach = (iv.hi - a).abs() <= ATTAINED_REL * a.abs();
     (reach && iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs()).then_some(iv.hi)
@@ -385,8 +396,22 @@ fn highest_candidate(
 /// boundary wall is inside or on the circle).
 fn surely_outside(fam: &AffineFamily, c: AlphaBeta, coeffs: &mut [f64]) -> bool {
     fam.coefficients_into(c.alpha, c.beta, coeffs);
+    if product_outside(coeffs) {
+        return true;
+    }
     let sc = crate::schur_cohn::schur_cohn(coeffs, 1.0 + CONFIRM_REL, 0.0);
     !sc.stable && sc.sure
+}
+
+/// The product of p's root moduli |c_0/c_n| exceeds (1 + [`CONFIRM_REL`])^n by more than its
+/// rounding: one root at least lies surely outside that circle (Vieta), without the
+/// Schur–Cohn recursion.
+fn product_outside(c: &[f64]) -> bool {
+    let (Some(&c0), Some(&cn)) = (c.first(), c.last()) else {
+        return false;
+    };
+    let n = (c.len() - 1) as i32;
+    c0.abs() > cn.abs() * (1.0 + CONFIRM_REL).powi(n) * (1.0 + 1e-12)
 }
 
 /// Whether the stable intervals at dampings beside a corner's close on it: a stable interval
