@@ -3,9 +3,9 @@
 //! (Section VIII) at every value, computed in parallel.
 
 use std::str::FromStr;
+use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
@@ -437,7 +437,8 @@ where
 {
     let loops: Vec<Loop> = values.iter().map(|&v| loop_at(v)).collect::<Result<_>>()?;
     let keys: Vec<PassiveKey> = loops.iter().map(PassiveKey::of).collect();
-    // the first point of each distinct key, and each point's key among them
+    // the first point of each distinct key, and each point's key among them; each key's
+    // passive K_max is computed once, by the first worker that needs it
     let mut firsts: Vec<usize> = Vec::new();
     let slot: Vec<usize> = (0..keys.len())
         .map(|i| match firsts.iter().position(|&j| keys[j] == keys[i]) {
@@ -448,16 +449,16 @@ where
             }
         })
         .collect();
-    let passive: Vec<PassiveKmax> = firsts
-        .par_iter()
-        .with_max_len(1)
-        .map(|&i| PassiveKmax::of(&loops[i], &keys[i], at))
-        .collect();
+    let passive: Vec<OnceLock<PassiveKmax>> = firsts.iter().map(|_| OnceLock::new()).collect();
+    let passive_at = |i: usize| -> PassiveKmax {
+        let s = slot[i];
+        *passive[s].get_or_init(|| PassiveKmax::of(&loops[firsts[s]], &keys[firsts[s]], at))
+    };
     // Runs of neighbouring points, each computed in order from the previous point's top on
-    // the curve (the warm start of `k_max_band_near`, the run's first point cold), one run
-    // per task, the runs with the longest delays (the costliest points: p's degree grows
-    // with them) first. The runs, and so every answer to the last bit, depend neither on the
-    // number of threads nor on their timing.
+    // the curve (the warm start of `k_max_band_near`, the run's first point cold), the runs
+    // with the longest delays (the costliest points: p's degree grows with them) first. The
+    // runs, and so every answer to the last bit, depend neither on the number of threads nor
+    // on their timing.
     let runs: Vec<std::ops::Range<usize>> = (0..values.len())
         .step_by(SWEEP_RUN)
         .map(|i| i..(i + SWEEP_RUN).min(values.len()))
@@ -468,32 +469,54 @@ where
     let mut order: Vec<usize> = (0..runs.len()).collect();
     order.sort_by_key(|&j| std::cmp::Reverse(cost(&runs[j])));
     let done = AtomicUsize::new(0);
-    // one worker per thread takes the next run in that order (list scheduling): which
-    // thread computes a run does not change its answers
+    let run = |k: usize| -> Vec<SweepPoint> {
+        let mut near = None;
+        runs[order[k]]
+            .clone()
+            .map(|i| {
+                let p = sweep_point(values[i], &loops[i], at, passive_at(i), &mut near);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                p
+            })
+            .collect()
+    };
+    let mut by_run: Vec<Vec<SweepPoint>> = vec![Vec::new(); runs.len()];
+    for (k, points) in list_scheduled(order.len(), &run).into_iter().enumerate() {
+        by_run[order[k]] = points;
+    }
+    Ok(by_run.into_iter().flatten().collect())
+}
+
+/// `task(k)` for k = 0 … n − 1, each worker taking the next k (list scheduling, so that tasks
+/// given costliest first balance): the calling thread is one worker and rayon's pool gives
+/// the others (its threads but one), so that the caller works instead of waiting to be woken
+/// at the end. The results by k; they do not depend on which thread computed them.
+fn list_scheduled<T: Send>(n: usize, task: &(dyn Fn(usize) -> T + Sync)) -> Vec<T> {
     let next = AtomicUsize::new(0);
-    let workers = rayon::current_num_threads().clamp(1, runs.len().max(1));
-    let mut computed: Vec<(usize, Vec<SweepPoint>)> = (0..workers)
-        .into_par_iter()
-        .with_max_len(1)
-        .flat_map_iter(|_| {
-            let mut mine = Vec::new();
-            while let Some(&j) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
-                let mut near = None;
-                let points: Vec<SweepPoint> = runs[j]
-                    .clone()
-                    .map(|i| {
-                        let p = sweep_point(values[i], &loops[i], at, passive[slot[i]], &mut near);
-                        progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-                        p
-                    })
-                    .collect();
-                mine.push((j, points));
+    let work = || -> Vec<(usize, T)> {
+        let mut mine = Vec::new();
+        loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            if k >= n {
+                return mine;
             }
-            mine
-        })
-        .collect();
-    computed.sort_by_key(|(j, _)| *j);
-    Ok(computed.into_iter().flat_map(|(_, p)| p).collect())
+            mine.push((k, task(k)));
+        }
+    };
+    let workers = rayon::current_num_threads().clamp(1, n.max(1));
+    let mut parts: Vec<Vec<(usize, T)>> = (0..workers).map(|_| Vec::new()).collect();
+    if let Some((first, rest)) = parts.split_first_mut() {
+        let work = &work;
+        rayon::in_place_scope(|s| {
+            for part in rest {
+                s.spawn(move |_| *part = work());
+            }
+            *first = work();
+        });
+    }
+    let mut all: Vec<(usize, T)> = parts.into_iter().flatten().collect();
+    all.sort_by_key(|(k, _)| *k);
+    all.into_iter().map(|(_, t)| t).collect()
 }
 
 /// Neighbouring points of a sweep computed in order on one thread, each warm-started from the
