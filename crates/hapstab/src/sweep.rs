@@ -6,6 +6,7 @@ use std::str::FromStr;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
@@ -487,34 +488,26 @@ where
     Ok(by_run.into_iter().flatten().collect())
 }
 
-/// `task(k)` for k = 0 … n − 1, each worker taking the next k (list scheduling, so that tasks
-/// given costliest first balance): the calling thread is one worker and rayon's pool gives
-/// the others (its threads but one), so that the caller works instead of waiting to be woken
-/// at the end. The results by k; they do not depend on which thread computed them.
+/// `task(k)` for k = 0 … n − 1 on rayon's pool, one worker per thread, each taking the next
+/// k (list scheduling, so that tasks given costliest first balance). The results by k; they
+/// do not depend on which thread computed them.
 fn list_scheduled<T: Send>(n: usize, task: &(dyn Fn(usize) -> T + Sync)) -> Vec<T> {
     let next = AtomicUsize::new(0);
-    let work = || -> Vec<(usize, T)> {
-        let mut mine = Vec::new();
-        loop {
-            let k = next.fetch_add(1, Ordering::Relaxed);
-            if k >= n {
-                return mine;
-            }
-            mine.push((k, task(k)));
-        }
-    };
     let workers = rayon::current_num_threads().clamp(1, n.max(1));
-    let mut parts: Vec<Vec<(usize, T)>> = (0..workers).map(|_| Vec::new()).collect();
-    if let Some((first, rest)) = parts.split_first_mut() {
-        let work = &work;
-        rayon::in_place_scope(|s| {
-            for part in rest {
-                s.spawn(move |_| *part = work());
+    let mut all: Vec<(usize, T)> = (0..workers)
+        .into_par_iter()
+        .with_max_len(1)
+        .flat_map_iter(|_| {
+            let mut mine = Vec::new();
+            loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                if k >= n {
+                    return mine;
+                }
+                mine.push((k, task(k)));
             }
-            *first = work();
-        });
-    }
-    let mut all: Vec<(usize, T)> = parts.into_iter().flatten().collect();
+        })
+        .collect();
     all.sort_by_key(|(k, _)| *k);
     all.into_iter().map(|(_, t)| t).collect()
 }
