@@ -475,7 +475,8 @@ const HUMP_SAMPLES: usize = 12;
 /// A part of the stable region above the answer that does not reach down to it (a separate
 /// component): the curve rises above the answer's level a* only on arcs between consecutive
 /// angles at which it crosses that level (the damping axis's crossings at a*), and such a
-/// component is bounded by them; on each such hump the first sampled point that may lie on
+/// component is bounded by them; on each such hump (outside the windows of u certified below
+/// the level, [`windows::above_windows`]) the first sampled point that may lie on
 /// the region's boundary (no root surely outside) has its exact stable intervals tested at
 /// its damping; then the curve's stationary points and corners above a* (an island's
 /// extremes), as [`highest_candidate`] takes them. The first top found above a*, or None.
@@ -495,8 +496,18 @@ fn separate_component(
     thetas.push(0.0);
     thetas.push(PI);
     thetas.sort_by(f64::total_cmp);
+    // the windows of u where the curve may rise above the level: a hump outside them (beyond
+    // a relative slack for the crossings' rounding) lies below it throughout
+    let windows = windows::above_windows(cf, level, level_roots);
+    let u_of = |t: f64| (0.5 * t).tan().powi(2);
+    let may_rise = |t0: f64, t1: f64| {
+        let (u0, u1) = (u_of(t0), u_of(t1));
+        windows
+            .iter()
+            .any(|&(l, r)| l < u1 * (1.0 - WINDOW_SLACK) && r > u0 * (1.0 + WINDOW_SLACK))
+    };
     let mut coeffs = vec![0.0; fam.degree() + 1];
-    for w in thetas.windows(2) {
+    for w in thetas.windows(2).filter(|w| may_rise(w[0], w[1])) {
         let step = (w[1] - w[0]) / (HUMP_SAMPLES + 1) as f64;
         // the first sample above the level that may lie on the boundary, inside the band
         let on_hump = hump_samples(fam, w[0], step).find(|p| {
@@ -518,10 +529,14 @@ fn separate_component(
     }
     // an island whose boundary the samples miss: its top, bottom or sides are among the
     // curve's stationary points and corners
-    let windows = windows::above_windows(cf, level, level_roots);
     let cands = sorted_candidates(fam, cf, (lo, hi), level, &windows);
     highest_candidate(fam, cf, &cands, Some(found), (lo, hi)).filter(|f| f.alpha > level)
 }
+
+/// Relative slack by which a hump's ends in u (u = tan²(θ/2)) must reach into a window of
+/// [`windows::above_windows`] for its samples to be taken: the crossings' angles and the
+/// roots u of their polynomial are the same points rounded apart.
+const WINDOW_SLACK: f64 = 1e-9;
 
 /// The curve's points at θ0 + j·step, j = 1 … [`HUMP_SAMPLES`]: z stepped along the circle by
 /// one rotation (no sine per point) where θ ≥ [`SHIFTED_THETA`], from the shifted form below.
