@@ -567,11 +567,8 @@ fn held_over_sample(a: &Mat, b: &[f64], lambda: f64) -> (Mat, Vec<f64>, Vec<f64>
         let (e1, psi1) = exp_and_integral(a, 1.0);
         return (e1, poly::mat_vec(&psi1, b), vec![0.0; b.len()]);
     }
-    let (e_rest, psi_rest) = exp_and_integral(a, 1.0 - lambda);
-    let (e_l, psi_l) = exp_and_integral(a, lambda);
-    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &poly::mat_vec(&psi_l, b));
-    let e1 = crate::matrix_exp::exp_joined(&e_rest, &e_l);
-    (e1, poly::mat_vec(&psi_rest, b), g1)
+    let ([e_rest, e_l], g0, g1) = split_parts(a, b, lambda);
+    (crate::matrix_exp::exp_joined(&e_rest, &e_l), g0, g1)
 }
 
 /// The inputs (Γ0, Γ1) of a force held over one sample and delayed by a fraction λ of it
@@ -581,12 +578,17 @@ pub fn split_hold(a: &Mat, psi1: &Mat, b: &[f64], lambda: f64) -> (Vec<f64>, Vec
     if lambda == 0.0 {
         return (poly::mat_vec(psi1, b), vec![0.0; b.len()]);
     }
-    let (e_rest, psi_rest) = exp_and_integral(a, 1.0 - lambda);
-    let (_, psi_l) = exp_and_integral(a, lambda);
-    let g0 = poly::mat_vec(&psi_rest, b);
-    let inner = poly::mat_vec(&psi_l, b);
-    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &inner);
+    let (_, g0, g1) = split_parts(a, b, lambda);
     (g0, g1)
+}
+
+/// For 0 < λ < 1: [E(1 − λ), E(λ)] and the inputs (Γ0, Γ1) of [`split_hold`].
+fn split_parts(a: &Mat, b: &[f64], lambda: f64) -> ([Mat; 2], Vec<f64>, Vec<f64>) {
+    let (e_rest, psi_rest) = exp_and_integral(a, 1.0 - lambda);
+    let (e_l, psi_l) = exp_and_integral(a, lambda);
+    let g0 = poly::mat_vec(&psi_rest, b);
+    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &poly::mat_vec(&psi_l, b));
+    ([e_rest, e_l], g0, g1)
 }
 
 impl Loop {
