@@ -13,9 +13,14 @@
 //! The roots are sought within the Fujiwara bounds of p's root moduli (Fujiwara 1916:
 //! every root has |x| ≤ 2·max_j |c_j/c_n|^{1/(n−j)}, and by the reversed polynomial
 //! |x| ≥ ½·1/max_j |c_j/c_0|^{1/j}), so a root of 1e-17 and one of 1e17 are both found to
-//! full relative precision. A double root (a tangency) is found only where rounding leaves a
+//! full relative precision. Where the coefficients' sign variations (Descartes' bound on the
+//! positive roots) are met by sign changes between approximate roots from Laguerre's method
+//! with deflation, those cuts bracket every root at once and the cascade is not needed
+//! ([`deflation`]). A double root (a tangency) is found only where rounding leaves a
 //! sign change; a pair of roots closer than the polynomial's rounding allows may be lost as a
 //! pair, which the callers' confirmation by the point test guards.
+
+mod deflation;
 
 /// Newton steps at most per root before the bracket is bisected to the end (each halves the
 /// bracket at worst; quadratic convergence needs about six from a bracket of a few ulps'
@@ -44,7 +49,14 @@ pub fn positive_roots(c: &[f64]) -> Vec<f64> {
         return Vec::new();
     };
     let (lo, hi) = root_bounds(&p);
-    cascade(&p, &[(lo, hi)])
+    match deflation::descartes_cuts(&p, (lo, hi)) {
+        Some(cuts) => {
+            let (mut scratch, mut roots) = (Scratch::default(), Vec::new());
+            roots_between_ends(&p, &cuts, NEWTON_DONE, &mut scratch, &mut roots);
+            roots
+        }
+        None => cascade(&p, &[(lo, hi)]),
+    }
 }
 
 /// The distinct real roots of the polynomial with ascending coefficients `c` inside the open
