@@ -60,7 +60,9 @@ fn the_curve_counts_what_the_verdict_counts() {
 fn level_stiffness_is_where_the_curve_crosses_the_level() {
     let lp = held_device();
     let n = 4000;
-    let r = stability_probability(&lp, &Population::SectionIv, 2.0, n, 3, &[0.9, 0.99]).unwrap();
+    let levels = [0.9, 0.99, 0.999];
+    let r = stability_probability(&lp, &Population::SectionIv, 2.0, n, 3, &levels).unwrap();
+    assert_eq!(r.levels.len(), levels.len());
     for l in &r.levels {
         let k = l.k.unwrap();
         let below = count_at(&r.intervals, k * (1.0 - 1e-9));
