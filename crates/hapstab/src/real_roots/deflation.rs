@@ -35,11 +35,15 @@ const COMPLEX_DISC: f64 = 1e-9;
 /// Cuts lo = x_0 < x_1 < … < x_k = hi with p's sign sure at each and changing across every
 /// interval, where k equals V, the sign variations of p's coefficients, or k + 2 plus the
 /// certified non-real roots exceeds p's degree (module doc): each interval holds exactly one
-/// root of p, and there are no other positive roots in (lo, hi). None where neither count is
-/// met (the cascade decides then). `p` has nonzero constant and leading coefficients and
+/// root of p, and there are no other positive roots in (lo, hi); where V = 0, just lo and hi
+/// (no root). None where neither count is met (the cascade decides then). `p` has nonzero constant and leading coefficients and
 /// every positive root inside (lo, hi).
 pub(super) fn descartes_cuts(p: &[f64], (lo, hi): (f64, f64)) -> Option<Vec<f64>> {
     let v = sign_variations_of(p);
+    if v == 0 {
+        // no positive root: one interval without a sign change
+        return Some(vec![lo, hi]);
+    }
     let mut roots = approximate_roots(p, v, (lo, hi))?;
     roots.sort_by(f64::total_cmp);
     let mut cuts = Vec::with_capacity(roots.len() + 1);
@@ -331,6 +335,14 @@ mod tests {
         let mut q = mul(&[5.0, -2.0, 1.0], &[-1.0, 2.0, 0.0, 1.0]);
         deflate_pair(&mut q, z);
         assert_eq!(q, vec![-1.0, 2.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn no_sign_variation_is_no_positive_root() {
+        // (x + 1)(x + 2)(x² + x + 1): every coefficient positive
+        let p = mul(&from_real_roots(&[-1.0, -2.0]), &[1.0, 1.0, 1.0]);
+        assert_eq!(descartes_cuts(&p, (0.01, 100.0)), Some(vec![0.01, 100.0]));
+        assert!(super::super::positive_roots(&p).is_empty());
     }
 
     #[test]
