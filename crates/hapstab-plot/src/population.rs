@@ -45,7 +45,8 @@ fn probability_panel(r: &StabilityProbability) -> Figure {
     f
 }
 
-/// 1 − P(stable) on a log scale, with each level's K marked.
+/// 1 − P(stable) on a log scale, with each level's K marked; a zero (no operator drawn
+/// unstable) is drawn at a tenth of one operator's share, which the legend says.
 fn failure_panel(r: &StabilityProbability) -> Figure {
     let floor = 0.1 / r.samples as f64;
     let log = |p: f64| (1.0 - p).max(floor).log10();
@@ -64,7 +65,7 @@ fn failure_panel(r: &StabilityProbability) -> Figure {
         Series::line(curve(&r.k, &r.probability, log))
             .color(palette::VERMILLION)
             .width(2)
-            .label("1 − P(stable)"),
+            .label(format!("1 − P(stable) (zero drawn at {floor:.0e})")),
     );
     let markers = [Marker::Circle, Marker::Square, Marker::Triangle];
     for (i, l) in r.levels.iter().enumerate() {
