@@ -36,8 +36,8 @@ const COMPLEX_DISC: f64 = 1e-9;
 /// interval, where k equals V, the sign variations of p's coefficients, or k + 2 plus the
 /// certified non-real roots exceeds p's degree (module doc): each interval holds exactly one
 /// root of p, and there are no other positive roots in (lo, hi); where V = 0, just lo and hi
-/// (no root). None where neither count is met (the cascade decides then). `p` has nonzero constant and leading coefficients and
-/// every positive root inside (lo, hi).
+/// (no root). None where neither count is met (the cascade decides then). `p` has nonzero
+/// constant and leading coefficients and every positive root inside (lo, hi).
 pub(super) fn descartes_cuts(p: &[f64], (lo, hi): (f64, f64)) -> Option<Vec<f64>> {
     let v = sign_variations_of(p);
     if v == 0 {
