@@ -5,7 +5,7 @@ Runs a hapstab binary built at commit 9660ef8 (the last one with the paper-only 
 1000 seeded points of the paper's range (and beyond: gamma up to 1, delta up to 1, d up to
 10) and records, per point, the spectral radius and the stable alpha interval at beta (from
 `check`) and alpha_max / beta_at_alpha_max (from `boundary`). The Rust test
-crates/hapstab/tests/engine/paper_regression.rs checks that the general engine reproduces them to
+crates/hapstab/tests/engine/paper/regression.rs checks that the general engine reproduces them to
 1e-12.
 
 Usage: python3 paper_regression.py /path/to/hapstab-9660ef8 > crates/hapstab/tests/fixtures/paper_regression.json

@@ -5,8 +5,8 @@ use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::PlantParams;
 use hapstab::limits::validity_points_cost;
-use hapstab::linear::{ValidityPoint, linear_condition};
 use hapstab::model::Loop;
+use hapstab::paper::linear::{ValidityPoint, linear_condition};
 use serde::Serialize;
 
 use crate::budget::{self, Driver};

@@ -4,7 +4,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use hapstab::nyquist::{
+use hapstab::paper::nyquist::{
     NyquistRegions, NyquistStiffness, SweepInput, nyquist_regions, nyquist_stiffness,
 };
 use serde::Serialize;

@@ -54,9 +54,9 @@ fn notes() -> Vec<String> {
         "Regions are the exact polygons of hapstab::region::stable_region (every vertex is a point where p(z) has a root on the unit circle); \
          for drawing, outlines are thinned by Douglas–Peucker to 1e-4 of the axis range (a tenth of a pixel)."
             .to_string(),
-        "Fig. 7: the 2 % and 5 % points are hapstab::linear::validity_points (first β > 0 where the error (24) reaches the level, on the exact boundary)."
+        "Fig. 7: the 2 % and 5 % points are hapstab::paper::linear::validity_points (first β > 0 where the error (24) reaches the level, on the exact boundary)."
             .to_string(),
-        "Figs. 8–10: γ is swept in fractions of the Nyquist frequency, γ = (fπ)² + δ²/4 (eq. 26); the robust regions are hapstab::nyquist::robust_region over 0 ≤ γ ≤ the panel's last γ, \
+        "Figs. 8–10: γ is swept in fractions of the Nyquist frequency, γ = (fπ)² + δ²/4 (eq. 26); the robust regions are hapstab::paper::nyquist::robust_region over 0 ≤ γ ≤ the panel's last γ, \
          with 41 γ samples and no golden-section refinement between them (an outer approximation within about 1 % in area); claim C8 uses the refined check passive_inside_robust."
             .to_string(),
         "At δ = 0, γ = π² every (α, β) is limit stable (a root at z = −1), so Figs. 8 and 10 draw the limit γ = π²(1 − 1e-6)."

@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 use clap::Args;
-use hapstab::ranges::{Ranges, ranges};
+use hapstab::paper::ranges::{Ranges, ranges};
 use serde::Serialize;
 
 use crate::output::{eng, print_json, sig};
@@ -28,7 +28,7 @@ struct RangesInput {
 #[derive(Serialize)]
 struct RangesOut<'a> {
     input: RangesInput,
-    limits: &'a hapstab::ranges::RatioLimits,
+    limits: &'a hapstab::paper::ranges::RatioLimits,
     gamma_max: f64,
     delta_max: f64,
     extended_gamma_max: f64,

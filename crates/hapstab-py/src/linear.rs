@@ -1,7 +1,7 @@
 //! The linear condition (22)–(23) and where it stops holding (Sections VI–VII, Fig. 7):
 //! Python's `linear_condition`, the numbers of `hapstab linear --json`.
 
-use hapstab::linear::{LinearCondition, linear_condition as condition};
+use hapstab::paper::linear::{LinearCondition, linear_condition as condition};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
@@ -74,7 +74,7 @@ pub fn linear_condition(
 
 /// The Python object of a [`LinearCondition`]; `physical` adds K and B in N/m and Ns/m.
 fn condition_object(py: Python<'_>, lc: &LinearCondition, physical: bool) -> PyLinearCondition {
-    let column = |f: &dyn Fn(&hapstab::linear::ValidityPoint) -> f64| {
+    let column = |f: &dyn Fn(&hapstab::paper::linear::ValidityPoint) -> f64| {
         PyArray1::from_vec(py, lc.points.iter().map(f).collect()).unbind()
     };
     let (ku, bu) = (lc.units.stiffness, lc.units.damping);

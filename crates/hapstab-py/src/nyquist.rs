@@ -3,7 +3,7 @@
 //! (`nyquist_regions`, the numbers of `hapstab nyquist --json`).
 
 use hapstab::Param;
-use hapstab::nyquist::{
+use hapstab::paper::nyquist::{
     NyquistRegions, SweepInput, SweepRow, no_progress, nyquist_regions as regions,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods};

@@ -11,8 +11,9 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use hapstab::model::Delay;
+use hapstab::paper::NormalizedFamily;
 use hapstab::region::stable_region;
-use hapstab::{AffineFamily, PlantParams, PolyFamily};
+use hapstab::{AffineFamily, PlantParams};
 
 #[path = "common/general_loop.rs"]
 mod common;
@@ -22,8 +23,8 @@ fn bench_region(c: &mut Criterion) {
     let mut g = c.benchmark_group("region");
     g.sample_size(20);
     for d in [0usize, 1, 2, 10, 100] {
-        let fam =
-            PolyFamily::new(PlantParams::new(0.001, 0.015).expect("valid"), d).expect("valid");
+        let fam = NormalizedFamily::new(PlantParams::new(0.001, 0.015).expect("valid"), d)
+            .expect("valid");
         g.bench_with_input(
             BenchmarkId::new("boundary_and_alpha_max", d),
             &fam,

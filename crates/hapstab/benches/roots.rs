@@ -9,13 +9,14 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use hapstab::PlantParams;
+use hapstab::paper::NormalizedFamily;
 use hapstab::stability::{Analysis, roots, roots_companion};
-use hapstab::{PlantParams, PolyFamily};
 
 /// The polynomial shared with the numpy baseline.
 pub fn poly(d: usize) -> Vec<f64> {
     let t = d as f64 + 0.5;
-    PolyFamily::new(PlantParams::new(0.001, 0.015).expect("valid"), d)
+    NormalizedFamily::new(PlantParams::new(0.001, 0.015).expect("valid"), d)
         .expect("valid")
         .coefficients(0.5 / t, 1.0 / t.sqrt())
 }

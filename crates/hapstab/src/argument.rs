@@ -208,11 +208,12 @@ fn step_holds(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{PlantParams, PolyFamily};
+    use crate::PlantParams;
+    use crate::paper::NormalizedFamily;
 
     #[test]
     fn counts_agree_with_the_schur_test_on_the_paper_loop() {
-        let fam = PolyFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 2).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 2).unwrap();
         for &(a, b, stable) in &[(0.03, 0.3, true), (0.2, 0.3, false), (-0.01, 0.2, false)] {
             let w = winding(&Wall { fam: &fam, a, b }, 1.0);
             assert!(w.decided(), "{a} {b}: {w:?}");

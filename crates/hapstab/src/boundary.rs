@@ -574,11 +574,12 @@ pub fn stable_between(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{PlantParams, PolyFamily};
+    use crate::PlantParams;
+    use crate::paper::NormalizedFamily;
 
     #[test]
     fn pure_mass_interval_is_closed_form() {
-        let fam = PolyFamily::new(PlantParams::new(0.0, 0.0).unwrap(), 0).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(0.0, 0.0).unwrap(), 0).unwrap();
         for beta in [0.1, 0.7, 1.5] {
             let iv = stable_alpha_intervals(&fam, beta);
             let hi = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
@@ -593,7 +594,7 @@ mod tests {
     #[test]
     fn tabulated_crossings_are_the_crossings() {
         for (g, dl, d) in [(0.001, 0.015, 0), (0.5, 1.0, 1), (9.8, 0.0, 2)] {
-            let pf = crate::closed_loop::PolyFamily::new(
+            let pf = crate::paper::NormalizedFamily::new(
                 crate::params::PlantParams::new(g, dl).unwrap(),
                 d,
             )
@@ -613,7 +614,7 @@ mod tests {
 
     #[test]
     fn curve_points_put_a_root_on_the_circle() {
-        let fam = PolyFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 2).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 2).unwrap();
         for t in [0.01, 0.5, 1.0, 2.0, 3.0] {
             let p = curve_point(&fam, t).unwrap();
             let v = fam.eval(p.alpha, p.beta, crate::circle::unit(t));
@@ -627,7 +628,7 @@ mod tests {
     #[test]
     fn curve_ends_are_double_roots() {
         // Paper's loop: the end at z = 1 lies on α = −γ, the end at z = −1 on the z = −1 line.
-        let fam = PolyFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 1).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 1).unwrap();
         let e0 = curve_end(&fam, true).unwrap();
         assert!((e0.alpha + 1e-3).abs() < 1e-12, "{e0:?}");
         let e1 = curve_end(&fam, false).unwrap();

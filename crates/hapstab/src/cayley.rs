@@ -169,7 +169,9 @@ mod tests {
     #[test]
     fn brackets_are_the_imaginary_parts_on_the_circle() {
         for (g, dl, d) in [(1e-3, 0.015, 1), (0.5, 1.0, 3), (1e-6, 1e-4, 0)] {
-            let pf = crate::PolyFamily::new(crate::PlantParams::new(g, dl).unwrap(), d).unwrap();
+            let pf =
+                crate::paper::NormalizedFamily::new(crate::PlantParams::new(g, dl).unwrap(), d)
+                    .unwrap();
             let cf = CayleyFamily::new(&pf).unwrap();
             let n = pf.degree() as i32;
             for theta in [1e-6, 0.01, 0.7, 1.5, 2.9, 3.1] {

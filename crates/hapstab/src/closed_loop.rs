@@ -20,8 +20,6 @@ use serde::Serialize;
 
 use crate::error::Result;
 use crate::model::Loop;
-use crate::params::{PlantParams, check_delay};
-use crate::plant::DiscretePlant;
 use crate::poly;
 use crate::zoh::{DiscreteLoop, WallScale};
 
@@ -364,45 +362,5 @@ impl AffineFamily {
             stiffness / self.scale.stiffness,
             damping / self.scale.damping,
         )
-    }
-}
-
-/// The paper's family in normalized units (Table I): the [`AffineFamily`] of the loop
-/// [`Loop::normalized`], so that (a, b) = (α, β), together with the paper's closed-form
-/// plant of eq. (5) for (γ, δ) and the delay d. It dereferences to the [`AffineFamily`].
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PolyFamily {
-    /// The paper's closed-form discrete plant (eq. 5–6), kept as the independent reference
-    /// and for γ, δ.
-    pub plant: DiscretePlant,
-    /// Delay d in samples.
-    pub d: usize,
-    /// The family through the general engine.
-    pub family: AffineFamily,
-}
-
-impl std::ops::Deref for PolyFamily {
-    type Target = AffineFamily;
-    fn deref(&self) -> &AffineFamily {
-        &self.family
-    }
-}
-
-impl PolyFamily {
-    /// Builds the family for plant parameters (γ, δ) and delay d.
-    pub fn new(pp: PlantParams, d: usize) -> Result<Self> {
-        check_delay(d)?;
-        let lp = Loop::normalized(pp, d)?;
-        Ok(Self {
-            plant: DiscretePlant::from_params(pp),
-            d,
-            family: AffineFamily::of_loop(&lp)?,
-        })
-    }
-
-    /// p(1) = N(1)(α + γ) evaluated without cancellation (Section V: the left boundary
-    /// α = −γ is a root at z = 1).
-    pub fn value_at_one(&self, alpha: f64) -> f64 {
-        self.plant.numerator_at_one() * (alpha + self.plant.gamma)
     }
 }

@@ -33,7 +33,7 @@
 //! | [`loop_spec`], [`model`] | the loop a user describes, and its validated form |
 //! | [`system`] | the analysis object: one loop, its family, every question about a wall |
 //! | [`params`] | Section II, eq. (1), Table I |
-//! | [`plant`] | Section III, eq. (2)–(6), (10) |
+//! | [`paper`] | the paper's normalized view α, β, γ, δ, d and the analyses defined only for its plant: the closed-form plant (eq. 2–6, 10), parameter ranges (eq. 11–15), the linear condition (Sections VI–VII), Nyquist, robust stability and passivity in γ (Section VIII), grid maps |
 //! | [`closed_loop`] | eq. (7)–(9) |
 //! | [`verdict`], [`stability`] | Section V (roots inside the unit circle) |
 //! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |
@@ -71,25 +71,21 @@ pub mod kmax;
 pub mod kmax_band;
 pub mod limits;
 pub mod line_decomposition;
-pub mod linear;
 pub mod locus;
 pub mod loop_spec;
 pub mod lowpass_design;
-pub mod map;
 pub mod margins;
 pub mod matrix_exp;
 pub mod model;
-pub mod nyquist;
 pub mod operator;
+pub mod paper;
 pub mod param;
 pub mod params;
 pub mod passivity;
 pub mod passivity_quantized;
-pub mod plant;
 pub mod poly;
 pub mod polyroots;
 pub mod population;
-pub mod ranges;
 pub mod real_roots;
 pub mod region;
 pub mod robust;
@@ -105,12 +101,11 @@ pub mod verdict;
 pub mod zoh;
 pub mod zwidth;
 
-pub use closed_loop::{AffineFamily, PolyFamily};
+pub use closed_loop::AffineFamily;
 pub use error::{Error, Result};
 pub use model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 pub use param::Param;
 pub use params::{Arm, Device, Effective, Normalized, Physical, PlantParams, Sampling, Wall};
-pub use plant::DiscretePlant;
 pub use schur_cohn::schur_stable;
 pub use stability::{Analysis, is_stable};
 pub use system::System;

@@ -17,7 +17,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-pub use crate::map::MAX_POINTS as MAX_MAP_POINTS;
+pub use crate::paper::map::MAX_POINTS as MAX_MAP_POINTS;
 pub use crate::params::MAX_DELAY;
 
 /// Core-seconds of one call of [`crate::boundary::stable_alpha_intervals`] per unit of
@@ -270,7 +270,7 @@ fn sweeps(count: f64, d: usize) -> f64 {
     count * degree_factor(d) * SWEEP_SECONDS_PER_DEGREE
 }
 
-/// Cost of [`crate::nyquist::region_summary`] with `beta_samples` slices: one sweep per slice
+/// Cost of [`crate::paper::nyquist::region_summary`] with `beta_samples` slices: one sweep per slice
 /// and the refinements of the extent and of α_max.
 pub fn region_summary_cost(beta_samples: usize, d: usize) -> Cost {
     let n = (beta_samples as f64).max(8.0);
@@ -280,7 +280,7 @@ pub fn region_summary_cost(beta_samples: usize, d: usize) -> Cost {
     }
 }
 
-/// Cost of [`crate::nyquist::gamma_sweep`]: `steps + 1` region summaries, one at a time.
+/// Cost of [`crate::paper::nyquist::gamma_sweep`]: `steps + 1` region summaries, one at a time.
 pub fn gamma_sweep_cost(steps: usize, beta_samples: usize, d: usize) -> Cost {
     let one = region_summary_cost(beta_samples, d);
     Cost {
@@ -289,7 +289,7 @@ pub fn gamma_sweep_cost(steps: usize, beta_samples: usize, d: usize) -> Cost {
     }
 }
 
-/// Cost of [`crate::nyquist::robust_region`]: every β slice (initial grid, then up to
+/// Cost of [`crate::paper::nyquist::robust_region`]: every β slice (initial grid, then up to
 /// `refine_beta_rounds` rounds that may double it) intersects the intervals of all γ
 /// samples, plus a golden-section search per slice end when refining in γ.
 pub fn robust_region_cost(
@@ -312,7 +312,7 @@ pub fn robust_region_cost(
     }
 }
 
-/// Cost of [`crate::nyquist::passive_inside_robust`]: `samples` slices over `gamma_samples`
+/// Cost of [`crate::paper::nyquist::passive_inside_robust`]: `samples` slices over `gamma_samples`
 /// configurations, each refined in γ.
 pub fn passive_check_cost(samples: usize, gamma_samples: usize, d: usize) -> Cost {
     let gs = (gamma_samples as f64).max(2.0);
@@ -331,7 +331,7 @@ pub fn box_plants(mass_samples: usize, damping_samples: usize, stiffness_samples
         * (stiffness_samples.max(1) as f64)
 }
 
-/// Cost of [`crate::nyquist::robust_kmax`]: a scan of `beta_samples` dampings over every
+/// Cost of [`crate::paper::nyquist::robust_kmax`]: a scan of `beta_samples` dampings over every
 /// sampled plant, then a golden-section search over B whose every step refines the
 /// stiffness.
 pub fn robust_kmax_cost(plants: f64, beta_samples: usize, d: usize) -> Cost {
@@ -345,11 +345,11 @@ pub fn robust_kmax_cost(plants: f64, beta_samples: usize, d: usize) -> Cost {
 }
 
 /// Interval sweeps of the geometric β scan of one validity point at most: from
-/// [`crate::linear::VALIDITY_BETA_START`] = 1e-7 by 1 % steps up to β ≈ 1 (ln 10⁷ / ln 1.01
+/// [`crate::paper::linear::VALIDITY_BETA_START`] = 1e-7 by 1 % steps up to β ≈ 1 (ln 10⁷ / ln 1.01
 /// ≈ 1620) and the bisection after it (about 45 halvings).
 pub const VALIDITY_SCAN_SWEEPS: f64 = 1700.0;
 
-/// Cost of [`crate::linear::validity_points`] for `levels` error levels: one scan and
+/// Cost of [`crate::paper::linear::validity_points`] for `levels` error levels: one scan and
 /// bisection per level, at most.
 pub fn validity_points_cost(levels: usize, d: usize) -> Cost {
     Cost {
@@ -358,7 +358,7 @@ pub fn validity_points_cost(levels: usize, d: usize) -> Cost {
     }
 }
 
-/// Cost of a stability map ([`crate::map::compute_map`]) of `points` grid points of the
+/// Cost of a stability map ([`crate::paper::map::compute_map`]) of `points` grid points of the
 /// paper's loop at delay d: [`map_cost_of_degree`] at n = d + 3 with every point stable
 /// (the most a map can cost).
 pub fn map_cost(points: f64, d: usize, radius: bool) -> Cost {

@@ -6,7 +6,7 @@
 //!
 //! The default population is the paper's Section IV: arm mass m_H uniform in
 //! [[`DEFAULT_ARM_MASS`]] kg and the ratios of eq. (11) uniform below their bounds,
-//! k_H/m_H ∈ [0, 710] s⁻², b_H/m_H ∈ [0, 12.6] s⁻¹ ([`crate::ranges::RatioLimits::PAPER`]).
+//! k_H/m_H ∈ [0, 710] s⁻², b_H/m_H ∈ [0, 12.6] s⁻¹ ([`crate::paper::ranges::RatioLimits::PAPER`]).
 //! Any loop parameter (`sweep --param`'s names) can instead be given its own distribution
 //! (uniform, normal or log-normal, independent).
 //!
@@ -21,8 +21,8 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::kmax::{KmaxQuery, kmax};
 use crate::model::Loop;
+use crate::paper::ranges::RatioLimits;
 use crate::param::Param;
-use crate::ranges::RatioLimits;
 use crate::splitmix::SplitMix;
 use crate::sweep::SweepParam;
 use crate::system::System;

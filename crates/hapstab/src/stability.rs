@@ -9,8 +9,9 @@
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::closed_loop::{AffineFamily, PolyFamily};
+use crate::closed_loop::AffineFamily;
 use crate::error::Result;
+use crate::paper::NormalizedFamily;
 use crate::params::Normalized;
 use crate::polyroots::{RootEstimate, aberth, companion};
 pub use crate::schur_cohn::schur_stable;
@@ -96,7 +97,7 @@ impl Analysis {
     /// loop through [`Analysis::of_family`]).
     pub fn new(params: Normalized) -> Result<Self> {
         let params = params.validated()?;
-        let fam = PolyFamily::new(params.plant(), params.d)?;
+        let fam = NormalizedFamily::new(params.plant(), params.d)?;
         Self::of_family(&fam, params.alpha, params.beta)
     }
 
@@ -252,7 +253,7 @@ const POLISH_SWEEPS: usize = 12;
 /// true iff stable (a marginal wall is not).
 pub fn is_stable(params: &Normalized) -> Result<bool> {
     let params = params.validated()?;
-    let fam = PolyFamily::new(params.plant(), params.d)?;
+    let fam = NormalizedFamily::new(params.plant(), params.d)?;
     let mut c = fam.coefficients(params.alpha, params.beta);
     Ok(decide(&fam, params.alpha, params.beta, &mut c).verdict == Verdict::Stable)
 }

@@ -13,10 +13,11 @@
 //! once here, as every command has always formed it.
 
 use crate::boundary::{Interval, stable_alpha_intervals};
-use crate::closed_loop::{AffineFamily, PolyFamily};
+use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::kmax_band::{BandMax, k_max_band};
 use crate::model::{Loop, PlantModel};
+use crate::paper::NormalizedFamily;
 use crate::params::{Physical, Sampling, Wall};
 use crate::region::{ConfirmedMax, StableRegion, alpha_max_within, stable_region};
 use crate::stability::Analysis;
@@ -28,7 +29,7 @@ use crate::verdict::{Decision, decide};
 pub struct System {
     lp: Loop,
     family: AffineFamily,
-    paper: Option<PolyFamily>,
+    paper: Option<NormalizedFamily>,
 }
 
 impl System {
@@ -38,7 +39,7 @@ impl System {
         let family = AffineFamily::of_loop(&lp)?;
         let paper = lp
             .paper_view()
-            .map(|pp| PolyFamily::new(pp, lp.delay.samples))
+            .map(|pp| NormalizedFamily::new(pp, lp.delay.samples))
             .transpose()?;
         Ok(Self { lp, family, paper })
     }
@@ -85,7 +86,7 @@ impl System {
     pub fn decide_wall(lp: &Loop, w: Wall) -> Result<Decision> {
         match lp.paper_view() {
             Some(pp) => {
-                let pf = PolyFamily::new(pp, lp.delay.samples)?;
+                let pf = NormalizedFamily::new(pp, lp.delay.samples)?;
                 let (a, b) = paper_units(lp, w)?;
                 Ok(decide(&pf, a, b, &mut pf.coefficients(a, b)))
             }
@@ -203,7 +204,7 @@ impl System {
         };
         let sampling = Sampling::new(self.lp.period, self.lp.delay.samples).ok()?;
         let p = Physical::new(*e, wall, sampling).ok()?;
-        Some(crate::linear::linear_stiffness_limit(&p))
+        Some(crate::paper::linear::linear_stiffness_limit(&p))
     }
 }
 

@@ -619,7 +619,7 @@ impl VelocityEstimator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plant::DiscretePlant;
+    use crate::paper::reference::DiscretePlant;
 
     #[test]
     fn paper_plant_matches_closed_form() {

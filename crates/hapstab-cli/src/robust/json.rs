@@ -2,7 +2,7 @@
 //! K_max in physical or normalized units.
 
 use anyhow::Result;
-use hapstab::nyquist::RobustKmax;
+use hapstab::paper::nyquist::RobustKmax;
 use serde::Serialize;
 
 use crate::output::print_json;

@@ -10,7 +10,7 @@ mod text;
 use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::limits::{box_plants, robust_kmax_cost};
-use hapstab::nyquist::{BoxOptions, PlantBox, robust_kmax_with_progress};
+use hapstab::paper::nyquist::{BoxOptions, PlantBox, robust_kmax_with_progress};
 use hapstab::params::{Arm, Device};
 
 use crate::budget::{self, Driver};

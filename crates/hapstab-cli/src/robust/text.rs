@@ -1,6 +1,6 @@
 //! The text answer of `hapstab kmax --robust`.
 
-use hapstab::nyquist::RobustKmax;
+use hapstab::paper::nyquist::RobustKmax;
 
 use crate::output::{eng, sig};
 

@@ -8,11 +8,12 @@ use std::path::Path;
 
 use assert_cmd::Command;
 use hapstab::boundary::stable_alpha_intervals;
-use hapstab::linear::{routh_hurwitz_normalized, validity_points};
-use hapstab::nyquist::{RegionSummary, region_summary};
-use hapstab::plant::DiscretePlant;
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::linear::{routh_hurwitz_normalized, validity_points};
+use hapstab::paper::nyquist::{RegionSummary, region_summary};
+use hapstab::paper::reference::DiscretePlant;
 use hapstab::stability::{is_stable, roots};
-use hapstab::{Normalized, PlantParams, PolyFamily};
+use hapstab::{Normalized, PlantParams};
 use num_complex::Complex64;
 use serde_json::Value;
 
@@ -151,7 +152,7 @@ fn c5() -> &'static str {
     let mut worst: f64 = 0.0;
     for d in 0..=1 {
         for dl in [0.0, 0.005, 0.01, DELTA] {
-            let fam = PolyFamily::new(PlantParams::new(GAMMA, dl).unwrap(), d).unwrap();
+            let fam = NormalizedFamily::new(PlantParams::new(GAMMA, dl).unwrap(), d).unwrap();
             for b in [1e-6, 1e-4, 1e-3] {
                 let iv = stable_alpha_intervals(&fam, b)
                     .into_iter()
@@ -220,7 +221,7 @@ fn c9() -> &'static str {
     let q = summary((PI / 4.0).powi(2), 0.0, 1);
     let mut pole = true;
     for d in [0usize, 1, 3] {
-        let fam = PolyFamily::new(PlantParams::new(PI * PI, 0.0).unwrap(), d).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(PI * PI, 0.0).unwrap(), d).unwrap();
         for (a, b) in [(0.2, 0.4), (-0.3, 0.1)] {
             let rs = roots(&fam.coefficients(a, b)).unwrap();
             pole &= rs.iter().any(|z| (z + 1.0).norm() < 1e-6);

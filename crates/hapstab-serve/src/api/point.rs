@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use hapstab::limits::point_cost;
-use hapstab::linear::linear_check;
+use hapstab::paper::linear::linear_check;
 use hapstab::params::Normalized;
 use hapstab::stability::Analysis;
 use hapstab::{Loop, System, Wall};

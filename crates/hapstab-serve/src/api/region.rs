@@ -7,10 +7,11 @@ use std::time::Instant;
 use hapstab::boundary::AlphaBeta;
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
-use hapstab::linear::linear_alpha_limit;
-use hapstab::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::linear::linear_alpha_limit;
+use hapstab::paper::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
 use hapstab::region::{EdgeKind, stable_region};
-use hapstab::{Loop, PolyFamily, System};
+use hapstab::{Loop, System};
 use serde::Serialize;
 
 use super::PlantOut;
@@ -70,7 +71,7 @@ pub(crate) struct LinearOut {
 }
 
 /// The robustly stable region over a γ range (Section VIII), from
-/// `hapstab::nyquist::robust_region`.
+/// `hapstab::paper::nyquist::robust_region`.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct RobustOut {
     pub gamma_lo: f64,
@@ -293,7 +294,7 @@ fn robust_out(
         gamma_samples: rr.gamma_samples,
         beta_samples: rr.beta_samples,
         refined: rr.refine,
-        method: "hapstab::nyquist::robust_region: intersection of exact per-β stable α-intervals over uniform γ samples",
+        method: "hapstab::paper::nyquist::robust_region: intersection of exact per-β stable α-intervals over uniform γ samples",
         polygon: r.polygon.iter().map(ab).collect(),
         alpha_max: r.alpha_max,
         beta_at_alpha_max: r.beta_at_alpha_max,
@@ -318,7 +319,7 @@ pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     }
     let t0 = Instant::now();
     let spec = &req.spec;
-    let fam = PolyFamily::new(spec.plant, spec.d).map_err(lib_error)?;
+    let fam = NormalizedFamily::new(spec.plant, spec.d).map_err(lib_error)?;
     let r = stable_region(&fam).map_err(lib_error)?;
     let t_region = t0.elapsed().as_secs_f64() * 1e3;
     let mut warnings = Vec::new();
@@ -333,7 +334,7 @@ pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
         let summary = region_summary(spec.plant, spec.d, EMPTY_CHECK_SLICES).map_err(lib_error)?;
         if !summary.empty {
             warnings.push(format!(
-                "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::nyquist::region_summary) find stable points up to α = {} at β = {}",
+                "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::paper::nyquist::region_summary) find stable points up to α = {} at β = {}",
                 fmt(summary.alpha_max),
                 fmt(summary.beta_at_alpha_max)
             ));

@@ -30,17 +30,18 @@ use std::path::Path;
 use e2e_browser::{Browser, R, attr, wait_for};
 use fantoccini::key::Key;
 use fantoccini::{Client, Locator};
+use hapstab::paper::NormalizedFamily;
 use hapstab::region::stable_region;
 use hapstab::stability::Analysis;
 use hapstab::{
-    Arm, Delay, Device, Effective, Loop, Normalized, Plant, PlantModel, PlantParams, PolyFamily,
-    TwoMass, VelocityEstimator,
+    Arm, Delay, Device, Effective, Loop, Normalized, Plant, PlantModel, PlantParams, TwoMass,
+    VelocityEstimator,
 };
 use serde_json::json;
 use serve_support::Server;
 
 fn library_alpha_max(gamma: f64, delta: f64, d: usize) -> f64 {
-    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
+    stable_region(&NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
         .unwrap()
         .alpha_max
 }
@@ -296,7 +297,7 @@ async fn drive_defaults(c: &Client, base: &str, shot: &Path) -> R<()> {
 /// The area shown in the K–B plane: the α–β area of the default plant times m/T² · m/T.
 async fn assert_area_in_k_b(c: &Client, pp: PlantParams) -> R<()> {
     let area = c.find(Locator::Id("area")).await?.text().await?;
-    let fam = PolyFamily::new(pp, 0)?;
+    let fam = NormalizedFamily::new(pp, 0)?;
     let lib = stable_region(&fam)?;
     let m = 1.1;
     let kb: f64 = area.split(' ').next().unwrap_or("").parse()?;

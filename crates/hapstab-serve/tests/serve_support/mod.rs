@@ -12,8 +12,9 @@ use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
+use hapstab::PlantParams;
+use hapstab::paper::NormalizedFamily;
 use hapstab::region::stable_region;
-use hapstab::{PlantParams, PolyFamily};
 
 /// The server's command: this crate's `hapstab-serve`, or `hapstab serve` where the `hapstab`
 /// binary is the crate's own (hapstab-cli).
@@ -283,7 +284,8 @@ pub const PLANT: &str = "gamma=0.001&delta=0.015&d=1";
 
 /// The library's exact stable region of (γ, δ, d).
 pub fn library_region(gamma: f64, delta: f64, d: usize) -> hapstab::region::StableRegion {
-    stable_region(&PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()).unwrap()
+    stable_region(&NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
+        .unwrap()
 }
 
 /// The paper's loop in physical units with the command line's default device and arm, d = 1.

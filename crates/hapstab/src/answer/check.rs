@@ -103,7 +103,7 @@ fn paper_view(
         point,
         normalized: (!normalized).then_some(point),
         alpha_interval: interval.map(|iv| [iv.lo, iv.hi]),
-        alpha_linear: crate::linear::linear_alpha_limit(beta, pp.delta, d),
+        alpha_linear: crate::paper::linear::linear_alpha_limit(beta, pp.delta, d),
         k_linear: if normalized {
             None
         } else {

@@ -5,8 +5,8 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::{Config, Outcome, simulate};
-use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, positive};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::PlantParams;
 
@@ -84,13 +84,13 @@ pub struct EmpiricalPoint {
 }
 
 /// The exact linear boundary along α at fixed β (Section V): the upper end of the stable
-/// α-interval that starts at α = −γ, by D-decomposition ([`crate::linear::exact_upper_alpha`]).
+/// α-interval that starts at α = −γ, by D-decomposition ([`crate::paper::linear::exact_upper_alpha`]).
 /// None if no such interval exists; `f64::INFINITY` if it is unbounded.
 pub fn exact_alpha_limit(plant: PlantParams, d: usize, beta: f64) -> Result<Option<f64>> {
     finite(Param::Beta, beta)?;
     let plant = PlantParams::new(plant.gamma, plant.delta)?;
-    let fam = PolyFamily::new(plant, d)?;
-    Ok(crate::linear::exact_upper_alpha(&fam, beta))
+    let fam = NormalizedFamily::new(plant, d)?;
+    Ok(crate::paper::linear::exact_upper_alpha(&fam, beta))
 }
 
 /// How one run counts for the boundary.

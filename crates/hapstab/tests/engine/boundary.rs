@@ -3,13 +3,14 @@
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
+use hapstab::PlantParams;
 use hapstab::boundary::stable_alpha_intervals;
+use hapstab::paper::NormalizedFamily;
 use hapstab::stability::Verdict;
 use hapstab::verdict::decide_coefficients;
-use hapstab::{PlantParams, PolyFamily};
 
 fn verdict(alpha: f64, beta: f64, gamma: f64, delta: f64, d: usize) -> Verdict {
-    let fam = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap();
+    let fam = NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap();
     decide_coefficients(&fam.coefficients(alpha, beta)).verdict
 }
 
@@ -20,8 +21,8 @@ fn pure_mass_alpha(beta: f64) -> f64 {
     2.0 * beta * (2.0 - beta) / (2.0 + beta)
 }
 
-fn fam(gamma: f64, delta: f64, d: usize) -> PolyFamily {
-    PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
+fn fam(gamma: f64, delta: f64, d: usize) -> NormalizedFamily {
+    NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
 }
 
 #[test]

@@ -413,7 +413,7 @@ fn passive_region_of_the_paper_loop_is_the_triangle() {
         }
         assert!(k_max_passive_at(&sw, b, 1.01 * b).is_none());
     }
-    // normalized: the triangle of hapstab::nyquist::passive_region for δ
+    // normalized: the triangle of hapstab::paper::nyquist::passive_region for δ
     let delta = 0.8;
     let lp = msd_loop(
         1.0,
@@ -424,7 +424,7 @@ fn passive_region_of_the_paper_loop_is_the_triangle() {
         VelocityEstimator::Backward,
     );
     let r = passive_region(&SampledWall::new(&lp).unwrap(), delta).unwrap();
-    let tri = hapstab::nyquist::passive_region(delta).unwrap();
+    let tri = hapstab::paper::nyquist::passive_region(delta).unwrap();
     for v in &tri.vertices {
         let near = r
             .vertices

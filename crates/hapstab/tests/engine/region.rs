@@ -4,14 +4,15 @@
 
 use crate::common::general::{family, general_loops};
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
-use hapstab::map::{Axis, AxisRange, MapKind, MapSpec, compute_map};
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::map::{Axis, AxisRange, MapKind, MapSpec, compute_map};
 use hapstab::region::{EdgeKind, StableRegion, stable_region};
 use hapstab::schur_cohn::spectral_radius_schur;
 use hapstab::stability::schur_stable;
-use hapstab::{Normalized, PlantParams, PolyFamily};
+use hapstab::{Normalized, PlantParams};
 
-fn region(g: f64, dl: f64, d: usize) -> (PolyFamily, StableRegion) {
-    let fam = PolyFamily::new(PlantParams::new(g, dl).unwrap(), d).unwrap();
+fn region(g: f64, dl: f64, d: usize) -> (NormalizedFamily, StableRegion) {
+    let fam = NormalizedFamily::new(PlantParams::new(g, dl).unwrap(), d).unwrap();
     let r = stable_region(&fam).unwrap();
     (fam, r)
 }

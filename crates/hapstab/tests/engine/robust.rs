@@ -50,14 +50,14 @@ fn paper_box_agrees_with_the_paper_search() {
     // the default `kmax --robust` box: from the ungrabbed PHANToM-like device (0.1 kg,
     // 1.5 Ns/m) to the held one (1.1 kg, 7.5 Ns/m, 350 N/m); its robust K_max over every B
     // is reached at B* — at that B the box's K_max must be the same number and plant
-    let pbox = hapstab::nyquist::PlantBox {
+    let pbox = hapstab::paper::nyquist::PlantBox {
         mass: [0.1, 1.1],
         damping: [1.5, 7.5],
         stiffness: [0.0, 350.0],
         period: 1e-3,
         d: 0,
     };
-    let paper = hapstab::nyquist::robust_kmax(&pbox, Default::default()).unwrap();
+    let paper = hapstab::paper::nyquist::robust_kmax(&pbox, Default::default()).unwrap();
     let sides = [
         side(SweepParam::Mass, 0.1, 1.1),
         side(SweepParam::Damping, 1.5, 7.5),

@@ -4,11 +4,12 @@
 
 use crate::common;
 use common::SplitMix;
+use hapstab::paper::NormalizedFamily;
 use hapstab::simulation::{
     BoundarySearch, Config, Contact, Effects, Friction, HumanForce, Model, Outcome, StableWhen,
     empirical_boundary, exact_alpha_limit, linear_growth, simulate,
 };
-use hapstab::{Analysis, Error, Normalized, PlantParams, PolyFamily};
+use hapstab::{Analysis, Error, Normalized, PlantParams};
 
 const M: f64 = 0.1;
 const T: f64 = 1e-3;
@@ -105,7 +106,7 @@ fn run_satisfies_the_characteristic_recurrence() {
         (0.9, 0.05, 1e-4, 0.0, 4),
     ] {
         let p = Normalized::new(alpha, beta, gamma, delta, d).unwrap();
-        let c = PolyFamily::new(p.plant(), d)
+        let c = NormalizedFamily::new(p.plant(), d)
             .unwrap()
             .coefficients(alpha, beta);
         let mut cfg = Config::new(Model::new(p, M, T).unwrap(), 300);

@@ -6,14 +6,15 @@
 
 use crate::common;
 use common::SplitMix;
+use hapstab::paper::reference::DiscretePlant;
 use hapstab::simulation::{
     Config, Contact, Friction, HumanForce, LoopModel, Model, Outcome, SimModel, Simulator, Trace,
     exact_alpha_limit, linear_growth_of, simulate,
 };
 use hapstab::zoh::{PlantPorts, StateSpace};
 use hapstab::{
-    Arm, Delay, DiscretePlant, Effective, Loop, Normalized, Plant, PlantModel, PlantParams,
-    TwoMass, VelocityEstimator, Wall,
+    Arm, Delay, Effective, Loop, Normalized, Plant, PlantModel, PlantParams, TwoMass,
+    VelocityEstimator, Wall,
 };
 use rayon::prelude::*;
 

@@ -4,7 +4,7 @@
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
-use hapstab::closed_loop::PolyFamily;
+use hapstab::paper::NormalizedFamily;
 use hapstab::schur_cohn::spectral_radius_schur;
 use hapstab::stability::{Analysis, Verdict, roots, schur_stable};
 use hapstab::verdict::decide_coefficients;
@@ -57,7 +57,7 @@ fn algebraic_test_agrees_with_roots_on_100k_points() {
             } else {
                 10f64.powf(-4.0 + 4.0 * ud)
             };
-            let c = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
+            let c = NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
                 .unwrap()
                 .coefficients(alpha, beta);
             let r = roots(&c).unwrap();
@@ -106,7 +106,7 @@ fn spectral_radius_two_ways() {
     );
     runner
         .run(&strat, |(d, alpha, beta, gamma, delta)| {
-            let c = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
+            let c = NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
                 .unwrap()
                 .coefficients(alpha, beta);
             let rho_roots = roots(&c)
@@ -131,7 +131,7 @@ fn marginal_band_is_narrow() {
     // Move a point across the pure-mass boundary until the spectral radius is 1 ± 1e-8:
     // it must get a definite verdict; exactly on the boundary it is marginal.
     let beta = 0.7;
-    let fam = PolyFamily::new(PlantParams::new(0.0, 0.0).unwrap(), 0).unwrap();
+    let fam = NormalizedFamily::new(PlantParams::new(0.0, 0.0).unwrap(), 0).unwrap();
     let a0 = pure_mass_alpha(beta);
     let rho = |a: f64| spectral_radius_schur(&fam.coefficients(a, beta));
     assert_eq!(
@@ -167,7 +167,7 @@ fn large_delay_up_to_1000() {
     // δ = 0.01, β = 1e-4: half the linear-condition stiffness (β + δ)/(d + 1/2) is stable,
     // twice it is not; the Schur–Cohn verdicts are checked against the roots.
     for &d in &[100usize, 1000] {
-        let fam = PolyFamily::new(PlantParams::new(0.0, 0.01).unwrap(), d).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(0.0, 0.01).unwrap(), d).unwrap();
         let lin = (1e-4 + 0.01) / (d as f64 + 0.5);
         let c_in = fam.coefficients(0.5 * lin, 1e-4);
         let c_out = fam.coefficients(2.0 * lin, 1e-4);

@@ -6,8 +6,9 @@
 //! statements, or published examples, never from program output.
 
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+use hapstab::paper::NormalizedFamily;
 use hapstab::params::{Arm, Effective};
-use hapstab::{AffineFamily, PlantParams, PolyFamily};
+use hapstab::{AffineFamily, PlantParams};
 
 fn tf_loop(num: &[f64], den: &[f64], period: f64, delay_time: f64) -> Loop {
     Loop::new(
@@ -318,7 +319,7 @@ fn transfer_function_equals_mass_spring_damper() {
 }
 
 /// The normalized view: the paper's loop in physical units has (α, β) = (KT²/m, BT/m) as
-/// its wall units, and its family equals PolyFamily's.
+/// its wall units, and its family equals NormalizedFamily's.
 #[test]
 fn physical_paper_loop_has_the_normalized_view() {
     let e = Effective::new(1.1, 7.5, 350.0).unwrap();
@@ -328,7 +329,7 @@ fn physical_paper_loop_has_the_normalized_view() {
     assert!((f.scale.stiffness - 1.1 / (t * t)).abs() < 1e-9);
     let pp = PlantParams::from_physical(&e, t).unwrap();
     assert_eq!(lp.paper_view(), Some(pp));
-    let pf = PolyFamily::new(pp, 2).unwrap();
+    let pf = NormalizedFamily::new(pp, 2).unwrap();
     let (alpha, beta) = (0.02, 0.3);
     assert!(max_diff(&f.coefficients(alpha, beta), &pf.coefficients(alpha, beta)) < 1e-15);
 }

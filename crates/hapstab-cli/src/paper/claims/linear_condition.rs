@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use anyhow::Result;
-use hapstab::linear::{error_curve, linear_check, routh_hurwitz_normalized};
+use hapstab::paper::linear::{error_curve, linear_check, routh_hurwitz_normalized};
 use hapstab::{Normalized, PlantParams};
 
 use super::{Claim, Verdict, pct};

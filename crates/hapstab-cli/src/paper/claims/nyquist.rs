@@ -5,9 +5,10 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use anyhow::Result;
-use hapstab::nyquist::{passive_region, unit_circle_pole};
+use hapstab::PlantParams;
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::nyquist::{passive_region, unit_circle_pole};
 use hapstab::stability::{Verdict as Stab, roots};
-use hapstab::{PlantParams, PolyFamily};
 
 use super::{Claim, Verdict};
 use crate::output::sig;
@@ -61,7 +62,7 @@ pub(super) fn c7(r: &Results) -> Result<Claim> {
     })?;
     // The origin is limit stable for every γ (p(z) = z(z² − a1 z + 1) at α = β = 0 for δ = 0).
     let origin_marginal = [1e-3, 0.5, 2.0, 5.0, 9.0].iter().all(|&g| {
-        PolyFamily::new(
+        NormalizedFamily::new(
             PlantParams {
                 gamma: g,
                 delta: 0.0,
@@ -145,7 +146,7 @@ pub(super) fn c9(r: &Results) -> Result<Claim> {
     let g = PI * PI;
     let mut worst: f64 = 0.0;
     for d in [0usize, 1, 2, 5] {
-        let fam = PolyFamily::new(
+        let fam = NormalizedFamily::new(
             PlantParams {
                 gamma: g,
                 delta: 0.0,

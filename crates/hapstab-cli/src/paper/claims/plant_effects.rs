@@ -4,7 +4,8 @@
 use std::collections::BTreeMap;
 
 use anyhow::Result;
-use hapstab::{PlantParams, PolyFamily};
+use hapstab::PlantParams;
+use hapstab::paper::NormalizedFamily;
 
 use super::{Claim, FIG5_ALPHA, FIG5_BETA, PERIOD, VISIBLE, Verdict, c4_key, c4_plants, pct};
 use crate::output::sig;
@@ -54,15 +55,15 @@ pub(super) fn c1(r: &Results) -> Result<Claim> {
 /// Largest |Δα| of the exact upper (bottom-right) boundary between γ = 0 and γ = 0.001 at
 /// equal β over the part of Fig. 5's window where both exist.
 pub(super) fn bottom_shift(delta: f64) -> Result<f64> {
-    let f0 = PolyFamily::new(PlantParams::new(0.0, delta)?, 0)?;
-    let f1 = PolyFamily::new(PlantParams::new(GAMMA_ARM, delta)?, 0)?;
+    let f0 = NormalizedFamily::new(PlantParams::new(0.0, delta)?, 0)?;
+    let f1 = NormalizedFamily::new(PlantParams::new(GAMMA_ARM, delta)?, 0)?;
     let mut worst: f64 = 0.0;
     let n = 200;
     for i in 0..=n {
         let b = FIG5_BETA.0 + (FIG5_BETA.1 - FIG5_BETA.0) * i as f64 / n as f64;
         if let (Some(a0), Some(a1)) = (
-            hapstab::linear::exact_upper_alpha(&f0, b),
-            hapstab::linear::exact_upper_alpha(&f1, b),
+            hapstab::paper::linear::exact_upper_alpha(&f0, b),
+            hapstab::paper::linear::exact_upper_alpha(&f1, b),
         ) && a0.max(a1) > FIG5_ALPHA.0
             && a0.min(a1) < FIG5_ALPHA.1
         {

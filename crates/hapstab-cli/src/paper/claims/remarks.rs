@@ -4,9 +4,9 @@
 use std::collections::BTreeMap;
 
 use anyhow::Result;
-use hapstab::nyquist::nyquist_stiffness;
+use hapstab::paper::nyquist::nyquist_stiffness;
+use hapstab::paper::reference::{DiscretePlant, eq10_coefficients};
 use hapstab::params::Device;
-use hapstab::plant::{DiscretePlant, eq10_coefficients};
 
 use super::{Claim, PERIOD, Verdict};
 use crate::output::sig;

@@ -2,8 +2,8 @@
 //! check) and their parallel run.
 
 use anyhow::{Context, Result};
-use hapstab::linear::{ValidityPoint, validity_points};
-use hapstab::nyquist::{
+use hapstab::paper::linear::{ValidityPoint, validity_points};
+use hapstab::paper::nyquist::{
     PassiveCheck, RobustOptions, RobustRegion, passive_inside_robust, robust_region,
 };
 use rayon::prelude::*;

@@ -13,8 +13,8 @@ use std::f64::consts::PI;
 
 use anyhow::{Context, Result};
 use hapstab::PlantParams;
-use hapstab::linear::ValidityPoint;
-use hapstab::nyquist::{
+use hapstab::paper::linear::ValidityPoint;
+use hapstab::paper::nyquist::{
     DEGENERATE_OFFSET, PassiveCheck, RobustOptions, RobustRegion, unit_circle_pole,
 };
 use serde::Serialize;

@@ -1,7 +1,7 @@
 //! One stable region of the paper's loop, ready for drawing and tabulating.
 
 use anyhow::{Context, Result};
-use hapstab::PolyFamily;
+use hapstab::paper::NormalizedFamily;
 use hapstab::region::stable_region;
 use serde::Serialize;
 
@@ -41,7 +41,7 @@ pub(super) fn extent(rings: &[Vec<(f64, f64)>]) -> (f64, f64, f64) {
 
 /// The exact stable region of one key ([`stable_region`]'s polygons).
 pub fn region(key: Key) -> Result<Region> {
-    let fam = PolyFamily::new(key.plant()?, key.d)?;
+    let fam = NormalizedFamily::new(key.plant()?, key.d)?;
     let r = stable_region(&fam).with_context(|| format!("stable region of {key:?}"))?;
     let rings: Vec<Vec<(f64, f64)>> = r
         .polygons

@@ -2,7 +2,7 @@
 //! passive and robust regions.
 
 use anyhow::Result;
-use hapstab::nyquist::passive_region;
+use hapstab::paper::nyquist::passive_region;
 use hapstab_plot::{Figure, Grid, Marker, RGBColor, Series, palette};
 
 use super::legend::place_legend;

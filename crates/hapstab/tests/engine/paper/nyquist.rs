@@ -1,28 +1,29 @@
-//! Sections VII and VIII (`hapstab::nyquist`): the Nyquist frequency's stiffness (Remark 4)
+//! Sections VII and VIII (`hapstab::paper::nyquist`): the Nyquist frequency's stiffness (Remark 4)
 //! and regions, the pole at z = −1, the robust region and the passive region inside it, the γ
 //! sweep of Fig. 8, and the robust K_max over the human operator's box.
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
 use crate::common::SplitMix;
+use hapstab::PlantParams;
 use hapstab::boundary::stable_alpha_intervals;
-use hapstab::nyquist::{
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::nyquist::{
     BoxOptions, PlantBox, RobustOptions, SweepInput, beta_bound, gamma_sweep, nyquist_gamma,
     nyquist_regions, nyquist_stiffness, passive_inside_robust, passive_region, region_summary,
     robust_kmax, robust_region,
 };
 use hapstab::stability::{Verdict, roots, schur_stable};
 use hapstab::verdict::decide_coefficients;
-use hapstab::{PlantParams, PolyFamily};
 use std::f64::consts::PI;
 
 const PI2: f64 = PI * PI;
 
-fn fam(gamma: f64, delta: f64, d: usize) -> PolyFamily {
-    PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
+fn fam(gamma: f64, delta: f64, d: usize) -> NormalizedFamily {
+    NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
 }
 
-fn stable(f: &PolyFamily, alpha: f64, beta: f64) -> bool {
+fn stable(f: &NormalizedFamily, alpha: f64, beta: f64) -> bool {
     schur_stable(&f.coefficients(alpha, beta))
 }
 

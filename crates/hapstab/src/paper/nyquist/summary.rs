@@ -7,15 +7,15 @@ use serde::Serialize;
 use super::search::{bisect_pred, golden_max};
 use super::{Progress, no_progress, nyquist_gamma, unit_circle_pole};
 use crate::boundary::{Interval, stable_alpha_intervals};
-use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, non_negative};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
 /// A bound B such that no (α, β) with |β| ≥ B is stable: |p(0)| = |n0 β| < 1 is necessary
 /// (the product of the roots). Infinite when n0 = 0.
-pub fn beta_bound(fam: &PolyFamily) -> f64 {
-    let n0 = fam.plant.n0.abs();
+pub fn beta_bound(fam: &NormalizedFamily) -> f64 {
+    let n0 = fam.numerator_constant().abs();
     if n0 > 0.0 { 1.0 / n0 } else { f64::INFINITY }
 }
 
@@ -64,7 +64,7 @@ fn union_extent(ivs: &[Interval]) -> Option<(f64, f64, f64)> {
 /// the β extent by bisection; the area is the trapezoidal rule on the grid.
 pub fn region_summary(pp: PlantParams, d: usize, beta_samples: usize) -> Result<RegionSummary> {
     let pp = PlantParams::new(pp.gamma, pp.delta)?;
-    let fam = PolyFamily::new(pp, d)?;
+    let fam = NormalizedFamily::new(pp, d)?;
     let n = beta_samples.max(8);
     let mut out = RegionSummary {
         gamma: pp.gamma,

@@ -1,4 +1,4 @@
-//! The wall map (`hapstab::map`) against the exact region.
+//! The wall map (`hapstab::paper::map`) against the exact region.
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
@@ -9,7 +9,7 @@ use crate::common::general::{family, general_loops};
 #[test]
 fn wall_map_agrees_with_the_region() {
     use hapstab::boundary::AlphaBeta;
-    use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
+    use hapstab::paper::map::{Axis, AxisRange, MapKind, wall_map};
     for (name, lp) in general_loops().into_iter().skip(6) {
         let fam = family(&lp);
         let r = hapstab::region::stable_region(&fam).unwrap();

@@ -5,8 +5,9 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::closed_loop::{AffineFamily, PolyFamily};
+use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::{Normalized, PlantParams};
 use crate::stability::Analysis;
@@ -209,7 +210,7 @@ impl MapSpec {
 /// exponentials where the general discretization would cost a matrix exponential. The two
 /// agree to rounding (tested in `crate::zoh`).
 fn paper_coefficients(
-    pl: &crate::plant::DiscretePlant,
+    pl: &crate::paper::reference::DiscretePlant,
     d: usize,
     alpha: f64,
     beta: f64,
@@ -231,7 +232,7 @@ fn paper_coefficients(
 pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sync)) -> Map {
     let deg = spec.base.d + 3;
     let fixed = if spec.plant_fixed() {
-        PolyFamily::new(spec.base.plant(), spec.base.d).ok()
+        NormalizedFamily::new(spec.base.plant(), spec.base.d).ok()
     } else {
         None
     };
@@ -241,7 +242,7 @@ pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sy
             Some(fam) => wall_point(fam, p.alpha, p.beta, kind, c),
             None => {
                 paper_coefficients(
-                    &crate::plant::DiscretePlant::from_params(PlantParams {
+                    &crate::paper::reference::DiscretePlant::from_params(PlantParams {
                         gamma: p.gamma,
                         delta: p.delta,
                     }),

@@ -1,6 +1,11 @@
 //! Exact discrete-time equivalent of the plant 1/(ms² + bs + k) behind a zero-order hold
 //! (Section III, eq. 2–6, and eq. 10 for k = 0).
 //!
+//! The paper's closed form, kept beside the general discretization of [`crate::zoh`] as an
+//! independent reference (the tests compare the two to rounding) and for grid maps whose axes
+//! change γ or δ at every point ([`super::map`]), where a few exponentials replace a matrix
+//! exponential. Every other analysis discretizes through [`crate::zoh`].
+//!
 //! In normalized time (unit = one sample T) the plant is 1/(s² + δs + γ) with gain T²/m, so
 //!
 //! ```text

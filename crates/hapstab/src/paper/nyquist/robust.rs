@@ -1,6 +1,6 @@
 //! The robustly stable region over a γ-interval at fixed δ and d (Section VIII, Figs. 8–10):
 //! its slices, the polygon through their ends and its area. The method is in the
-//! documentation of [`crate::nyquist`].
+//! documentation of [`crate::paper::nyquist`].
 
 use rayon::prelude::*;
 use serde::Serialize;
@@ -9,8 +9,8 @@ use super::search::bisect_pred;
 use super::slice::{Config, Slice, refined_slice, robust_at, unit_configs};
 use super::{DEGENERATE_OFFSET, Progress, Ticker, beta_bound, no_progress, unit_circle_pole};
 use crate::boundary::AlphaBeta;
-use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, non_negative};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
@@ -178,7 +178,7 @@ pub fn robust_region_with_progress(
         Config {
             scale: 1.0,
             table: None,
-            fam: PolyFamily::new(pp, d).unwrap_or_else(|_| configs[0].fam.clone()),
+            fam: NormalizedFamily::new(pp, d).unwrap_or_else(|_| configs[0].fam.clone()),
         }
     };
     let slice = |b: f64| refined_slice(&configs, &gs, &neighbours, &make, b, opts.refine_gamma);

@@ -1,24 +1,25 @@
-//! The linear condition of Section VI (`hapstab::linear`, eq. 18–23): implied by the exact
+//! The linear condition of Section VI (`hapstab::paper::linear`, eq. 18–23): implied by the exact
 //! boundary's conditions, Routh–Hurwitz of the normalized loop against the cubic's roots, the
 //! validity points of Fig. 7, a loop's condition as its normalized view, fractional delays.
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
 use crate::common::SplitMix;
-use hapstab::linear::{
+use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::linear::{
     continuous_cubic_normalized, linear_alpha_limit, linear_condition, relative_error,
     routh_hurwitz, routh_hurwitz_normalized, validity_points,
 };
-use hapstab::model::{Delay, Loop, Plant, VelocityEstimator};
 use hapstab::params::{Effective, Physical, Sampling, Wall};
 use hapstab::stability::{roots, schur_stable};
-use hapstab::{AffineFamily, Error, Normalized, Param, PlantParams, PolyFamily};
+use hapstab::{AffineFamily, Error, Normalized, Param, PlantParams};
 
-fn fam(gamma: f64, delta: f64, d: usize) -> PolyFamily {
-    PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
+fn fam(gamma: f64, delta: f64, d: usize) -> NormalizedFamily {
+    NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap()
 }
 
-fn stable(f: &PolyFamily, alpha: f64, beta: f64) -> bool {
+fn stable(f: &NormalizedFamily, alpha: f64, beta: f64) -> bool {
     schur_stable(&f.coefficients(alpha, beta))
 }
 

@@ -8,8 +8,8 @@ use super::robust::gamma_samples;
 use super::slice::{Config, refined_slice, unit_configs};
 use super::{Progress, RobustOptions, Ticker, no_progress};
 use crate::boundary::AlphaBeta;
-use crate::closed_loop::PolyFamily;
 use crate::error::{Result, non_negative, positive};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
@@ -115,7 +115,7 @@ pub fn passive_inside_robust_with_progress(
     let make = |_: usize, g: f64| Config {
         scale: 1.0,
         table: None,
-        fam: PolyFamily::new(
+        fam: NormalizedFamily::new(
             PlantParams {
                 gamma: g.max(0.0),
                 delta,
@@ -163,7 +163,7 @@ pub fn passive_inside_robust_with_progress(
 mod tests {
     use super::*;
 
-    use crate::nyquist::polygon_area;
+    use crate::paper::nyquist::polygon_area;
 
     #[test]
     fn passive_triangle() {

@@ -1,8 +1,8 @@
-//! Section IV's parameter ranges (`hapstab::ranges`, eq. 14 and 15).
+//! Section IV's parameter ranges (`hapstab::paper::ranges`, eq. 14 and 15).
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
-use hapstab::ranges::ranges;
+use hapstab::paper::ranges::ranges;
 
 /// Eq. (14) for T = 1 ms: γ < 710·10⁻⁶, δ < 13.225·10⁻³, inside the extended range (15);
 /// the bounds scale with T² and T.

@@ -1,12 +1,12 @@
-//! The paper's plant sampled exactly (`hapstab::plant`, eq. 2–10): the zero-order hold keeps
+//! The paper's plant sampled exactly (`hapstab::paper::reference`, eq. 2–10): the zero-order hold keeps
 //! the DC gain, p(z) is continuous across the regimes of the plant's poles, and it is a
 //! constant multiple of the paper's eq. (9).
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
 use hapstab::PlantParams;
-use hapstab::closed_loop::PolyFamily;
-use hapstab::plant::{DiscretePlant, eq10_coefficients};
+use hapstab::paper::NormalizedFamily;
+use hapstab::paper::reference::{DiscretePlant, eq10_coefficients};
 use hapstab::stability::roots;
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -67,7 +67,7 @@ fn zero_order_hold_keeps_dc_gain() {
         assert!(rel(p.numerator_at_one(), n1) < 1e-14);
         // a root at z = 1 appears exactly at α = −γ
         for dd in [0usize, 1, 3] {
-            let fam = PolyFamily::new(PlantParams::new(g, d).unwrap(), dd).unwrap();
+            let fam = NormalizedFamily::new(PlantParams::new(g, d).unwrap(), dd).unwrap();
             let c = fam.coefficients(-g, 0.37);
             let p1: f64 = c.iter().sum();
             assert!(p1.abs() < 1e-14, "p(1) = {p1}");
@@ -77,7 +77,7 @@ fn zero_order_hold_keeps_dc_gain() {
                 .map(|z| (z - 1.0).norm())
                 .fold(f64::INFINITY, f64::min);
             assert!(closest < 1e-9, "γ={g} δ={d} d={dd}: {closest}");
-            assert_eq!(fam.value_at_one(-g), 0.0);
+            assert_eq!(fam.value_at_one(-g, 0.37), 0.0);
         }
     }
 }
@@ -137,7 +137,7 @@ fn paper_polynomial_is_constant_multiple() {
             let disc = delta * delta - 4.0 * gamma;
             prop_assume!(disc.abs() > 0.1 * (delta * delta + 4.0 * gamma));
             let paper = paper_eq9(alpha, beta, gamma, delta, d);
-            let ours = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
+            let ours = NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d)
                 .unwrap()
                 .coefficients(alpha, beta);
             let k = paper[d + 3] / ours[d + 3];

@@ -15,9 +15,9 @@
 use serde::Serialize;
 
 use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_alpha_intervals};
-use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite};
 use crate::model::{Loop, PlantModel};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::{Normalized, Physical, PlantParams, check_delay};
 use crate::zoh::WallScale;
@@ -185,8 +185,8 @@ pub fn linear_check(n: &Normalized) -> LinearCheck {
 /// D-decomposition of [`crate::boundary::stable_alpha_intervals`]: the interval that starts
 /// on the left boundary α = −γ, or, for long delays where instability sets in before the
 /// net stiffness γ + α reaches zero, the one that contains α = 0. None when neither exists.
-pub fn exact_upper_alpha(fam: &PolyFamily, beta: f64) -> Option<f64> {
-    let g = fam.plant.gamma;
+pub fn exact_upper_alpha(fam: &NormalizedFamily, beta: f64) -> Option<f64> {
+    let g = fam.gamma();
     let tol = 1e-12 * g.max(1e-300) + 1e-300;
     let ivs = stable_alpha_intervals(fam, beta);
     ivs.iter()
@@ -198,10 +198,10 @@ pub fn exact_upper_alpha(fam: &PolyFamily, beta: f64) -> Option<f64> {
 /// The relative error of eq. (24), |(α_lin − α)/(α + γ)|, at β: α on the exact upper
 /// boundary ([`exact_upper_alpha`]) and α_lin from (23) (Section VII). None where no stable
 /// interval starts at α = −γ.
-pub fn relative_error(fam: &PolyFamily, beta: f64) -> Option<f64> {
+pub fn relative_error(fam: &NormalizedFamily, beta: f64) -> Option<f64> {
     let a = exact_upper_alpha(fam, beta)?;
-    let lin = linear_alpha_limit(beta, fam.plant.delta, fam.d);
-    Some(((lin - a) / (a + fam.plant.gamma)).abs())
+    let lin = linear_alpha_limit(beta, fam.delta(), fam.d);
+    Some(((lin - a) / (a + fam.gamma())).abs())
 }
 
 /// A point of the exact boundary where the error (24) first reaches a level (Fig. 7).
@@ -314,11 +314,11 @@ pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<
             });
         }
     }
-    let fam = PolyFamily::new(pp, d)?;
+    let fam = NormalizedFamily::new(pp, d)?;
     // The region ends where the closed-form z = −1 bound and the Schur bound |β| < 1/|n0|
     // make it; stop the scan well beyond (no stable region at β ≥ 1/|n0|: |p(0)| = |n0 β|).
-    let beta_cap = if fam.plant.n0.abs() > 0.0 {
-        1.0 / fam.plant.n0.abs()
+    let beta_cap = if fam.numerator_constant().abs() > 0.0 {
+        1.0 / fam.numerator_constant().abs()
     } else {
         f64::INFINITY
     };
@@ -339,15 +339,15 @@ pub fn validity_points(pp: PlantParams, d: usize, levels: &[f64]) -> Result<Vec<
 }
 
 /// The error (24) at β, infinite where no stable interval starts at α = −γ.
-fn error_at(fam: &PolyFamily, beta: f64) -> f64 {
+fn error_at(fam: &NormalizedFamily, beta: f64) -> f64 {
     relative_error(fam, beta).unwrap_or(f64::INFINITY)
 }
 
 /// The lines of the (α, β)-plane on which the error (24) equals `level` (with α + γ > 0),
 /// parameterized by β: α − α_lin = ∓L(α + γ) gives α = (α_lin(β) ∓ Lγ)/(1 ± L).
-fn level_lines(fam: &PolyFamily, level: f64) -> Vec<WallLine> {
+fn level_lines(fam: &NormalizedFamily, level: f64) -> Vec<WallLine> {
     let c = fam.d as f64 + 0.5;
-    let (g, delta) = (fam.plant.gamma, fam.plant.delta);
+    let (g, delta) = (fam.gamma(), fam.delta());
     [1.0, -1.0]
         .into_iter()
         .filter(|s| 1.0 + s * level > 0.0)
@@ -369,7 +369,7 @@ fn level_lines(fam: &PolyFamily, level: f64) -> Vec<WallLine> {
 
 /// The validity point from the exact crossings of the level lines, if the first one on the
 /// upper boundary is confirmed by the coarse check below it.
-fn exact_crossing(fam: &PolyFamily, level: f64, beta_cap: f64) -> Option<ValidityPoint> {
+fn exact_crossing(fam: &NormalizedFamily, level: f64, beta_cap: f64) -> Option<ValidityPoint> {
     let b0 = VALIDITY_BETA_START;
     let mut betas: Vec<f64> = level_lines(fam, level)
         .iter()
@@ -393,7 +393,7 @@ fn exact_crossing(fam: &PolyFamily, level: f64, beta_cap: f64) -> Option<Validit
 }
 
 /// The validity point by the geometric scan and bisection (see [`validity_points`]).
-fn scanned_point(fam: &PolyFamily, level: f64, beta_cap: f64) -> Result<ValidityPoint> {
+fn scanned_point(fam: &NormalizedFamily, level: f64, beta_cap: f64) -> Result<ValidityPoint> {
     let err = |b: f64| error_at(fam, b);
     let mut lo = VALIDITY_BETA_START;
     let mut hi = lo;
@@ -434,15 +434,15 @@ fn scanned_point(fam: &PolyFamily, level: f64, beta_cap: f64) -> Result<Validity
     Ok(p)
 }
 
-fn point(fam: &PolyFamily, level: f64, beta: f64, at_start: bool) -> ValidityPoint {
+fn point(fam: &NormalizedFamily, level: f64, beta: f64, at_start: bool) -> ValidityPoint {
     let alpha = exact_upper_alpha(fam, beta).unwrap_or(f64::NAN);
-    let alpha_linear = linear_alpha_limit(beta, fam.plant.delta, fam.d);
+    let alpha_linear = linear_alpha_limit(beta, fam.delta(), fam.d);
     ValidityPoint {
         level,
         alpha,
         beta,
         alpha_linear,
-        error: ((alpha_linear - alpha) / (alpha + fam.plant.gamma)).abs(),
+        error: ((alpha_linear - alpha) / (alpha + fam.gamma())).abs(),
         at_start,
     }
 }
@@ -462,7 +462,7 @@ pub struct ErrorSample {
 
 /// The error (24) sampled at the given β values (Section VII).
 pub fn error_curve(pp: PlantParams, d: usize, betas: &[f64]) -> Result<Vec<ErrorSample>> {
-    let fam = PolyFamily::new(pp, d)?;
+    let fam = NormalizedFamily::new(pp, d)?;
     betas
         .iter()
         .map(|&b| {
@@ -494,8 +494,8 @@ mod tests {
             (0.0, 0.015, 1),
             (0.001, 0.005, 2),
         ] {
-            let fam = PolyFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap();
-            let cap = 1.0 / fam.plant.n0.abs();
+            let fam = NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap();
+            let cap = 1.0 / fam.numerator_constant().abs();
             for level in [0.02, 0.05, 0.2] {
                 let exact = exact_crossing(&fam, level, cap).expect("a crossing");
                 let scan = scanned_point(&fam, level, cap).unwrap();

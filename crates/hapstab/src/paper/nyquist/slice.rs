@@ -8,8 +8,8 @@ use super::search::{golden_max, golden_min};
 use crate::boundary::{
     CircleTable, Interval, stable_alpha_intervals, stable_alpha_intervals_tabulated,
 };
-use crate::closed_loop::PolyFamily;
 use crate::error::Result;
+use crate::paper::NormalizedFamily;
 use crate::params::PlantParams;
 
 /// Intersection of two sorted lists of disjoint open intervals.
@@ -33,7 +33,7 @@ fn intersect(a: &[Interval], b: &[Interval]) -> Vec<Interval> {
 #[derive(Debug, Clone)]
 pub(super) struct Config {
     pub(super) scale: f64,
-    pub(super) fam: PolyFamily,
+    pub(super) fam: NormalizedFamily,
     /// The family's crossing scan, computed on first use when the configuration is one of
     /// the samples that many β-slices cut (None for the single-use configurations of a
     /// golden-section refinement).
@@ -48,7 +48,7 @@ pub(super) fn unit_configs(gammas: &[f64], delta: f64, d: usize) -> Result<Vec<C
             Ok(Config {
                 scale: 1.0,
                 table: Some(OnceLock::new()),
-                fam: PolyFamily::new(PlantParams::new(g, delta)?, d)?,
+                fam: NormalizedFamily::new(PlantParams::new(g, delta)?, d)?,
             })
         })
         .collect()

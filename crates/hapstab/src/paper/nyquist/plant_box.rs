@@ -11,8 +11,8 @@ use super::search::golden_max;
 use super::slice::{Config, refined_slice_args};
 use super::{Progress, Ticker, beta_bound, no_progress};
 use crate::boundary::AlphaBeta;
-use crate::closed_loop::PolyFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
+use crate::paper::NormalizedFamily;
 use crate::param::Param;
 use crate::params::{PlantParams, check_delay};
 
@@ -172,7 +172,7 @@ fn box_configs(pb: &PlantBox, opts: BoxOptions) -> Result<(Vec<Config>, BoxCoord
                 configs.push(Config {
                     scale: m / m_ref,
                     table: Some(OnceLock::new()),
-                    fam: PolyFamily::new(pp, pb.d)?,
+                    fam: NormalizedFamily::new(pp, pb.d)?,
                 });
                 coords.push([m, b, k]);
             }
@@ -211,7 +211,7 @@ fn box_slice(
         Config {
             scale: m / m_ref,
             table: None,
-            fam: PolyFamily::new(pp, pb.d).unwrap_or_else(|_| configs[j].fam.clone()),
+            fam: NormalizedFamily::new(pp, pb.d).unwrap_or_else(|_| configs[j].fam.clone()),
         }
     };
     let stiff: Vec<f64> = coords.iter().map(|c| c[2]).collect();

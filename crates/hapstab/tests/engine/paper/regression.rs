@@ -5,10 +5,11 @@
 //! interval at β (`check`) and α_max (`boundary`); `benches/baseline/paper_regression.py`
 //! made it. Agreement is required to 1e-12.
 
+use hapstab::PlantParams;
 use hapstab::boundary::stable_alpha_intervals;
+use hapstab::paper::NormalizedFamily;
 use hapstab::region::stable_region;
 use hapstab::stability::Analysis;
-use hapstab::{PlantParams, PolyFamily};
 use serde::Deserialize;
 
 #[derive(Deserialize)]
@@ -40,12 +41,12 @@ const COEFFICIENT_ROUNDING: f64 = 1e-15;
 
 #[test]
 fn general_engine_reproduces_the_paper_engine() {
-    let text = include_str!("../fixtures/paper_regression.json");
+    let text = include_str!("../../fixtures/paper_regression.json");
     let fx: Fixture = serde_json::from_str(text).expect("fixture");
     assert_eq!(fx.points.len(), 1000);
     let mut with_interval = 0;
     for (i, p) in fx.points.iter().enumerate() {
-        let fam = PolyFamily::new(PlantParams::new(p.gamma, p.delta).unwrap(), p.d).unwrap();
+        let fam = NormalizedFamily::new(PlantParams::new(p.gamma, p.delta).unwrap(), p.d).unwrap();
         let a = Analysis::of_poly(&fam.coefficients(p.alpha, p.beta)).unwrap();
         assert!(
             close(a.spectral_radius, p.spectral_radius, 1e-12),
