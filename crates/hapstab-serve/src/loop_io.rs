@@ -7,15 +7,14 @@ use hapstab::loop_spec::{LoopInput, parse};
 use hapstab::{AffineFamily, Loop, PlantModel};
 use serde::Serialize;
 
-use crate::api::wall_analyses::{loop_of, wall_of};
+use crate::api::wall_analyses::wall_of;
 use crate::query::{ApiError, PlantSpec, lib_error};
 
 /// The loop file of a request and its optional wall (a, b) in the page's units.
 pub fn saved_loop(spec: &PlantSpec, point: Option<(f64, f64)>) -> Result<String, ApiError> {
-    let lp = loop_of(spec)?;
     let wall = point.map(|(a, b)| wall_of(spec, a, b));
-    let normalized = spec.physical.is_none() && spec.general.is_none();
-    Ok(LoopInput::new(&lp, normalized, wall).to_json() + "\n")
+    let normalized = spec.physical.is_none();
+    Ok(LoopInput::new(spec.sys.lp(), normalized, wall).to_json() + "\n")
 }
 
 /// The answer of `/api/open`: the page's query for the file's loop (and wall, as α, β).

@@ -8,7 +8,7 @@ use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use hapstab::loop_spec::{LoopSpec, VelocitySpec};
-use hapstab::params::{Arm, Device, Effective, PlantParams, Sampling};
+use hapstab::params::{Arm, Device, Effective, PlantParams};
 use hapstab::{Delay, Param, Plant, PlantModel, System, TwoMass, VelocityEstimator};
 use serde::Serialize;
 
@@ -340,24 +340,62 @@ pub struct PhysicalSpec {
     pub b_per_beta: f64,
 }
 
-/// The plant (γ, δ, d) of a request, from normalized or physical parameters; for a loop
-/// beyond the paper's (another plant, an actuator lag, a velocity filter, a fractional
-/// delay) the loop itself with its family, and (γ, δ) hold only the static stiffness.
+/// The loop of a request, built once for every mode: its analysis object, the paper's
+/// plant (γ, δ, d) when the loop is the paper's, and its physical description.
 #[derive(Debug, Clone)]
 pub struct PlantSpec {
-    pub plant: PlantParams,
-    pub d: usize,
+    /// The loop with its family ([`System`]); the normalized mode's loop has m = T = 1
+    /// ([`hapstab::Loop::normalized`]), so that its wall units are (α, β).
+    pub sys: System,
+    /// The paper's plant and delay ([`hapstab::Loop::paper_view`]): None beyond the paper's
+    /// loop (another plant, an actuator lag, a velocity filter, a fractional delay).
+    pub paper: Option<PaperPlant>,
+    /// The physical description; None in the normalized mode.
     pub physical: Option<PhysicalSpec>,
-    pub general: Option<System>,
+}
+
+/// The paper's plant (γ, δ) of Table I and its delay d in samples.
+#[derive(Debug, Clone, Copy)]
+pub struct PaperPlant {
+    /// Normalized stiffness γ and damping δ.
+    pub plant: PlantParams,
+    /// Delay d in samples.
+    pub d: usize,
 }
 
 impl PlantSpec {
-    /// The delay that prices a computation: d for the paper's loop; for a general loop the
-    /// d of a paper loop of the same degree of p(z) (degree d + 3).
+    /// The delay that prices a computation: the d of a paper loop of the same degree of p(z)
+    /// (degree d + 3; for the paper's loop its own d).
     pub fn cost_d(&self) -> usize {
-        match &self.general {
-            Some(g) => g.family().degree().saturating_sub(3),
-            None => self.d,
+        self.sys.family().degree().saturating_sub(3)
+    }
+
+    /// The (γ, δ) and d the page is drawn with: the paper's plant, or beyond the paper's loop
+    /// its static stiffness in wall units as γ (the z = 1 edge lies at a = −γ), δ = 0 and the
+    /// delay's whole samples.
+    pub fn view(&self) -> PaperPlant {
+        self.paper.unwrap_or_else(|| {
+            let fam = self.sys.family();
+            let lp = self.sys.lp();
+            let static_k = lp.plant.dc_stiffness().unwrap_or(0.0);
+            PaperPlant {
+                plant: PlantParams {
+                    gamma: (static_k / fam.scale.stiffness).max(0.0),
+                    delta: 0.0,
+                },
+                d: lp.delay.samples,
+            }
+        })
+    }
+
+    /// The query parameter that sets the degree of p(z), with its value: `delay_time` for a
+    /// fractional delay, else `d`.
+    pub fn delay_param(&self) -> (&'static str, String) {
+        let lp = self.sys.lp();
+        if lp.delay.fraction > 0.0 {
+            ("delay_time", fmt(lp.delay_time()))
+        } else {
+            ("d", lp.delay.samples.to_string())
         }
     }
 }
@@ -398,16 +436,16 @@ fn delay(p: &Params) -> Result<usize, ApiError> {
     )
 }
 
-/// Reads `mode` (normalized | physical) and the plant parameters of that mode.
+/// Reads `mode` (normalized | physical) and the loop of that mode: (γ, δ, d) of the paper's
+/// loop in normalized units, or a physical loop through [`LoopSpec`] (the paper's device held
+/// by an arm, or any plant, actuator lag, velocity estimator and fractional delay).
 pub(crate) fn plant_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     let mode = p.choice("mode", &["normalized", "physical"], "normalized")?;
     if mode == "normalized" {
         return normalized_spec(p);
     }
-    if LOOP_ONLY.iter().any(|n| p.has(n)) || fractional_delay(p)? {
-        return general_spec(p);
-    }
-    paper_physical_spec(p)
+    refuse(p, &["gamma", "delta"], "belongs to mode=normalized")?;
+    physical_spec(p)
 }
 
 /// The normalized mode: (γ, δ, d) of the paper's loop, no physical parameter.
@@ -417,89 +455,12 @@ fn normalized_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     let delta = p.num_in("delta", 0.0, MAX_DELTA, " (normalized damping δ = bT/m)")?;
     let d = delay(p)?;
     let plant = PlantParams::new(gamma, delta).map_err(lib_error)?;
+    let lp = hapstab::Loop::normalized(plant, d).map_err(lib_error)?;
     Ok(PlantSpec {
-        plant,
-        d,
+        sys: System::new(lp).map_err(lib_error)?,
+        paper: Some(PaperPlant { plant, d }),
         physical: None,
-        general: None,
     })
-}
-
-/// The physical mode on the paper's loop: device + arm, period, whole-sample delay.
-fn paper_physical_spec(p: &Params) -> Result<PlantSpec, ApiError> {
-    refuse(p, &["gamma", "delta"], "belongs to mode=normalized")?;
-    let device = device(p)?;
-    let arm = arm(p)?;
-    let period = p.num_in("period", MIN_PERIOD, MAX_PERIOD, " s (sampling period T)")?;
-    let d = whole_delay(p, period)?;
-    if device.mass + arm.mass <= 0.0 {
-        return Err(ApiError::param(
-            "device_mass",
-            &fmt(device.mass),
-            format!(
-                "the effective mass m = device_mass + arm_mass must be > 0 (got {} + {})",
-                fmt(device.mass),
-                fmt(arm.mass)
-            ),
-        ));
-    }
-    let eff = Effective::combine(device, arm).map_err(lib_error)?;
-    let plant = PlantParams::from_physical(&eff, period).map_err(lib_error)?;
-    check_explorer_range(&plant)?;
-    Ok(PlantSpec {
-        plant,
-        d,
-        physical: Some(PhysicalSpec {
-            device_mass: device.mass,
-            device_damping: device.damping,
-            arm_mass: arm.mass,
-            arm_damping: arm.damping,
-            arm_stiffness: arm.stiffness,
-            period,
-            delay_time: d as f64 * period,
-            mass: eff.mass,
-            damping: eff.damping,
-            stiffness: eff.stiffness,
-            k_per_alpha: eff.mass / (period * period),
-            b_per_beta: eff.mass / period,
-        }),
-        general: None,
-    })
-}
-
-/// The delay of the paper's loop in whole samples: `d`, or `delay_time` (s) a whole number
-/// of periods.
-fn whole_delay(p: &Params, period: f64) -> Result<usize, ApiError> {
-    match (p.raw("d"), p.opt_num("delay_time")?) {
-        (Some(v), Some(_)) => Err(ApiError::param(
-            "d",
-            v,
-            "give either 'd' (samples) or 'delay_time' (s), not both".into(),
-        )),
-        (Some(_), None) => delay(p),
-        (None, Some(td)) => {
-            let s = Sampling::from_delay_time(period, td).map_err(|e| {
-                ApiError::param(
-                    "delay_time",
-                    &fmt(td),
-                    format!("parameter 'delay_time': {e}"),
-                )
-            })?;
-            if s.delay > MAX_D {
-                return Err(ApiError::param(
-                    "delay_time",
-                    &fmt(td),
-                    format!(
-                        "parameter 'delay_time' must be at most {MAX_D} sampling periods for interactive use (got {} s = {} periods)",
-                        fmt(td),
-                        s.delay
-                    ),
-                ));
-            }
-            Ok(s.delay)
-        }
-        (None, None) => Err(missing("delay_time")),
-    }
 }
 
 /// The (γ, δ) that physical parameters give are within the explorer's bounds.
@@ -516,19 +477,6 @@ fn check_explorer_range(plant: &PlantParams) -> Result<(), ApiError> {
     Ok(())
 }
 
-/// Parameters that make a physical loop other than the paper's.
-const LOOP_ONLY: &[&str] = &[
-    "estimator",
-    "force_lag",
-    "motor_mass",
-    "motor_damping",
-    "handle_mass",
-    "transmission_stiffness",
-    "transmission_damping",
-    "plant_num",
-    "plant_den",
-];
-
 /// No one-mass device (a two-mass device or a transfer function describes the plant).
 const NO_DEVICE: Device = Device {
     mass: 0.0,
@@ -537,14 +485,6 @@ const NO_DEVICE: Device = Device {
 
 /// Longest actuator time constant accepted: a current loop is far faster than 1 s.
 const MAX_FORCE_LAG: f64 = 1.0;
-
-/// True when `delay_time` is not a whole number of periods (the paper's loop needs one).
-fn fractional_delay(p: &Params) -> Result<bool, ApiError> {
-    let (Some(td), Some(t)) = (p.opt_num("delay_time")?, p.opt_num("period")?) else {
-        return Ok(false);
-    };
-    Ok(Delay::from_time(td, t).is_ok_and(|d| d.fraction > 0.0))
-}
 
 /// None of `names` may be given: the first one present is refused with `why`.
 fn refuse(p: &Params, names: &[&str], why: &str) -> Result<(), ApiError> {
@@ -633,7 +573,19 @@ fn plant_model(p: &Params) -> Result<PlantModel, ApiError> {
             arm: arm(p)?,
         }));
     }
-    let eff = Effective::combine(device(p)?, arm(p)?).map_err(lib_error)?;
+    let (device, arm) = (device(p)?, arm(p)?);
+    if device.mass + arm.mass <= 0.0 {
+        return Err(ApiError::param(
+            "device_mass",
+            &fmt(device.mass),
+            format!(
+                "the effective mass m = device_mass + arm_mass must be > 0 (got {} + {})",
+                fmt(device.mass),
+                fmt(arm.mass)
+            ),
+        ));
+    }
+    let eff = Effective::combine(device, arm).map_err(lib_error)?;
     Ok(PlantModel::MassSpringDamper(eff))
 }
 
@@ -672,9 +624,9 @@ fn general_delay(p: &Params, period: f64) -> Result<Delay, ApiError> {
     Ok(delay)
 }
 
-/// A physical loop beyond the paper's: its plant model, actuator lag, velocity estimator
-/// and (possibly fractional) delay, validated, with its family.
-fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
+/// A physical loop: its plant model, actuator lag, velocity estimator and (possibly
+/// fractional) delay, validated through [`LoopSpec`], with its family.
+fn physical_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     let model = plant_model(p)?;
     let period = p.num_in("period", MIN_PERIOD, MAX_PERIOD, " s (sampling period T)")?;
     let lag = p.num_or(
@@ -725,12 +677,13 @@ fn general_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     };
     let lp = spec.resolve().map_err(lib_error)?;
     let sys = System::new(lp).map_err(lib_error)?;
-    Ok(general_plant_spec(sys))
+    physical_plant_spec(sys)
 }
 
-/// The [`PlantSpec`] of a general loop: its units for the page (K = a·k_per_alpha, B =
-/// b·b_per_beta) and its static stiffness.
-fn general_plant_spec(sys: System) -> PlantSpec {
+/// The [`PlantSpec`] of a physical loop: its units for the page (K = a·k_per_alpha, B =
+/// b·b_per_beta), its static stiffness and, for the paper's loop, its (γ, δ, d) within the
+/// explorer's bounds.
+fn physical_plant_spec(sys: System) -> Result<PlantSpec, ApiError> {
     let lp = sys.lp();
     let (dev, arm_, eff) = match &lp.plant.model {
         PlantModel::MassSpringDamper(e) => {
@@ -760,15 +713,21 @@ fn general_plant_spec(sys: System) -> PlantSpec {
         k_per_alpha: s.stiffness,
         b_per_beta: s.damping,
     };
-    PlantSpec {
-        plant: PlantParams {
-            gamma: (static_k / s.stiffness).max(0.0),
-            delta: 0.0,
-        },
-        d: lp.delay.samples,
+    let paper = lp
+        .paper_view()
+        .map(|plant| {
+            check_explorer_range(&plant)?;
+            Ok::<_, ApiError>(PaperPlant {
+                plant,
+                d: lp.delay.samples,
+            })
+        })
+        .transpose()?;
+    Ok(PlantSpec {
+        sys,
+        paper,
         physical: Some(physical),
-        general: Some(sys),
-    }
+    })
 }
 
 #[cfg(test)]

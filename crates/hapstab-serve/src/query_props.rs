@@ -127,10 +127,10 @@ fn parse(endpoint: &str, allowed: &[&str], uri: &Uri) -> Result<(), ApiError> {
     match endpoint {
         "region" => {
             let r = api::parse_region(&p)?;
-            let mut cost = api::nominal_region_cost(r.spec.d);
+            let mut cost = api::nominal_region_cost(r.spec.cost_d());
             if let Some(rr) = r.robust {
                 cost = cost.then(api::robust_cost(
-                    r.spec.d,
+                    r.spec.cost_d(),
                     rr.gamma_samples,
                     rr.beta_samples,
                     rr.refine,

@@ -118,26 +118,18 @@ impl Sampling {
     }
 
     /// Builds the sampling from a delay time t_d in seconds, which must be a whole number of
-    /// periods (Table I: d = t_d / T).
+    /// periods (Table I: d = t_d / T) by the one rule of [`crate::Delay::from_time`].
     pub fn from_delay_time(period: f64, delay_time: f64) -> Result<Self> {
         positive(Param::Period, period)?;
-        non_negative(Param::DelayTime, delay_time)?;
-        let ratio = delay_time / period;
-        let d = ratio.round();
-        if (ratio - d).abs() > 1e-9 * d.max(1.0) {
+        let delay = crate::Delay::from_time(delay_time, period)?;
+        if delay.fraction > 0.0 {
             return Err(Error::FractionalDelay {
                 delay_time,
                 period,
-                ratio,
+                ratio: delay.in_samples(),
             });
         }
-        if d > MAX_DELAY as f64 {
-            return Err(Error::DelayTooLarge {
-                value: d,
-                max: MAX_DELAY,
-            });
-        }
-        Self::new(period, d as usize)
+        Self::new(period, delay.samples)
     }
 
     /// The delay time t_d = d·T in seconds.

@@ -115,5 +115,5 @@ pub(crate) fn kmax(req: &KmaxReq) -> Result<KmaxAnswer, ApiError> {
         cost = cost.then(region_cost_of_degree(n, core_degree(fam)));
     }
     loop_budget(&req.spec, cost, "K_max")?;
-    kmax_answer(&sys, req.query).map_err(lib_error)
+    kmax_answer(sys, req.query).map_err(lib_error)
 }

@@ -188,7 +188,7 @@ pub(crate) fn map(req: &MapReq) -> Result<MapOut, ApiError> {
     let t = Instant::now();
     let (stable, radius, lp) = match req.x.name {
         Name::Normalized(_) => {
-            let s = &req.spec;
+            let s = req.spec.view();
             map_budget(req, s.d + 3)?;
             let base = Normalized::new(req.alpha, req.beta, s.plant.gamma, s.plant.delta, s.d)
                 .map_err(lib_error)?;

@@ -12,7 +12,7 @@
 
 use serde::Serialize;
 
-use super::query::{ApiError, PlantSpec, clip, fmt, lib_error};
+use super::query::{ApiError, PlantSpec, clip};
 use hapstab::System;
 use hapstab::limits::{Budget, Cost};
 
@@ -67,16 +67,13 @@ pub(crate) fn within_budget(
 /// Refuses a computation on a request's loop beyond [`Budget::INTERACTIVE`], naming the
 /// delay that sets the degree of its p(z).
 pub(crate) fn loop_budget(spec: &PlantSpec, cost: Cost, what: &str) -> Result<(), ApiError> {
-    let (name, value) = match (&spec.general, spec.physical) {
-        (Some(g), _) if g.lp().delay.fraction > 0.0 => ("delay_time", fmt(g.lp().delay_time())),
-        _ => ("d", spec.d.to_string()),
-    };
+    let (name, value) = spec.delay_param();
     within_budget(cost, what, name, &value)
 }
 
 /// The physical loop of a request and its family; the normalized mode is refused for the
 /// analyses in physical units (`what`: their name).
-pub(crate) fn physical_loop(spec: &PlantSpec, what: &str) -> Result<System, ApiError> {
+pub(crate) fn physical_loop<'a>(spec: &'a PlantSpec, what: &str) -> Result<&'a System, ApiError> {
     if spec.physical.is_none() {
         return Err(ApiError::param(
             "mode",
@@ -86,10 +83,7 @@ pub(crate) fn physical_loop(spec: &PlantSpec, what: &str) -> Result<System, ApiE
             ),
         ));
     }
-    if let Some(g) = &spec.general {
-        return Ok(g.clone());
-    }
-    System::new(wall_analyses::loop_of(spec)?).map_err(lib_error)
+    Ok(&spec.sys)
 }
 
 /// γ, δ, d of an answer.
@@ -102,10 +96,11 @@ pub(crate) struct PlantOut {
 
 impl From<&PlantSpec> for PlantOut {
     fn from(s: &PlantSpec) -> Self {
+        let v = s.view();
         Self {
-            gamma: s.plant.gamma,
-            delta: s.plant.delta,
-            d: s.d,
+            gamma: v.plant.gamma,
+            delta: v.plant.delta,
+            d: v.d,
         }
     }
 }

@@ -9,7 +9,6 @@ use hapstab::passivity::{
 };
 use serde::Serialize;
 
-use super::wall_analyses::loop_of;
 use crate::query::{ApiError, PlantSpec, lib_error};
 
 /// A passive region in the page's units.
@@ -25,14 +24,8 @@ pub(crate) struct PassiveOut {
 /// The page's (α, β) of a wall in N/m and Ns/m (the inverse of
 /// [`super::wall_analyses::wall_of`]).
 fn units_of(spec: &PlantSpec, k: f64, b: f64) -> [f64; 2] {
-    match (&spec.general, spec.physical) {
-        (Some(g), _) => {
-            let (a, bb) = g.family().to_units(k, b);
-            [a, bb]
-        }
-        (None, Some(ph)) => [k / ph.k_per_alpha, b / ph.b_per_beta],
-        (None, None) => [k, b],
-    }
+    let (a, bb) = spec.sys.family().to_units(k, b);
+    [a, bb]
 }
 
 fn region_out(spec: &PlantSpec, equation: &'static str, r: &PassiveRegion) -> PassiveOut {
@@ -54,9 +47,9 @@ fn region_out(spec: &PlantSpec, equation: &'static str, r: &PassiveRegion) -> Pa
 pub(super) fn passive_regions(
     spec: &PlantSpec,
 ) -> Result<(Option<PassiveOut>, Option<PassiveOut>), ApiError> {
-    let lp = loop_of(spec)?;
+    let lp = spec.sys.lp();
     let (Ok(sw), DeviceDamping::Known { damping }) =
-        (SampledWall::new(&lp), device_damping(&lp.plant))
+        (SampledWall::new(lp), device_damping(&lp.plant))
     else {
         return Ok((None, None));
     };

@@ -4,13 +4,12 @@
 //! `hapstab passivity --json` prints (`/api/point` carries the same verdict beside the
 //! margins).
 
+use hapstab::Wall;
 use hapstab::answer::{PassivityAnswer, passivity_answer};
 use hapstab::limits::{core_degree, passivity_cost, roots_cost};
-use hapstab::{System, Wall};
 
 use super::loop_budget;
 use super::point::{point_names, wall_at};
-use super::wall_analyses::loop_of;
 use crate::query::{ApiError, Params, PlantSpec, lib_error};
 
 /// Query names of `/api/passivity`: those of `/api/point`.
@@ -35,13 +34,13 @@ pub(crate) fn parse_passivity(p: &Params) -> Result<PassivityReq, ApiError> {
 
 /// Computes `/api/passivity` within the interactive budget.
 pub(crate) fn passivity(req: &PassivityReq) -> Result<PassivityAnswer, ApiError> {
-    let sys = System::new(loop_of(&req.spec)?).map_err(lib_error)?;
+    let sys = &req.spec.sys;
     let fam = sys.family();
     let n = fam.degree();
     let cost = passivity_cost(n, core_degree(fam)).then(roots_cost(n));
     loop_budget(&req.spec, cost, "the passive region")?;
     let normalized = req.spec.physical.is_none();
-    passivity_answer(&sys, normalized, req.wall)
+    passivity_answer(sys, normalized, req.wall)
         .map(|(answer, _)| answer)
         .map_err(lib_error)
 }

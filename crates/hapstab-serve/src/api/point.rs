@@ -6,11 +6,10 @@ use std::time::Instant;
 use hapstab::limits::point_cost;
 use hapstab::paper::linear::linear_check;
 use hapstab::params::Normalized;
-use hapstab::stability::Analysis;
-use hapstab::{Loop, System, Wall};
+use hapstab::{Loop, Wall};
 use serde::Serialize;
 
-use super::wall_analyses::{loop_of, wall_analyses, wall_of};
+use super::wall_analyses::{wall_analyses, wall_of};
 use super::within_budget;
 use crate::limits::*;
 use crate::query::{ApiError, Params, PlantSpec, lib_error};
@@ -96,11 +95,7 @@ pub(crate) fn wall_at(p: &Params, spec: &PlantSpec) -> Result<WallAt, ApiError> 
         stiffness: p.num("wall_stiffness")?,
         damping: p.num("wall_damping")?,
     };
-    let units = match &spec.general {
-        Some(g) => g.wall_units(wall),
-        None => System::new(loop_of(spec)?).and_then(|sys| sys.wall_units(wall)),
-    }
-    .map_err(lib_error)?;
+    let units = spec.sys.wall_units(wall).map_err(lib_error)?;
     Ok(WallAt { units, wall })
 }
 
@@ -162,11 +157,12 @@ pub(crate) struct PointOut {
 
 /// Refuses a point whose roots would cost more than one request may.
 pub(crate) fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
+    let (name, value) = spec.delay_param();
     within_budget(
         point_cost(spec.cost_d()),
         "the roots at one point",
-        "d",
-        &spec.d.to_string(),
+        name,
+        &value,
     )
 }
 
@@ -176,7 +172,8 @@ pub(super) fn point_params(
     alpha: f64,
     beta: f64,
 ) -> Result<Normalized, ApiError> {
-    Normalized::new(alpha, beta, spec.plant.gamma, spec.plant.delta, spec.d).map_err(lib_error)
+    let v = spec.view();
+    Normalized::new(alpha, beta, v.plant.gamma, v.plant.delta, v.d).map_err(lib_error)
 }
 
 /// Computes `/api/point`.
@@ -184,13 +181,8 @@ pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> 
     let t0 = Instant::now();
     let (alpha, beta) = at.units;
     let n = point_params(spec, alpha, beta)?;
-    let a = match &spec.general {
-        Some(g) => g.analysis((alpha, beta)),
-        None => Analysis::new(n),
-    }
-    .map_err(lib_error)?;
-    let paper = spec.general.is_none();
-    let linear = paper.then(|| {
+    let a = spec.sys.analysis((alpha, beta)).map_err(lib_error)?;
+    let linear = spec.paper.is_some().then(|| {
         let lc = linear_check(&n);
         PointLinear {
             alpha_lower: lc.alpha_lower,
@@ -205,7 +197,7 @@ pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> 
         margins: MarginsReport::from(&margins),
         passivity,
         params: n,
-        lp: spec.general.as_ref().map(|g| g.lp().clone()),
+        lp: spec.paper.is_none().then(|| spec.sys.lp().clone()),
         wall: spec.physical.map(|_| WallOut {
             stiffness: at.wall.stiffness,
             damping: at.wall.damping,

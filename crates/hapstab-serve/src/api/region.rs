@@ -7,10 +7,9 @@ use std::time::Instant;
 use hapstab::boundary::AlphaBeta;
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
-use hapstab::paper::NormalizedFamily;
 use hapstab::paper::linear::linear_alpha_limit;
 use hapstab::paper::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
-use hapstab::region::{EdgeKind, stable_region};
+use hapstab::region::EdgeKind;
 use hapstab::{Loop, System};
 use serde::Serialize;
 
@@ -19,7 +18,7 @@ use super::passive::{PassiveOut, passive_regions};
 use super::region_request::RegionReq;
 use super::robust_box::{RobustBoxOut, robust_box_out};
 use crate::limits::*;
-use crate::query::{ApiError, PhysicalSpec, fmt, lib_error};
+use crate::query::{ApiError, PaperPlant, PhysicalSpec, fmt, lib_error};
 use crate::robust_box::RobustBoxAnswer;
 use hapstab_plot::simplify::simplify_polygon;
 
@@ -145,23 +144,6 @@ fn design_kmax(sys: &System) -> Result<KmaxReport, ApiError> {
     kmax(sys, KmaxQuery::Design(NoiseModel::default())).map_err(lib_error)
 }
 
-/// The paper's loop of a physical query: the device held by the arm (eq. 1), as the
-/// command line forms it.
-fn paper_loop(p: &PhysicalSpec, d: usize) -> Result<Loop, ApiError> {
-    let device = hapstab::Device {
-        mass: p.device_mass,
-        damping: p.device_damping,
-    };
-    let arm = hapstab::Arm {
-        mass: p.arm_mass,
-        damping: p.arm_damping,
-        stiffness: p.arm_stiffness,
-    };
-    let plant = hapstab::Plant::held_device(device, arm).map_err(lib_error)?;
-    let delay = hapstab::Delay::samples(d).map_err(lib_error)?;
-    Loop::new(plant, p.period, delay, hapstab::VelocityEstimator::Backward).map_err(lib_error)
-}
-
 /// Estimated cost of the nominal part of `/api/region`: the exact polygons and, when they
 /// come out empty, the cross-check by 64 exact α-interval slices.
 pub(crate) fn nominal_region_cost(d: usize) -> Cost {
@@ -242,37 +224,6 @@ fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
     }
 }
 
-/// `/api/region` for a loop beyond the paper's: the exact region of its family in wall
-/// units and its passive regions; the paper's linear condition does not apply.
-fn general_region(req: &RegionReq, g: &System) -> Result<RegionOut, ApiError> {
-    let t0 = Instant::now();
-    let r = g.region().map_err(lib_error)?;
-    let region = region_json(&r, req.tol);
-    let (passive, passive_with_arm) = passive_regions(&req.spec)?;
-    let ms = t0.elapsed().as_secs_f64() * 1e3;
-    let (rk, t_rk) = robust_kmax(req)?;
-    Ok(RegionOut {
-        params: PlantOut::from(&req.spec),
-        physical: req.spec.physical,
-        lp: Some(g.lp().clone()),
-        region,
-        linear: None,
-        passive,
-        passive_with_arm,
-        robust: None,
-        kmax: Some(design_kmax(g)?),
-        robust_kmax_text: rk.as_ref().map(|r| r.text.clone()),
-        robust_kmax: rk.map(|r| r.answer),
-        warnings: Vec::new(),
-        server_ms: Timing {
-            region: ms,
-            robust: 0.0,
-            robust_kmax: t_rk,
-            total: t0.elapsed().as_secs_f64() * 1e3,
-        },
-    })
-}
-
 /// The robustly stable region over the query's γ range (Section VIII).
 fn robust_out(
     rr: super::region_request::RobustReq,
@@ -312,60 +263,38 @@ fn robust_kmax(req: &RegionReq) -> Result<(Option<RobustBoxOut>, f64), ApiError>
     Ok((out, t.elapsed().as_secs_f64() * 1e3))
 }
 
-/// Computes the answer of `/api/region`.
+/// Computes the answer of `/api/region`: the exact region of the loop's family in its wall
+/// units ((α, β) for the paper's loop), its passive regions and the design K_max in physical
+/// mode; for the paper's loop also the linear condition and on request the robust region.
 pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
-    if let Some(g) = &req.spec.general {
-        return general_region(req, g);
-    }
     let t0 = Instant::now();
     let spec = &req.spec;
-    let fam = NormalizedFamily::new(spec.plant, spec.d).map_err(lib_error)?;
-    let r = stable_region(&fam).map_err(lib_error)?;
+    let r = spec.sys.region().map_err(lib_error)?;
     let t_region = t0.elapsed().as_secs_f64() * 1e3;
-    let mut warnings = Vec::new();
     let region = region_json(&r, req.tol);
-    if unit_circle_pole(spec.plant).is_some() {
-        warnings.push(format!(
-            "δ = 0 and γ = {} = (jπ)²: p(z) has a root on the unit circle for every (α, β) (Section VIII-B), so no point is strictly stable",
-            fmt(spec.plant.gamma)
-        ));
-    } else if region.empty {
-        // Cross-check an empty polygon result by exact per-β α-intervals.
-        let summary = region_summary(spec.plant, spec.d, EMPTY_CHECK_SLICES).map_err(lib_error)?;
-        if !summary.empty {
-            warnings.push(format!(
-                "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::paper::nyquist::region_summary) find stable points up to α = {} at β = {}",
-                fmt(summary.alpha_max),
-                fmt(summary.beta_at_alpha_max)
-            ));
-        }
-    }
-    let delta = spec.plant.delta;
-    let linear = Some(LinearOut {
+    let warnings = match spec.paper {
+        Some(pp) => paper_warnings(pp, region.empty)?,
+        None => Vec::new(),
+    };
+    let linear = spec.paper.map(|pp| LinearOut {
         equation: "α < (β + δ)/(d + 1/2)  (eq. 23),  α > −γ  (eq. 19)",
-        slope: 1.0 / (spec.d as f64 + 0.5),
-        alpha_at_beta0: linear_alpha_limit(0.0, delta, spec.d),
-        alpha_lower: -spec.plant.gamma,
+        slope: 1.0 / (pp.d as f64 + 0.5),
+        alpha_at_beta0: linear_alpha_limit(0.0, pp.plant.delta, pp.d),
+        alpha_lower: -pp.plant.gamma,
     });
     let (passive, passive_with_arm) = passive_regions(spec)?;
     let t1 = Instant::now();
-    let robust = req
-        .robust
-        .map(|rr| robust_out(rr, delta, spec.d))
-        .transpose()?;
+    let robust = match (req.robust, spec.paper) {
+        (Some(rr), Some(pp)) => Some(robust_out(rr, pp.plant.delta, pp.d)?),
+        _ => None,
+    };
     let t_robust = t1.elapsed().as_secs_f64() * 1e3;
-    let kmax = spec
-        .physical
-        .as_ref()
-        .map(|p| -> Result<KmaxReport, ApiError> {
-            design_kmax(&System::new(paper_loop(p, spec.d)?).map_err(lib_error)?)
-        })
-        .transpose()?;
+    let kmax = spec.physical.map(|_| design_kmax(&spec.sys)).transpose()?;
     let (rk, t_rk) = robust_kmax(req)?;
     Ok(RegionOut {
         params: PlantOut::from(spec),
         physical: spec.physical,
-        lp: None,
+        lp: spec.paper.is_none().then(|| spec.sys.lp().clone()),
         region,
         linear,
         passive,
@@ -382,4 +311,27 @@ pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
             total: t0.elapsed().as_secs_f64() * 1e3,
         },
     })
+}
+
+/// The paper's loop: a pole on the unit circle for every wall (Section VIII-B), or an empty
+/// polygon that the exact per-β α-intervals contradict.
+fn paper_warnings(pp: PaperPlant, empty: bool) -> Result<Vec<String>, ApiError> {
+    let mut warnings = Vec::new();
+    if unit_circle_pole(pp.plant).is_some() {
+        warnings.push(format!(
+            "δ = 0 and γ = {} = (jπ)²: p(z) has a root on the unit circle for every (α, β) (Section VIII-B), so no point is strictly stable",
+            fmt(pp.plant.gamma)
+        ));
+    } else if empty {
+        // Cross-check an empty polygon result by exact per-β α-intervals.
+        let summary = region_summary(pp.plant, pp.d, EMPTY_CHECK_SLICES).map_err(lib_error)?;
+        if !summary.empty {
+            warnings.push(format!(
+                "the polygon construction (hapstab::region::stable_region) returned no region, but exact per-β α-intervals (hapstab::paper::nyquist::region_summary) find stable points up to α = {} at β = {}",
+                fmt(summary.alpha_max),
+                fmt(summary.beta_at_alpha_max)
+            ));
+        }
+    }
+    Ok(warnings)
 }

@@ -7,7 +7,7 @@ use super::region::{nominal_region_cost, robust_cost};
 use super::robust_box::{ROBUST_BOX_NAMES, RobustBoxReq, parse_robust_box};
 use super::within_budget;
 use crate::limits::*;
-use crate::query::{ApiError, Params, PlantSpec, clip, fmt, lib_error, plant_spec};
+use crate::query::{ApiError, PaperPlant, Params, PlantSpec, clip, fmt, lib_error, plant_spec};
 
 /// Query names of the robust region (robust=1 only).
 const ROBUST_NAMES: [&str; 7] = [
@@ -68,7 +68,8 @@ pub(crate) fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
         None
     };
     let nominal = nominal_region_cost(spec.cost_d());
-    within_budget(nominal, "the exact region", "d", &spec.d.to_string())?;
+    let (name, value) = spec.delay_param();
+    within_budget(nominal, "the exact region", name, &value)?;
     let robust_kmax = parse_robust_box(p, &spec)?;
     Ok(RegionReq {
         spec,
@@ -80,16 +81,13 @@ pub(crate) fn parse_region(p: &Params) -> Result<RegionReq, ApiError> {
 
 /// The robust part of a region request (robust=1): its γ range, grid and refinement.
 fn parse_robust(p: &Params, spec: &PlantSpec) -> Result<RobustReq, ApiError> {
-    refuse_robust_for_general_loop(p, spec)?;
+    let d = paper_for_robust(p, spec)?.d;
     let (lo, hi, arm_stiffness) = robust_range(p, spec)?;
-    if spec.d > MAX_ROBUST_D {
+    if d > MAX_ROBUST_D {
         return Err(ApiError::param(
             "d",
-            &spec.d.to_string(),
-            format!(
-                "parameter 'd' must be at most {MAX_ROBUST_D} for the robust region (got {})",
-                spec.d
-            ),
+            &d.to_string(),
+            format!("parameter 'd' must be at most {MAX_ROBUST_D} for the robust region (got {d})"),
         ));
     }
     let gs = p
@@ -109,7 +107,7 @@ fn parse_robust(p: &Params, spec: &PlantSpec) -> Result<RobustReq, ApiError> {
         )?
         .unwrap_or(DEFAULT_ROBUST_BETA_SAMPLES);
     let refine = p.flag("refine")?;
-    robust_within_budget(spec.d, gs, bs, refine)?;
+    robust_within_budget(d, gs, bs, refine)?;
     Ok(RobustReq {
         lo,
         hi,
@@ -120,9 +118,9 @@ fn parse_robust(p: &Params, spec: &PlantSpec) -> Result<RobustReq, ApiError> {
     })
 }
 
-/// The robust region over a range of γ belongs to the paper's loop only.
-fn refuse_robust_for_general_loop(p: &Params, spec: &PlantSpec) -> Result<(), ApiError> {
-    if spec.general.is_some() {
+/// The robust region over a range of γ belongs to the paper's loop only: its (γ, δ, d).
+fn paper_for_robust(p: &Params, spec: &PlantSpec) -> Result<PaperPlant, ApiError> {
+    let Some(pp) = spec.paper else {
         return Err(ApiError::param(
             "robust",
             p.raw("robust").unwrap_or(""),
@@ -131,8 +129,8 @@ fn refuse_robust_for_general_loop(p: &Params, spec: &PlantSpec) -> Result<(), Ap
                 clip(p.raw("robust").unwrap_or(""))
             ),
         ));
-    }
-    Ok(())
+    };
+    Ok(pp)
 }
 
 /// The robust grid's cost within one request's budget, naming the grid's larger side.

@@ -6,7 +6,6 @@
 use hapstab::Loop;
 use hapstab::robust::{BoxSide, RobustOptions};
 
-use super::wall_analyses::loop_of;
 use super::within_budget;
 use crate::limits::{MAX_BOX_SAMPLES, MAX_BOX_VERIFY, MAX_PHYS_DAMPING};
 use crate::query::{ApiError, Params, PlantSpec, clip};
@@ -136,7 +135,7 @@ pub(super) fn parse_robust_box(
         " Ns/m (the damping B of the robust K_max)",
     )?;
     let opts = options(p)?;
-    let lp = loop_of(spec)?;
+    let lp = spec.sys.lp().clone();
     let c = cost(&lp, &sides, &opts).map_err(|e| box_error(raw, e))?;
     within_budget_blaming(c, raw, &opts)?;
     Ok(Some(RobustBoxReq {

@@ -59,11 +59,12 @@ pub(crate) fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
         Some(n) => n,
         None => {
             // about six periods of the wall's oscillation, ω ≈ √(α + γ) per sample
-            let w = (alpha + spec.plant.gamma).max(1e-8).sqrt();
+            let w = (alpha + spec.view().plant.gamma).max(1e-8).sqrt();
             ((6.0 * 2.0 * std::f64::consts::PI / w).ceil() as usize).clamp(300, 4000)
         }
     };
     // a run may be extended up to the horizon until its verdict settles: budget for that
+    let (name, value) = spec.delay_param();
     within_budget(
         simulation_cost(
             samples.max(SIM_HORIZON) as f64,
@@ -72,8 +73,8 @@ pub(crate) fn parse_simulate(p: &Params) -> Result<SimReq, ApiError> {
         )
         .then(point_cost(spec.cost_d())),
         "the simulation (extended up to its horizon)",
-        "d",
-        &spec.d.to_string(),
+        name,
+        &value,
     )?;
     let push = p.num_or(
         "push",
@@ -189,9 +190,9 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
             "normalized mode: shown for m = 1 kg and T = 1 ms (only the shape depends on α, β, γ, δ, d)",
         ),
     };
-    let model = match &spec.general {
-        Some(g) => SimModel::Loop(LoopModel::new(g.lp().clone(), req.wall).map_err(lib_error)?),
-        None => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
+    let model = match spec.paper {
+        Some(_) => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
+        None => SimModel::Loop(LoopModel::new(spec.sys.lp().clone(), req.wall).map_err(lib_error)?),
     };
     let mut cfg = Config::new(model, req.samples);
     cfg.effects = Effects {
@@ -208,7 +209,7 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     let trace = run.trace.take().unwrap_or_default();
     Ok(SimOut {
         params: n,
-        lp: spec.general.as_ref().map(|g| g.lp().clone()),
+        lp: spec.paper.is_none().then(|| spec.sys.lp().clone()),
         mass,
         period,
         units_note,
