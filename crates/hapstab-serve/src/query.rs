@@ -8,7 +8,8 @@ use axum::Json;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use hapstab::loop_spec::{LoopSpec, VelocitySpec};
-use hapstab::params::{Arm, Device, Effective, PlantParams};
+use hapstab::paper::PlantParams;
+use hapstab::params::{Arm, Device, Effective};
 use hapstab::{Delay, Param, Plant, PlantModel, System, TwoMass, VelocityEstimator};
 use serde::Serialize;
 

@@ -595,7 +595,7 @@ mod tests {
     fn tabulated_crossings_are_the_crossings() {
         for (g, dl, d) in [(0.001, 0.015, 0), (0.5, 1.0, 1), (9.8, 0.0, 2)] {
             let pf = crate::paper::NormalizedFamily::new(
-                crate::params::PlantParams::new(g, dl).unwrap(),
+                crate::paper::PlantParams::new(g, dl).unwrap(),
                 d,
             )
             .unwrap();

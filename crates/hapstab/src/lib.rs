@@ -32,7 +32,7 @@
 //! |---|---|
 //! | [`loop_spec`], [`model`] | the loop a user describes, and its validated form |
 //! | [`system`] | the analysis object: one loop, its family, every question about a wall |
-//! | [`params`] | Section II, eq. (1), Table I |
+//! | [`params`] | Section II, eq. (1): device, arm, effective plant, wall, sampling |
 //! | [`paper`] | the paper's normalized view α, β, γ, δ, d and the analyses defined only for its plant: the closed-form plant (eq. 2–6, 10), parameter ranges (eq. 11–15), the linear condition (Sections VI–VII), Nyquist, robust stability and passivity in γ (Section VIII), grid maps |
 //! | [`closed_loop`] | eq. (7)–(9) |
 //! | [`verdict`], [`stability`] | Section V (roots inside the unit circle) |
@@ -104,10 +104,11 @@ pub mod zwidth;
 pub use closed_loop::AffineFamily;
 pub use error::{Error, Result};
 pub use model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
+pub use paper::{Normalized, PlantParams, is_stable};
 pub use param::Param;
-pub use params::{Arm, Device, Effective, Normalized, Physical, PlantParams, Sampling, Wall};
+pub use params::{Arm, Device, Effective, Physical, Sampling, Wall};
 pub use schur_cohn::schur_stable;
-pub use stability::{Analysis, is_stable};
+pub use stability::Analysis;
 pub use system::System;
 pub use verdict::{Basis, Decision, MARGINAL_BAND, Verdict, decide};
 pub use zoh::{DiscreteLoop, DiscreteTf, WallScale};

@@ -27,8 +27,9 @@ use serde_json::{Map, Value};
 
 use crate::error::{Error, Result};
 use crate::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{Arm, Device, Effective, PlantParams, Wall};
+use crate::params::{Arm, Device, Effective, Wall};
 
 /// Default sampling period T: 1 ms, the paper's upper limit (Section IV).
 pub const DEFAULT_PERIOD: f64 = 1e-3;

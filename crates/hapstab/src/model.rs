@@ -13,8 +13,9 @@ use serde::{Deserialize, Serialize};
 pub use crate::delay::Delay;
 use crate::error::{Error, Result, at_most, finite, non_negative, positive};
 use crate::lowpass_design::{Family, NamedLowPass};
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{Effective, MAX_DELAY, PlantParams};
+use crate::params::{Effective, MAX_DELAY};
 
 /// A two-mass haptic device: the motor-side inertia (where the actuator pushes and the
 /// encoder measures) coupled to the handle through a compliant transmission; the human arm,

@@ -11,8 +11,6 @@ use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
-use crate::paper::NormalizedFamily;
-use crate::params::Normalized;
 use crate::polyroots::{RootEstimate, aberth, companion};
 pub use crate::schur_cohn::schur_stable;
 pub use crate::verdict::{Basis, Decision, MARGINAL_BAND, Verdict, verdict_of_radius};
@@ -93,14 +91,6 @@ pub struct Analysis {
 }
 
 impl Analysis {
-    /// Runs the point test and the root finder on the closed loop of `params` (the paper's
-    /// loop through [`Analysis::of_family`]).
-    pub fn new(params: Normalized) -> Result<Self> {
-        let params = params.validated()?;
-        let fam = NormalizedFamily::new(params.plant(), params.d)?;
-        Self::of_family(&fam, params.alpha, params.beta)
-    }
-
     /// The full answer for the wall (a, b) of a loop's family: the verdict of
     /// [`crate::verdict::decide`], the roots by Aberth–Ehrlich (the companion matrix where it
     /// fails) with those near z = 1 polished in the shifted variable (where z-coefficients
@@ -248,15 +238,6 @@ fn polish_near_one(fam: &AffineFamily, a: f64, b: f64, est: &mut [RootEstimate])
 /// Polishing sweeps near z = 1: Aberth steps converge cubically from the z-domain roots;
 /// clusters converge more slowly, and their error estimate says so.
 const POLISH_SWEEPS: usize = 12;
-
-/// Stability of one normalized parameter set by the one verdict ([`crate::verdict::decide`]):
-/// true iff stable (a marginal wall is not).
-pub fn is_stable(params: &Normalized) -> Result<bool> {
-    let params = params.validated()?;
-    let fam = NormalizedFamily::new(params.plant(), params.d)?;
-    let mut c = fam.coefficients(params.alpha, params.beta);
-    Ok(decide(&fam, params.alpha, params.beta, &mut c).verdict == Verdict::Stable)
-}
 
 #[cfg(test)]
 mod tests {

@@ -1,7 +1,8 @@
 //! One parameter point from the plant and wall flags ([`resolve_point`]).
 
 use anyhow::{Result, bail};
-use hapstab::params::{Normalized, Physical, Wall};
+use hapstab::paper::Normalized;
+use hapstab::params::{Physical, Wall};
 
 use super::{DEFAULT_WALL, PlantArgs, WallArgs};
 
@@ -51,7 +52,7 @@ pub fn resolve_point(plant: &PlantArgs, wall: &WallArgs) -> Result<PointModel> {
                 let (Some(alpha), Some(beta)) = (wall.alpha, wall.beta) else {
                     bail!("give both --alpha and --beta");
                 };
-                let w = hapstab::params::wall_from_normalized(alpha, beta, eff.mass, s.period);
+                let w = hapstab::paper::wall_from_normalized(alpha, beta, eff.mass, s.period);
                 let phys = Physical::new(eff, w, s)?;
                 return Ok(PointModel {
                     normalized: phys.normalized()?,

@@ -8,11 +8,12 @@ use std::path::Path;
 
 use assert_cmd::Command;
 use hapstab::boundary::stable_alpha_intervals;
+use hapstab::is_stable;
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::linear::{routh_hurwitz_normalized, validity_points};
 use hapstab::paper::nyquist::{RegionSummary, region_summary};
 use hapstab::paper::reference::DiscretePlant;
-use hapstab::stability::{is_stable, roots};
+use hapstab::stability::roots;
 use hapstab::{Normalized, PlantParams};
 use num_complex::Complex64;
 use serde_json::Value;

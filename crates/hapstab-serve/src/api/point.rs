@@ -4,8 +4,8 @@
 use std::time::Instant;
 
 use hapstab::limits::point_cost;
+use hapstab::paper::Normalized;
 use hapstab::paper::linear::linear_check;
-use hapstab::params::Normalized;
 use hapstab::{Loop, Wall};
 use serde::Serialize;
 

@@ -1,7 +1,8 @@
 //! The request of `/api/region`: its query names, validation, and the γ range of a robust
 //! region given as γ or as the arm's stiffness.
 
-use hapstab::params::{Effective, PlantParams};
+use hapstab::paper::PlantParams;
+use hapstab::params::Effective;
 
 use super::region::{nominal_region_cost, robust_cost};
 use super::robust_box::{ROBUST_BOX_NAMES, RobustBoxReq, parse_robust_box};

@@ -5,7 +5,8 @@ use std::time::Instant;
 
 use hapstab::Loop;
 use hapstab::limits::{point_cost, simulation_cost};
-use hapstab::params::{Normalized, Wall};
+use hapstab::paper::Normalized;
+use hapstab::params::Wall;
 use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, LoopModel, Model};
 use hapstab::simulation::{RunResult, SimModel, TraceClip, simulate_clipped};
 use serde::Serialize;

@@ -12,7 +12,8 @@ use crate::error::Result;
 use crate::loop_spec::LoopInput;
 use crate::margins::margins_beside_verdict;
 use crate::margins::report::MarginsReport;
-use crate::params::{Normalized, Wall};
+use crate::paper::Normalized;
+use crate::params::Wall;
 use crate::system::{System, pick_interval};
 
 /// The paper's normalized view of a checked wall (Table I) with the linear condition.

@@ -18,8 +18,9 @@ use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_alpha_interval
 use crate::error::{Error, Result, finite};
 use crate::model::{Loop, PlantModel};
 use crate::paper::NormalizedFamily;
+use crate::paper::{Normalized, PlantParams};
 use crate::param::Param;
-use crate::params::{Normalized, Physical, PlantParams, check_delay};
+use crate::params::{Physical, check_delay};
 use crate::zoh::WallScale;
 
 /// The cubic a3 s³ + a2 s² + a1 s + a0 of eq. (17).

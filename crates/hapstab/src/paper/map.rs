@@ -8,8 +8,8 @@ use serde::{Deserialize, Serialize};
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
 use crate::paper::NormalizedFamily;
+use crate::paper::{Normalized, PlantParams};
 use crate::param::Param;
-use crate::params::{Normalized, PlantParams};
 use crate::stability::Analysis;
 use crate::verdict::{Verdict, decide_coefficients};
 

@@ -12,6 +12,7 @@
 //!
 //! | module | paper |
 //! |---|---|
+//! | [`normalized`] | Table I: α, β, γ, δ, d ([`Normalized`], [`PlantParams`]) and their conversions |
 //! | [`reference`](mod@reference) | Section III, eq. (2)–(6), (10): the closed-form ZOH plant, an independent reference |
 //! | [`ranges`] | Section IV, eq. (11)–(15): parameter ranges of real systems |
 //! | [`linear`] | Sections VI–VII, eq. (16)–(24): the linear condition and its validity |
@@ -26,13 +27,18 @@ use serde::Serialize;
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::Loop;
-use crate::params::{PlantParams, check_delay};
+use crate::params::check_delay;
+use crate::stability::Analysis;
+use crate::verdict::{Verdict, decide};
 
 pub mod linear;
 pub mod map;
+pub mod normalized;
 pub mod nyquist;
 pub mod ranges;
 pub mod reference;
+
+pub use normalized::{Normalized, PlantParams, wall_from_normalized};
 
 /// The paper's family in normalized units (Table I): the [`AffineFamily`] of the loop
 /// [`Loop::normalized`], so that (a, b) = (α, β), with the plant's (γ, δ) and the delay d
@@ -82,4 +88,23 @@ impl NormalizedFamily {
     pub fn numerator_constant(&self) -> f64 {
         self.family.pk.get(1).copied().unwrap_or(0.0)
     }
+}
+
+impl Analysis {
+    /// Runs the point test and the root finder on the paper's loop at the point `params` of
+    /// Table I ([`Analysis::of_family`] on its [`NormalizedFamily`], Section V).
+    pub fn new(params: Normalized) -> Result<Self> {
+        let params = params.validated()?;
+        let fam = NormalizedFamily::new(params.plant(), params.d)?;
+        Self::of_family(&fam, params.alpha, params.beta)
+    }
+}
+
+/// Stability of the paper's loop at one point of Table I by the one verdict
+/// ([`crate::verdict::decide`]): true iff stable (a marginal wall is not).
+pub fn is_stable(params: &Normalized) -> Result<bool> {
+    let params = params.validated()?;
+    let fam = NormalizedFamily::new(params.plant(), params.d)?;
+    let mut c = fam.coefficients(params.alpha, params.beta);
+    Ok(decide(&fam, params.alpha, params.beta, &mut c).verdict == Verdict::Stable)
 }

@@ -15,8 +15,9 @@
 use serde::Serialize;
 
 use crate::error::{Error, Result, non_negative, positive};
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{Arm, Device, Effective, PlantParams};
+use crate::params::{Arm, Device, Effective};
 
 /// Upper bounds of the physical ratios that enter eq. (14).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

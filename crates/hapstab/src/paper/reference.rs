@@ -32,7 +32,7 @@ use num_complex::Complex64;
 use serde::Serialize;
 
 use crate::error::Result;
-use crate::params::PlantParams;
+use crate::paper::PlantParams;
 
 /// The exact zero-order-hold equivalent of the normalized plant 1/(s² + δs + γ).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -7,8 +7,8 @@ use serde::Serialize;
 use super::{Config, Outcome, simulate};
 use crate::error::{Error, Result, finite, positive};
 use crate::paper::NormalizedFamily;
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::PlantParams;
 
 /// When a simulated run counts as stable for [`empirical_boundary`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::{Config, Effects, Model, SimModel, Simulator};
 use crate::error::{Error, Result};
-use crate::params::Normalized;
+use crate::paper::Normalized;
 
 /// Growth of the homogeneous linear bilateral loop, measured by stepping the simulator.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -67,8 +67,9 @@ use serde::Serialize;
 use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::model::{Loop, PlantModel};
+use crate::paper::Normalized;
 use crate::param::Param;
-use crate::params::{Normalized, Physical, Wall};
+use crate::params::{Physical, Wall};
 use crate::stability::Analysis;
 
 mod boundary;

@@ -11,7 +11,8 @@
 use hapstab::AffineFamily;
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
 use hapstab::model::{Delay, Loop, MAX_PERIOD, MIN_PERIOD, Plant, VelocityEstimator};
-use hapstab::params::{Effective, PlantParams};
+use hapstab::paper::PlantParams;
+use hapstab::params::Effective;
 use hapstab::region::{DEFAULT_REL_TOL, StableRegion, stable_region, stable_region_with};
 use hapstab::stability::Verdict;
 use hapstab::verdict::decide;

@@ -7,7 +7,8 @@ use common::SplitMix;
 use common::loops::random_loop;
 use hapstab::loop_spec::{LoopInput, parse};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
-use hapstab::params::{Arm, Device, Effective, PlantParams, Wall};
+use hapstab::paper::PlantParams;
+use hapstab::params::{Arm, Device, Effective, Wall};
 
 /// The paper's default loop, built from the published constants (Section IV's device and
 /// arm, T = 1 ms, backward difference, no delay).

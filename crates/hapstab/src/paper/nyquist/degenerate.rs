@@ -1,7 +1,7 @@
 //! Degenerate plants (Section VIII-B): δ = 0 and γ = (jπ)², where every p(z) keeps a root
 //! on the unit circle whatever (α, β).
 
-use crate::params::PlantParams;
+use crate::paper::PlantParams;
 
 use std::f64::consts::PI;
 

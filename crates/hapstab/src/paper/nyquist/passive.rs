@@ -10,8 +10,9 @@ use super::{Progress, RobustOptions, Ticker, no_progress};
 use crate::boundary::AlphaBeta;
 use crate::error::{Result, non_negative, positive};
 use crate::paper::NormalizedFamily;
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{PlantParams, check_delay};
+use crate::params::check_delay;
 
 /// Colgate's passive region, eq. (28): δ > α/2 + |β| with α ≥ 0 (d = 0), a triangle.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -13,8 +13,9 @@ use super::{Progress, Ticker, beta_bound, no_progress};
 use crate::boundary::AlphaBeta;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::paper::NormalizedFamily;
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{PlantParams, check_delay};
+use crate::params::check_delay;
 
 /// A box of plants in physical units for robust design (beyond the paper): every mass,
 /// damping and stiffness in the given closed ranges, sampled at period T with delay d.

@@ -11,8 +11,9 @@ use super::{DEGENERATE_OFFSET, Progress, Ticker, beta_bound, no_progress, unit_c
 use crate::boundary::AlphaBeta;
 use crate::error::{Error, Result, non_negative};
 use crate::paper::NormalizedFamily;
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{PlantParams, check_delay};
+use crate::params::check_delay;
 
 /// A slice of a robust region at one β: the robust α-interval (lo, hi).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

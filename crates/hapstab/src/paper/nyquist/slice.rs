@@ -10,7 +10,7 @@ use crate::boundary::{
 };
 use crate::error::Result;
 use crate::paper::NormalizedFamily;
-use crate::params::PlantParams;
+use crate::paper::PlantParams;
 
 /// Intersection of two sorted lists of disjoint open intervals.
 fn intersect(a: &[Interval], b: &[Interval]) -> Vec<Interval> {

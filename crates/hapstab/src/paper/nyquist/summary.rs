@@ -9,8 +9,9 @@ use super::{Progress, no_progress, nyquist_gamma, unit_circle_pole};
 use crate::boundary::{Interval, stable_alpha_intervals};
 use crate::error::{Error, Result, non_negative};
 use crate::paper::NormalizedFamily;
+use crate::paper::PlantParams;
 use crate::param::Param;
-use crate::params::{PlantParams, check_delay};
+use crate::params::check_delay;
 
 /// A bound B such that no (α, β) with |β| ≥ B is stable: |p(0)| = |n0 β| < 1 is necessary
 /// (the product of the roots). Infinite when n0 = 0.
