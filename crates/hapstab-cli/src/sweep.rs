@@ -180,6 +180,16 @@ fn print_text(lp: &hapstab::Loop, out: &SweepOut) {
              the paper's eq. (28) with b = b_L + b_H, towards this operator only"
         );
     }
+    let mut reasons: Vec<&str> = o
+        .points
+        .iter()
+        .filter_map(|p| p.passive_note.as_deref())
+        .collect();
+    reasons.sort_unstable();
+    reasons.dedup();
+    for r in reasons {
+        println!("passive     — : passivity does not apply: {r}");
+    }
     if let Some(s) = &out.plot {
         println!("plot        {} and {}", s.svg.display(), s.png.display());
     }

@@ -97,7 +97,7 @@ results! {
         limit_cycle, contact, judged_samples, samples, trace_stride, blown_up, final_position,
         final_velocity },
     "Sweep" => PySweep { param, unit, values, k_max, b_at_k_max, k_max_passive,
-        k_max_passive_with_arm, notes },
+        k_max_passive_with_arm, notes, passive_notes },
     "LinearCondition" => PyLinearCondition { gamma, delta, d, linear_slope, linear_intercept,
         alpha_lower, levels, beta, alpha, alpha_linear, error, at_start, wall_stiffness,
         wall_damping },

@@ -27,6 +27,9 @@ pub struct PySweep {
     pub k_max_passive_with_arm: Py<PyArray1<f64>>,
     /// Why a value is missing, per point (None where nothing is).
     pub notes: Vec<Option<String>>,
+    /// Why passivity does not apply, per point (then the passive K_max are NaN; None where it
+    /// applies).
+    pub passive_notes: Vec<Option<String>>,
 }
 
 #[pymethods]
@@ -124,5 +127,6 @@ fn sweep_object(py: Python<'_>, name: SweepParam, values: &[f64], p: &[SweepPoin
         k_max_passive: col(&|x| x.k_max_passive),
         k_max_passive_with_arm: col(&|x| x.k_max_passive_with_arm),
         notes: p.iter().map(|x| x.note.clone()).collect(),
+        passive_notes: p.iter().map(|x| x.passive_note.clone()).collect(),
     }
 }

@@ -56,6 +56,7 @@ def test_sweep_equals_the_command_line(hapstab_cli, case, at):
         for key in ("k_max", "b_at_k_max", "k_max_passive", "k_max_passive_with_arm"):
             same(getattr(got, key)[i], p[key])
         assert got.notes[i] == p["note"]
+        assert got.passive_notes[i] == p["passive_note"]
 
 
 @pytest.mark.parametrize("case", range(len(LOOPS)))

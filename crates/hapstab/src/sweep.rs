@@ -419,6 +419,10 @@ pub struct SweepPoint {
     pub k_max_passive_with_arm: Option<f64>,
     /// Why a value is missing, when the analysis could not decide.
     pub note: Option<String>,
+    /// Why passivity does not apply to this loop (then both passive K_max are None): an
+    /// actuator lag, a plant without a known device damping, a velocity filter the
+    /// passivity condition cannot take. None where it applies.
+    pub passive_note: Option<String>,
 }
 
 /// K_max (stable and passive) of the loops `loop_at(v)` for every value, in parallel;
@@ -453,7 +457,9 @@ where
     let passive: Vec<OnceLock<PassiveKmax>> = firsts.iter().map(|_| OnceLock::new()).collect();
     let passive_at = |i: usize| -> PassiveKmax {
         let s = slot[i];
-        *passive[s].get_or_init(|| PassiveKmax::of(&loops[firsts[s]], &keys[firsts[s]], at))
+        passive[s]
+            .get_or_init(|| PassiveKmax::of(&loops[firsts[s]], &keys[firsts[s]], at))
+            .clone()
     };
     // Runs of neighbouring points, each computed in order from the previous point's top on
     // the curve (the warm start of `k_max_band_near`, the run's first point cold), the runs
@@ -546,6 +552,7 @@ fn sweep_point(
         k_max_passive: passive.device,
         k_max_passive_with_arm: passive.with_arm,
         note: None,
+        passive_note: passive.why_not,
     };
     match stable_kmax(lp, at, near) {
         Ok(Some((k, b))) => {
@@ -586,20 +593,27 @@ impl PassiveKey {
     }
 }
 
-/// The passive K_max of a point: for the device's own damping and with the arm's counted.
-#[derive(Debug, Clone, Copy, Default)]
+/// The passive K_max of a point: for the device's own damping and with the arm's counted,
+/// or why passivity does not apply.
+#[derive(Debug, Clone, Default)]
 struct PassiveKmax {
     device: Option<f64>,
     with_arm: Option<f64>,
+    why_not: Option<String>,
 }
 
 impl PassiveKmax {
     fn of(lp: &Loop, key: &PassiveKey, at: KmaxAt) -> Self {
         let Some(damping) = key.device else {
-            return Self::default();
+            let why_not = match device_damping(&lp.plant) {
+                DeviceDamping::NotApplicable { reason } => reason,
+                DeviceDamping::Known { .. } => "the device damping is not known".into(),
+            };
+            return Self::not_applicable(why_not);
         };
-        let Ok(sw) = SampledWall::new(lp) else {
-            return Self::default();
+        let sw = match SampledWall::new(lp) {
+            Ok(sw) => sw,
+            Err(e) => return Self::not_applicable(e.to_string()),
         };
         let device = passive_kmax(&sw, at, damping);
         let with_arm = key.with_arm.and_then(|b| match at {
@@ -608,7 +622,18 @@ impl PassiveKmax {
             KmaxAt::Overall if damping > 0.0 => device.map(|k| k * (b / damping)),
             _ => passive_kmax(&sw, at, b),
         });
-        Self { device, with_arm }
+        Self {
+            device,
+            with_arm,
+            why_not: None,
+        }
+    }
+
+    fn not_applicable(why_not: String) -> Self {
+        Self {
+            why_not: Some(why_not),
+            ..Self::default()
+        }
     }
 }
 

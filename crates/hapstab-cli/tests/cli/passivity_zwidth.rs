@@ -442,3 +442,34 @@ fn zwidth_and_sweep_passive_kmax_use_the_devices_own_damping() {
         assert!(rel(arm, 5.0 * own) < 1e-9, "{p}");
     }
 }
+
+/// Where passivity does not apply (an actuator lag), `sweep` says why instead of a bare "—":
+/// every point's passive K_max is null with the same reason `passivity` gives for the loop,
+/// printed once under the table; where it applies, no reason is given.
+#[test]
+fn sweep_says_why_the_passive_column_is_empty() {
+    let lag = [
+        "sweep",
+        "--param",
+        "delay-time:0:0.002:3",
+        "--force-lag",
+        "0.0002",
+    ];
+    let reason = json(&["passivity", "--force-lag", "0.0002"])["note"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(reason.contains("actuator lag"), "{reason}");
+    let j = json(&lag);
+    for p in j["points"].as_array().unwrap() {
+        assert!(p["k_max_passive"].is_null(), "{p}");
+        assert_eq!(p["passive_note"].as_str(), Some(reason.as_str()), "{p}");
+    }
+    let t = text(&lag);
+    assert_eq!(t.matches(&reason).count(), 1, "{t}");
+    let plain = json(&["sweep", "--param", "delay-time:0:0.002:3"]);
+    for p in plain["points"].as_array().unwrap() {
+        assert!(p["k_max_passive"].as_f64().unwrap() > 0.0, "{p}");
+        assert!(p["passive_note"].is_null(), "{p}");
+    }
+}

@@ -505,6 +505,8 @@ class Sweep:
     k_max_passive: Float64Array
     k_max_passive_with_arm: Float64Array
     notes: list[Optional[str]]
+    passive_notes: list[Optional[str]]
+    """Why passivity does not apply, per point (the passive K_max are then NaN)."""
     def plot(self, ax: Any = None) -> Any:
         """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
