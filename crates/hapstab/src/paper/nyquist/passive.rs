@@ -135,7 +135,7 @@ pub fn passive_inside_robust_with_progress(
         .map(|&b| {
             let need = 2.0 * (delta - b.abs());
             let m = match refined_slice(&configs, &gs, &neighbours, &make, b, opts.refine_gamma) {
-                Some((iv, _, _, _)) => (b, iv.hi - need, -iv.lo),
+                Some(s) => (b, s.interval.hi - need, -s.interval.lo),
                 None => (b, f64::NEG_INFINITY, f64::NEG_INFINITY),
             };
             ticker.tick();

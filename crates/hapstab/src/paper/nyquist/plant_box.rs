@@ -8,7 +8,7 @@ use serde::Serialize;
 use std::sync::OnceLock;
 
 use super::search::golden_max;
-use super::slice::{Config, refined_slice_args};
+use super::slice::{Config, refined_slice};
 use super::{Progress, Ticker, beta_bound, no_progress};
 use crate::boundary::AlphaBeta;
 use crate::error::{Error, Result, finite, non_negative, positive};
@@ -216,12 +216,12 @@ fn box_slice(
         }
     };
     let stiff: Vec<f64> = coords.iter().map(|c| c[2]).collect();
-    let (iv, _tl, th, _, args) =
-        refined_slice_args(configs, &stiff, &neighbours, &make, beta_ref, refine)?;
+    let s = refined_slice(configs, &stiff, &neighbours, &make, beta_ref, refine)?;
+    let iv = s.interval;
     // the worst plant: the sample whose interval hi is smallest, with the refined stiffness
-    let mut worst = args.map_or(coords[0], |(_, jh)| coords[jh]);
-    if th.is_finite() {
-        worst[2] = th;
+    let mut worst = s.ends.map_or(coords[0], |(_, jh)| coords[jh]);
+    if s.coord_hi.is_finite() {
+        worst[2] = s.coord_hi;
     }
     Some((iv.lo * k_per_alpha, iv.hi * k_per_alpha, worst))
 }

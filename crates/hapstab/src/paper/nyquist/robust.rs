@@ -205,17 +205,17 @@ pub fn robust_region_with_progress(
             res.push(Some(s));
         }
     }
-    let multiple_intervals = res.iter().flatten().any(|s| s.3);
+    let multiple_intervals = res.iter().flatten().any(|s| s.several);
     let mut slices: Vec<RobustSlice> = betas
         .iter()
         .zip(&res)
         .filter_map(|(&beta, s)| {
-            s.map(|(iv, tl, th, _)| RobustSlice {
+            s.map(|s| RobustSlice {
                 beta,
-                lo: iv.lo,
-                hi: iv.hi,
-                gamma_at_lo: tl,
-                gamma_at_hi: th,
+                lo: s.interval.lo,
+                hi: s.interval.hi,
+                gamma_at_lo: s.coord_lo,
+                gamma_at_hi: s.coord_hi,
             })
         })
         .collect();
@@ -267,14 +267,14 @@ fn refine_bends(
     let scale = res
         .iter()
         .flatten()
-        .map(|s| s.0.hi.abs().max(s.0.lo.abs()))
+        .map(|s| s.interval.hi.abs().max(s.interval.lo.abs()))
         .fold(1e-12_f64, f64::max);
     for _ in 0..rounds {
         let mut mids = Vec::new();
         for i in 0..betas.len().saturating_sub(1) {
             if let (Some(a), Some(b)) = (&res[i], &res[i + 1]) {
                 let m = 0.5 * (betas[i] + betas[i + 1]);
-                mids.push((m, a.0, b.0));
+                mids.push((m, a.interval, b.interval));
             }
         }
         let checks: Vec<(f64, Option<Slice>, bool)> = mids
@@ -283,8 +283,8 @@ fn refine_bends(
                 let s = slice(m);
                 let bend = match &s {
                     Some(x) => {
-                        (x.0.hi - 0.5 * (a.hi + b.hi)).abs() > 1e-6 * scale
-                            || (x.0.lo - 0.5 * (a.lo + b.lo)).abs() > 1e-6 * scale
+                        (x.interval.hi - 0.5 * (a.hi + b.hi)).abs() > 1e-6 * scale
+                            || (x.interval.lo - 0.5 * (a.lo + b.lo)).abs() > 1e-6 * scale
                     }
                     None => true,
                 };

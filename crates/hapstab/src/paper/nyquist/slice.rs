@@ -111,6 +111,22 @@ pub(super) fn robust_at(configs: &[Config], beta: f64) -> (Vec<Interval>, Option
     (res, args)
 }
 
+/// A robust slice at one β: the robust α-interval (the widest, when the robust set has
+/// several), the plant coordinates that set its ends, and the configurations that set them.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Slice {
+    /// The robust α-interval.
+    pub(super) interval: Interval,
+    /// The coordinate of the plant that sets its lower end (NaN when not known).
+    pub(super) coord_lo: f64,
+    /// The coordinate of the plant that sets its upper end (NaN when not known).
+    pub(super) coord_hi: f64,
+    /// Whether the robust set had several intervals.
+    pub(super) several: bool,
+    /// The sampled configurations (indices) that set the two ends, for a single interval.
+    pub(super) ends: Option<(usize, usize)>,
+}
+
 /// Robust slice at β with optional golden refinement in the plant parameter that
 /// `make(t)` maps to a configuration (t ∈ [lo, hi] of the refined coordinate).
 pub(super) fn refined_slice(
@@ -121,23 +137,6 @@ pub(super) fn refined_slice(
     beta: f64,
     refine: bool,
 ) -> Option<Slice> {
-    refined_slice_args(configs, coords, neighbours, make, beta, refine)
-        .map(|(iv, tl, th, m, _)| (iv, tl, th, m))
-}
-
-/// A robust slice: the interval, the coordinates that set its ends, and whether the robust
-/// set had several intervals.
-pub(super) type Slice = (Interval, f64, f64, bool);
-pub(super) type SliceArgs = (Interval, f64, f64, bool, Option<(usize, usize)>);
-
-pub(super) fn refined_slice_args(
-    configs: &[Config],
-    coords: &[f64],
-    neighbours: &(dyn Fn(usize) -> (f64, f64) + Sync),
-    make: &(dyn Fn(usize, f64) -> Config + Sync),
-    beta: f64,
-    refine: bool,
-) -> Option<SliceArgs> {
     let (ivs, args) = robust_at(configs, beta);
     if ivs.is_empty() {
         return None;
@@ -148,7 +147,13 @@ pub(super) fn refined_slice_args(
         .max_by(|a, b| (a.hi - a.lo).total_cmp(&(b.hi - b.lo)))?;
     let Some((jl, jh)) = args.filter(|_| refine) else {
         let (tl, th) = args.map_or((f64::NAN, f64::NAN), |(l, h)| (coords[l], coords[h]));
-        return Some((widest, tl, th, multiple, args));
+        return Some(Slice {
+            interval: widest,
+            coord_lo: tl,
+            coord_hi: th,
+            several: multiple,
+            ends: args,
+        });
     };
     let mid = 0.5 * (widest.lo + widest.hi);
     let pick = |c: &Config| -> Option<Interval> {
@@ -171,5 +176,11 @@ pub(super) fn refined_slice_args(
     if lo >= hi {
         return None;
     }
-    Some((Interval { lo, hi }, tl, th, multiple, args))
+    Some(Slice {
+        interval: Interval { lo, hi },
+        coord_lo: tl,
+        coord_hi: th,
+        several: multiple,
+        ends: args,
+    })
 }
