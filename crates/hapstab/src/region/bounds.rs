@@ -175,13 +175,6 @@ pub(super) fn line_crossing(bounds: &Bounds) -> Option<P> {
     let [a, b] = lines.as_slice() else {
         return None;
     };
-    let det = a.n.x * b.n.y - a.n.y * b.n.x;
-    if det == 0.0 {
-        return None;
-    }
-    let p = P {
-        x: (a.c * b.n.y - b.c * a.n.y) / det,
-        y: (a.n.x * b.c - b.n.x * a.c) / det,
-    };
-    (p.finite() && bounds.excess(p) <= 1e-9 * norm(p).max(1.0)).then_some(p)
+    let p = geometry::line_meet(a, b)?;
+    (bounds.excess(p) <= 1e-9 * norm(p).max(1.0)).then_some(p)
 }
