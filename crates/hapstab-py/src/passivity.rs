@@ -2,12 +2,9 @@
 //! for the paper's loop, Section VIII), the verdict for the device and its passive region,
 //! through the library calls of the command line's `hapstab passivity`.
 
-use hapstab::model::Loop;
+use hapstab::answer::{PassiveRegionOut, PassivityAnswer, passivity_answer_for};
 use hapstab::params::Wall;
-use hapstab::passivity::{
-    DeviceDamping, PassiveRegion, Passivity, SampledWall, device_damping, passive_region,
-    passivity_of_device, passivity_with,
-};
+use hapstab::passivity::{DeviceDamping, device_damping};
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
@@ -120,12 +117,8 @@ fn device_of(lp: &PyLoop, given: Option<f64>) -> PyResult<Option<DeviceDamping>>
     Ok(Some(DeviceDamping::Known { damping: b }))
 }
 
-pub(crate) fn region_object(py: Python<'_>, r: &PassiveRegion) -> PyResult<PyPassiveRegion> {
-    let flat: Vec<f64> = r
-        .vertices
-        .iter()
-        .flat_map(|v| [v.stiffness, v.damping])
-        .collect();
+pub(crate) fn region_object(py: Python<'_>, r: &PassiveRegionOut) -> PyResult<PyPassiveRegion> {
+    let flat: Vec<f64> = r.vertices.iter().flatten().copied().collect();
     let vertices = PyArray1::from_vec(py, flat).reshape([r.vertices.len(), 2])?;
     Ok(PyPassiveRegion {
         k_max: r.k_max,
@@ -136,54 +129,28 @@ pub(crate) fn region_object(py: Python<'_>, r: &PassiveRegion) -> PyResult<PyPas
     })
 }
 
-fn passivity_object(
-    py: Python<'_>,
-    p: &Passivity,
-    stable: bool,
-    region: Option<&PassiveRegion>,
-) -> PyResult<PyPassivity> {
-    let (device_damping, note) = match &p.device {
-        DeviceDamping::Known { damping } => (Some(*damping), None),
-        DeviceDamping::NotApplicable { reason } => (None, Some(reason.clone())),
-    };
-    let passive_region = match region {
+/// The Python object of the library's answer (the same keys as `hapstab passivity --json`).
+fn passivity_object(py: Python<'_>, a: PassivityAnswer, wall: Wall) -> PyResult<PyPassivity> {
+    let passive_region = match &a.passive_region {
         Some(r) => Some(Py::new(py, region_object(py, r)?)?),
         None => None,
     };
     Ok(PyPassivity {
-        wall_stiffness: p.wall.stiffness,
-        wall_damping: p.wall.damping,
-        b_required: p.requirement.b_required,
-        binding_frequency_hz: p.requirement.frequency_hz,
-        binding_theta: p.requirement.theta,
-        dc_stiffness: p.dc_stiffness,
-        device_damping,
-        effective_damping: p.with_arm.map(|a| a.damping),
-        effective_verdict: p.with_arm.map(|a| a.verdict.as_str().into()),
-        meets: p.verdict.meets(),
-        verdict: p.verdict.as_str().into(),
-        note,
-        stable,
+        wall_stiffness: wall.stiffness,
+        wall_damping: wall.damping,
+        b_required: a.b_required,
+        binding_frequency_hz: a.binding_frequency_hz,
+        binding_theta: a.binding_theta,
+        dc_stiffness: a.dc_stiffness,
+        device_damping: a.device_damping,
+        effective_damping: a.effective_damping,
+        effective_verdict: a.effective_verdict.map(|v| v.as_str().into()),
+        meets: a.meets,
+        verdict: a.verdict.as_str().into(),
+        note: a.note,
+        stable: a.stable,
         passive_region,
     })
-}
-
-/// The requirement, the verdict and the passive region of one wall (GIL released).
-fn compute(
-    lp: &Loop,
-    wall: Wall,
-    device: Option<DeviceDamping>,
-) -> hapstab::Result<(Passivity, Option<PassiveRegion>)> {
-    let sw = SampledWall::new(lp)?;
-    let p = match device {
-        Some(d) => passivity_of_device(&sw, wall, d),
-        None => passivity_with(&sw, lp, wall),
-    };
-    let region = match &p.device {
-        DeviceDamping::Known { damping } => Some(passive_region(&sw, *damping)?),
-        DeviceDamping::NotApplicable { .. } => None,
-    };
-    Ok((p, region))
 }
 
 /// Is the sampled virtual wall passive on this device? Colgate and Schenkel's condition: a
@@ -233,7 +200,8 @@ pub fn passivity(
     };
     let w = args.resolve(r#loop, fam)?;
     let device = device_of(r#loop, device_damping)?;
-    let stable = sys.decide(sys.wall_units(w).py()?).verdict == hapstab::Verdict::Stable;
-    let (p, region) = py.detach(|| compute(&r#loop.lp, w, device)).py()?;
-    passivity_object(py, &p, stable, region.as_ref())
+    let (answer, p) = py
+        .detach(|| passivity_answer_for(&sys, r#loop.normalized, w, device))
+        .py()?;
+    passivity_object(py, answer, p.wall)
 }

@@ -12,6 +12,7 @@ use crate::errors::{Context, finite};
 use crate::loops::PyLoop;
 use crate::passivity::{PyPassiveRegion, region_object};
 use crate::text::num;
+use hapstab::answer::PassiveRegionOut;
 
 /// The Z-width of a loop (the names of `hapstab zwidth --json`; K in N/m, B in Ns/m).
 #[pyclass(frozen, get_all, module = "hapstab", name = "ZWidth")]
@@ -126,7 +127,7 @@ fn zwidth_object(py: Python<'_>, z: &ZWidth) -> PyResult<PyZWidth> {
             DeviceDamping::NotApplicable { .. } => None,
         },
         passive: match &z.passive {
-            Some(r) => Some(Py::new(py, region_object(py, r)?)?),
+            Some(r) => Some(Py::new(py, region_object(py, &PassiveRegionOut::from(r))?)?),
             None => None,
         },
         k_max_passive_with_arm: pair(z.k_max_passive_with_arm),

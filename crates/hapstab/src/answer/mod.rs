@@ -23,7 +23,7 @@ use crate::model::Loop;
 use crate::params::Wall;
 use crate::passivity::{
     DeviceDamping, PassiveRegion, Passivity, PassivityVerdict, SampledWall, passive_region,
-    passivity_with,
+    passivity_of_device, passivity_with,
 };
 use crate::stability::Verdict;
 use crate::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange, sweep_param};
@@ -297,9 +297,24 @@ pub fn passivity_answer(
     normalized: bool,
     w: Wall,
 ) -> Result<(PassivityAnswer, Passivity)> {
+    passivity_answer_for(sys, normalized, w, None)
+}
+
+/// [`passivity_answer`] for a given device damper in place of the plant's own
+/// ([`passivity_of_device`]: "would a device with b = … render it passively?"); `None` is the
+/// plant's own, with eq. (28)'s arm-counted verdict beside it ([`passivity_with`]).
+pub fn passivity_answer_for(
+    sys: &System,
+    normalized: bool,
+    w: Wall,
+    device: Option<DeviceDamping>,
+) -> Result<(PassivityAnswer, Passivity)> {
     let lp = sys.lp();
     let sw = SampledWall::new(lp)?;
-    let p = passivity_with(&sw, lp, w);
+    let p = match device {
+        Some(d) => passivity_of_device(&sw, w, d),
+        None => passivity_with(&sw, lp, w),
+    };
     let stable = sys.decide(sys.wall_units(w)?).verdict == Verdict::Stable;
     let (device_damping, note, region) = match &p.device {
         DeviceDamping::Known { damping } => {
