@@ -4,7 +4,7 @@
 //!
 //! One endpoint per file: `/api/region` in `region` (its request in `region_request`, the
 //! passive triangles it draws in `passive`, the robust K_max over a box in `robust_box`),
-//! `/api/point` in `point` (the clicked wall's margins and passivity in `wall_analyses`),
+//! `/api/point` in `point` (the library's `WallAnswer`; the page's wall in the loop's units in `wall_analyses`),
 //! `/api/simulate` in `simulation`, and the analyses of `hapstab kmax`, `sweep`, `zwidth`,
 //! `map` and `passivity` in `kmax`, `sweep`, `zwidth`, `map` and `passivity`. The budget
 //! check, the physical loop of a request and the plant of an answer, which all share, are

@@ -3,18 +3,16 @@
 
 use std::time::Instant;
 
+use hapstab::Wall;
+use hapstab::answer::{WallAnswer, wall_answer};
 use hapstab::limits::point_cost;
 use hapstab::paper::Normalized;
-use hapstab::paper::linear::linear_check;
-use hapstab::{Loop, Wall};
 use serde::Serialize;
 
-use super::wall_analyses::{wall_analyses, wall_of};
+use super::wall_analyses::wall_of;
 use super::within_budget;
 use crate::limits::*;
 use crate::query::{ApiError, Params, PlantSpec, lib_error};
-use hapstab::margins::report::MarginsReport;
-use hapstab::passivity::Passivity;
 
 /// α and β of a point; in physical mode optionally given as K (N/m) and B (Ns/m).
 pub(crate) fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), ApiError> {
@@ -106,53 +104,19 @@ pub(crate) fn point_names() -> Vec<&'static str> {
     v
 }
 
-/// The physical wall of a point.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub(crate) struct WallOut {
-    /// K in N/m.
-    pub stiffness: f64,
-    /// B in Ns/m.
-    pub damping: f64,
-}
-
-/// The linear condition at a point.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub(crate) struct PointLinear {
-    pub alpha_lower: f64,
-    pub alpha_upper: f64,
-    pub satisfied: bool,
-}
-
-/// Answer of `/api/point`.
+/// Answer of `/api/point`: the library's [`WallAnswer`] and the server's time.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct PointOut {
-    /// (α, β, γ, δ, d); for a loop beyond the paper's the wall in wall units (a, b) with γ
-    /// its static stiffness in wall units and δ = 0 (the loop is under `loop`).
-    pub params: Normalized,
-    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
-    pub lp: Option<Loop>,
-    pub wall: Option<WallOut>,
-    /// stable | marginal | unstable (Schur–Cohn with a 5e-11 marginal band).
-    pub verdict: &'static str,
-    pub stable: bool,
-    /// Largest root modulus of p(z).
-    pub spectral_radius: f64,
-    /// Roots of p(z) as [re, im], largest modulus first.
-    pub roots: Vec<[f64; 2]>,
-    /// Linear condition (19), (23) of the paper's loop (null for other loops).
-    pub linear: Option<PointLinear>,
-    /// Passive for the device's own damping (Colgate–Schenkel: towards any passive operator);
-    /// null where the condition does not apply (see `passivity`).
-    pub passive: Option<bool>,
-    /// Passive by eq. (28) with the arm's damping counted (towards this operator only); null
-    /// without an arm.
-    pub passive_with_arm: Option<bool>,
-    /// Every margin of the wall, as `hapstab check --json` gives them (withheld with a note
-    /// beside a verdict that is not stable).
-    pub margins: MarginsReport,
-    /// The passivity of the wall, as `hapstab passivity --json` gives it.
-    pub passivity: Passivity,
+    #[serde(flatten)]
+    pub answer: WallAnswer,
     pub server_ms: f64,
+}
+
+impl std::ops::Deref for PointOut {
+    type Target = WallAnswer;
+    fn deref(&self) -> &WallAnswer {
+        &self.answer
+    }
 }
 
 /// Refuses a point whose roots would cost more than one request may.
@@ -176,37 +140,16 @@ pub(super) fn point_params(
     Normalized::new(alpha, beta, v.plant.gamma, v.plant.delta, v.d).map_err(lib_error)
 }
 
-/// Computes `/api/point`.
+/// Computes `/api/point` ([`wall_answer`] on the request's loop).
 pub(crate) fn point(spec: &PlantSpec, at: WallAt) -> Result<PointOut, ApiError> {
     let t0 = Instant::now();
     let (alpha, beta) = at.units;
-    let n = point_params(spec, alpha, beta)?;
-    let a = spec.sys.analysis((alpha, beta)).map_err(lib_error)?;
-    let linear = spec.paper.is_some().then(|| {
-        let lc = linear_check(&n);
-        PointLinear {
-            alpha_lower: lc.alpha_lower,
-            alpha_upper: lc.alpha_upper,
-            satisfied: lc.satisfied,
-        }
-    });
-    let (margins, passivity) = wall_analyses(spec, at.wall, a.stable())?;
+    let params = point_params(spec, alpha, beta)?;
+    let normalized = spec.physical.is_none();
+    let answer =
+        wall_answer(&spec.sys, params, normalized, at.units, at.wall).map_err(lib_error)?;
     Ok(PointOut {
-        passive: passivity.verdict.meets(),
-        passive_with_arm: passivity.with_arm.and_then(|w| w.verdict.meets()),
-        margins: MarginsReport::from(&margins),
-        passivity,
-        params: n,
-        lp: spec.paper.is_none().then(|| spec.sys.lp().clone()),
-        wall: spec.physical.map(|_| WallOut {
-            stiffness: at.wall.stiffness,
-            damping: at.wall.damping,
-        }),
-        verdict: a.verdict.as_str(),
-        stable: a.stable(),
-        spectral_radius: a.spectral_radius,
-        roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
-        linear,
+        answer,
         server_ms: t0.elapsed().as_secs_f64() * 1e3,
     })
 }

@@ -127,7 +127,7 @@ pub(crate) struct TraceOut {
 /// simulate` for the same setting) with a decimated trace of the whole run.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct SimOut {
-    /// As [`PointOut::params`](super::PointOut::params).
+    /// As [`hapstab::answer::WallAnswer::params`].
     pub params: Normalized,
     #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
     pub lp: Option<Loop>,

@@ -1,16 +1,18 @@
 //! The answers of the analyses with their inputs echoed, as every front end serializes them:
 //! `hapstab kmax|sweep|zwidth|map|passivity --json` and the explorer's `/api/kmax`,
 //! `/api/sweep`, `/api/zwidth`, `/api/map` and `/api/passivity` give the same objects under
-//! the same keys (the command line adds the files it wrote, the explorer the map's grid).
+//! the same keys, and the explorer's `/api/point` is a [`WallAnswer`] (the command line adds the files it wrote, the explorer the map's grid).
 
 mod check;
 mod region;
+mod wall;
 
 pub use check::{CheckAnswer, CheckPaperView, check_answer};
 pub use region::{
     NormalizedRegion, PhysicalRegion, RegionAnswer, RegionEdge, RegionPaperView, WallUnitsOut,
     region_answer,
 };
+pub use wall::{WallAnswer, wall_answer};
 
 use std::time::Instant;
 
