@@ -271,9 +271,10 @@ fn next_top(
 /// The whole positive u axis, as windows of [`positive_roots_within`].
 const WHOLE_AXIS: [(f64, f64); 1] = [(0.0, f64::INFINITY)];
 
-/// The curve's candidates inside the band above `floor`, highest first, sought in the windows
-/// of u outside which the curve lies below the floor ([`WHOLE_AXIS`] or
-/// [`windows::above_windows`]).
+/// The curve's candidates inside the band above `floor`, highest first (items 2 and 3 of the
+/// module doc: the curve's stationary points in stiffness and its corners on the z = ±1
+/// lines), sought in the windows of u outside which the curve lies below the floor
+/// ([`WHOLE_AXIS`] or [`windows::above_windows`]).
 fn sorted_candidates(
     fam: &AffineFamily,
     cf: &CayleyFamily,
@@ -286,8 +287,12 @@ fn sorted_candidates(
         let slack = CORNER_REACH * p.alpha.abs().max(p.beta.abs());
         p.alpha > floor - slack && p.beta >= b_lo - slack && p.beta <= b_hi + slack
     };
-    let mut cands: Vec<AlphaBeta> = curve_candidates(fam, cf, &keep, floor, (b_lo, b_hi), windows)
+    let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
+    let stationary = poly::mul_diff_trimmed(&derivative(a1), a2, a1, &derivative(a2));
+    let mut cands: Vec<AlphaBeta> = positive_roots_within(&stationary, windows)
         .into_iter()
+        .filter_map(|u| curve_point(fam, angle(u)))
+        .chain(line_corners(fam, cf, &keep, floor, (b_lo, b_hi), windows))
         .filter(|p| p.beta >= b_lo && p.beta <= b_hi && p.alpha.is_finite())
         .collect();
     cands.sort_by(|p, q| q.alpha.total_cmp(&p.alpha));
@@ -583,29 +588,6 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
         beta: f.beta,
     };
     confirm_max(fam, cand, band, f.alpha.abs().max(f.beta.abs()))
-}
-
-/// The curve's candidates (items 2 and 3 of the module doc) in wall units, unfiltered but for
-/// the corners of a line that stays below `floor` over the band ([`line_below`]), their roots
-/// u sought in `windows` ([`positive_roots_within`]).
-fn curve_candidates(
-    fam: &AffineFamily,
-    cf: &CayleyFamily,
-    keep: &dyn Fn(AlphaBeta) -> bool,
-    floor: f64,
-    band: (f64, f64),
-    windows: &[(f64, f64)],
-) -> Vec<AlphaBeta> {
-    let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
-    let mut out: Vec<AlphaBeta> = Vec::new();
-    let stationary = poly::mul_diff_trimmed(&derivative(a1), a2, a1, &derivative(a2));
-    out.extend(
-        positive_roots_within(&stationary, windows)
-            .into_iter()
-            .filter_map(|u| curve_point(fam, angle(u))),
-    );
-    out.extend(line_corners(fam, cf, keep, floor, band, windows));
-    out
 }
 
 /// The corners on the z = ±1 lines (item 3 of the module doc): where the curve meets each
