@@ -3,7 +3,7 @@
 //! estimator, actuator lag), each validated by the library when constructed.
 
 use hapstab::Param;
-use hapstab::loop_spec::{LoopSpec, PlantSpec, VelocitySpec};
+use hapstab::loop_spec::{LoopSpec, VelocitySpec};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass};
 use hapstab::params::{Arm, Device, Effective};
 use hapstab::{PlantParams, System};
@@ -408,15 +408,15 @@ impl PyLoop {
         };
         // the loop file's form: one set of defaults and checks for every front end
         let spec = LoopSpec {
-            plant: Some(PlantSpec {
+            delay,
+            delay_time,
+            ..LoopSpec::of_plant(
                 model,
                 force_lag,
                 operator,
-            }),
-            period: Some(period),
-            delay,
-            delay_time,
-            velocity: Some(VelocitySpec::Text(velocity.into())),
+                period,
+                VelocitySpec::Text(velocity.into()),
+            )
         };
         let lp = spec.resolve().py_with(&[
             (Param::Mass, "plant.mass"),

@@ -666,15 +666,14 @@ fn physical_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     })?;
     // the loop file's form: one set of defaults and checks for every front end
     let spec = LoopSpec {
-        plant: Some(hapstab::loop_spec::PlantSpec {
-            model,
-            force_lag: lag,
-            operator,
-        }),
-        period: Some(period),
         delay: Some(general_delay(p, period)?),
-        delay_time: None,
-        velocity: Some(VelocitySpec::Estimator(velocity)),
+        ..LoopSpec::of_plant(
+            model,
+            lag,
+            operator,
+            period,
+            VelocitySpec::Estimator(velocity),
+        )
     };
     let lp = spec.resolve().map_err(lib_error)?;
     let sys = System::new(lp).map_err(lib_error)?;

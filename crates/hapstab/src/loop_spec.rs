@@ -121,6 +121,30 @@ struct NormalizedSpec {
 }
 
 impl LoopSpec {
+    /// The spec of a plant model with its actuator lag τ in s and operator, sampled with
+    /// period T in s and read by `velocity`, without a delay (set `delay` or `delay_time`):
+    /// the form every front end builds from its own arguments before [`LoopSpec::resolve`]
+    /// applies the defaults, rules and limits.
+    pub fn of_plant(
+        model: PlantModel,
+        force_lag: f64,
+        operator: Option<Arm>,
+        period: f64,
+        velocity: VelocitySpec,
+    ) -> Self {
+        Self {
+            plant: Some(PlantSpec {
+                model,
+                force_lag,
+                operator,
+            }),
+            period: Some(period),
+            delay: None,
+            delay_time: None,
+            velocity: Some(velocity),
+        }
+    }
+
     /// The loop this spec describes, its missing parts from the defaults (module doc), every
     /// value checked by [`Plant::validated`] and [`Loop::new`].
     pub fn resolve(&self) -> Result<Loop> {

@@ -5,7 +5,7 @@
 use anyhow::{Result, bail};
 use clap::Args;
 use hapstab::Param;
-use hapstab::loop_spec::{LoopSpec, PlantSpec, VelocitySpec};
+use hapstab::loop_spec::{LoopSpec, VelocitySpec};
 use hapstab::model::{Delay, Loop, Plant, PlantModel as LibPlantModel, TwoMass, VelocityEstimator};
 use hapstab::spec::excerpt_list;
 
@@ -170,18 +170,16 @@ impl LoopArgs {
         }
         .filter(|_| matches!(model, LibPlantModel::MassSpringDamper(_)));
         // the loop file's form: one set of defaults and checks for every front end
+        let velocity = self.velocity.clone().unwrap_or(VelocityEstimator::Backward);
         let spec = LoopSpec {
-            plant: Some(PlantSpec {
+            delay: Some(self.delay(period)?),
+            ..LoopSpec::of_plant(
                 model,
                 force_lag,
                 operator,
-            }),
-            period: Some(period),
-            delay: Some(self.delay(period)?),
-            delay_time: None,
-            velocity: Some(VelocitySpec::Estimator(
-                self.velocity.clone().unwrap_or(VelocityEstimator::Backward),
-            )),
+                period,
+                VelocitySpec::Estimator(velocity),
+            )
         };
         Ok(ResolvedLoop {
             lp: spec.resolve().map_err(|e| self.with_flag(e))?,
