@@ -1,7 +1,7 @@
 //! `stability_map`: the grid method of Section V over the wall (K, B) of any loop, one
 //! Schur–Cohn test per point, in parallel with the GIL released.
 
-use hapstab::paper::map::{MapKind, wall_map_points, wall_map_values};
+use hapstab::map::{MapKind, wall_map_points, wall_map_values};
 use numpy::{
     AllowTypeChange, IntoPyArray, IxDyn, PyArray1, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods,
     PyUntypedArrayMethods,

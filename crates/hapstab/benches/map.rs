@@ -6,8 +6,9 @@
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::model::Delay;
-use hapstab::paper::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map};
+use hapstab::paper::map::{MapSpec, compute_map};
 use hapstab::{AffineFamily, Normalized};
 
 #[path = "common/general_loop.rs"]

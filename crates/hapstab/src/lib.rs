@@ -39,6 +39,7 @@
 //! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |
 //! | [`limits`] | the computing time and memory of each analysis, estimated before it starts |
 //! | [`passivity`] | Section VIII, eq. (28), for any loop (Colgate & Schenkel 1997) |
+//! | [`map`] | Section V's grid method for any loop over its wall, in parallel |
 //! | [`margins`] | gain, phase and delay margins on the exact sampled loop |
 //! | [`freqresp`] | the open loop's frequency response (Bode and Nyquist plot data) |
 //! | [`kmax`] | Section V: K_max at a damping, over a band, and over the renderable band |
@@ -74,6 +75,7 @@ pub mod line_decomposition;
 pub mod locus;
 pub mod loop_spec;
 pub mod lowpass_design;
+pub mod map;
 pub mod margins;
 pub mod matrix_exp;
 pub mod model;

@@ -17,7 +17,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-pub use crate::paper::map::MAX_POINTS as MAX_MAP_POINTS;
+pub use crate::map::MAX_POINTS as MAX_MAP_POINTS;
 pub use crate::params::MAX_DELAY;
 
 /// Core-seconds of one call of [`crate::boundary::stable_alpha_intervals`] per unit of

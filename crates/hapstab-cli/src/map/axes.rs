@@ -1,7 +1,7 @@
 //! The `--x`/`--y` axes of `hapstab map`: what they grid, parsed from NAME:LO:HI:N, and their names.
 
 use anyhow::{Result, anyhow, bail};
-use hapstab::paper::map::{Axis, AxisRange};
+use hapstab::map::{Axis, AxisRange};
 
 /// What an axis grids.
 #[derive(Debug, Clone, Copy, PartialEq)]

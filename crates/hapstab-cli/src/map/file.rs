@@ -6,7 +6,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use clap::ValueEnum;
-use hapstab::paper::map::AxisRange;
+use hapstab::map::AxisRange;
 
 use super::Values;
 use super::axes::{Grid, axis_label};

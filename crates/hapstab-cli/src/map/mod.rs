@@ -25,7 +25,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use hapstab::answer::{MapInput, MapSummary};
 use hapstab::limits::map_cost_of_degree;
-use hapstab::paper::map::MapKind;
+use hapstab::map::MapKind;
 use serde::Serialize;
 
 use crate::model::{LOOP_FLAGS, LoopArgs, LoopInput, PHYSICAL_PLANT_FLAGS};

@@ -1,6 +1,6 @@
 //! The `--plot` heatmap of `hapstab map`: stable cells, or the spectral radius in classes.
 
-use hapstab::paper::map::AxisRange;
+use hapstab::map::AxisRange;
 use hapstab_plot::{Figure, Legend, RGBColor, Series, palette};
 
 use super::Values;

@@ -2,13 +2,14 @@
 
 use anyhow::{Result, bail};
 use hapstab::Normalized;
-use hapstab::paper::map::{Axis, MapKind, MapSpec, compute_map, wall_map_physical};
+use hapstab::map::{Axis, MapKind, wall_map_physical};
+use hapstab::paper::map::{MapSpec, compute_map};
 
 use super::axes::{Grid, Name};
 use super::cost::check_budget;
 use super::{MapArgs, Values, map_bar};
 use crate::model::LoopInput;
-use hapstab::paper::map::stable_share;
+use hapstab::map::stable_share;
 
 pub(super) fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<Values> {
     if a.lp.any_physical() {

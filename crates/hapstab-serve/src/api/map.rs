@@ -10,7 +10,8 @@ use hapstab::Normalized;
 use hapstab::answer::{MapInput, MapSummary};
 use hapstab::limits::map_cost_of_degree;
 use hapstab::loop_spec::LoopInput;
-use hapstab::paper::map::{Axis, AxisRange, MapKind, MapSpec, compute_map, wall_map_physical};
+use hapstab::map::{Axis, AxisRange, MapKind, wall_map_physical};
+use hapstab::paper::map::{MapSpec, compute_map};
 use serde::Serialize;
 
 use super::{physical_loop, within_budget};

@@ -14,6 +14,7 @@ mod identify;
 mod kmax;
 mod kmax_band;
 mod loop_spec;
+mod map;
 mod margins;
 mod margins_delay;
 mod margins_property;

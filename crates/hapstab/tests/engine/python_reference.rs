@@ -12,8 +12,8 @@
 
 use hapstab::System;
 use hapstab::boundary::Interval;
+use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
-use hapstab::paper::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::params::{Arm, Device, Effective, Wall};
 use hapstab::system::pick_interval;
 use hapstab::{AffineFamily, PlantParams};

@@ -4,8 +4,9 @@
 
 use crate::common::general::{family, general_loops};
 use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
+use hapstab::map::{Axis, AxisRange, MapKind};
 use hapstab::paper::NormalizedFamily;
-use hapstab::paper::map::{Axis, AxisRange, MapKind, MapSpec, compute_map};
+use hapstab::paper::map::{MapSpec, compute_map};
 use hapstab::region::{EdgeKind, StableRegion, stable_region};
 use hapstab::schur_cohn::spectral_radius_schur;
 use hapstab::stability::schur_stable;

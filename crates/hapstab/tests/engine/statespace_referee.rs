@@ -27,8 +27,8 @@
 use hapstab::AffineFamily;
 use hapstab::System;
 use hapstab::boundary::AlphaBeta;
+use hapstab::map::{MapKind, wall_map_points};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
-use hapstab::paper::map::{MapKind, wall_map_points};
 use hapstab::params::Wall;
 use hapstab::region::{DEFAULT_REL_TOL, StableRegion};
 use hapstab::stability::{MARGINAL_BAND, Verdict};

@@ -6,8 +6,8 @@
 //! (exact ZOH by the matrix exponential, eigenvalues; 40-digit mpmath) quoted to the digits
 //! the audit that found these cases printed.
 
+use hapstab::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
-use hapstab::paper::map::{Axis, AxisRange, MapKind, wall_map};
 use hapstab::params::Effective;
 use hapstab::verdict::{Verdict, decide, verdict_of_radius};
 use hapstab::{AffineFamily, Analysis};
