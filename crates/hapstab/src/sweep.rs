@@ -571,24 +571,25 @@ struct PassiveKey {
     period: f64,
     delay: Delay,
     velocity: VelocityEstimator,
-    /// The device's own damping (None when the plant does not name it).
-    device: Option<f64>,
+    /// The device's own damping, or why the passivity condition does not apply.
+    device: DeviceDamping,
     /// The device's and the arm's damping together (eq. 28's b).
     with_arm: Option<f64>,
 }
 
 impl PassiveKey {
     fn of(lp: &Loop) -> Self {
-        let device = match device_damping(&lp.plant) {
-            DeviceDamping::Known { damping } => Some(damping),
-            _ => None,
+        let device = device_damping(&lp.plant);
+        let with_arm = match device {
+            DeviceDamping::Known { .. } => lp.plant.effective_damping(),
+            DeviceDamping::NotApplicable { .. } => None,
         };
         Self {
             period: lp.period,
             delay: lp.delay,
             velocity: lp.velocity.clone(),
             device,
-            with_arm: device.and(lp.plant.effective_damping()),
+            with_arm,
         }
     }
 }
@@ -604,12 +605,9 @@ struct PassiveKmax {
 
 impl PassiveKmax {
     fn of(lp: &Loop, key: &PassiveKey, at: KmaxAt) -> Self {
-        let Some(damping) = key.device else {
-            let why_not = match device_damping(&lp.plant) {
-                DeviceDamping::NotApplicable { reason } => reason,
-                DeviceDamping::Known { .. } => "the device damping is not known".into(),
-            };
-            return Self::not_applicable(why_not);
+        let damping = match &key.device {
+            DeviceDamping::Known { damping } => *damping,
+            DeviceDamping::NotApplicable { reason } => return Self::not_applicable(reason.clone()),
         };
         let sw = match SampledWall::new(lp) {
             Ok(sw) => sw,
