@@ -45,7 +45,7 @@ fn bench_map(c: &mut Criterion) {
         let s = spec(d);
         g.bench_with_input(BenchmarkId::new("schur", d), &s, |b, s| {
             b.iter(|| {
-                let m = compute_map(black_box(s), MapKind::Stability, &|_| {});
+                let m = compute_map(black_box(s), MapKind::Stability, &|_| {}).expect("map");
                 black_box(m.stable.iter().filter(|&&x| x).count())
             })
         });

@@ -33,7 +33,7 @@
 //! | [`loop_spec`], [`model`] | the loop a user describes, and its validated form |
 //! | [`system`] | the analysis object: one loop, its family, every question about a wall |
 //! | [`params`] | Section II, eq. (1): device, arm, effective plant, wall, sampling |
-//! | [`paper`] | the paper's normalized view α, β, γ, δ, d and the analyses defined only for its plant: the closed-form plant (eq. 2–6, 10), parameter ranges (eq. 11–15), the linear condition (Sections VI–VII), Nyquist, robust stability and passivity in γ (Section VIII), grid maps |
+//! | [`paper`] | the paper's normalized view α, β, γ, δ, d and the analyses defined only for its plant: eq. (10) for comparison with the engine, parameter ranges (eq. 11–15), the linear condition (Sections VI–VII), Nyquist, robust stability and passivity in γ (Section VIII), grid maps |
 //! | [`closed_loop`] | eq. (7)–(9) |
 //! | [`verdict`], [`stability`] | Section V (roots inside the unit circle) |
 //! | [`polyroots`] | Section V (the roots of p(z): Aberth–Ehrlich, companion matrix) |

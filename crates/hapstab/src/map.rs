@@ -10,7 +10,7 @@ use crate::closed_loop::AffineFamily;
 use crate::error::{Error, Result};
 use crate::param::Param;
 use crate::stability::Analysis;
-use crate::verdict::{Verdict, decide_coefficients};
+use crate::verdict::Verdict;
 
 /// A gridded parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -221,18 +221,6 @@ pub(crate) fn wall_point(
         MapKind::SpectralRadius => match Analysis::of_family(fam, a, b) {
             Ok(an) => (an.verdict == Verdict::Stable, an.spectral_radius),
             Err(_) => (crate::verdict::stable(fam, a, b, c), f64::NAN),
-        },
-    }
-}
-
-/// One point of a map given by its coefficients (a plant that changes from point to point):
-/// the verdict of [`decide_coefficients`], and for a radius map the roots' radius.
-pub(crate) fn poly_point(c: &[f64], kind: MapKind) -> (bool, f64) {
-    match kind {
-        MapKind::Stability => (decide_coefficients(c).verdict == Verdict::Stable, f64::NAN),
-        MapKind::SpectralRadius => match Analysis::of_poly(c) {
-            Ok(an) => (an.verdict == Verdict::Stable, an.spectral_radius),
-            Err(_) => (decide_coefficients(c).verdict == Verdict::Stable, f64::NAN),
         },
     }
 }

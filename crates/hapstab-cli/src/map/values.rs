@@ -34,7 +34,7 @@ pub(super) fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Re
     let spec = MapSpec::new(x.range, y.range, base)?;
     check_budget(a, (x, y), d + 3, 1.0, ("--delay", &d.to_string()))?;
     let bar = map_bar(a, x, y, d + 3);
-    let m = compute_map(&spec, kind, &bar.stage(0));
+    let m = compute_map(&spec, kind, &bar.stage(0))?;
     Ok(Values {
         stable: m.stable,
         radius: m.radius,

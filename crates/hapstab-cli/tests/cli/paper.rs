@@ -12,9 +12,8 @@ use hapstab::is_stable;
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::linear::{routh_hurwitz_normalized, validity_points};
 use hapstab::paper::nyquist::{RegionSummary, region_summary};
-use hapstab::paper::reference::DiscretePlant;
 use hapstab::stability::roots;
-use hapstab::{Normalized, PlantParams};
+use hapstab::{Loop, Normalized, PlantParams};
 use num_complex::Complex64;
 use serde_json::Value;
 
@@ -238,18 +237,26 @@ fn c10() -> (&'static str, f64) {
 }
 
 fn c11() -> &'static str {
-    // Eq. (10) with T = m = 1, b = δ, evaluated directly as a transfer function.
+    // Eq. (10) with T = m = 1, b = δ, evaluated directly as a transfer function, against the
+    // engine's exact discretization of the paper's loop at k = 0.
+    let horner = |c: &[f64], z: Complex64| {
+        c.iter()
+            .rev()
+            .fold(Complex64::new(0.0, 0.0), |a, &x| a * z + x)
+    };
     let mut worst: f64 = 0.0;
     for dl in [0.02_f64, 0.3, 1.0, 4.0] {
         let e = (-dl).exp();
-        let p = DiscretePlant::new(0.0, dl).unwrap();
+        let lp = Loop::normalized(PlantParams::new(0.0, dl).unwrap(), 0).unwrap();
+        let tf = lp.discretize().unwrap().plant_tf();
         for z in [
             Complex64::new(0.3, 0.4),
             Complex64::new(-0.7, 0.1),
             Complex64::new(2.0, -1.0),
         ] {
             let h10 = 1.0 / (dl * (z - 1.0)) - (1.0 - e) / (dl * dl * (z - e));
-            worst = worst.max((p.transfer(z) - h10).norm() / h10.norm());
+            let h = horner(&tf.num, z) / horner(&tf.den, z);
+            worst = worst.max((h - h10).norm() / h10.norm());
         }
     }
     verdict(worst < 1e-9)

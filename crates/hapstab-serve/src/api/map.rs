@@ -194,7 +194,7 @@ pub(crate) fn map(req: &MapReq) -> Result<MapOut, ApiError> {
             let base = Normalized::new(req.alpha, req.beta, s.plant.gamma, s.plant.delta, s.d)
                 .map_err(lib_error)?;
             let spec = MapSpec::new(req.x.range, req.y.range, base).map_err(lib_error)?;
-            let m = compute_map(&spec, req.kind, &|_| {});
+            let m = compute_map(&spec, req.kind, &|_| {}).map_err(lib_error)?;
             let input = LoopInput::Normalized {
                 gamma: base.gamma,
                 delta: base.delta,

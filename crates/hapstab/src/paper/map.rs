@@ -6,9 +6,11 @@
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::map::{Axis, AxisRange, MAX_POINTS, MapKind, grid, poly_point, wall_point};
+use rayon::prelude::*;
+
+use crate::map::{Axis, AxisRange, MAX_POINTS, MapKind, grid, wall_point};
+use crate::paper::Normalized;
 use crate::paper::NormalizedFamily;
-use crate::paper::{Normalized, PlantParams};
 use crate::param::Param;
 
 /// A map specification: two axes and the fixed values of the other parameters.
@@ -86,68 +88,84 @@ impl MapSpec {
         }
         p
     }
+}
 
-    fn plant_fixed(&self) -> bool {
-        [self.x.axis, self.y.axis]
-            .iter()
-            .all(|a| matches!(a, Axis::Alpha | Axis::Beta))
+/// The plants of a map: one family when both axes are wall axes (α, β), one per value of
+/// the plant axis when one axis is γ or δ, none (each point builds its own) when both are.
+enum Plants {
+    Fixed(Box<NormalizedFamily>),
+    PerX(Vec<NormalizedFamily>),
+    PerY(Vec<NormalizedFamily>),
+    PerPoint,
+}
+
+impl Plants {
+    fn new(spec: &MapSpec) -> Result<Self> {
+        let plant_axis = |a: Axis| matches!(a, Axis::Gamma | Axis::Delta);
+        let along = |r: AxisRange, y: bool| -> Result<Vec<NormalizedFamily>> {
+            (0..r.n)
+                .into_par_iter()
+                .map(|i| {
+                    let p = if y {
+                        spec.point(0, i)
+                    } else {
+                        spec.point(i, 0)
+                    };
+                    NormalizedFamily::new(p.plant(), p.d)
+                })
+                .collect()
+        };
+        Ok(match (plant_axis(spec.x.axis), plant_axis(spec.y.axis)) {
+            (false, false) => Self::Fixed(Box::new(NormalizedFamily::new(
+                spec.base.plant(),
+                spec.base.d,
+            )?)),
+            (true, false) => Self::PerX(along(spec.x, false)?),
+            (false, true) => Self::PerY(along(spec.y, true)?),
+            (true, true) => Self::PerPoint,
+        })
     }
 }
 
-/// p(z) = z^{d+1} D(z) + N(z)((α + β) z − β) from the paper's closed-form plant (eq. 5, 9),
-/// for maps whose axes change the plant at every point: the closed form costs a few
-/// exponentials where the general discretization would cost a matrix exponential. The two
-/// agree to rounding (tested in `crate::zoh`).
-fn paper_coefficients(
-    pl: &crate::paper::reference::DiscretePlant,
-    d: usize,
-    alpha: f64,
-    beta: f64,
-    out: &mut [f64],
-) {
-    let n = d + 3;
-    out[..=n].fill(0.0);
-    out[n] = 1.0;
-    out[n - 1] = -pl.a1;
-    out[n - 2] = pl.a0;
-    let ab = alpha + beta;
-    out[2] += pl.n1 * ab;
-    out[1] += pl.n0 * ab - pl.n1 * beta;
-    out[0] += -pl.n0 * beta;
-}
-
-/// Computes a map in parallel over rows (rayon). `progress` is called with the number of
-/// rows finished so far (from any thread).
-pub fn compute_map(spec: &MapSpec, kind: MapKind, progress: &(dyn Fn(usize) + Sync)) -> Map {
+/// Computes a map in parallel over rows (rayon): every point is judged by the one verdict
+/// ([`crate::verdict`]) on the exact family of its plant ([`NormalizedFamily`]), built once
+/// per plant. `progress` is called with the number of rows finished so far (from any
+/// thread).
+pub fn compute_map(
+    spec: &MapSpec,
+    kind: MapKind,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Map> {
     let deg = spec.base.d + 3;
-    let fixed = if spec.plant_fixed() {
-        NormalizedFamily::new(spec.base.plant(), spec.base.d).ok()
-    } else {
-        None
-    };
+    let plants = Plants::new(spec)?;
+    let failed = std::sync::OnceLock::new();
     let point = |ix: usize, iy: usize, c: &mut [f64]| {
         let p = spec.point(ix, iy);
-        match &fixed {
-            Some(fam) => wall_point(fam, p.alpha, p.beta, kind, c),
-            None => {
-                paper_coefficients(
-                    &crate::paper::reference::DiscretePlant::from_params(PlantParams {
-                        gamma: p.gamma,
-                        delta: p.delta,
-                    }),
-                    p.d,
-                    p.alpha,
-                    p.beta,
-                    c,
-                );
-                poly_point(c, kind)
-            }
-        }
+        let own;
+        let fam = match &plants {
+            Plants::Fixed(f) => f,
+            Plants::PerX(v) => &v[ix],
+            Plants::PerY(v) => &v[iy],
+            Plants::PerPoint => match NormalizedFamily::new(p.plant(), p.d) {
+                Ok(f) => {
+                    own = f;
+                    &own
+                }
+                Err(e) => {
+                    failed.get_or_init(|| e);
+                    return (false, f64::NAN);
+                }
+            },
+        };
+        wall_point(fam, p.alpha, p.beta, kind, c)
     };
     let (stable, radius) = grid(spec.x.n, spec.y.n, deg, kind, progress, point);
-    Map {
+    if let Some(e) = failed.into_inner() {
+        return Err(e);
+    }
+    Ok(Map {
         spec: *spec,
         stable,
         radius,
-    }
+    })
 }

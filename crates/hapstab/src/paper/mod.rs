@@ -13,7 +13,7 @@
 //! | module | paper |
 //! |---|---|
 //! | [`normalized`] | Table I: α, β, γ, δ, d ([`Normalized`], [`PlantParams`]) and their conversions |
-//! | [`reference`](mod@reference) | Section III, eq. (2)–(6), (10): the closed-form ZOH plant, an independent reference |
+//! | [`reference`](mod@reference) | Remark 2, eq. (10) evaluated literally, for comparison with the engine's exact discretization |
 //! | [`ranges`] | Section IV, eq. (11)–(15): parameter ranges of real systems |
 //! | [`linear`] | Sections VI–VII, eq. (16)–(24): the linear condition and its validity |
 //! | [`nyquist`] | Section VIII, eq. (25)–(28): Nyquist frequency, robust stability, passivity |

@@ -211,7 +211,7 @@ fn grid_map_agrees_with_polygons() {
             Normalized::new(0.0, 0.0, g, dl, d).unwrap(),
         )
         .unwrap();
-        let m = compute_map(&spec, MapKind::Stability, &|_| {});
+        let m = compute_map(&spec, MapKind::Stability, &|_| {}).expect("map");
         // Polygon membership per grid row by scanline (even-odd rule on sorted crossings).
         let rows: Vec<Vec<f64>> = (0..n)
             .map(|iy| {

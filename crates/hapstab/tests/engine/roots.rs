@@ -1,8 +1,8 @@
 //! The roots of p(z): the Aberth–Ehrlich finder against the companion matrix, closed forms
 //! at the extremes, and the verdict of an `Analysis` against its own spectral radius.
 
+use crate::common::discrete_plant::DiscretePlant;
 use hapstab::paper::NormalizedFamily;
-use hapstab::paper::reference::DiscretePlant;
 use hapstab::stability::{
     Analysis, MARGINAL_BAND, Verdict, roots, roots_companion, verdict_of_radius,
 };

@@ -5,8 +5,8 @@
 //! or from independent linear algebra, never from the simulator itself.
 
 use crate::common;
+use crate::common::discrete_plant::DiscretePlant;
 use common::SplitMix;
-use hapstab::paper::reference::DiscretePlant;
 use hapstab::simulation::{
     Config, Contact, Friction, HumanForce, LoopModel, Model, Outcome, SimModel, Simulator, Trace,
     exact_alpha_limit, linear_growth_of, simulate,

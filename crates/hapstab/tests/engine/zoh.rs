@@ -10,6 +10,8 @@ use hapstab::paper::NormalizedFamily;
 use hapstab::params::{Arm, Effective};
 use hapstab::{AffineFamily, PlantParams};
 
+use crate::common::discrete_plant::DiscretePlant;
+
 fn tf_loop(num: &[f64], den: &[f64], period: f64, delay_time: f64) -> Loop {
     Loop::new(
         Plant::new(
@@ -455,5 +457,44 @@ fn transition_minus_identity_is_the_closed_form_for_every_fraction() {
                 );
             }
         }
+    }
+}
+
+#[test]
+fn paper_plant_matches_closed_form() {
+    // The paper's closed-form ZOH plant (eq. 5–6, the tests' reference) against the general
+    // discretization of the same loop.
+    for &(g, dl) in &[
+        (0.0, 0.0),
+        (1e-3, 0.015),
+        (0.3, 0.0),
+        (9.0, 1.0),
+        (1e-12, 1e-9),
+        (2.0, 6.0),
+        (0.0, 40.0),
+    ] {
+        let lp = Loop::normalized(PlantParams::new(g, dl).unwrap(), 0).unwrap();
+        let tf = lp.discretize().unwrap().plant_tf();
+        let p = DiscretePlant::new(g, dl).unwrap();
+        let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(1e-300);
+        assert!(
+            rel(tf.num[1], p.n1) < 1e-13,
+            "{g} {dl}: {:?} vs {p:?}",
+            tf.num
+        );
+        assert!(
+            rel(tf.num[0], p.n0) < 1e-13,
+            "{g} {dl}: {:?} vs {p:?}",
+            tf.num
+        );
+        assert!((tf.den[1] + p.a1).abs() < 1e-14 * p.a1.abs().max(1.0));
+        // z-coefficients formed from the shifted form carry absolute (not relative) errors
+        // of a few ulps of 1: what matters for roots near the unit circle.
+        assert!(
+            (tf.den[0] - p.a0).abs() < 4e-16,
+            "{g} {dl}: {:?} vs {p:?}",
+            tf.den
+        );
+        assert_eq!(tf.delay, 0);
     }
 }

@@ -1,6 +1,7 @@
 //! Helpers shared by the library's integration tests.
 #![allow(dead_code)]
 
+pub mod discrete_plant;
 pub mod general;
 pub mod loops;
 

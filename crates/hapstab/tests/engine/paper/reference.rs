@@ -4,9 +4,10 @@
 //! Expected values come from closed forms derived by hand, the paper's own formulas and
 //! statements, or published examples, never from program output.
 
+use crate::common::discrete_plant::DiscretePlant;
 use hapstab::PlantParams;
 use hapstab::paper::NormalizedFamily;
-use hapstab::paper::reference::{DiscretePlant, eq10_coefficients};
+use hapstab::paper::reference::eq10_coefficients;
 use hapstab::stability::roots;
 use num_complex::Complex64;
 use proptest::prelude::*;
