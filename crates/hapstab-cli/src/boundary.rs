@@ -18,8 +18,8 @@ use hapstab_plot::{Marker, palette};
 pub struct BoundaryArgs {
     #[command(flatten)]
     lp: LoopArgs,
-    /// Write the polygon vertices to this CSV file (polygon, vertex, alpha, beta, theta, edge,
-    /// and for a physical loop K in N/m and B in Ns/m).
+    /// Write the polygon vertices to this CSV file: polygon, vertex, K (N/m), B (Ns/m), theta,
+    /// edge (alpha and beta instead of K and B for normalized input).
     #[arg(long)]
     csv: Option<std::path::PathBuf>,
     /// Draw the stable region to FILE: SVG or PNG by its extension (both FILE.svg and
@@ -82,29 +82,31 @@ fn write_vertices(
     fam: Option<&AffineFamily>,
 ) -> Result<()> {
     let mut w = csv::Writer::from_path(path)?;
-    let mut header = vec!["polygon", "vertex", "alpha", "beta", "theta", "edge"];
-    if fam.is_some() {
-        header.extend(["K", "B"]);
-    }
-    w.write_record(&header)?;
+    // A physical loop's vertices in N/m and Ns/m, the normalized loop's in α and β.
+    let (x, y) = if fam.is_some() {
+        ("K", "B")
+    } else {
+        ("alpha", "beta")
+    };
+    w.write_record(["polygon", "vertex", x, y, "theta", "edge"])?;
     for (pi, p) in r.polygons.iter().enumerate() {
         let mut ei = 0;
         for (vi, v) in p.vertices.iter().enumerate() {
             while ei + 1 < p.edges.len() && p.edges[ei + 1].start <= vi {
                 ei += 1;
             }
-            let mut rec = vec![
+            let (a, b) = match fam {
+                Some(f) => f.to_physical(v.alpha, v.beta),
+                None => (v.alpha, v.beta),
+            };
+            let rec = [
                 pi.to_string(),
                 vi.to_string(),
-                csv_num(v.alpha),
-                csv_num(v.beta),
+                csv_num(a),
+                csv_num(b),
                 csv_num(p.thetas[vi]),
                 edge_tag(&p.edges[ei].kind).to_string(),
             ];
-            if let Some(f) = fam {
-                let (k, b) = f.to_physical(v.alpha, v.beta);
-                rec.extend([csv_num(k), csv_num(b)]);
-            }
             w.write_record(&rec)?;
         }
     }

@@ -13,7 +13,8 @@ use hapstab::simulation::{EmpiricalPoint, SimModel};
 use hapstab_plot::Saved;
 
 use super::boundary_out::{
-    BoundaryRow, PaperPlant, SimboundaryInput, SimboundaryOut, boundary_row, write_boundary_csv,
+    BoundaryRow, ExactOut, PaperPlant, SimboundaryInput, SimboundaryOut, boundary_row,
+    write_boundary_csv,
 };
 use super::boundary_plot::{Plane, boundary_plot};
 use super::boundary_scan::{
@@ -62,7 +63,9 @@ pub struct SimboundaryArgs {
     /// decaying runs].
     #[arg(long, value_name = "M", allow_hyphen_values = true)]
     pub(super) stable_amplitude: Option<f64>,
-    /// Write the table as CSV.
+    /// Write the table as CSV: wall_damping (Ns/m), k_linear, k_simulated, k_unstable (N/m),
+    /// ratio, censored, k_max, runs, inconclusive_k, inconclusive_outcome (beta, alpha_… for
+    /// normalized input).
     #[arg(long, value_name = "FILE")]
     pub(super) csv: Option<PathBuf>,
     /// Plot the exact linear region and the simulated boundary: writes STEM.svg and STEM.png.
@@ -172,8 +175,8 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
             rel_tol: a.rel_tol,
         },
         wall_units: pm.is_none().then_some(fam.scale),
-        exact_alpha_max: region.alpha_max,
-        exact_beta_at_alpha_max: region.beta_at_alpha_max,
+        exact: (region.alpha_max, region.beta_at_alpha_max),
+        exact_out: ExactOut::new(region.alpha_max, region.beta_at_alpha_max, per_unit),
         warnings: boundary_warnings(&points, &settings),
         points: rows,
         csv: a.csv.clone(),

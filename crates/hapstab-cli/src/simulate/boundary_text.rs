@@ -26,7 +26,7 @@ fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
             }
             if let Some(w) = o.wall_units {
                 println!(
-                    "units     a = K/k_u, b = B/(k_u·T) with k_u = {} N/m, k_u·T = {} Ns/m (the a and b of --alpha/--beta and the JSON)",
+                    "units     a = K/k_u, b = B/(k_u·T) with k_u = {} N/m, k_u·T = {} Ns/m (the a and b of --alpha/--beta)",
                     sig(w.stiffness, 6),
                     sig(w.damping, 6)
                 );
@@ -51,15 +51,15 @@ fn print_exact(o: &SimboundaryOut, k_per: Option<f64>) {
     match k_per {
         None => println!(
             "exact       α_max = {} at β = {} (linear stable region, Section V)",
-            sig(o.exact_alpha_max, 6),
-            sig(o.exact_beta_at_alpha_max, 6)
+            sig(o.exact.0, 6),
+            sig(o.exact.1, 6)
         ),
         Some(k) => {
             let b_per = k * o.period;
             println!(
                 "exact       K_max = {} at B = {} (linear stable region, Section V)",
-                eng(o.exact_alpha_max * k, "N/m", 6),
-                eng(o.exact_beta_at_alpha_max * b_per, "Ns/m", 6)
+                eng(o.exact.0 * k, "N/m", 6),
+                eng(o.exact.1 * b_per, "Ns/m", 6)
             );
         }
     }
@@ -110,12 +110,12 @@ fn print_table(o: &SimboundaryOut, k_per: Option<f64>) {
     for r in &o.points {
         let p = &r.point;
         let note = row_note(p, k_per);
-        if k_per.is_some() {
+        if let Some(q) = r.physical() {
             println!(
                 "{:>12} {:>16} {:>16} {:>8}  {note}",
-                f(r.wall_damping, 6),
-                f(r.k_linear, 8),
-                f(r.k_simulated, 8),
+                sig(q.wall_damping, 6),
+                f(q.k_linear, 8),
+                f(q.k_simulated, 8),
                 f(r.ratio, 4)
             );
         } else {

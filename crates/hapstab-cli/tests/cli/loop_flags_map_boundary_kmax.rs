@@ -53,6 +53,36 @@ fn wall_map_of_a_pure_mass_closed_form() {
     assert!(stable > 100);
 }
 
+/// `boundary --csv` of a physical loop writes K in N/m and B in Ns/m (no α, β columns): for
+/// a pure mass (m = 0.1 kg, T = 1 ms, d = 0) every vertex lies on the closed-form boundary
+/// α = 2β(2 − β)/(2 + β), α = KT²/m, β = BT/m, or on α = 0.
+#[test]
+fn boundary_csv_of_a_physical_loop_is_in_newtons() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b.csv");
+    hapstab()
+        .args(["boundary", "--no-arm", "--device-damping", "0", "--csv"])
+        .arg(&out)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut rows = text.lines();
+    assert_eq!(rows.next(), Some("polygon,vertex,K,B,theta,edge"));
+    let mut on_curve = 0;
+    for r in rows {
+        let v: Vec<&str> = r.split(',').collect();
+        let (k, b): (f64, f64) = (v[2].parse().unwrap(), v[3].parse().unwrap());
+        let (alpha, beta) = (k * 1e-6 / 0.1, b * 1e-3 / 0.1);
+        let hi = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
+        assert!(
+            alpha.abs() < 1e-9 || (alpha - hi).abs() < 1e-7,
+            "vertex K = {k}, B = {b}: α = {alpha}, β = {beta}, curve {hi}"
+        );
+        on_curve += usize::from(alpha > 1e-3);
+    }
+    assert!(on_curve > 10, "{on_curve} vertices on the curve");
+}
+
 #[test]
 fn boundary_and_kmax_of_the_paper_loop_in_physical_units() {
     // K = α m/T², B = β m/T with m = 0.1 kg, T = 1 ms

@@ -243,7 +243,7 @@ fn more_cases() -> Vec<JsonCase> {
                 "--rel-tol",
                 "1e-2",
             ],
-            vec!["exact_alpha_max", "points", "warnings"],
+            vec!["exact_k_max", "exact_b_at_k_max", "points", "warnings"],
         ),
         (
             "bode",

@@ -264,29 +264,40 @@ fn simboundary_table_csv_plot() {
     ]);
     let pts = v["points"].as_array().unwrap();
     assert_eq!(pts.len(), 3);
+    // Physical input (the device without arm): the rows speak N/m and Ns/m, B = β·m/T with
+    // m = 0.1 kg and T = 1 ms; no α or β key.
     for (p, beta) in pts.iter().zip([0.1, 0.3, 0.5]) {
-        assert!((f(&p["beta"]) - beta).abs() < 1e-12);
-        // The exact linear limit agrees with `hapstab check` at that β.
+        let b = f(&p["wall_damping"]);
+        assert!((b - beta * 100.0).abs() < 1e-9, "{p}");
+        for key in ["beta", "alpha_linear", "alpha_simulated", "alpha_max"] {
+            assert!(p.get(key).is_none(), "{key} in a physical row: {p}");
+        }
+        // The exact linear limit agrees with `hapstab check` at that B.
         let chk = json(&[
             "check",
             "--no-arm",
-            "--alpha",
-            "0.01",
-            "--beta",
-            &beta.to_string(),
+            "--wall-stiffness",
+            "1",
+            "--wall-damping",
+            &b.to_string(),
         ]);
-        let lin = f(&chk["alpha_interval"][1]);
-        assert!((f(&p["alpha_linear"]) / lin - 1.0).abs() < 1e-9, "{p}");
+        let lin = f(&chk["k_interval"][1]);
+        assert!((f(&p["k_linear"]) / lin - 1.0).abs() < 1e-9, "{p}");
         // Small quantization limit cycles accepted: the boundary stays near the linear one.
         let r = f(&p["ratio"]);
         assert!(r > 0.8 && r < 1.1, "{p}");
-        let ratio = f(&p["alpha_simulated"]) / f(&p["alpha_linear"]);
+        let ratio = f(&p["k_simulated"]) / f(&p["k_linear"]);
         assert!((r - ratio).abs() < 1e-12, "{p}");
     }
-    assert!(f(&v["exact_alpha_max"]) > 0.7 && f(&v["exact_alpha_max"]) < 0.71);
+    // α_max of the paper's Fig. 4 region at δ = 0.015, d = 0 is about 0.705: K = α·m/T².
+    assert!(
+        f(&v["exact_k_max"]) > 70e3 && f(&v["exact_k_max"]) < 71e3,
+        "{v}"
+    );
+    assert!(v.get("exact_alpha_max").is_none());
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.starts_with(
-        "beta,alpha_linear,alpha_simulated,alpha_unstable,ratio,censored,alpha_max,runs,inconclusive_alpha,inconclusive_outcome\n"
+        "wall_damping,k_linear,k_simulated,k_unstable,ratio,censored,k_max,runs,inconclusive_k,inconclusive_outcome\n"
     ));
     assert_eq!(text.lines().count(), 4);
     assert_png(&dir.path().join("b.png"));
@@ -660,7 +671,7 @@ fn simboundary_does_not_count_separation_as_stability() {
             .as_array()
             .unwrap()
             .iter()
-            .any(|p| p["alpha_simulated"].is_number()),
+            .any(|p| p["k_simulated"].is_number()),
         "{v}"
     );
 }
@@ -761,8 +772,7 @@ fn friction_needs_a_mass() {
 
 /// `simboundary` on a general loop, linear and bilateral: at every damping the simulated
 /// boundary brackets the exact one (from the loop's family) within the bisection tolerance,
-/// and the K columns are the wall units times k_u; the exact K at a row's B equals the upper
-/// end of `check`'s stable K interval there.
+/// in N/m; the exact K at a row's B equals the upper end of `check`'s stable K interval there.
 #[test]
 fn simboundary_of_a_general_loop_brackets_the_exact_boundary() {
     let mut args = vec!["simboundary"];
@@ -770,18 +780,16 @@ fn simboundary_of_a_general_loop_brackets_the_exact_boundary() {
     args.extend(["--beta-count", "3", "--grid", "6", "--rel-tol", "1e-3"]);
     args.extend(["--initial-velocity", "0.05", "--duration", "3"]);
     let v = json(&args);
-    let ku = f(&v["wall_units"]["stiffness"]);
     assert!(v.get("gamma").is_none());
     for p in v["points"].as_array().unwrap() {
-        let lin = f(&p["alpha_linear"]);
-        let sim = f(&p["alpha_simulated"]);
-        let hi = p["inconclusive"]["alpha"]
+        let lin = f(&p["k_linear"]);
+        let sim = f(&p["k_simulated"]);
+        let hi = p["inconclusive"]["wall_stiffness"]
             .as_f64()
-            .or(p["alpha_unstable"].as_f64())
+            .or(p["k_unstable"].as_f64())
             .unwrap();
         assert!(sim <= lin * (1.0 + 1e-9) && lin <= hi * (1.0 + 2e-3), "{p}");
         assert!((hi - sim) <= 1e-3 * hi, "{p}");
-        assert!((f(&p["k_linear"]) - lin * ku).abs() <= 1e-12 * lin * ku);
         let b = p["wall_damping"].as_f64().unwrap().to_string();
         let mut c = vec!["check"];
         c.extend(TWO_MASS);
