@@ -5,11 +5,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use hapstab::Normalized;
+use hapstab::answer::SimulationAnswer;
 use hapstab::params::Wall;
 use hapstab::simulation::{
-    Config, Effects, Initial, LoopModel, MAX_TRACE_ROWS, Model, RunResult, SimModel, Trace,
-    simulate,
+    Config, LoopModel, MAX_TRACE_ROWS, Model, RunResult, SimModel, Trace, simulate,
 };
 use serde::Serialize;
 
@@ -20,8 +19,7 @@ use super::{
     RunArgs, UNITS_HELP, Units, check_output_path, check_run_budget, friction_defined, num,
 };
 use crate::model::{
-    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, resolve_loop_wall,
-    resolve_point,
+    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, resolve_loop_wall, resolve_point,
 };
 use crate::output::{eng, print_json};
 
@@ -68,38 +66,20 @@ pub(super) struct Files {
     pub(super) record_every: usize,
 }
 
+/// The JSON of `hapstab simulate`: the library's answer and the files written.
 #[derive(Serialize)]
-pub(super) struct SimulateOut<'a> {
-    /// The library's result: outcome, reason, evidence, run length.
+pub(super) struct SimulateOut {
     #[serde(flatten)]
-    pub(super) run: &'a RunResult,
-    /// Simulated time (s, or samples in normalized mode).
-    pub(super) duration: f64,
-    /// The judged window in time units.
-    pub(super) judged_from: f64,
-    pub(super) judged_to: f64,
-    pub(super) units: &'static str,
-    /// The paper's loop: its mass m in kg and normalized point (Table I).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) mass: Option<f64>,
-    pub(super) period: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) normalized: Option<Normalized>,
-    /// The loop, its wall and the run's setting as given.
-    pub(super) input: SimInput,
+    pub(super) answer: SimulationAnswer,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) files: Option<Files>,
 }
 
-/// The inputs of a simulation: the loop and its wall, the nonlinear effects, the human's
-/// force and the initial state.
-#[derive(Serialize)]
-pub(super) struct SimInput {
-    #[serde(flatten)]
-    pub(super) lp: LoopInput,
-    pub(super) effects: Effects,
-    pub(super) human_force: f64,
-    pub(super) initial: Initial,
+impl std::ops::Deref for SimulateOut {
+    type Target = SimulationAnswer;
+    fn deref(&self) -> &SimulationAnswer {
+        &self.answer
+    }
 }
 
 /// Bytes per kept trace row in memory (five f64 columns).
@@ -158,13 +138,6 @@ impl SimLoop {
             physical: !self.rl.normalized,
         }
     }
-
-    fn paper(&self) -> Option<&Model> {
-        match &self.model {
-            SimModel::Paper(m) => Some(m),
-            SimModel::Loop(_) => None,
-        }
-    }
 }
 
 /// Runs `hapstab simulate`.
@@ -194,22 +167,8 @@ pub fn run_simulate(a: &SimulateArgs) -> Result<()> {
     } else {
         None
     };
-    let period = sl.model.period();
     let out = SimulateOut {
-        run: &result,
-        duration: result.samples as f64 * period,
-        judged_from: result.verdict.judged_from_sample as f64 * period,
-        judged_to: result.verdict.judged_to_sample as f64 * period,
-        units: units.name(),
-        mass: sl.paper().map(|m| m.mass),
-        period,
-        normalized: sl.paper().filter(|_| !sl.rl.normalized).map(|m| m.params),
-        input: SimInput {
-            lp: sl.rl.input(Some(sl.wall)),
-            effects: settings.effects,
-            human_force: settings.human_force,
-            initial: settings.initial,
-        },
+        answer: SimulationAnswer::new(result, &cfg, sl.rl.input(Some(sl.wall)), sl.rl.normalized),
         files,
     };
     if a.json {

@@ -82,7 +82,7 @@ fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
 }
 
 pub(super) fn print_simulate(o: &SimulateOut, sl: &SimLoop, s: &RunSettings, units: Units) {
-    let r = o.run;
+    let r = &o.run;
     let v = &r.verdict;
     print_model(o, sl, units);
     println!("effects     {}", describe_effects(s, units.force()));
@@ -118,7 +118,7 @@ pub(super) fn print_simulate(o: &SimulateOut, sl: &SimLoop, s: &RunSettings, uni
 }
 
 fn run_text(o: &SimulateOut, units: Units) -> String {
-    let r = o.run;
+    let r = &o.run;
     let mut t = format!(
         "{} samples ({}) from x(0) = {}, ẋ(0) = {} {}",
         r.samples,

@@ -3,12 +3,12 @@
 
 use std::time::Instant;
 
-use hapstab::Loop;
+use hapstab::answer::SimulationAnswer;
 use hapstab::limits::{point_cost, simulation_cost};
-use hapstab::paper::Normalized;
+use hapstab::loop_spec::LoopInput;
 use hapstab::params::Wall;
 use hapstab::simulation::{Config, Contact, Effects, HumanForce, Initial, LoopModel, Model};
-use hapstab::simulation::{RunResult, SimModel, TraceClip, simulate_clipped};
+use hapstab::simulation::{SimModel, TraceClip, simulate_clipped};
 use serde::Serialize;
 
 use super::point::{point_names, point_params, wall_at};
@@ -123,33 +123,18 @@ pub(crate) struct TraceOut {
     pub wall_force: Vec<f64>,
 }
 
-/// Answer of `/api/simulate`: the library's run result (the same verdict as `hapstab
-/// simulate` for the same setting) with a decimated trace of the whole run.
+/// Answer of `/api/simulate`: the library's [`SimulationAnswer`] (the same keys and the same
+/// verdict as `hapstab simulate --json` for the same setting; the loop, wall, effects, push and
+/// initial state under `input`) with a decimated trace of the whole run.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct SimOut {
-    /// As [`hapstab::answer::WallAnswer::params`].
-    pub params: Normalized,
-    #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
-    pub lp: Option<Loop>,
-    /// Mass m in kg and period T in s used for units.
-    pub mass: f64,
-    pub period: f64,
+    #[serde(flatten)]
+    pub answer: SimulationAnswer,
+    /// The units of the run in words (normalized mode: shown for m = 1 kg, T = 1 ms).
     pub units_note: &'static str,
-    /// unilateral | unilateral_no_pull | bilateral.
-    pub contact_mode: Contact,
-    /// Human push F_H in N (positive into the wall).
-    pub push: f64,
-    /// Initial position x(0) in m: the wall surface.
-    pub initial_position: f64,
-    /// Initial velocity ẋ(0) in m/s (positive into the wall).
-    pub velocity: f64,
     /// The flags of `hapstab simulate` for this run (besides the loop and the wall): its own
     /// defaults are a bilateral wall from x(0) = 1 mm at rest, no push.
     pub simulate_flags: String,
-    /// outcome, reason, judged window, measured growth beside the spectral radius, limit
-    /// cycle, contact events, samples simulated (see `hapstab::simulation::RunResult`).
-    #[serde(flatten)]
-    pub run: RunResult,
     /// The trace of the run, cut for a growing run before it leaves the scale of its start
     /// (see `trace_clipped`).
     pub trace: TraceOut,
@@ -208,18 +193,13 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
     cfg.trace_rows = MAX_TRACE_POINTS;
     let (mut run, trace_clipped) = simulate_clipped(&cfg).map_err(lib_error)?;
     let trace = run.trace.take().unwrap_or_default();
+    let normalized = spec.physical.is_none();
+    let input = LoopInput::new(spec.sys.lp(), normalized, Some(req.wall));
     Ok(SimOut {
-        params: n,
-        lp: spec.paper.is_none().then(|| spec.sys.lp().clone()),
-        mass,
-        period,
+        // the explorer runs a normalized loop at m = 1 kg, T = 1 ms: in physical units
+        answer: SimulationAnswer::new(run, &cfg, input, false),
         units_note,
-        contact_mode: req.contact,
-        push: req.push,
-        initial_position: 0.0,
-        velocity: req.velocity,
         simulate_flags: simulate_flags(req),
-        run,
         trace: TraceOut {
             time: trace.time,
             position: trace.position,

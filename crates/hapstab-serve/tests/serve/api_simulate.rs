@@ -14,7 +14,10 @@ fn simulate_returns_a_short_contact_trace() {
     let j = r.json();
     assert_eq!(j["outcome"], "decaying", "{j}");
     assert_eq!(j["linear_verdict"], "stable");
-    assert_eq!(j["contact_mode"], "unilateral");
+    assert_eq!(j["input"]["effects"]["contact"], "unilateral");
+    assert_eq!(j["input"]["human_force"], 100.0);
+    assert_eq!(j["input"]["initial"]["velocity"], 0.01);
+    assert_eq!(j["input"]["alpha"], 0.3, "the normalized input echoed");
     assert_eq!(j["linear_window"], true);
     assert!(j["measured_growth_per_sample"].as_f64().unwrap() < 1.0);
     assert!(j["trace_clipped"].is_null(), "a decaying run is not cut");

@@ -1,10 +1,13 @@
 //! The answers of the analyses with their inputs echoed, as every front end serializes them:
 //! `hapstab kmax|sweep|zwidth|map|passivity --json` and the explorer's `/api/kmax`,
 //! `/api/sweep`, `/api/zwidth`, `/api/map` and `/api/passivity` give the same objects under
-//! the same keys, and the explorer's `/api/point` is a [`WallAnswer`] (the command line adds the files it wrote, the explorer the map's grid).
+//! the same keys, the explorer's `/api/point` is a [`WallAnswer`] and `hapstab simulate --json` and
+//! `/api/simulate` a [`SimulationAnswer`] (the command line adds the files it wrote, the
+//! explorer the map's grid or the run's trace).
 
 mod check;
 mod region;
+mod simulation;
 mod wall;
 
 pub use check::{CheckAnswer, CheckPaperView, check_answer};
@@ -12,6 +15,7 @@ pub use region::{
     NormalizedRegion, PhysicalRegion, RegionAnswer, RegionEdge, RegionPaperView, WallUnitsOut,
     region_answer,
 };
+pub use simulation::{SimulationAnswer, SimulationInput};
 pub use wall::{WallAnswer, wall_answer};
 
 use std::time::Instant;
