@@ -565,6 +565,11 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
         "α_max of the loop"
     );
     assert_two_mass_form(c).await?;
+    assert_speaks_k_and_b(
+        c,
+        &["region-card", "lg-amax", "lg-click", "xlabel", "ylabel"],
+    )
+    .await?;
     // Type another estimator: the region is redrawn for it.
     let est = c.find(Locator::Id("estimator")).await?;
     est.clear().await?;
@@ -595,12 +600,26 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     let roots = c.find_all(Locator::Css("#roots circle.root")).await?;
     assert_eq!(roots.len(), fam.degree(), "every root of the loop's p(z)");
     assert_outcome_agrees(c, &verdict).await?;
+    assert_speaks_k_and_b(c, &["pt-coords"]).await?;
     let png = c.screenshot().await?;
     std::fs::write(shot, &png)?;
     println!(
         "serve_e2e: two-mass loop α_max {am0} → {am1} (lowpass:60), point ({a:.5}, {b:.5}) {verdict}; screenshot {}",
         shot.display()
     );
+    Ok(())
+}
+
+/// A loop beyond the paper's, given in physical units, is shown in K and B only: the elements
+/// `ids` name no α or β (the paper's normalized view belongs to the paper's loop).
+async fn assert_speaks_k_and_b(c: &Client, ids: &[&str]) -> R<()> {
+    for id in ids {
+        let text = c.find(Locator::Id(id)).await?.text().await?;
+        assert!(
+            !text.contains('α') && !text.contains('β'),
+            "#{id} speaks α, β for a physical loop: {text}"
+        );
+    }
     Ok(())
 }
 
