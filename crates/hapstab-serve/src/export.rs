@@ -123,12 +123,28 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
         None => None,
     };
     let view = req.view.unwrap_or_else(|| auto_view(&out, pt.as_ref()));
-    let p = &out.params;
-    let stem = format!(
-        "hapstab-region-gamma{}-delta{}-d{}",
-        fmt(p.gamma),
-        fmt(p.delta),
-        p.d
+    let spec = &req.region.spec;
+    let lp = spec.sys.lp();
+    // the file speaks the loop's units: (γ, δ, d) for normalized input, else T and t_d
+    let stem = match spec.physical {
+        None => {
+            let p = &out.params;
+            format!(
+                "hapstab-region-gamma{}-delta{}-d{}",
+                fmt(p.gamma),
+                fmt(p.delta),
+                p.d
+            )
+        }
+        Some(_) => format!(
+            "hapstab-region-T{}-td{}",
+            fmt(lp.period),
+            fmt(lp.delay_time())
+        ),
+    };
+    let title = format!(
+        "Exact stable region: {}",
+        hapstab_plot::wall::loop_line(lp, spec.physical.is_none())
     );
     Ok(match req.format {
         Format::Json => {
@@ -148,7 +164,7 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
         Format::Loop | Format::Svg => (
             "image/svg+xml",
             format!("{stem}.svg"),
-            svg(&out, pt.as_ref(), view, req.width, req.height),
+            svg(&out, pt.as_ref(), view, (req.width, req.height), &title),
         ),
     })
 }
@@ -217,22 +233,23 @@ fn robust_kmax_segment(out: &RegionOut) -> Option<[[f64; 2]; 2]> {
     ])
 }
 
-fn kb(out: &RegionOut, a: f64, b: f64) -> (String, String) {
-    match &out.physical {
-        Some(ph) => (
-            format!("{}", a * ph.k_per_alpha),
-            format!("{}", b * ph.b_per_beta),
-        ),
-        None => (String::new(), String::new()),
-    }
-}
-
-/// Every drawn vertex: layer, polygon, vertex, α, β, and K, B in physical mode.
+/// Every drawn vertex: layer, polygon, vertex and K (N/m), B (Ns/m) in physical mode, α, β
+/// for normalized input.
 fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
-    let mut s = String::from("layer,polygon,vertex,alpha,beta,K_N_per_m,B_Ns_per_m\n");
+    let mut s = String::from(match out.physical {
+        Some(_) => "layer,polygon,vertex,K_N_per_m,B_Ns_per_m\n",
+        None => "layer,polygon,vertex,alpha,beta\n",
+    });
     let mut row = |layer: &str, poly: usize, i: usize, a: f64, b: f64| {
-        let (k, bb) = kb(out, a, b);
-        let _ = writeln!(s, "{layer},{poly},{i},{a},{b},{k},{bb}");
+        let _ = match &out.physical {
+            Some(ph) => writeln!(
+                s,
+                "{layer},{poly},{i},{},{}",
+                a * ph.k_per_alpha,
+                b * ph.b_per_beta
+            ),
+            None => writeln!(s, "{layer},{poly},{i},{a},{b}"),
+        };
     };
     for (j, poly) in out.region.polygons.iter().enumerate() {
         for (i, v) in poly.iter().enumerate() {
@@ -241,7 +258,11 @@ fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
     }
     if out.region.alpha_max.is_finite() {
         row(
-            "alpha_max",
+            if out.physical.is_some() {
+                "k_max"
+            } else {
+                "alpha_max"
+            },
             0,
             0,
             out.region.alpha_max,
@@ -373,7 +394,13 @@ impl Frame {
 }
 
 /// A standalone SVG of the view.
-fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usize) -> String {
+fn svg(
+    out: &RegionOut,
+    pt: Option<&PointOut>,
+    view: [f64; 4],
+    (w, h): (usize, usize),
+    title: &str,
+) -> String {
     let f = Frame::new(out, view, w, h);
     let (ml, mt, pw, ph) = (f.ml, f.mt, f.pw, f.ph);
     let mut s = String::new();
@@ -391,7 +418,7 @@ fn svg(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4], w: usize, h: usiz
     let _ = writeln!(
         s,
         r#"<text x="{ml}" y="20" font-size="14" font-weight="bold">{}</text>"#,
-        esc(&svg_title(out))
+        esc(title)
     );
     let _ = writeln!(s, r#"<g clip-path="url(#plot)">"#);
     svg_areas(&mut s, out, &f);
@@ -480,28 +507,6 @@ fn svg_axis_labels(s: &mut String, out: &RegionOut, f: &Frame, hf: f64) {
         r#"<text transform="translate(18,{:.1}) rotate(-90)" text-anchor="middle">{yl}</text>"#,
         f.mt + f.ph / 2.0
     );
-}
-
-/// The plot's title: the plant, with its physical parameters in physical mode.
-fn svg_title(out: &RegionOut) -> String {
-    let p = &out.params;
-    let mut title = format!(
-        "Exact stable region: γ = {}, δ = {}, d = {}",
-        sig(p.gamma, 6),
-        sig(p.delta, 6),
-        p.d
-    );
-    if let Some(ph) = &out.physical {
-        let _ = write!(
-            title,
-            "  (m = {}, b = {}, k = {}, T = {})",
-            eng(ph.mass, "kg", 5),
-            eng(ph.damping, "Ns/m", 5),
-            eng(ph.stiffness, "N/m", 5),
-            eng(ph.period, "s", 5)
-        );
-    }
-    title
 }
 
 /// The filled areas: the exact region, the robust region and the passive regions.

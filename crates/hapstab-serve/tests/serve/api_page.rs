@@ -3,7 +3,7 @@
 
 use crate::serve_support;
 
-use serve_support::{PLANT, Server, library_region, raw_number};
+use serve_support::{PAPER_LOOP, PLANT, Server, library_region, raw_number};
 
 #[test]
 fn export_svg_csv_json() {
@@ -19,10 +19,7 @@ fn export_svg_csv_json() {
     let r = s.get(&format!("{base}&format=csv"));
     assert_eq!(r.status, 200);
     let mut lines = r.body.lines();
-    assert_eq!(
-        lines.next(),
-        Some("layer,polygon,vertex,alpha,beta,K_N_per_m,B_Ns_per_m")
-    );
+    assert_eq!(lines.next(), Some("layer,polygon,vertex,alpha,beta"));
     let amax_row = r
         .body
         .lines()
@@ -41,6 +38,46 @@ fn export_svg_csv_json() {
     let j = r.json();
     assert_eq!(j["view"][1].as_f64(), Some(0.2));
     assert_eq!(j["point"]["verdict"], "stable");
+}
+
+/// The exports of a loop given in physical units speak N/m and Ns/m: the CSV's columns are K
+/// and B (its K_max row the library's K_max), the SVG's title names the device and the arm,
+/// not γ and δ, and the file names carry T and t_d.
+#[test]
+fn export_of_a_physical_loop_is_in_newtons() {
+    let s = Server::start(&[]);
+    let base = format!("/api/export?{PAPER_LOOP}");
+    let lp =
+        hapstab::Loop::paper(hapstab::Effective::new(1.1, 7.5, 350.0).unwrap(), 1e-3, 1).unwrap();
+    let k_max = hapstab::System::of(&lp)
+        .unwrap()
+        .region()
+        .unwrap()
+        .alpha_max
+        * hapstab::AffineFamily::of_loop(&lp).unwrap().scale.stiffness;
+    let r = s.get(&format!("{base}&format=csv"));
+    assert_eq!(r.status, 200, "{}", r.body);
+    assert!(
+        r.header("content-disposition")
+            .unwrap()
+            .contains("hapstab-region-T0.001-td0.001.csv")
+    );
+    assert_eq!(
+        r.body.lines().next(),
+        Some("layer,polygon,vertex,K_N_per_m,B_Ns_per_m")
+    );
+    let row = r.body.lines().find(|l| l.starts_with("k_max,")).unwrap();
+    let k: f64 = row.split(',').nth(3).unwrap().parse().unwrap();
+    assert!((k - k_max).abs() <= 1e-12 * k_max, "{k} vs {k_max}");
+    let svg = s.get(&format!("{base}&format=svg")).body;
+    let title = svg
+        .lines()
+        .find(|l| l.contains("Exact stable region"))
+        .unwrap();
+    assert!(
+        title.contains("arm") && !title.contains('γ') && !title.contains('δ'),
+        "{title}"
+    );
 }
 
 #[test]

@@ -93,13 +93,17 @@ fn the_exports_carry_the_robust_k_max() {
         .map(|l| l.split(',').skip(3).map(|x| x.parse().unwrap()).collect())
         .collect();
     assert_eq!(rows.len(), 2, "{csv}");
+    assert_eq!(
+        csv.lines().next(),
+        Some("layer,polygon,vertex,K_N_per_m,B_Ns_per_m")
+    );
     // K and B in N/m and Ns/m (through the page's α, β), the damping the one asked for
     for (row, k) in rows.iter().zip([k_min, k_max]) {
         assert!(
-            (row[2] - k).abs() <= 1e-9 * k.abs().max(1.0),
+            (row[0] - k).abs() <= 1e-9 * k.abs().max(1.0),
             "{row:?} vs {k}"
         );
-        assert!((row[3] - 5.0).abs() <= 1e-9, "{row:?}");
+        assert!((row[1] - 5.0).abs() <= 1e-9, "{row:?}");
     }
     let svg = s.get(&format!("/api/export?{q}&format=svg")).body;
     assert!(svg.contains("class=\"robust-kmax\""), "{svg}");
