@@ -229,11 +229,11 @@ impl PyRegion {
     fn __repr__(&self) -> String {
         let opt = |x: Option<f64>| x.map_or("None".into(), num);
         format!(
-            "Region(polygons={}, k_max={}, b_at_k_max={}, alpha_max={})",
+            "Region(polygons={}, k_max={}, b_at_k_max={}, area={})",
             self.polygons.len(),
             opt(self.k_max),
             opt(self.b_at_k_max),
-            opt(self.alpha_max)
+            num(self.area)
         )
     }
 }

@@ -78,9 +78,17 @@ impl PyWallProbability {
 #[pymethods]
 impl PyStabilityCurve {
     fn __repr__(&self) -> String {
+        // each level as Python prints its tuple: (q, K, K_lo, K_hi), None where not reached
+        let opt = |x: Option<f64>| x.map_or("None".into(), num);
+        let levels: Vec<String> = self
+            .levels
+            .iter()
+            .map(|&(q, k, lo, hi)| format!("({}, {}, {}, {})", num(q), opt(k), opt(lo), opt(hi)))
+            .collect();
         format!(
-            "StabilityCurve(samples={}, levels={:?})",
-            self.samples, self.levels
+            "StabilityCurve(samples={}, levels=[{}])",
+            self.samples,
+            levels.join(", ")
         )
     }
 }
