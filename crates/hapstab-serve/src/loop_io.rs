@@ -4,11 +4,11 @@
 //! (`/api/open`), so that the page, the command line and Python share one file form.
 
 use hapstab::loop_spec::{LoopInput, parse};
-use hapstab::{AffineFamily, Loop, PlantModel};
+use hapstab::{Loop, PlantModel};
 use serde::Serialize;
 
 use crate::api::wall_analyses::wall_of;
-use crate::query::{ApiError, PlantSpec, lib_error};
+use crate::query::{ApiError, PlantSpec};
 
 /// The loop file of a request and its optional wall (a, b) in the page's units.
 pub fn saved_loop(spec: &PlantSpec, point: Option<(f64, f64)>) -> Result<String, ApiError> {
@@ -17,10 +17,11 @@ pub fn saved_loop(spec: &PlantSpec, point: Option<(f64, f64)>) -> Result<String,
     Ok(LoopInput::new(spec.sys.lp(), normalized, wall).to_json() + "\n")
 }
 
-/// The answer of `/api/open`: the page's query for the file's loop (and wall, as α, β).
+/// The answer of `/api/open`: the page's query for the file's loop and wall (K and B in N/m
+/// and Ns/m for a physical loop, α and β for a normalized one).
 #[derive(Debug, Clone, Serialize)]
 pub struct Opened {
-    /// The query string (mode, plant, period, delay, estimator, lag, and alpha/beta).
+    /// The query string (mode, plant, period, delay, estimator, lag, and the wall).
     pub query: String,
 }
 
@@ -56,9 +57,10 @@ pub fn open(text: &str) -> Result<Opened, ApiError> {
         q.push(("estimator", f.lp.velocity.to_string()));
     }
     if let Some(w) = f.wall {
-        let fam = AffineFamily::of_loop(&f.lp).map_err(lib_error)?;
-        let (a, b) = fam.to_units(w.stiffness, w.damping);
-        q.extend([("alpha", num(a)), ("beta", num(b))]);
+        q.extend([
+            ("wall_stiffness", num(w.stiffness)),
+            ("wall_damping", num(w.damping)),
+        ]);
     }
     Ok(Opened { query: encode(&q) })
 }
