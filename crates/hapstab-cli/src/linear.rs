@@ -6,7 +6,7 @@ use clap::Args;
 use hapstab::PlantParams;
 use hapstab::limits::validity_points_cost;
 use hapstab::model::Loop;
-use hapstab::paper::linear::{ValidityPoint, linear_condition};
+use hapstab::paper::linear::{PhysicalLinear, ValidityPoint, linear_condition};
 use serde::Serialize;
 
 use crate::budget::{self, Driver};
@@ -45,6 +45,9 @@ struct PointOut {
     wall_stiffness: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     wall_damping: Option<f64>,
+    /// K_lin of (23) in N/m at the same B (physical mode only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k_linear: Option<f64>,
 }
 
 /// The plant as given (after defaults) and the error levels.
@@ -92,6 +95,9 @@ struct LinearOut {
     linear_intercept: f64,
     /// Lower bound (19): α > −γ.
     alpha_lower: f64,
+    /// The same in N/m and Ns/m for a plant given in physical units.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    physical: Option<PhysicalLinear>,
     points: Vec<PointOut>,
 }
 
@@ -133,6 +139,7 @@ pub fn run(a: &LinearArgs) -> Result<()> {
         linear_slope: lc.slope,
         linear_intercept: lc.intercept,
         alpha_lower: lc.alpha_lower,
+        physical: pm.physical.map(|_| lc.physical()),
         points: pts
             .iter()
             .map(|p| PointOut {
@@ -143,6 +150,7 @@ pub fn run(a: &LinearArgs) -> Result<()> {
                 error: p.error,
                 wall_stiffness: scale.map(|(k, _)| p.alpha * k),
                 wall_damping: scale.map(|(_, b)| p.beta * b),
+                k_linear: scale.map(|_| lc.k_linear(p)),
             })
             .collect(),
     };
@@ -172,39 +180,66 @@ fn plant_input(pm: &PlantModel) -> PlantInput {
 }
 
 /// The human-readable answer of `linear`: the plant, the linear condition (23) with the bound
-/// (19), and where the error (24) first reaches each level.
+/// (19), and where the error (24) first reaches each level — in K and B for a plant given in
+/// physical units (the normalized view in brackets), in α and β for normalized input.
 fn print_text(pm: &PlantModel, out: &LinearOut, pts: &[ValidityPoint]) {
-    println!(
-        "plant       γ = {}, δ = {}, d = {}",
+    let view = format!(
+        "γ = {}, δ = {}, d = {}",
         sig(pm.gamma, 6),
         sig(pm.delta, 6),
         pm.d
     );
-    println!(
-        "linear      (23): α < (β + δ)/(d + 1/2) = {}·β + {};  (19): α > {}",
-        sig(out.linear_slope, 6),
-        sig(out.linear_intercept, 6),
-        sig(out.alpha_lower, 6)
-    );
-    println!("error (24) first reaches, going up from β = 0⁺ (α on the exact boundary):");
+    match (pm.physical, out.physical) {
+        (Some((eff, s)), Some(ph)) => {
+            println!(
+                "plant       m = {}, b = {}, k = {}, T = {}, d = {}   ({view})",
+                eng(eff.mass, "kg", 6),
+                eng(eff.damping, "Ns/m", 6),
+                eng(eff.stiffness, "N/m", 6),
+                eng(s.period, "s", 6),
+                pm.d
+            );
+            println!(
+                "linear      (23): K < (B + b)/(T(d + 1/2)) = {}/s · B + {};  (19): K > {}",
+                sig(ph.k_linear_slope, 6),
+                eng(ph.k_linear_intercept, "N/m", 6),
+                eng(ph.k_lower, "N/m", 6)
+            );
+            println!("error (24) first reaches, going up from B = 0⁺ (K on the exact boundary):");
+        }
+        _ => {
+            println!("plant       {view}");
+            println!(
+                "linear      (23): α < (β + δ)/(d + 1/2) = {}·β + {};  (19): α > {}",
+                sig(out.linear_slope, 6),
+                sig(out.linear_intercept, 6),
+                sig(out.alpha_lower, 6)
+            );
+            println!("error (24) first reaches, going up from β = 0⁺ (α on the exact boundary):");
+        }
+    }
     for (p, q) in out.points.iter().zip(pts) {
-        let phys = match (p.wall_stiffness, p.wall_damping) {
-            (Some(k), Some(b)) => {
-                format!("   (K = {}, B = {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
-            }
-            _ => String::new(),
-        };
         let note = if q.at_start {
-            "   (already at β = 0⁺)"
+            "   (already at 0⁺)"
         } else {
             ""
         };
-        println!(
-            "  {:>5} %   β = {}   α = {}   α_lin = {}{phys}{note}",
-            sig(p.level * 100.0, 4),
-            sig(p.beta, 6),
-            sig(p.alpha, 6),
-            sig(p.alpha_linear, 6)
-        );
+        let level = sig(p.level * 100.0, 4);
+        match (p.wall_stiffness, p.wall_damping, p.k_linear) {
+            (Some(k), Some(b), Some(kl)) => println!(
+                "  {level:>5} %   B = {}   K = {}   K_lin = {}   (β = {}, α = {}){note}",
+                eng(b, "Ns/m", 6),
+                eng(k, "N/m", 6),
+                eng(kl, "N/m", 6),
+                sig(p.beta, 6),
+                sig(p.alpha, 6)
+            ),
+            _ => println!(
+                "  {level:>5} %   β = {}   α = {}   α_lin = {}{note}",
+                sig(p.beta, 6),
+                sig(p.alpha, 6),
+                sig(p.alpha_linear, 6)
+            ),
+        }
     }
 }

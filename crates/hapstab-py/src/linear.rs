@@ -41,18 +41,38 @@ pub struct PyLinearCondition {
     pub wall_stiffness: Option<Py<PyArray1<f64>>>,
     /// β in Ns/m at each point (None for Loop.normalized).
     pub wall_damping: Option<Py<PyArray1<f64>>>,
+    /// K_lin of (23) in N/m at each point (None for Loop.normalized).
+    pub k_linear: Option<Py<PyArray1<f64>>>,
+    /// (23) in N/m and Ns/m: K < k_linear_slope·B + k_linear_intercept, slope
+    /// 1/(T(d + 1/2)) in 1/s (None for Loop.normalized).
+    pub k_linear_slope: Option<f64>,
+    /// b/(T(d + 1/2)) in N/m (None for Loop.normalized).
+    pub k_linear_intercept: Option<f64>,
+    /// (19) in N/m: K > k_lower = −k (None for Loop.normalized).
+    pub k_lower: Option<f64>,
 }
 
 #[pymethods]
 impl PyLinearCondition {
     fn __repr__(&self) -> String {
-        format!(
-            "LinearCondition(gamma={}, delta={}, d={}, levels={})",
-            num(self.gamma),
-            num(self.delta),
-            self.d,
-            self.at_start.len()
-        )
+        // a loop in physical units is described in N/m and Ns/m, a normalized one in Table I
+        match (self.k_linear_slope, self.k_linear_intercept, self.k_lower) {
+            (Some(slope), Some(intercept), Some(lower)) => format!(
+                "LinearCondition(k_linear_slope={}, k_linear_intercept={}, k_lower={}, d={}, levels={})",
+                num(slope),
+                num(intercept),
+                num(lower),
+                self.d,
+                self.at_start.len()
+            ),
+            _ => format!(
+                "LinearCondition(gamma={}, delta={}, d={}, levels={})",
+                num(self.gamma),
+                num(self.delta),
+                self.d,
+                self.at_start.len()
+            ),
+        }
     }
 }
 
@@ -78,6 +98,7 @@ fn condition_object(py: Python<'_>, lc: &LinearCondition, physical: bool) -> PyL
         PyArray1::from_vec(py, lc.points.iter().map(f).collect()).unbind()
     };
     let (ku, bu) = (lc.units.stiffness, lc.units.damping);
+    let ph = physical.then(|| lc.physical());
     PyLinearCondition {
         gamma: lc.gamma,
         delta: lc.delta,
@@ -93,5 +114,9 @@ fn condition_object(py: Python<'_>, lc: &LinearCondition, physical: bool) -> PyL
         at_start: lc.points.iter().map(|p| p.at_start).collect(),
         wall_stiffness: physical.then(|| column(&|p| p.alpha * ku)),
         wall_damping: physical.then(|| column(&|p| p.beta * bu)),
+        k_linear: physical.then(|| column(&|p| lc.k_linear(p))),
+        k_linear_slope: ph.map(|h| h.k_linear_slope),
+        k_linear_intercept: ph.map(|h| h.k_linear_intercept),
+        k_lower: ph.map(|h| h.k_lower),
     }
 }

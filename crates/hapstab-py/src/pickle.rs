@@ -100,7 +100,7 @@ results! {
         k_max_passive_with_arm, notes, passive_notes },
     "LinearCondition" => PyLinearCondition { gamma, delta, d, linear_slope, linear_intercept,
         alpha_lower, levels, beta, alpha, alpha_linear, error, at_start, wall_stiffness,
-        wall_damping },
+        wall_damping, k_linear, k_linear_slope, k_linear_intercept, k_lower },
     "NyquistRegions" => PyNyquistRegions { delta, d, gamma_nyquist, sweep_gamma,
         sweep_alpha_max, sweep_beta_at_alpha_max, sweep_alpha_min, sweep_beta_min,
         sweep_beta_max, sweep_area, sweep_empty, sweep_degenerate, robust_polygon,

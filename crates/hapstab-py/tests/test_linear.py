@@ -42,9 +42,12 @@ def test_linear_condition_equals_the_command_line(hapstab_cli, name, lp, flags):
         np.testing.assert_array_equal(column, [p[key] for p in pts], err_msg=key)
     if pts[0].get("wall_stiffness") is None:  # normalized input: alpha and beta only
         assert got.wall_stiffness is None and got.wall_damping is None
+        assert got.k_linear is None and got.k_linear_slope is None and got.k_lower is None
     else:
-        np.testing.assert_array_equal(got.wall_stiffness, [p["wall_stiffness"] for p in pts])
-        np.testing.assert_array_equal(got.wall_damping, [p["wall_damping"] for p in pts])
+        for key in ("wall_stiffness", "wall_damping", "k_linear"):
+            np.testing.assert_array_equal(getattr(got, key), [p[key] for p in pts], err_msg=key)
+        for key in ("k_linear_slope", "k_linear_intercept", "k_lower"):
+            assert getattr(got, key) == want[key], key
 
 
 def test_condition_23_and_points_on_the_exact_boundary():
@@ -72,6 +75,13 @@ def test_physical_points_are_the_normalized_ones_in_si_units():
     m, t = 1.1, 1e-3  # the default device + arm: m_L + m_H, T
     np.testing.assert_allclose(lc.wall_stiffness, lc.alpha * m / t**2, rtol=1e-14)
     np.testing.assert_allclose(lc.wall_damping, lc.beta * m / t, rtol=1e-14)
+    # (23) and (19) in N/m: K < (B + b)/(T(d + 1/2)), K > -k (b = 7.5 Ns/m, k = 350 N/m)
+    b, k, tr = 7.5, 350.0, t * 1.5
+    assert abs(lc.k_linear_slope - 1 / tr) <= 1e-12 / tr
+    assert abs(lc.k_linear_intercept - b / tr) <= 1e-12 * b / tr
+    assert abs(lc.k_lower + k) <= 1e-12 * k
+    np.testing.assert_allclose(lc.k_linear, (lc.wall_damping + b) / tr, rtol=1e-12)
+    assert repr(lc).startswith("LinearCondition(k_linear_slope=")
 
 
 def test_loops_without_the_normalized_view_and_bad_levels_are_refused():

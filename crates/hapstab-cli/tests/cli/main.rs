@@ -19,6 +19,7 @@ mod extremes;
 mod figures;
 mod human_output;
 mod identify;
+mod linear;
 mod loop_file;
 mod loop_flags_check;
 mod loop_flags_discretize;

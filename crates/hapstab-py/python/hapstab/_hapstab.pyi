@@ -532,6 +532,14 @@ class LinearCondition:
     """alpha in N/m at each point (None for Loop.normalized)."""
     wall_damping: Optional[Float64Array]
     """beta in Ns/m at each point (None for Loop.normalized)."""
+    k_linear: Optional[Float64Array]
+    """K_lin of (23) in N/m at each point (None for Loop.normalized)."""
+    k_linear_slope: Optional[float]
+    """(23) in N/m and Ns/m: K < k_linear_slope*B + k_linear_intercept, 1/(T(d + 1/2)) in 1/s."""
+    k_linear_intercept: Optional[float]
+    """b/(T(d + 1/2)) in N/m."""
+    k_lower: Optional[float]
+    """(19) in N/m: K > -k."""
 
 class NyquistRegions:
     """Section VIII: the gamma sweep's regions, the robust region, the passive region."""

@@ -247,6 +247,38 @@ pub struct LinearCondition {
     pub units: WallScale,
 }
 
+/// The linear condition in N/m and Ns/m (the wall of a loop given in physical units): with
+/// α = KT²/m, β = BT/m, δ = bT/m, condition (23) α < (β + δ)/(d + 1/2) reads
+/// K < (B + b)/(T(d + 1/2)) = `k_slope`·B + `k_intercept`, and (19) α > −γ reads
+/// K > −k = `k_lower`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PhysicalLinear {
+    /// 1/(T(d + 1/2)) in 1/s: N/m of K per Ns/m of B on the line (23).
+    pub k_linear_slope: f64,
+    /// b/(T(d + 1/2)) in N/m: the line (23) at B = 0.
+    pub k_linear_intercept: f64,
+    /// −k in N/m: the bound (19).
+    pub k_lower: f64,
+}
+
+impl LinearCondition {
+    /// The half-planes (23) and (19) in N/m and Ns/m ([`PhysicalLinear`]), read through
+    /// `units`.
+    pub fn physical(&self) -> PhysicalLinear {
+        let (ku, bu) = (self.units.stiffness, self.units.damping);
+        PhysicalLinear {
+            k_linear_slope: self.slope * ku / bu,
+            k_linear_intercept: self.intercept * ku,
+            k_lower: self.alpha_lower * ku,
+        }
+    }
+
+    /// K_lin of (23) in N/m at a validity point (its α_lin through `units`).
+    pub fn k_linear(&self, p: &ValidityPoint) -> f64 {
+        p.alpha_linear * self.units.stiffness
+    }
+}
+
 /// [`LinearCondition`] of a loop: its (γ, δ, d) from [`Loop::paper_view`] and the
 /// [`validity_points`] of the levels. A loop without the paper's normalized view (another
 /// plant or estimator, an actuator lag, a fractional delay) is refused naming the loop.
