@@ -31,6 +31,11 @@ pub const POINT_TEST_SECONDS: f64 = 100e-9;
 /// ... plus 0.4 ns per n² for degree n = d + 3 at a stable point (the test is O(n²);
 /// measured with `map` at d = 1000, 0.36 ms per stable point).
 pub const POINT_TEST_SECONDS_PER_N2: f64 = 0.4e-9;
+/// Core-seconds of forming one plant's exact family for a map whose axes change the plant
+/// (γ or δ): the discretization and the parts of p(z), about 2.5 µs (measured with
+/// `map --x gamma:0:0.01:400 --y delta:0:0.5:400 --delay 2`, 0.36–0.51 core-seconds for
+/// 160 000 plants and their tests) — [`plants_cost`].
+pub const PLANT_FAMILY_SECONDS: f64 = 3e-6;
 /// Core-seconds of the roots of a polynomial ([`roots_cost`]): a fixed 20 µs ...
 pub const ROOTS_SECONDS: f64 = 20e-6;
 /// ... plus 40 ns per n² (Aberth–Ehrlich: O(n²) per sweep; measured with `check`, 0.19
@@ -524,6 +529,15 @@ pub fn region_cost_of_degree(n: usize, core: usize) -> Cost {
     Cost {
         seconds: REGION_SECONDS + REGION_SECONDS_PER_N2_CORE * n * n * core,
         memory: crate::region::MAX_CURVE_POINTS as f64 * REGION_BYTES_PER_POINT,
+    }
+}
+
+/// Cost of forming the exact families of `plants` plants of a map over γ or δ
+/// ([`PLANT_FAMILY_SECONDS`] each; [`crate::paper::map::MapSpec::plants`]).
+pub fn plants_cost(plants: f64) -> Cost {
+    Cost {
+        seconds: plants * PLANT_FAMILY_SECONDS,
+        memory: 0.0,
     }
 }
 

@@ -32,7 +32,13 @@ pub(super) fn normalized_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Re
         d,
     )?;
     let spec = MapSpec::new(x.range, y.range, base)?;
-    check_budget(a, (x, y), d + 3, 1.0, ("--delay", &d.to_string()))?;
+    check_budget(
+        a,
+        (x, y),
+        (d + 3, spec.plants()),
+        1.0,
+        ("--delay", &d.to_string()),
+    )?;
     let bar = map_bar(a, x, y, d + 3);
     let m = compute_map(&spec, kind, &bar.stage(0))?;
     Ok(Values {
@@ -94,7 +100,7 @@ pub(super) fn loop_map(a: &MapArgs, x: Grid, y: Grid, kind: MapKind) -> Result<V
     let (a_lo, b_lo) = fam.to_units(x.range.lo, y.range.lo);
     let (a_hi, b_hi) = fam.to_units(x.range.hi, y.range.hi);
     let stable = stable_share(fam, (a_lo, a_hi), (b_lo, b_hi));
-    check_budget(a, (x, y), n, stable, (flag, &value))?;
+    check_budget(a, (x, y), (n, 1), stable, (flag, &value))?;
     let bar = map_bar(a, x, y, n);
     let m = wall_map_physical(
         fam,

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use hapstab::Normalized;
 use hapstab::answer::{MapInput, MapSummary};
-use hapstab::limits::map_cost_of_degree;
+use hapstab::limits::{map_cost_of_degree, plants_cost};
 use hapstab::loop_spec::LoopInput;
 use hapstab::map::{Axis, AxisRange, MapKind, wall_map_physical};
 use hapstab::paper::map::{MapSpec, compute_map};
@@ -166,9 +166,9 @@ pub(crate) struct MapOut {
     pub spectral_radius: Option<Vec<f64>>,
 }
 
-/// Refuses a map beyond the interactive budget (every point counted stable), naming the
-/// longer axis.
-fn map_budget(req: &MapReq, degree: usize) -> Result<(), ApiError> {
+/// Refuses a map beyond the interactive budget (every point counted stable, and the family of
+/// each of `plants` plants, [`MapSpec::plants`]), naming the longer axis.
+fn map_budget(req: &MapReq, degree: usize, plants: usize) -> Result<(), ApiError> {
     let points = req.x.range.n as f64 * req.y.range.n as f64;
     let radius = req.kind == MapKind::SpectralRadius;
     let g = if req.x.range.n >= req.y.range.n {
@@ -177,7 +177,7 @@ fn map_budget(req: &MapReq, degree: usize) -> Result<(), ApiError> {
         ("y", &req.y.text)
     };
     within_budget(
-        map_cost_of_degree(points, degree, radius, 1.0),
+        map_cost_of_degree(points, degree, radius, 1.0).then(plants_cost(plants as f64)),
         &format!("the map of {points} points"),
         g.0,
         g.1,
@@ -190,10 +190,10 @@ pub(crate) fn map(req: &MapReq) -> Result<MapOut, ApiError> {
     let (stable, radius, lp) = match req.x.name {
         Name::Normalized(_) => {
             let s = req.spec.view();
-            map_budget(req, s.d + 3)?;
             let base = Normalized::new(req.alpha, req.beta, s.plant.gamma, s.plant.delta, s.d)
                 .map_err(lib_error)?;
             let spec = MapSpec::new(req.x.range, req.y.range, base).map_err(lib_error)?;
+            map_budget(req, s.d + 3, spec.plants())?;
             let m = compute_map(&spec, req.kind, &|_| {}).map_err(lib_error)?;
             let input = LoopInput::Normalized {
                 gamma: base.gamma,
@@ -207,7 +207,7 @@ pub(crate) fn map(req: &MapReq) -> Result<MapOut, ApiError> {
         _ => {
             let sys = physical_loop(&req.spec, "the map over K and B")?;
             let (lp, fam) = (sys.lp(), sys.family());
-            map_budget(req, fam.degree())?;
+            map_budget(req, fam.degree(), 1)?;
             let (x, y) = (&req.x.range, &req.y.range);
             let m = wall_map_physical(
                 fam,

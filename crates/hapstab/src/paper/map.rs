@@ -75,6 +75,18 @@ impl MapSpec {
         Ok(Self { x, y, base })
     }
 
+    /// The number of plants the map forms a family for: 1 when both axes are α and β, the
+    /// points of the γ or δ axis when one is, every point when both are.
+    pub fn plants(&self) -> usize {
+        let plant_axis = |r: AxisRange| matches!(r.axis, Axis::Gamma | Axis::Delta);
+        match (plant_axis(self.x), plant_axis(self.y)) {
+            (false, false) => 1,
+            (true, false) => self.x.n,
+            (false, true) => self.y.n,
+            (true, true) => self.x.n.saturating_mul(self.y.n),
+        }
+    }
+
     fn point(&self, ix: usize, iy: usize) -> Normalized {
         let mut p = self.base;
         for (r, i) in [(self.x, ix), (self.y, iy)] {
