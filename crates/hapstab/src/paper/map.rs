@@ -87,7 +87,8 @@ impl MapSpec {
         }
     }
 
-    fn point(&self, ix: usize, iy: usize) -> Normalized {
+    /// The point of Table I at grid indices (ix, iy): the base with the two axes' values.
+    pub fn point(&self, ix: usize, iy: usize) -> Normalized {
         let mut p = self.base;
         for (r, i) in [(self.x, ix), (self.y, iy)] {
             let v = r.value(i);

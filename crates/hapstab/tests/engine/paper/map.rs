@@ -35,16 +35,7 @@ fn check(x: AxisRange, y: AxisRange, base: Normalized) {
     let (mut decided, mut stable) = (0, 0);
     for iy in 0..y.n {
         for ix in 0..x.n {
-            let mut p = base;
-            for (r, i) in [(x, ix), (y, iy)] {
-                let v = r.value(i);
-                match r.axis {
-                    Axis::Alpha => p.alpha = v,
-                    Axis::Beta => p.beta = v,
-                    Axis::Gamma => p.gamma = v,
-                    Axis::Delta => p.delta = v,
-                }
-            }
+            let p = spec.point(ix, iy);
             let r = closed_form_radius(&p);
             if (r - 1.0).abs() < 1e-6 {
                 continue;
