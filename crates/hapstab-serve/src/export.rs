@@ -100,6 +100,12 @@ pub(crate) fn parse_export(p: &Params) -> Result<ExportReq, ApiError> {
     })
 }
 
+/// The selected wall: the explorer's answer for it and its point in the plane's units.
+struct Selected {
+    answer: PointOut,
+    at: (f64, f64),
+}
+
 #[derive(Serialize)]
 struct JsonExport<'a> {
     region: &'a RegionOut,
@@ -116,10 +122,10 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
     }
     let out = region(&req.region)?;
     let pt = match req.point {
-        Some((a, b)) => Some(point(
-            &req.region.spec,
-            WallAt::of_units(&req.region.spec, a, b),
-        )?),
+        Some((a, b)) => Some(Selected {
+            answer: point(&req.region.spec, WallAt::of_units(&req.region.spec, a, b))?,
+            at: (a, b),
+        }),
         None => None,
     };
     let view = req.view.unwrap_or_else(|| auto_view(&out, pt.as_ref()));
@@ -128,13 +134,11 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
     // the file speaks the loop's units: (γ, δ, d) for normalized input, else T and t_d
     let stem = match spec.physical {
         None => {
-            let p = &out.params;
-            format!(
-                "hapstab-region-gamma{}-delta{}-d{}",
-                fmt(p.gamma),
-                fmt(p.delta),
-                p.d
-            )
+            // normalized input is the paper's loop, whose (γ, δ, d) the region gives
+            let (g, dl, d) = out
+                .params
+                .map_or((0.0, 0.0, 0), |p| (p.gamma, p.delta, p.d));
+            format!("hapstab-region-gamma{}-delta{}-d{d}", fmt(g), fmt(dl))
         }
         Some(_) => format!(
             "hapstab-region-T{}-td{}",
@@ -150,7 +154,7 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
         Format::Json => {
             let body = hapstab::json::pretty(&JsonExport {
                 region: &out,
-                point: pt.as_ref(),
+                point: pt.as_ref().map(|p| &p.answer),
                 view,
             })
             .map_err(|e| ApiError::bad(format!("JSON encoding failed: {e}")))?;
@@ -170,7 +174,7 @@ pub(crate) fn export(req: &ExportReq) -> Result<(&'static str, String, String), 
 }
 
 /// The view that shows everything drawn: the region, the overlays and the point, padded.
-pub(crate) fn auto_view(out: &RegionOut, pt: Option<&PointOut>) -> [f64; 4] {
+fn auto_view(out: &RegionOut, pt: Option<&Selected>) -> [f64; 4] {
     let mut b = [
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -199,13 +203,13 @@ pub(crate) fn auto_view(out: &RegionOut, pt: Option<&PointOut>) -> [f64; 4] {
         }
     }
     if let Some(p) = pt {
-        add(p.params.alpha, p.params.beta);
+        add(p.at.0, p.at.1);
     }
     for v in robust_kmax_segment(out).iter().flatten() {
         add(v[0], v[1]);
     }
     if !b[0].is_finite() {
-        let g = out.params.gamma;
+        let g = out.params.map_or(0.0, |p| p.gamma);
         return [-g - 0.1, 1.0, -0.5, 1.0];
     }
     let (w, h) = (b[1] - b[0], b[3] - b[2]);
@@ -235,7 +239,7 @@ fn robust_kmax_segment(out: &RegionOut) -> Option<[[f64; 2]; 2]> {
 
 /// Every drawn vertex: layer, polygon, vertex and K (N/m), B (Ns/m) in physical mode, α, β
 /// for normalized input.
-fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
+fn csv(out: &RegionOut, pt: Option<&Selected>, view: [f64; 4]) -> String {
     let mut s = String::from(match out.physical {
         Some(_) => "layer,polygon,vertex,K_N_per_m,B_Ns_per_m\n",
         None => "layer,polygon,vertex,alpha,beta\n",
@@ -293,7 +297,7 @@ fn csv(out: &RegionOut, pt: Option<&PointOut>, view: [f64; 4]) -> String {
         row("robust_kmax", 0, i, v[0], v[1]);
     }
     if let Some(p) = pt {
-        row("point", 0, 0, p.params.alpha, p.params.beta);
+        row("point", 0, 0, p.at.0, p.at.1);
     }
     s
 }
@@ -396,7 +400,7 @@ impl Frame {
 /// A standalone SVG of the view.
 fn svg(
     out: &RegionOut,
-    pt: Option<&PointOut>,
+    pt: Option<&Selected>,
     view: [f64; 4],
     (w, h): (usize, usize),
     title: &str,
@@ -585,9 +589,9 @@ fn svg_lines(s: &mut String, out: &RegionOut, f: &Frame, view: [f64; 4]) {
 }
 
 /// The selected point: a cross in its verdict's color.
-fn svg_point(s: &mut String, p: &PointOut, f: &Frame) {
-    let color = verdict_color(p.verdict);
-    let (x, y) = (f.px(p.params.alpha), f.py(p.params.beta));
+fn svg_point(s: &mut String, p: &Selected, f: &Frame) {
+    let color = verdict_color(p.answer.verdict);
+    let (x, y) = (f.px(p.at.0), f.py(p.at.1));
     let _ = writeln!(
         s,
         "<g class=\"point\" stroke=\"{color}\" stroke-width=\"2.5\"><line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/><line x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\"/></g>",
@@ -603,7 +607,7 @@ fn svg_point(s: &mut String, p: &PointOut, f: &Frame) {
 }
 
 /// The legend's entries (text, color) of everything drawn.
-fn legend_items(out: &RegionOut, pt: Option<&PointOut>) -> Vec<(String, &'static str)> {
+fn legend_items(out: &RegionOut, pt: Option<&Selected>) -> Vec<(String, &'static str)> {
     let mut items: Vec<(String, &str)> = vec![("exact stable region".into(), "#4c8fd6")];
     if out.linear.is_some() {
         items.push(("linear condition (23), α > −γ (19)".into(), "#d62728"));
@@ -653,8 +657,12 @@ fn legend_items(out: &RegionOut, pt: Option<&PointOut>) -> Vec<(String, &'static
     }
     if let Some(p) = pt {
         items.push((
-            format!("point: {} (ρ = {})", p.verdict, sig(p.spectral_radius, 6)),
-            verdict_color(p.verdict),
+            format!(
+                "point: {} (ρ = {})",
+                p.answer.verdict,
+                sig(p.answer.spectral_radius, 6)
+            ),
+            verdict_color(p.answer.verdict),
         ));
     }
     items

@@ -12,7 +12,7 @@
 
 use serde::Serialize;
 
-use super::query::{ApiError, PlantSpec, clip};
+use super::query::{ApiError, PaperPlant, PlantSpec, clip};
 use hapstab::System;
 use hapstab::limits::{Budget, Cost};
 
@@ -94,13 +94,12 @@ pub(crate) struct PlantOut {
     pub d: usize,
 }
 
-impl From<&PlantSpec> for PlantOut {
-    fn from(s: &PlantSpec) -> Self {
-        let v = s.view();
+impl From<PaperPlant> for PlantOut {
+    fn from(p: PaperPlant) -> Self {
         Self {
-            gamma: v.plant.gamma,
-            delta: v.plant.delta,
-            d: v.d,
+            gamma: p.plant.gamma,
+            delta: p.plant.delta,
+            d: p.d,
         }
     }
 }

@@ -130,14 +130,17 @@ pub(crate) fn point_budget(spec: &PlantSpec) -> Result<(), ApiError> {
     )
 }
 
-/// The point's (α, β, γ, δ, d) (see [`PointOut::params`]).
+/// The point in Table I, (α, β, γ, δ, d), of a loop with the paper's view (None beyond it;
+/// see `hapstab::answer::WallAnswer::params`).
 pub(super) fn point_params(
     spec: &PlantSpec,
     alpha: f64,
     beta: f64,
-) -> Result<Normalized, ApiError> {
-    let v = spec.view();
-    Normalized::new(alpha, beta, v.plant.gamma, v.plant.delta, v.d).map_err(lib_error)
+) -> Result<Option<Normalized>, ApiError> {
+    spec.paper
+        .map(|p| Normalized::new(alpha, beta, p.plant.gamma, p.plant.delta, p.d))
+        .transpose()
+        .map_err(lib_error)
 }
 
 /// Computes `/api/point` ([`wall_answer`] on the request's loop).

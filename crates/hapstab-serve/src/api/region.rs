@@ -110,9 +110,9 @@ pub(crate) struct Timing {
 /// Answer of `/api/region`.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct RegionOut {
-    /// (γ, δ, d); for a loop beyond the paper's, γ is its static stiffness in wall units
-    /// (the z = 1 line a = −γ) and δ = 0: the loop itself is under `loop`.
-    pub params: PlantOut,
+    /// The paper's (γ, δ, d) of a loop with its normalized view (Table I); null for a loop
+    /// beyond the paper's, which is under `loop`.
+    pub params: Option<PlantOut>,
     pub physical: Option<PhysicalSpec>,
     /// A loop beyond the paper's: plant, period, delay and velocity estimator; the region
     /// is drawn in its wall units a = K/k_per_alpha, b = B/b_per_beta.
@@ -292,7 +292,7 @@ pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     let kmax = spec.physical.map(|_| design_kmax(&spec.sys)).transpose()?;
     let (rk, t_rk) = robust_kmax(req)?;
     Ok(RegionOut {
-        params: PlantOut::from(spec),
+        params: spec.paper.map(PlantOut::from),
         physical: spec.physical,
         lp: spec.paper.is_none().then(|| spec.sys.lp().clone()),
         region,

@@ -176,8 +176,8 @@ pub(crate) fn simulate(req: &SimReq) -> Result<SimOut, ApiError> {
             "normalized mode: shown for m = 1 kg and T = 1 ms (only the shape depends on α, β, γ, δ, d)",
         ),
     };
-    let model = match spec.paper {
-        Some(_) => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
+    let model = match n {
+        Some(n) => SimModel::Paper(Model::new(n, mass, period).map_err(lib_error)?),
         None => SimModel::Loop(LoopModel::new(spec.sys.lp().clone(), req.wall).map_err(lib_error)?),
     };
     let mut cfg = Config::new(model, req.samples);

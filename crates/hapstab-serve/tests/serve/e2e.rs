@@ -54,7 +54,8 @@ fn default_plant() -> PlantParams {
 }
 
 /// The region state the page exposes on the plot element once a redraw has finished and
-/// no other is pending: (path d, α_max, γ, δ, d).
+/// no other is pending: (path d, α_max, γ, δ, d); γ = δ = NaN and d = usize::MAX for a loop
+/// beyond the paper's, which has no (γ, δ, d).
 async fn settled(c: &Client) -> R<(String, f64, f64, f64, usize)> {
     let plot = c.find(Locator::Id("plot")).await?;
     let region = c.find(Locator::Id("region")).await?;
@@ -72,12 +73,27 @@ async fn settled(c: &Client) -> R<(String, f64, f64, f64, usize)> {
         return Err(format!("the page shows an error: {error}").into());
     }
     let am: f64 = attr(&plot, "data-alpha-max").await?.parse()?;
+    // a loop beyond the paper's has no (γ, δ, d): the page leaves them empty
+    let (g, de, d) = (
+        attr(&plot, "data-gamma").await?,
+        attr(&plot, "data-delta").await?,
+        attr(&plot, "data-d").await?,
+    );
+    if g.is_empty() && de.is_empty() && d.is_empty() {
+        return Ok((
+            attr(&region, "d").await?,
+            am,
+            f64::NAN,
+            f64::NAN,
+            usize::MAX,
+        ));
+    }
     Ok((
         attr(&region, "d").await?,
         am,
-        attr(&plot, "data-gamma").await?.parse()?,
-        attr(&plot, "data-delta").await?.parse()?,
-        attr(&plot, "data-d").await?.parse()?,
+        g.parse()?,
+        de.parse()?,
+        d.parse()?,
     ))
 }
 
@@ -555,10 +571,14 @@ const LOOP_URL: &str = "/?mode=physical&motor_mass=0.05&motor_damping=0&handle_m
 /// The page on a loop beyond the paper's (module doc).
 async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     c.goto(&format!("{base}{LOOP_URL}")).await?;
-    let am0 = wait_for(20, "the loop's region", || async {
-        Ok(settled(c).await.ok().map(|s| s.1))
+    let (_, am0, g, _, d) = wait_for(20, "the loop's region", || async {
+        Ok(settled(c).await.ok())
     })
     .await?;
+    assert!(
+        g.is_nan() && d == usize::MAX,
+        "the page gives no (γ, δ, d) for a loop beyond the paper's"
+    );
     assert_eq!(
         am0,
         loop_alpha_max(&two_mass_loop("lowpass:150"))?,

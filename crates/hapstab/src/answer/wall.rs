@@ -19,10 +19,10 @@ use crate::system::System;
 /// One wall of a loop, judged and measured.
 #[derive(Debug, Clone, Serialize)]
 pub struct WallAnswer {
-    /// The point in the plane's units (α, β, γ, δ, d); for a loop beyond the paper's the wall
-    /// in wall units (a, b) with γ its static stiffness in wall units and δ = 0 (the loop is
-    /// under `loop`).
-    pub params: Normalized,
+    /// The point in Table I (α, β, γ, δ, d) for a loop with the paper's normalized view; None
+    /// for a loop beyond the paper's (it is under `loop`, its wall under `wall`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub params: Option<Normalized>,
     /// A loop beyond the paper's (None for the paper's loop, whose `params` say it all).
     #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
     pub lp: Option<Loop>,
@@ -53,13 +53,13 @@ pub struct WallAnswer {
 
 /// The answer for the wall at `units` (the family's wall units, [`System::wall_units`]) and
 /// `wall` (the same wall in the loop's units: N/m and Ns/m, α and β for a normalized loop):
-/// [`System::analysis`] for the verdict and the roots, [`linear_check`] at `params` where the
-/// loop is the paper's ([`Loop::paper_view`]), [`margins_beside_verdict`] and [`passivity`].
-/// `params` is the point as the plane shows it; `normalized` says whether the loop was given
-/// in normalized units (then `wall` is not echoed).
+/// [`System::analysis`] for the verdict and the roots, [`linear_check`] at `params` (the
+/// point in Table I, given for a loop with the paper's view, [`Loop::paper_view`]),
+/// [`margins_beside_verdict`] and [`passivity`]. `normalized` says whether the loop was
+/// given in normalized units (then `wall` is not echoed).
 pub fn wall_answer(
     sys: &System,
-    params: Normalized,
+    params: Option<Normalized>,
     normalized: bool,
     units: (f64, f64),
     wall: Wall,
@@ -67,6 +67,7 @@ pub fn wall_answer(
     let a = sys.analysis(units)?;
     let lp = sys.lp();
     let paper = lp.paper_view().is_some();
+    let params = params.filter(|_| paper);
     let margins = margins_beside_verdict(lp, wall, a.stable())?;
     let passivity = passivity(lp, wall)?;
     Ok(WallAnswer {
@@ -77,7 +78,7 @@ pub fn wall_answer(
         stable: a.stable(),
         spectral_radius: a.spectral_radius,
         roots: a.roots.iter().map(|z| [z.re, z.im]).collect(),
-        linear: paper.then(|| linear_check(&params)),
+        linear: params.as_ref().map(linear_check),
         passive: passivity.verdict.meets(),
         passive_with_arm: passivity.with_arm.and_then(|w| w.verdict.meets()),
         margins: MarginsReport::from(&margins),
