@@ -2,7 +2,7 @@
 //! region benchmark (a two-mass device held by the typical arm, a 0.2 ms actuator lag, a
 //! 200 Hz low-pass velocity estimate; p of degree 7 + d) at d = 0, 1 and 10:
 //! - at one damping (B = 5 Ns/m): the stable intervals from the Cayley crossing polynomial
-//!   (`boundary::stable_alpha_intervals`) against the θ scan they replace
+//!   (`boundary::stable_stiffness_intervals`) against the θ scan they replace
 //!   (`stable_between(scanned_line_crossings)`), from the loop's family;
 //! - over the damping band B ≥ 0: `kmax_band::k_max_band` against the exact region's polygon
 //!   and `region::alpha_max_within`;
@@ -15,7 +15,9 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use hapstab::AffineFamily;
-use hapstab::boundary::{WallLine, scanned_line_crossings, stable_alpha_intervals, stable_between};
+use hapstab::boundary::{
+    WallLine, scanned_line_crossings, stable_between, stable_stiffness_intervals,
+};
 use hapstab::kmax::{KmaxQuery, kmax};
 use hapstab::kmax_band::k_max_band;
 use hapstab::model::Delay;
@@ -33,7 +35,7 @@ fn bench_kmax(c: &mut Criterion) {
         let fam = AffineFamily::of_loop(&lp).expect("family");
         let (_, b) = fam.to_units(0.0, 5.0);
         g.bench_with_input(BenchmarkId::new("at_damping", d), &fam, |bch, fam| {
-            bch.iter(|| black_box(stable_alpha_intervals(black_box(fam), b)))
+            bch.iter(|| black_box(stable_stiffness_intervals(black_box(fam), b)))
         });
         g.bench_with_input(BenchmarkId::new("at_damping_scan", d), &fam, |bch, fam| {
             bch.iter(|| {

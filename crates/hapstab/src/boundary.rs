@@ -483,25 +483,25 @@ pub struct Interval {
     pub hi: f64,
 }
 
-/// The stable intervals of the stiffness a for a given damping b (Section V): between
-/// consecutive boundary crossings the number of unstable roots is constant, so one
-/// Schur–Cohn test per gap decides it.
-pub fn stable_alpha_intervals(fam: &AffineFamily, beta: f64) -> Vec<Interval> {
-    stable_line_intervals(fam, &WallLine::stiffness_axis(beta))
+/// The stable intervals of the wall stiffness a (in the family's wall units; α for the
+/// paper's loop) at a given damping b (Section V): between consecutive boundary crossings the
+/// number of unstable roots is constant, so one Schur–Cohn test per gap decides it.
+pub fn stable_stiffness_intervals(fam: &AffineFamily, b: f64) -> Vec<Interval> {
+    stable_line_intervals(fam, &WallLine::stiffness_axis(b))
 }
 
-/// [`stable_alpha_intervals`] with the crossing scan taken from `table`, the
+/// [`stable_stiffness_intervals`] with the crossing scan taken from `table`, the
 /// [`CircleTable`] of `fam` (identical results).
-pub fn stable_alpha_intervals_tabulated(
+pub fn stable_stiffness_intervals_tabulated(
     fam: &AffineFamily,
     table: &CircleTable,
-    beta: f64,
+    b: f64,
 ) -> Vec<Interval> {
-    let line = WallLine::stiffness_axis(beta);
+    let line = WallLine::stiffness_axis(b);
     stable_between(fam, &line, &line_crossings_tabulated(fam, table, &line))
 }
 
-/// The stable intervals of t on a wall line (see [`stable_alpha_intervals`], Section V).
+/// The stable intervals of t on a wall line (see [`stable_stiffness_intervals`], Section V).
 pub fn stable_line_intervals(fam: &AffineFamily, line: &WallLine) -> Vec<Interval> {
     match CayleyFamily::new(fam) {
         Some(cf) => crate::line_decomposition::stable_intervals(fam, &cf, line),
@@ -581,14 +581,14 @@ mod tests {
     fn pure_mass_interval_is_closed_form() {
         let fam = NormalizedFamily::new(PlantParams::new(0.0, 0.0).unwrap(), 0).unwrap();
         for beta in [0.1, 0.7, 1.5] {
-            let iv = stable_alpha_intervals(&fam, beta);
+            let iv = stable_stiffness_intervals(&fam, beta);
             let hi = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
             assert_eq!(iv.len(), 1, "{iv:?}");
             assert_eq!(iv[0].lo, 0.0);
             assert!((iv[0].hi - hi).abs() < 1e-14 * hi, "{} vs {hi}", iv[0].hi);
         }
-        assert!(stable_alpha_intervals(&fam, -0.1).is_empty());
-        assert!(stable_alpha_intervals(&fam, 2.1).is_empty());
+        assert!(stable_stiffness_intervals(&fam, -0.1).is_empty());
+        assert!(stable_stiffness_intervals(&fam, 2.1).is_empty());
     }
 
     #[test]
@@ -605,7 +605,7 @@ mod tests {
                 let scanned = scanned_line_crossings(&pf, &line);
                 assert_eq!(line_crossings_tabulated(&pf, &table, &line), scanned);
                 assert_eq!(
-                    stable_alpha_intervals_tabulated(&pf, &table, b),
+                    stable_stiffness_intervals_tabulated(&pf, &table, b),
                     stable_between(&pf, &line, &scanned)
                 );
             }

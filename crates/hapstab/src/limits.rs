@@ -20,7 +20,7 @@ use serde::Serialize;
 pub use crate::map::MAX_POINTS as MAX_MAP_POINTS;
 pub use crate::params::MAX_DELAY;
 
-/// Core-seconds of one call of [`crate::boundary::stable_alpha_intervals`] per unit of
+/// Core-seconds of one call of [`crate::boundary::stable_stiffness_intervals`] per unit of
 /// (d + 4): the D-decomposition crossings and one Schur–Cohn test per gap grow linearly with
 /// the degree in practice. Measured with `kmax --robust` (10 µs at d = 0 and d = 12, golden
 /// refinements included) and `nyquist` (d = 0, 4, 12).
@@ -412,7 +412,7 @@ pub fn roots_cost(n: usize) -> Cost {
 }
 
 /// Cost of one exact stable interval of the stiffness at one damping
-/// ([`crate::boundary::stable_alpha_intervals`]) for p(z) of degree n.
+/// ([`crate::boundary::stable_stiffness_intervals`]) for p(z) of degree n.
 pub fn interval_cost(n: usize) -> Cost {
     Cost {
         seconds: (n as f64 + 1.0) * SWEEP_SECONDS_PER_DEGREE,

@@ -12,7 +12,7 @@
 //! ([`Loop::paper_view`]) is analysed through the paper's family (eq. 9 in (α, β)), formed
 //! once here, as every command has always formed it.
 
-use crate::boundary::{Interval, stable_alpha_intervals};
+use crate::boundary::{Interval, stable_stiffness_intervals};
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::kmax_band::{BandMax, k_max_band};
@@ -140,8 +140,8 @@ impl System {
     /// units (Section V).
     pub fn stable_intervals(&self, b: f64) -> Vec<Interval> {
         match &self.paper {
-            Some(pf) => stable_alpha_intervals(pf, b),
-            None => stable_alpha_intervals(&self.family, b),
+            Some(pf) => stable_stiffness_intervals(pf, b),
+            None => stable_stiffness_intervals(&self.family, b),
         }
     }
 

@@ -7,7 +7,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use assert_cmd::Command;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::is_stable;
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::linear::{routh_hurwitz_normalized, validity_points};
@@ -154,7 +154,7 @@ fn c5() -> &'static str {
         for dl in [0.0, 0.005, 0.01, DELTA] {
             let fam = NormalizedFamily::new(PlantParams::new(GAMMA, dl).unwrap(), d).unwrap();
             for b in [1e-6, 1e-4, 1e-3] {
-                let iv = stable_alpha_intervals(&fam, b)
+                let iv = stable_stiffness_intervals(&fam, b)
                     .into_iter()
                     .find(|iv| (iv.lo + GAMMA).abs() < 1e-12)
                     .expect("a stable interval starts at -gamma");

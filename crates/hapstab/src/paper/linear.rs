@@ -14,7 +14,7 @@
 
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_alpha_intervals};
+use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_stiffness_intervals};
 use crate::error::{Error, Result, finite};
 use crate::model::{Loop, PlantModel};
 use crate::paper::NormalizedFamily;
@@ -183,13 +183,13 @@ pub fn linear_check(n: &Normalized) -> LinearCheck {
 }
 
 /// The upper end of the exact stable α-interval at β (Section V, Fig. 5), from the
-/// D-decomposition of [`crate::boundary::stable_alpha_intervals`]: the interval that starts
+/// D-decomposition of [`crate::boundary::stable_stiffness_intervals`]: the interval that starts
 /// on the left boundary α = −γ, or, for long delays where instability sets in before the
 /// net stiffness γ + α reaches zero, the one that contains α = 0. None when neither exists.
 pub fn exact_upper_alpha(fam: &NormalizedFamily, beta: f64) -> Option<f64> {
     let g = fam.gamma();
     let tol = 1e-12 * g.max(1e-300) + 1e-300;
-    let ivs = stable_alpha_intervals(fam, beta);
+    let ivs = stable_stiffness_intervals(fam, beta);
     ivs.iter()
         .find(|iv| iv.lo <= -g + tol && iv.hi > -g)
         .or_else(|| ivs.iter().find(|iv| iv.lo < 0.0 && iv.hi > 0.0))

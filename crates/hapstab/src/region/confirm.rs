@@ -1,7 +1,7 @@
 //! After step 6: the largest stable stiffness confirmed before it is reported.
 //!
 //! The polygons' K_max and its damping B* are checked against the exact stable intervals at
-//! B* ([`crate::boundary::stable_alpha_intervals`]): their highest end must be K_max to 1e-9
+//! B* ([`crate::boundary::stable_stiffness_intervals`]): their highest end must be K_max to 1e-9
 //! (it then replaces the polygon's value, exact to rounding), and the point test must find
 //! every root of the wall (K_max − δ, B*) inside the unit circle and not of (K_max + δ, B*),
 //! δ = [`CONFIRM_REL`]·|K_max|. Where
@@ -13,7 +13,7 @@
 //! candidate that fails either way is a wrong region, and the caller refuses or retries it.
 
 use super::*;
-use crate::boundary::{CircleTable, LazyCircleTable, stable_alpha_intervals_tabulated};
+use crate::boundary::{CircleTable, LazyCircleTable, stable_stiffness_intervals_tabulated};
 
 /// Relative distance of the walls beside K_max that the verdict must call stable (inside) and
 /// not stable (outside): far above the rounding of K_max, far below any margin that matters.
@@ -70,7 +70,7 @@ fn attained_locally(
 
 /// The highest finite end of the stable intervals at damping b.
 fn top(fam: &AffineFamily, table: &CircleTable, b: f64) -> Option<f64> {
-    stable_alpha_intervals_tabulated(fam, table, b)
+    stable_stiffness_intervals_tabulated(fam, table, b)
         .iter()
         .map(|iv| iv.hi)
         .filter(|h| h.is_finite())
@@ -156,7 +156,7 @@ pub fn confirm_max_tabulated(
         .flat_map(|k| [1.0, -1.0].map(|s| cand.beta + s * b_unit * 10f64.powi(-k)))
         .filter(|&b| b >= b_lo && b <= b_hi)
         .find_map(|b| {
-            stable_alpha_intervals_tabulated(fam, table, b)
+            stable_stiffness_intervals_tabulated(fam, table, b)
                 .iter()
                 .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite() && iv.hi > iv.lo)
                 .flat_map(|iv| (1..=WEDGE_STEPS).map(|j| iv.hi - (iv.hi - iv.lo) * 0.5f64.powi(j)))

@@ -206,7 +206,7 @@ pub fn alpha_max_within(
         }
     }
     for b in [b_lo, b_hi].into_iter().filter(|b| b.is_finite()) {
-        let ivs = crate::boundary::stable_alpha_intervals(fam, b);
+        let ivs = crate::boundary::stable_stiffness_intervals(fam, b);
         if let Some(top) = ivs
             .iter()
             .map(|iv| iv.hi)

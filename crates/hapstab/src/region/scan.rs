@@ -3,7 +3,7 @@
 //! wall-free point of a lossless plant).
 //!
 //! Each slice is the exact set of stable stiffnesses at one damping
-//! ([`crate::boundary::stable_alpha_intervals`]): its ends are points of the boundary, found
+//! ([`crate::boundary::stable_stiffness_intervals`]): its ends are points of the boundary, found
 //! by the same crossings and point tests as `check` and `kmax --wall-damping`. Slices are
 //! added by bisection in the damping until the interval ends of every slice are within the
 //! chord tolerance of the chords between its neighbours, and until every change in the number
@@ -12,7 +12,7 @@
 //! downward); a change in the number closes them and opens new ones.
 
 use super::*;
-use crate::boundary::{Interval, stable_alpha_intervals};
+use crate::boundary::{Interval, stable_stiffness_intervals};
 
 /// Uniform slices a scan starts from, before bisection.
 const START_SLICES: usize = 256;
@@ -37,7 +37,7 @@ pub(super) fn scanned_region(fam: &AffineFamily, bx: BoxF, tol: f64) -> Option<S
     let (a0, a1, b0, b1) = bx;
     let slice = |b: f64| Slice {
         b,
-        ivs: stable_alpha_intervals(fam, b)
+        ivs: stable_stiffness_intervals(fam, b)
             .into_iter()
             .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite() && iv.hi > iv.lo)
             .filter(|iv| iv.hi > a0 && iv.lo < a1)
@@ -77,7 +77,7 @@ fn scanned_max(fam: &AffineFamily, slices: &[Slice]) -> (f64, f64) {
         return (f64::NAN, f64::NAN);
     }
     let f = |b: f64| {
-        stable_alpha_intervals(fam, b)
+        stable_stiffness_intervals(fam, b)
             .iter()
             .filter(|iv| iv.hi.is_finite() && iv.hi > iv.lo)
             .map(|iv| iv.hi)

@@ -9,8 +9,8 @@
 
 use super::*;
 use crate::boundary::{
-    CircleTable, Interval, WallLine, line_crossings_tabulated, stable_alpha_intervals_tabulated,
-    stable_between,
+    CircleTable, Interval, WallLine, line_crossings_tabulated, stable_between,
+    stable_stiffness_intervals_tabulated,
 };
 
 /// Aspect ratios within this factor of 1 are left alone: the isotropic sampling resolves them
@@ -67,7 +67,7 @@ type Tabled<'a> = (&'a AffineFamily, &'a CircleTable);
 /// The stable interval's span along the stiffness axis at damping b (lowest end, highest end,
 /// middle of the widest interval).
 fn along_a(&(fam, table): &Tabled<'_>, b: f64) -> Option<(f64, f64, f64)> {
-    span(&stable_alpha_intervals_tabulated(fam, table, b))
+    span(&stable_stiffness_intervals_tabulated(fam, table, b))
 }
 
 /// The same along the damping axis at stiffness a.

@@ -152,7 +152,7 @@ pub(super) fn verify(
     // "Nothing is stable" is checked exactly where it matters most, on the stiffness axis
     // (no virtual damping): a region far thinner than the window would slip between slices.
     if region.polygons.is_empty() {
-        let ivs = crate::boundary::stable_alpha_intervals(fam, 0.0);
+        let ivs = crate::boundary::stable_stiffness_intervals(fam, 0.0);
         let mids = ivs.iter().filter(|iv| iv.hi > iv.lo).map(|iv| {
             let x = 0.5 * (iv.lo.max(wbox.0) + iv.hi.min(wbox.1));
             (P { x, y: 0.0 }, false)
@@ -354,7 +354,7 @@ pub(super) fn slices(fam: &AffineFamily) -> usize {
 }
 
 /// On slices of constant damping across the box, the exact stable intervals
-/// ([`crate::boundary::stable_alpha_intervals`]) against the region: each interval's
+/// ([`crate::boundary::stable_stiffness_intervals`]) against the region: each interval's
 /// midpoint must be inside, the midpoints of the gaps outside.
 pub(super) fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF) -> Vec<(P, bool)> {
     let (x0, x1, y0, y1) = wbox;
@@ -365,7 +365,7 @@ pub(super) fn slice_suspects(fam: &AffineFamily, region: &EdgeIndex, wbox: BoxF)
         .into_par_iter()
         .flat_map_iter(|j| {
             let b = y0 + (y1 - y0) * (j as f64 + 0.5 + GRID_JITTER) / n as f64;
-            let ivs = crate::boundary::stable_alpha_intervals_tabulated(fam, &table, b);
+            let ivs = crate::boundary::stable_stiffness_intervals_tabulated(fam, &table, b);
             let mut out = Vec::new();
             let mut prev_hi = x0;
             // Intervals and gaps narrower than this are the boundary itself, to rounding.

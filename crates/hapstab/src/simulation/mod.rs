@@ -276,7 +276,7 @@ impl SimModel {
             SimModel::Paper(m) => exact_alpha_limit(m.params.plant(), m.params.d, b),
             SimModel::Loop(_) => {
                 let fam = self.family()?;
-                Ok(crate::boundary::stable_alpha_intervals(&fam, b)
+                Ok(crate::boundary::stable_stiffness_intervals(&fam, b)
                     .into_iter()
                     .find(|iv| iv.lo <= UPPER_A_START * iv.hi.abs().min(1.0) && iv.hi > 0.0)
                     .map(|iv| iv.hi))

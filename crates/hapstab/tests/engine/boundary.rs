@@ -4,7 +4,7 @@
 //! statements, or published examples, never from program output.
 
 use hapstab::PlantParams;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::paper::NormalizedFamily;
 use hapstab::stability::Verdict;
 use hapstab::verdict::decide_coefficients;
@@ -63,7 +63,7 @@ fn stable_interval_monotone_in_delta() {
                 let mut prev = f64::NEG_INFINITY;
                 for di in 0..=15 {
                     let f = fam(g, 1e-3 * di as f64, d);
-                    let hi = stable_alpha_intervals(&f, b)
+                    let hi = stable_stiffness_intervals(&f, b)
                         .iter()
                         .map(|iv| iv.hi)
                         .fold(f64::NEG_INFINITY, f64::max);

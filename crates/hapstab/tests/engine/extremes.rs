@@ -9,7 +9,7 @@
 //! A longer run: `HAPSTAB_EXTREME_CASES=1000000 cargo test -p hapstab --release --test engine extremes::`.
 
 use hapstab::AffineFamily;
-use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
+use hapstab::boundary::{AlphaBeta, stable_stiffness_intervals};
 use hapstab::model::{Delay, Loop, MAX_PERIOD, MIN_PERIOD, Plant, VelocityEstimator};
 use hapstab::paper::PlantParams;
 use hapstab::params::Effective;
@@ -111,7 +111,7 @@ fn check_point(fam: &AffineFamily, a: f64, b: f64) -> Result<(), TestCaseError> 
         return Ok(()); // a root within rounding of the circle: no side to agree on
     }
     let stable = verdict == Verdict::Stable;
-    let ivs = stable_alpha_intervals(fam, b);
+    let ivs = stable_stiffness_intervals(fam, b);
     for iv in &ivs {
         prop_assert!(!iv.lo.is_nan() && !iv.hi.is_nan());
     }
@@ -236,7 +236,7 @@ fn undamped_corner_at_extreme_gamma() {
         Verdict::Stable
     );
     // the exact boundary at this damping (stable intervals) is 0.11 away in α
-    let ivs = stable_alpha_intervals(&fam, w.beta);
+    let ivs = stable_stiffness_intervals(&fam, w.beta);
     assert!(ivs.iter().any(|iv| iv.lo < w.alpha && w.alpha < iv.hi));
     let r = stable_region(&fam).unwrap();
     if !r.contains(w) {

@@ -16,7 +16,7 @@ use common::SplitMix;
 use common::loops::random_loop;
 use hapstab::AffineFamily;
 use hapstab::boundary::{
-    Interval, WallLine, scanned_line_crossings, stable_alpha_intervals, stable_between,
+    Interval, WallLine, scanned_line_crossings, stable_between, stable_stiffness_intervals,
 };
 use hapstab::cayley::MAX_DEGREE;
 use hapstab::kmax_band::{BandMax, k_max_band};
@@ -66,7 +66,7 @@ fn cases(seed: u64, count: usize) -> impl Iterator<Item = (usize, AffineFamily, 
 /// point test confirms the highest end.
 fn check_at_damping(i: usize, fam: &AffineFamily, b: f64) {
     let line = WallLine::stiffness_axis(b);
-    let fast = stable_alpha_intervals(fam, b);
+    let fast = stable_stiffness_intervals(fam, b);
     let scan = stable_between(fam, &line, &scanned_line_crossings(fam, &line));
     match (top(&fast), top(&scan)) {
         (Some(f), Some(s)) => {

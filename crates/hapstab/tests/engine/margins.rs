@@ -4,7 +4,7 @@
 
 use crate::common;
 use common::SplitMix;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::margins::margins;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Effective, Wall};
@@ -86,7 +86,7 @@ fn stable_wall(rng: &mut SplitMix, lp: &Loop) -> Option<Wall> {
     let fam = AffineFamily::of_loop(lp).unwrap();
     let b = rng.range(0.0, 20.0);
     let (_, beta) = fam.to_units(0.0, b);
-    let iv = stable_alpha_intervals(&fam, beta)
+    let iv = stable_stiffness_intervals(&fam, beta)
         .into_iter()
         .find(|iv| iv.hi.is_finite() && iv.hi > 0.0)?;
     let lo = iv.lo.max(0.0);

@@ -546,7 +546,7 @@ fn passive_region_lies_inside_the_stable_region() {
         // The stiffest stable wall at the device's own damping is usually far outside the
         // passive region.
         let (_, beta) = fam.to_units(0.0, damping);
-        let top = hapstab::boundary::stable_alpha_intervals(&fam, beta)
+        let top = hapstab::boundary::stable_stiffness_intervals(&fam, beta)
             .iter()
             .map(|iv| iv.hi)
             .fold(f64::NEG_INFINITY, f64::max);

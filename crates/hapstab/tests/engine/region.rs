@@ -3,7 +3,7 @@
 //! vertices) and from the independent grid method.
 
 use crate::common::general::{family, general_loops};
-use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
+use hapstab::boundary::{AlphaBeta, stable_stiffness_intervals};
 use hapstab::map::{Axis, AxisRange, MapKind};
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::map::{MapSpec, compute_map};
@@ -142,7 +142,7 @@ fn alpha_max_is_a_maximum_of_the_intervals() {
     // α_max agrees with the exact interval at its β, and no interval at nearby β exceeds it.
     for &(g, dl, d) in CASES {
         let (fam, r) = region(g, dl, d);
-        let iv = stable_alpha_intervals(&fam, r.beta_at_alpha_max);
+        let iv = stable_stiffness_intervals(&fam, r.beta_at_alpha_max);
         let hi = iv.iter().map(|i| i.hi).fold(f64::NEG_INFINITY, f64::max);
         assert!(
             (hi - r.alpha_max).abs() < 1e-10 * r.alpha_max.abs().max(1e-12),
@@ -152,7 +152,7 @@ fn alpha_max_is_a_maximum_of_the_intervals() {
         for k in 1..=20 {
             let db = r.beta_at_alpha_max.abs().max(1e-3) * 0.02 * k as f64;
             for b in [r.beta_at_alpha_max - db, r.beta_at_alpha_max + db] {
-                for i in stable_alpha_intervals(&fam, b) {
+                for i in stable_stiffness_intervals(&fam, b) {
                     assert!(
                         i.hi <= r.alpha_max * (1.0 + 1e-12) + 1e-300,
                         "β={b}: {} > {}",
@@ -290,7 +290,7 @@ fn paper_range_and_large_delay() {
     let el = t.elapsed();
     assert!(el.as_secs_f64() < 2.0, "d = 1000 took {el:?}");
     assert!(r.alpha_max > 0.0 && r.alpha_max < 1e-3);
-    let iv = stable_alpha_intervals(&fam, r.beta_at_alpha_max);
+    let iv = stable_stiffness_intervals(&fam, r.beta_at_alpha_max);
     assert!(
         iv.iter()
             .any(|i| (i.hi - r.alpha_max).abs() < 1e-9 * r.alpha_max)
@@ -419,7 +419,7 @@ fn general_region_vertices_lie_on_the_boundary() {
         }
         assert!(checked > 50, "{name}: {checked}");
         // α_max is the top of the exact stable interval at its damping
-        let iv = hapstab::boundary::stable_alpha_intervals(&fam, r.beta_at_alpha_max);
+        let iv = hapstab::boundary::stable_stiffness_intervals(&fam, r.beta_at_alpha_max);
         let top = iv.iter().map(|i| i.hi).fold(f64::NEG_INFINITY, f64::max);
         assert!(
             (top - r.alpha_max).abs() < 1e-9 * r.alpha_max.abs().max(1e-12),
@@ -469,7 +469,7 @@ fn general_region_agrees_with_a_grid() {
 /// otherwise the best of a dense scan of exact stable intervals over the band.
 #[test]
 fn stiffness_maximum_within_a_damping_band() {
-    use hapstab::boundary::stable_alpha_intervals;
+    use hapstab::boundary::stable_stiffness_intervals;
     use hapstab::region::{alpha_max_within, stable_region};
     for (name, lp) in general_loops().into_iter().take(6) {
         let fam = family(&lp);
@@ -488,13 +488,17 @@ fn stiffness_maximum_within_a_damping_band() {
         assert!(p.beta >= lo && p.beta <= hi, "{name}: {p:?}");
         let scan = (0..=400)
             .map(|i| lo + (hi - lo) * i as f64 / 400.0)
-            .flat_map(|bb| stable_alpha_intervals(&fam, bb).into_iter().map(|iv| iv.hi))
+            .flat_map(|bb| {
+                stable_stiffness_intervals(&fam, bb)
+                    .into_iter()
+                    .map(|iv| iv.hi)
+            })
             .filter(|h| h.is_finite())
             .fold(f64::NEG_INFINITY, f64::max);
         let tol = 1e-9 * r.alpha_max.abs();
         assert!(p.alpha >= scan - tol, "{name}: {} < scan {scan}", p.alpha);
         // and it is attained: the exact interval at its damping reaches it
-        let top = stable_alpha_intervals(&fam, p.beta)
+        let top = stable_stiffness_intervals(&fam, p.beta)
             .iter()
             .map(|iv| iv.hi)
             .fold(f64::NEG_INFINITY, f64::max);

@@ -9,7 +9,7 @@
 //! spectral radii of single walls quoted from its fixture.
 
 use hapstab::AffineFamily;
-use hapstab::boundary::{AlphaBeta, stable_alpha_intervals};
+use hapstab::boundary::{AlphaBeta, stable_stiffness_intervals};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Effective};
 use hapstab::region::{CONFIRM_REL, StableRegion, alpha_max_within, stable_region};
@@ -49,7 +49,7 @@ fn lagged(delay: Delay) -> AffineFamily {
 
 /// Highest finite end of the exact stable intervals at damping b (wall units).
 fn top(fam: &AffineFamily, b: f64) -> Option<f64> {
-    stable_alpha_intervals(fam, b)
+    stable_stiffness_intervals(fam, b)
         .iter()
         .map(|iv| iv.hi)
         .filter(|h| h.is_finite())

@@ -72,7 +72,7 @@ fn poly_mul(p: &[f64], q: &[f64]) -> Vec<f64> {
 
 /// The exact stable stiffness intervals (N/m) of a family at damping `b_ns` (Ns/m).
 fn stiffness_intervals(fam: &AffineFamily, b_ns: f64) -> Vec<(f64, f64)> {
-    hapstab::boundary::stable_alpha_intervals(fam, fam.to_units(0.0, b_ns).1)
+    hapstab::boundary::stable_stiffness_intervals(fam, fam.to_units(0.0, b_ns).1)
         .iter()
         .map(|iv| (fam.to_physical(iv.lo, 0.0).0, fam.to_physical(iv.hi, 0.0).0))
         .collect()

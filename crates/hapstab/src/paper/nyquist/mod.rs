@@ -11,7 +11,7 @@
 //! The robustly stable region over a γ-interval is the intersection of the stable regions
 //! for every γ in it. It is computed slice by slice in β: at fixed β the stable α-set of each
 //! γ is a union of intervals, exact by D-decomposition
-//! ([`crate::boundary::stable_alpha_intervals`]); the robust α-set is their intersection. The
+//! ([`crate::boundary::stable_stiffness_intervals`]); the robust α-set is their intersection. The
 //! γ-interval is sampled uniformly (endpoints included) and, when the intersection is one
 //! interval, its ends are refined by a golden-section search in γ between the neighbours of
 //! the worst sample (the ends of the stable interval are smooth in γ between the points where

@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use super::search::{golden_max, golden_min};
 use crate::boundary::{
-    CircleTable, Interval, stable_alpha_intervals, stable_alpha_intervals_tabulated,
+    CircleTable, Interval, stable_stiffness_intervals, stable_stiffness_intervals_tabulated,
 };
 use crate::error::Result;
 use crate::paper::NormalizedFamily;
@@ -62,9 +62,9 @@ impl Config {
         let ivs = match &self.table {
             Some(t) => {
                 let table = t.get_or_init(|| CircleTable::new(&self.fam));
-                stable_alpha_intervals_tabulated(&self.fam, table, beta_ref / s)
+                stable_stiffness_intervals_tabulated(&self.fam, table, beta_ref / s)
             }
-            None => stable_alpha_intervals(&self.fam, beta_ref / s),
+            None => stable_stiffness_intervals(&self.fam, beta_ref / s),
         };
         ivs.into_iter()
             .map(|iv| Interval {

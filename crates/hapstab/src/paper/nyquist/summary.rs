@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::search::{bisect_pred, golden_max};
 use super::{Progress, no_progress, nyquist_gamma, unit_circle_pole};
-use crate::boundary::{Interval, stable_alpha_intervals};
+use crate::boundary::{Interval, stable_stiffness_intervals};
 use crate::error::{Error, Result, non_negative};
 use crate::paper::NormalizedFamily;
 use crate::paper::PlantParams;
@@ -93,11 +93,12 @@ pub fn region_summary(pp: PlantParams, d: usize, beta_samples: usize) -> Result<
     let betas: Vec<f64> = (0..n).map(|i| -bb + (i as f64 + 0.5) * h).collect();
     let slices: Vec<Option<(f64, f64, f64)>> = betas
         .par_iter()
-        .map(|&b| union_extent(&stable_alpha_intervals(&fam, b)))
+        .map(|&b| union_extent(&stable_stiffness_intervals(&fam, b)))
         .collect();
-    let nonempty = |b: f64| !stable_alpha_intervals(&fam, b).is_empty();
-    let hi_at =
-        |b: f64| union_extent(&stable_alpha_intervals(&fam, b)).map_or(f64::NEG_INFINITY, |s| s.1);
+    let nonempty = |b: f64| !stable_stiffness_intervals(&fam, b).is_empty();
+    let hi_at = |b: f64| {
+        union_extent(&stable_stiffness_intervals(&fam, b)).map_or(f64::NEG_INFINITY, |s| s.1)
+    };
     let idx: Vec<usize> = (0..n).filter(|&i| slices[i].is_some()).collect();
     let (Some(&first), Some(&last)) = (idx.first(), idx.last()) else {
         return Ok(out);

@@ -4,7 +4,7 @@
 
 use super::SplitMix;
 use hapstab::AffineFamily;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Effective};
 use hapstab::verdict::{Verdict, decide};
@@ -113,7 +113,7 @@ pub fn random_loop(rng: &mut SplitMix, i: usize) -> Option<Loop> {
 pub fn stable_wall(rng: &mut SplitMix, fam: &AffineFamily) -> Option<(f64, f64)> {
     let (_, beta0) = fam.to_units(0.0, 1.0);
     let beta = beta0 * rng.range(0.0, 10.0) * if rng.below(4) == 0 { 0.0 } else { 1.0 };
-    let iv = stable_alpha_intervals(fam, beta)
+    let iv = stable_stiffness_intervals(fam, beta)
         .into_iter()
         .find(|iv| iv.hi.is_finite() && iv.lo.is_finite() && iv.hi > iv.lo)?;
     Some((iv.lo + (iv.hi - iv.lo) * rng.range(0.05, 0.95), beta))

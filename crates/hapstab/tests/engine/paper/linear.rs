@@ -205,7 +205,7 @@ fn linear_condition_of_a_loop_is_its_normalized_view() {
 /// K_max·(t_d + T/2)/(b + B) → 1 as (b + B)T/m → 0, for t_d ∈ {0.5, 1.3, 2.7}·T.
 #[test]
 fn fractional_delay_meets_the_linear_condition() {
-    use hapstab::boundary::stable_alpha_intervals;
+    use hapstab::boundary::stable_stiffness_intervals;
     let (m, t) = (1.0, 1e-3);
     for td in [0.5, 1.3, 2.7] {
         let mut last_gap = f64::INFINITY;
@@ -220,7 +220,7 @@ fn fractional_delay_meets_the_linear_condition() {
             .unwrap();
             let fam = family(&lp);
             let (_, b) = fam.to_units(0.0, damping);
-            let top = stable_alpha_intervals(&fam, b)
+            let top = stable_stiffness_intervals(&fam, b)
                 .iter()
                 .map(|iv| iv.hi)
                 .fold(f64::NEG_INFINITY, f64::max);

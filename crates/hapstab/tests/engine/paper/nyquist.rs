@@ -6,7 +6,7 @@
 
 use crate::common::SplitMix;
 use hapstab::PlantParams;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::nyquist::{
     BoxOptions, PlantBox, RobustOptions, SweepInput, beta_bound, gamma_sweep, nyquist_gamma,
@@ -47,7 +47,7 @@ fn half_nyquist_region_in_left_half_plane_d0() {
     let bb = beta_bound(&f);
     for i in 0..=2000 {
         let b = -bb + 2.0 * bb * i as f64 / 2000.0;
-        for iv in stable_alpha_intervals(&f, b) {
+        for iv in stable_stiffness_intervals(&f, b) {
             assert!(iv.hi <= 1e-12, "β={b}: {iv:?}");
         }
     }
@@ -65,7 +65,7 @@ fn quarter_nyquist_region_in_left_half_plane_d1() {
     let bb = beta_bound(&f);
     for i in 0..=2000 {
         let b = -bb + 2.0 * bb * i as f64 / 2000.0;
-        for iv in stable_alpha_intervals(&f, b) {
+        for iv in stable_stiffness_intervals(&f, b) {
             assert!(iv.hi <= 1e-12, "β={b}: {iv:?}");
         }
     }
@@ -109,7 +109,7 @@ fn nyquist_triangle_limit_d0() {
         let mut dev: f64 = 0.0;
         for i in 0..=100 {
             let b = 0.98 * PI2 / 2.0 * (2.0 * i as f64 / 100.0 - 1.0);
-            let iv = stable_alpha_intervals(&f, b);
+            let iv = stable_stiffness_intervals(&f, b);
             assert_eq!(iv.len(), 1, "γ={g} β={b}: {iv:?}");
             assert_eq!(iv[0].lo, -g);
             dev = dev.max((iv[0].hi + 2.0 * b).abs());
@@ -120,8 +120,8 @@ fn nyquist_triangle_limit_d0() {
     assert!(prev < 1e-3, "{prev}");
     // nothing beyond the triangle's β range
     let f = fam(PI2 * (1.0 - 1e-5), 0.0, 0);
-    assert!(stable_alpha_intervals(&f, -PI2 / 2.0 * 1.001).is_empty());
-    assert!(stable_alpha_intervals(&f, PI2 / 2.0 * 1.001).is_empty());
+    assert!(stable_stiffness_intervals(&f, -PI2 / 2.0 * 1.001).is_empty());
+    assert!(stable_stiffness_intervals(&f, PI2 / 2.0 * 1.001).is_empty());
 }
 
 /// δ = 0, d = 0: the robustly stable region over γ ∈ [0, π²] is only the origin (Section
@@ -144,7 +144,7 @@ fn robust_region_only_origin_delta0() {
         let g = PI2 * i as f64 / 16.0 * (1.0 - 1e-4);
         let f = fam(g, 0.0, 0);
         let near = [-1e-3, 1e-3].iter().any(|&b| {
-            stable_alpha_intervals(&f, b)
+            stable_stiffness_intervals(&f, b)
                 .iter()
                 .any(|iv| iv.lo < 1e-3 && iv.hi > -1e-3)
         });
@@ -185,7 +185,7 @@ fn passive_inside_robust_delta1() {
     let v = (1.0 + (-0.5f64).exp()) / gn;
     let f = fam(gn, 1.0, 0);
     for b in [-6.0, -3.0, -1.0, 0.0, 1.0, 3.0, 6.0] {
-        let iv = stable_alpha_intervals(&f, b);
+        let iv = stable_stiffness_intervals(&f, b);
         let hi = gn * 0.25f64.tanh() - 2.0 * b;
         assert_eq!(iv.len(), 1);
         assert!(
@@ -193,8 +193,8 @@ fn passive_inside_robust_delta1() {
             "{iv:?} {hi}"
         );
     }
-    assert!(stable_alpha_intervals(&f, -1.0 / v * 1.001).is_empty());
-    assert!(!stable_alpha_intervals(&f, -1.0 / v * 0.999).is_empty());
+    assert!(stable_stiffness_intervals(&f, -1.0 / v * 1.001).is_empty());
+    assert!(!stable_stiffness_intervals(&f, -1.0 / v * 0.999).is_empty());
 }
 
 /// Stable regions along the γ sweep of Fig. 8: the area grows with γ and the lower α-bound
@@ -307,7 +307,7 @@ fn robust_kmax_interior_worst_gamma() {
     let dense = (0..=400)
         .map(|i| {
             let f = fam(2.5 * i as f64 / 400.0, 0.5, 1);
-            stable_alpha_intervals(&f, r.damping_at_max)
+            stable_stiffness_intervals(&f, r.damping_at_max)
                 .iter()
                 .map(|iv| iv.hi)
                 .fold(f64::NEG_INFINITY, f64::max)
@@ -330,7 +330,7 @@ fn robust_kmax_interior_worst_gamma() {
             [0.0, 2.5]
                 .iter()
                 .map(|&g| {
-                    stable_alpha_intervals(&fam(g, 0.5, 1), b)
+                    stable_stiffness_intervals(&fam(g, 0.5, 1), b)
                         .iter()
                         .map(|iv| iv.hi)
                         .fold(f64::NEG_INFINITY, f64::max)

@@ -6,7 +6,7 @@
 //! made it. Agreement is required to 1e-12.
 
 use hapstab::PlantParams;
-use hapstab::boundary::stable_alpha_intervals;
+use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::paper::NormalizedFamily;
 use hapstab::region::stable_region;
 use hapstab::stability::Analysis;
@@ -54,7 +54,7 @@ fn general_engine_reproduces_the_paper_engine() {
             a.spectral_radius,
             p.spectral_radius
         );
-        let ivs = stable_alpha_intervals(&fam, p.beta);
+        let ivs = stable_stiffness_intervals(&fam, p.beta);
         let picked = ivs
             .iter()
             .find(|iv| iv.lo < p.alpha && p.alpha < iv.hi)
