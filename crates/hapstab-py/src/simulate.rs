@@ -2,11 +2,13 @@
 //! of Remark 1 and Section IX, its trace as numpy arrays and the run's verdict.
 
 use hapstab::Param;
+use hapstab::answer::SimulationAnswer;
+use hapstab::loop_spec::LoopInput;
 use hapstab::model::{Loop, PlantModel};
 use hapstab::params::{Physical, Sampling, Wall};
 use hapstab::simulation::{
     Config, Contact, DEFAULT_MAX_SAMPLES, Effects, Friction, HumanForce, Initial, LoopModel, Model,
-    RunResult, SimModel, samples_for_duration, simulate as run,
+    SimModel, samples_for_duration, simulate as run,
 };
 use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::prelude::*;
@@ -66,6 +68,21 @@ pub struct PySimulation {
     pub final_position: f64,
     /// Velocity at the end in m/s.
     pub final_velocity: f64,
+    /// Samples asked for before any extension.
+    pub requested_samples: usize,
+    /// The horizon: the most samples the run may be extended to.
+    pub max_samples: usize,
+    /// Simulated time: s, or samples for a loop given in normalized units.
+    pub duration: f64,
+    /// Start of the judged window, in the time unit of `duration`.
+    pub judged_from: f64,
+    /// End of the judged window, in the time unit of `duration`.
+    pub judged_to: f64,
+    /// "physical" (s, m, N) or "normalized" (samples and the units of Table I).
+    pub units: String,
+    /// The loop, its wall, the effects, the constant human force (None for a profile) and
+    /// the initial state, as `hapstab simulate --json` echoes them under `input`.
+    pub input: Py<PyDict>,
 }
 
 #[pymethods]
@@ -164,9 +181,12 @@ fn dict_of<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Py<PyDic
     Ok(loads.call1((json,))?.cast_into::<PyDict>()?.unbind())
 }
 
-fn result_object(py: Python<'_>, r: RunResult) -> PyResult<PySimulation> {
+/// The Python object of a run: the library's [`SimulationAnswer`] (the keys of `hapstab
+/// simulate --json`) with the recorded trace as arrays.
+fn result_object(py: Python<'_>, mut answer: SimulationAnswer) -> PyResult<PySimulation> {
+    let t = answer.run.trace.take().unwrap_or_default();
+    let r = &answer.run;
     let v = &r.verdict;
-    let t = r.trace.clone().unwrap_or_default();
     let arr = |x: Vec<f64>| PyArray1::from_vec(py, x).unbind();
     Ok(PySimulation {
         time: arr(t.time),
@@ -188,6 +208,13 @@ fn result_object(py: Python<'_>, r: RunResult) -> PyResult<PySimulation> {
         blown_up: r.blown_up,
         final_position: r.final_position,
         final_velocity: r.final_velocity,
+        requested_samples: r.requested_samples,
+        max_samples: r.max_samples,
+        duration: answer.duration,
+        judged_from: answer.judged_from,
+        judged_to: answer.judged_to,
+        units: answer.units.into(),
+        input: dict_of(py, &answer.input)?,
     })
 }
 
@@ -327,5 +354,9 @@ pub fn simulate(
     };
     config.validate().py()?;
     let r = py.detach(|| run(&config)).py()?;
-    result_object(py, r)
+    let input = LoopInput::new(&r#loop.lp, r#loop.normalized, Some(w));
+    result_object(
+        py,
+        SimulationAnswer::new(r, &config, input, r#loop.normalized),
+    )
 }

@@ -306,10 +306,14 @@ def test_simulate(hapstab_cli, i):
             "--duration-samples", "600")
     s = hs.simulate(k[1](), **wall_kw(k, kb), samples=600, human_force=1.0,
                     initial_position=0.0, initial_velocity=0.01, contact="unilateral")
+    # one answer schema: the run, its time window and units, and the echoed loop, wall,
+    # effects, push and initial state under `input`
     for key in ("outcome", "reason", "samples", "linear_window", "measured_growth_per_sample",
-                "spectral_radius", "linear_verdict"):
+                "spectral_radius", "linear_verdict", "requested_samples", "max_samples",
+                "duration", "judged_from", "judged_to", "units", "final_position"):
         same(getattr(s, key), c[key], (k[0], key))
-    same(s.final_position, c["final_position"], (k[0], "final_position"))
+    assert s.input == c["input"], (k[0], s.input, c["input"])
+    assert s.judged_samples == (c["judged_from_sample"], c["judged_to_sample"]), k[0]
 
 
 def test_refusals(hapstab_cli, tmp_path):

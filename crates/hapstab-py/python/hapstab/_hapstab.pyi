@@ -362,6 +362,15 @@ class Simulation:
     blown_up: bool
     final_position: float
     final_velocity: float
+    requested_samples: int
+    max_samples: int
+    duration: float
+    """Simulated time: s, or samples for a loop given in normalized units."""
+    judged_from: float
+    judged_to: float
+    units: Literal["physical", "normalized"]
+    input: dict
+    """The loop, its wall, effects, human_force and initial state, as `hapstab simulate --json`."""
     def plot(self, ax: Any = None) -> Any:
         """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
