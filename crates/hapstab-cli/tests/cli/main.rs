@@ -37,4 +37,5 @@ mod robust_box;
 mod serve_parity;
 mod serve_parity_browser;
 mod serve_parity_matrix;
+mod simboundary;
 mod simulate;
