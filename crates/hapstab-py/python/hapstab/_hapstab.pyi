@@ -365,12 +365,12 @@ class Simulation:
     requested_samples: int
     max_samples: int
     duration: float
-    """Simulated time: s, or samples for a loop given in normalized units."""
     judged_from: float
     judged_to: float
     units: Literal["physical", "normalized"]
     input: dict
-    """The loop, its wall, effects, human_force and initial state, as `hapstab simulate --json`."""
+    """The loop, its wall, effects, human_force and initial state, as `hapstab simulate --json`
+    (duration, judged_from, judged_to in s, or samples for a loop in normalized units)."""
     def plot(self, ax: Any = None) -> Any:
         """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
@@ -546,9 +546,8 @@ class LinearCondition:
     k_linear_slope: Optional[float]
     """(23) in N/m and Ns/m: K < k_linear_slope*B + k_linear_intercept, 1/(T(d + 1/2)) in 1/s."""
     k_linear_intercept: Optional[float]
-    """b/(T(d + 1/2)) in N/m."""
     k_lower: Optional[float]
-    """(19) in N/m: K > -k."""
+    """(19) in N/m: K > k_lower = -k; k_linear_intercept = b/(T(d + 1/2)) in N/m."""
 
 class NyquistRegions:
     """Section VIII: the gamma sweep's regions, the robust region, the passive region."""
