@@ -126,6 +126,8 @@ def test_a_long_list_is_echoed_as_an_excerpt():
         ("wall_damping", lambda: hs.kmax(LOOP, wall_damping="x")),
         ("samples", lambda: hs.simulate(LOOP, 1e3, 1.0, samples="many")),
         ("wall_stiffness", lambda: hs.stability_map(LOOP, ["a", "b"], [1.0, 2.0])),
+        ("loop", lambda: hs.check(3.0, 1.0, 1.0)),
+        ("loop", lambda: hs.simulate(300.0, 1.0, 1.0)),
     ],
 )
 def test_type_errors_start_with_the_argument_name(keyword, call):

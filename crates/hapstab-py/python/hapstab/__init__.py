@@ -153,7 +153,8 @@ def _named(fn):
             return fn(*args, **kwargs)
         except TypeError as e:
             notes = getattr(e, "__notes__", None) or []
-            names = [m.group(1) for n in notes if (m := _PROCESSING.search(n))]
+            # the Rust name of the keyword `loop` is the raw identifier `r#loop`
+            names = [m.group(1).removeprefix("r#") for n in notes if (m := _PROCESSING.search(n))]
             message = str(e)
             if names and not message.startswith(names[0] + ":"):
                 raise TypeError(f"{names[0]}: {message}") from None
