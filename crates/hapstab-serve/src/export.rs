@@ -189,7 +189,7 @@ fn auto_view(out: &RegionOut, pt: Option<&Selected>) -> [f64; 4] {
             b[3] = b[3].max(be);
         }
     };
-    for v in out.region.polygons.iter().flatten() {
+    for v in out.region.drawn.iter().flatten() {
         add(v[0], v[1]);
     }
     if let Some(r) = &out.robust {
@@ -198,7 +198,7 @@ fn auto_view(out: &RegionOut, pt: Option<&Selected>) -> [f64; 4] {
         }
     }
     for pa in out.passive.iter().chain(&out.passive_with_arm) {
-        for v in &pa.vertices {
+        for v in &pa.drawn {
             add(v[0], v[1]);
         }
     }
@@ -255,12 +255,12 @@ fn csv(out: &RegionOut, pt: Option<&Selected>, view: [f64; 4]) -> String {
             None => writeln!(s, "{layer},{poly},{i},{a},{b}"),
         };
     };
-    for (j, poly) in out.region.polygons.iter().enumerate() {
+    for (j, poly) in out.region.drawn.iter().enumerate() {
         for (i, v) in poly.iter().enumerate() {
             row("region", j, i, v[0], v[1]);
         }
     }
-    if out.region.alpha_max.is_finite() {
+    if out.region.max_drawn[0].is_finite() {
         row(
             if out.physical.is_some() {
                 "k_max"
@@ -269,8 +269,8 @@ fn csv(out: &RegionOut, pt: Option<&Selected>, view: [f64; 4]) -> String {
             },
             0,
             0,
-            out.region.alpha_max,
-            out.region.beta_at_alpha_max,
+            out.region.max_drawn[0],
+            out.region.max_drawn[1],
         );
     }
     if let Some(l) = &out.linear {
@@ -279,12 +279,12 @@ fn csv(out: &RegionOut, pt: Option<&Selected>, view: [f64; 4]) -> String {
         }
     }
     if let Some(pa) = &out.passive {
-        for (i, v) in pa.vertices.iter().enumerate() {
+        for (i, v) in pa.drawn.iter().enumerate() {
             row("passive", 0, i, v[0], v[1]);
         }
     }
     if let Some(pa) = &out.passive_with_arm {
-        for (i, v) in pa.vertices.iter().enumerate() {
+        for (i, v) in pa.drawn.iter().enumerate() {
             row("passive_with_arm", 0, i, v[0], v[1]);
         }
     }
@@ -515,7 +515,7 @@ fn svg_axis_labels(s: &mut String, out: &RegionOut, f: &Frame, hf: f64) {
 
 /// The filled areas: the exact region, the robust region and the passive regions.
 fn svg_areas(s: &mut String, out: &RegionOut, f: &Frame) {
-    for poly in &out.region.polygons {
+    for poly in &out.region.drawn {
         let _ = writeln!(
             s,
             "<polygon class=\"region\" points=\"{}\" fill=\"#4c8fd6\" fill-opacity=\"0.35\" stroke=\"#1d4f91\" stroke-width=\"1.5\"/>",
@@ -533,14 +533,14 @@ fn svg_areas(s: &mut String, out: &RegionOut, f: &Frame) {
         let _ = writeln!(
             s,
             "<polygon class=\"passive\" points=\"{}\" fill=\"#2ca02c\" fill-opacity=\"0.35\" stroke=\"#1a6e1a\" stroke-width=\"1.5\"/>",
-            f.points(&pa.vertices)
+            f.points(&pa.drawn)
         );
     }
     if let Some(pa) = &out.passive_with_arm {
         let _ = writeln!(
             s,
             "<polygon class=\"passive-with-arm\" points=\"{}\" fill=\"none\" stroke=\"#1a6e1a\" stroke-width=\"1.5\" stroke-dasharray=\"4 3\"/>",
-            f.points(&pa.vertices)
+            f.points(&pa.drawn)
         );
     }
 }
@@ -577,9 +577,9 @@ fn svg_lines(s: &mut String, out: &RegionOut, f: &Frame, view: [f64; 4]) {
             x1 - 7.0
         );
     }
-    let am = out.region.alpha_max;
+    let am = out.region.max_drawn[0];
     if am.is_finite() {
-        let (x, y) = (f.px(am), f.py(out.region.beta_at_alpha_max));
+        let (x, y) = (f.px(am), f.py(out.region.max_drawn[1]));
         let _ = writeln!(
             s,
             "<line x1=\"{x:.2}\" y1=\"{mt}\" x2=\"{x:.2}\" y2=\"{}\" stroke=\"#444\" stroke-dasharray=\"3 3\"/><circle class=\"alpha-max\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"5\" fill=\"#111\"/>",
@@ -612,7 +612,7 @@ fn legend_items(out: &RegionOut, pt: Option<&Selected>) -> Vec<(String, &'static
     if out.linear.is_some() {
         items.push(("linear condition (23), α > −γ (19)".into(), "#d62728"));
     }
-    let am = out.region.alpha_max;
+    let am = out.region.max_drawn[0];
     if am.is_finite() {
         let v = match &out.physical {
             Some(ph) => format!("K_max = {}", eng(am * ph.k_per_alpha, "N/m", 6)),

@@ -163,10 +163,15 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
         j["physical"]["k_per_alpha"].as_f64().unwrap(),
         j["physical"]["b_per_beta"].as_f64().unwrap(),
     );
+    // the region of a physical loop is sent in N/m and Ns/m
+    assert!(j["region"]["alpha_max"].is_null(), "{j}");
     let (k, b) = (
-        0.5 * j["region"]["alpha_max"].as_f64().unwrap() * kpa,
-        0.5 * j["region"]["beta_at_alpha_max"].as_f64().unwrap() * bpb,
+        0.5 * j["region"]["k_max"].as_f64().unwrap(),
+        0.5 * j["region"]["b_at_k_max"].as_f64().unwrap(),
     );
+    let wall_units = &j["region"]["wall_units"];
+    assert_eq!(wall_units["stiffness"].as_f64(), Some(kpa));
+    assert_eq!(wall_units["damping"].as_f64(), Some(bpb));
     let (ks, bs) = (k.to_string(), b.to_string());
     assert_point_is_checks(&s, &ks, &bs);
     assert_simulation_is_simulates(&s, &ks, &bs);
@@ -175,7 +180,17 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
 /// The region's vertices, given back as walls, have a root on the unit circle and the
 /// verdict and radius of `hapstab::System::analysis`.
 fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
-    let poly = j["region"]["polygons"][0].as_array().unwrap();
+    // vertices [K, B] in N/m and Ns/m, asked back in the loop's wall units
+    let (kpa, bpb) = (
+        j["physical"]["k_per_alpha"].as_f64().unwrap(),
+        j["physical"]["b_per_beta"].as_f64().unwrap(),
+    );
+    let poly: Vec<[f64; 2]> = j["region"]["polygons"][0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| [v[0].as_f64().unwrap() / kpa, v[1].as_f64().unwrap() / bpb])
+        .collect();
     assert!(poly.len() > 10, "{j}");
     // Vertices on the z = 1 line a = −γ are double roots at z = 1 amid the plant's cluster
     // of roots near 1, where roots of the z-coefficients are ill-conditioned: sample the rest.
@@ -184,13 +199,13 @@ fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
     // the z = 1 line lies at a = −(static stiffness in wall units); the loop has no (γ, δ, d)
     assert!(j["params"].is_null(), "{j}");
     let gamma = lp.plant.dc_stiffness().unwrap() / sys.family().scale.stiffness;
-    let arcs: Vec<&serde_json::Value> = poly
+    let arcs: Vec<&[f64; 2]> = poly
         .iter()
-        .filter(|v| (v[0].as_f64().unwrap() + gamma).abs() > 1e-6 * gamma)
+        .filter(|v| (v[0] + gamma).abs() > 1e-6 * gamma)
         .collect();
     assert!(arcs.len() > 8, "{j}");
     for v in arcs.iter().step_by(arcs.len() / 8) {
-        let (a, b) = (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+        let [a, b] = **v;
         let p = s
             .get(&format!("/api/point?{TWO_MASS_LOOP}&alpha={a}&beta={b}"))
             .json();

@@ -11,14 +11,17 @@ use serde::Serialize;
 
 use crate::query::{ApiError, PlantSpec, lib_error};
 
-/// A passive region in the page's units.
+/// A passive region in the user's units.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct PassiveOut {
     pub equation: &'static str,
     /// The damping b the region is for, in Ns/m (in β units for a normalized loop).
     pub device_damping: f64,
-    /// Counter-clockwise vertices as [α, β] (a loop's wall units a, b beyond the paper's).
+    /// Counter-clockwise vertices as [K, B] in N/m and Ns/m ([α, β] for normalized input).
     pub vertices: Vec<[f64; 2]>,
+    /// The vertices in the loop's wall units a, b (the plane the page and the export draw in).
+    #[serde(skip)]
+    pub drawn: Vec<[f64; 2]>,
 }
 
 /// The page's (α, β) of a wall in N/m and Ns/m (the inverse of
@@ -29,14 +32,23 @@ fn units_of(spec: &PlantSpec, k: f64, b: f64) -> [f64; 2] {
 }
 
 fn region_out(spec: &PlantSpec, equation: &'static str, r: &PassiveRegion) -> PassiveOut {
+    let drawn: Vec<[f64; 2]> = r
+        .vertices
+        .iter()
+        .map(|w| units_of(spec, w.stiffness, w.damping))
+        .collect();
     PassiveOut {
         equation,
         device_damping: r.device_damping,
-        vertices: r
-            .vertices
-            .iter()
-            .map(|w| units_of(spec, w.stiffness, w.damping))
-            .collect(),
+        vertices: match spec.physical {
+            Some(_) => r
+                .vertices
+                .iter()
+                .map(|w| [w.stiffness, w.damping])
+                .collect(),
+            None => drawn.clone(),
+        },
+        drawn,
     }
 }
 

@@ -4,12 +4,13 @@
 
 use std::time::Instant;
 
+use hapstab::answer::{RegionAnswer, region_answer};
 use hapstab::boundary::AlphaBeta;
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
 use hapstab::paper::linear::linear_alpha_limit;
 use hapstab::paper::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
-use hapstab::region::EdgeKind;
+use hapstab::region::{Edge, Polygon, StableRegion};
 use hapstab::{Loop, System};
 use serde::Serialize;
 
@@ -25,28 +26,22 @@ use hapstab_plot::simplify::simplify_polygon;
 /// β slices of the exact cross-check of an empty polygon result.
 const EMPTY_CHECK_SLICES: usize = 64;
 
-/// One edge of a drawn polygon.
-#[derive(Debug, Clone, Serialize)]
-pub(crate) struct EdgeOut {
-    /// Index of the edge's first vertex in the polygon's vertex list.
-    pub start: usize,
-    /// z_plus_one (α = −γ), z_minus_one (α + 2β = c), complex (root pair e^{±iθ}) or window.
-    pub kind: &'static str,
-}
-
-/// The exact stable region (Section V) as sent to the page.
+/// The exact stable region (Section V) as sent to the page: the library's region answer
+/// ([`hapstab::answer::region::RegionAnswer`], the keys of `hapstab boundary --json`: K and B
+/// for a physical loop, α and β for normalized input) of the polygons simplified for drawing,
+/// with the simplification's figures.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct RegionJson {
-    /// Stable components: vertex rings of [α, β], counter-clockwise.
-    pub polygons: Vec<Vec<[f64; 2]>>,
-    /// Edges of each polygon.
-    pub edges: Vec<Vec<EdgeOut>>,
-    /// Largest stable α (the library's `StableRegion::alpha_max`; null when empty).
-    pub alpha_max: f64,
-    /// β at α_max.
-    pub beta_at_alpha_max: f64,
-    /// Area in the (α, β)-plane (of the exact polygons).
-    pub area: f64,
+    /// The region in the user's units, its polygons simplified for drawing.
+    #[serde(flatten)]
+    pub answer: RegionAnswer,
+    /// The simplified rings in the loop's wall units a = K/k_per_alpha, b = B/b_per_beta (the
+    /// plane the page and the export draw in; (α, β) for the paper's loop).
+    #[serde(skip)]
+    pub drawn: Vec<Vec<[f64; 2]>>,
+    /// The largest stable a and its b in wall units (NaN when empty).
+    #[serde(skip)]
+    pub max_drawn: [f64; 2],
     /// No stable point.
     pub empty: bool,
     /// Vertices of the exact polygons.
@@ -114,8 +109,9 @@ pub(crate) struct RegionOut {
     /// beyond the paper's, which is under `loop`.
     pub params: Option<PlantOut>,
     pub physical: Option<PhysicalSpec>,
-    /// A loop beyond the paper's: plant, period, delay and velocity estimator; the region
-    /// is drawn in its wall units a = K/k_per_alpha, b = B/b_per_beta.
+    /// A loop beyond the paper's: plant, period, delay and velocity estimator (its region is
+    /// sent in N/m and Ns/m like any physical loop's; the page draws it in the loop's wall
+    /// units a = K/k_per_alpha, b = B/b_per_beta).
     #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
     pub lp: Option<Loop>,
     pub region: RegionJson,
@@ -166,60 +162,53 @@ pub(crate) fn robust_cost(
     )
 }
 
-fn edge_kind(k: &EdgeKind) -> &'static str {
-    match k {
-        EdgeKind::ZPlusOne => "z_plus_one",
-        EdgeKind::ZMinusOne => "z_minus_one",
-        EdgeKind::Complex { .. } => "complex",
-        EdgeKind::Window => "window",
-    }
-}
-
 pub(super) fn ab(p: &AlphaBeta) -> [f64; 2] {
     [p.alpha, p.beta]
 }
 
-/// The exact region drawn with the tolerance relative to its size.
-fn region_json(r: &hapstab::region::StableRegion, tol: f64) -> RegionJson {
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for v in r.polygons.iter().flat_map(|p| p.vertices.iter()) {
-        x0 = x0.min(v.alpha);
-        x1 = x1.max(v.alpha);
-        y0 = y0.min(v.beta);
-        y1 = y1.max(v.beta);
-    }
-    let size = (x1 - x0).max(y1 - y0);
+/// The exact region `r` of `sys` with its polygons simplified to `tol` relative to its size,
+/// answered in the user's units (`normalized`: α and β).
+fn region_json(sys: &System, normalized: bool, r: &StableRegion, tol: f64) -> RegionJson {
+    let size = r.size();
     let abs_tol = if size.is_finite() { tol * size } else { 0.0 };
-    let mut polygons = Vec::with_capacity(r.polygons.len());
-    let mut edges = Vec::with_capacity(r.polygons.len());
-    for poly in &r.polygons {
-        let (verts, starts) = simplify_polygon(poly, abs_tol);
-        polygons.push(verts.iter().map(ab).collect::<Vec<_>>());
-        edges.push(
-            poly.edges
+    let polygons: Vec<Polygon> = r
+        .polygons
+        .iter()
+        .map(|poly| {
+            let (vertices, starts) = simplify_polygon(poly, abs_tol);
+            let edges = poly
+                .edges
                 .iter()
                 .zip(starts)
-                .map(|(e, s)| EdgeOut {
-                    start: s,
-                    kind: edge_kind(&e.kind),
-                })
-                .collect::<Vec<_>>(),
-        );
-    }
-    RegionJson {
-        vertices_sent: polygons.iter().map(Vec::len).sum(),
+                .map(|(e, start)| Edge { start, ..*e })
+                .collect();
+            Polygon {
+                vertices,
+                edges,
+                thetas: Vec::new(),
+            }
+        })
+        .collect();
+    let simplified = StableRegion {
         polygons,
-        edges,
         alpha_max: r.alpha_max,
         beta_at_alpha_max: r.beta_at_alpha_max,
+        alpha_max_attained: r.alpha_max_attained,
+        beta_stable: r.beta_stable,
+        alpha_stable: r.alpha_stable,
         area: r.area,
+    };
+    RegionJson {
+        answer: region_answer(sys, normalized, &simplified),
+        drawn: simplified
+            .polygons
+            .iter()
+            .map(|p| p.vertices.iter().map(ab).collect())
+            .collect(),
+        max_drawn: [r.alpha_max, r.beta_at_alpha_max],
         empty: r.polygons.is_empty(),
         vertices_exact: r.polygons.iter().map(|p| p.vertices.len()).sum(),
+        vertices_sent: simplified.polygons.iter().map(|p| p.vertices.len()).sum(),
         tol,
     }
 }
@@ -271,7 +260,7 @@ pub(crate) fn region(req: &RegionReq) -> Result<RegionOut, ApiError> {
     let spec = &req.spec;
     let r = spec.sys.region().map_err(lib_error)?;
     let t_region = t0.elapsed().as_secs_f64() * 1e3;
-    let region = region_json(&r, req.tol);
+    let region = region_json(&spec.sys, spec.physical.is_none(), &r, req.tol);
     let warnings = match spec.paper {
         Some(pp) => paper_warnings(pp, region.empty)?,
         None => Vec::new(),

@@ -30,7 +30,18 @@ fn a_loop_with_the_papers_view_is_analysed_as_check_does() {
         hapstab::Effective::combine(hapstab::Device::PHANTOM_LIKE, hapstab::Arm::TYPICAL).unwrap();
     let pp = PlantParams::from_physical(&eff, 1e-3).unwrap();
     let lib = library_region(pp.gamma, pp.delta, 1);
-    assert_eq!(j["region"]["alpha_max"].as_f64().unwrap(), lib.alpha_max);
+    // K and B with the paper's normalized view beside them: α_max as the library gives it,
+    // K_max = α_max·m/T²
+    assert_eq!(
+        j["region"]["normalized"]["alpha_max"].as_f64().unwrap(),
+        lib.alpha_max
+    );
+    let k_max = j["region"]["k_max"].as_f64().unwrap();
+    assert!(
+        (k_max - lib.alpha_max * 1.1 / 1e-6).abs() <= 1e-12 * k_max,
+        "{k_max}"
+    );
+    assert!(j["region"]["alpha_max"].is_null(), "{j}");
     let vertices = &lib.polygons[0].vertices;
     for v in vertices.iter().step_by(vertices.len() / 12 + 1) {
         let p = s

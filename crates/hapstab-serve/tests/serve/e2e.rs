@@ -72,7 +72,12 @@ async fn settled(c: &Client) -> R<(String, f64, f64, f64, usize)> {
     if !error.is_empty() {
         return Err(format!("the page shows an error: {error}").into());
     }
-    let am: f64 = attr(&plot, "data-alpha-max").await?.parse()?;
+    // the paper's α_max where the loop has it, else the K_max the page shows
+    let am = match attr(&plot, "data-alpha-max").await? {
+        a if a.is_empty() => attr(&plot, "data-max").await?,
+        a => a,
+    };
+    let am: f64 = am.parse()?;
     // a loop beyond the paper's has no (γ, δ, d): the page leaves them empty
     let (g, de, d) = (
         attr(&plot, "data-gamma").await?,
@@ -560,9 +565,11 @@ fn two_mass_loop(estimator: &str) -> Loop {
     Loop::new(plant, 0.001, delay, velocity).unwrap()
 }
 
-/// The loop's region as `hapstab boundary` computes it.
-fn loop_alpha_max(lp: &Loop) -> R<f64> {
-    Ok(hapstab::System::of(lp)?.region()?.alpha_max)
+/// The loop's K_max in N/m as `hapstab boundary` computes it.
+fn loop_k_max(lp: &Loop) -> R<f64> {
+    let sys = hapstab::System::of(lp)?;
+    let r = sys.region()?;
+    Ok(sys.family().to_physical(r.alpha_max, r.beta_at_alpha_max).0)
 }
 
 /// The URL of the two-mass loop (arm defaults: the typical arm).
@@ -581,8 +588,8 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     );
     assert_eq!(
         am0,
-        loop_alpha_max(&two_mass_loop("lowpass:150"))?,
-        "α_max of the loop"
+        loop_k_max(&two_mass_loop("lowpass:150"))?,
+        "K_max of the loop"
     );
     assert_two_mass_form(c).await?;
     assert_speaks_k_and_b(
@@ -597,7 +604,7 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     let lp = two_mass_loop("lowpass:60");
     let sys = hapstab::System::of(&lp)?;
     let fam = sys.family();
-    let lib = sys.region()?.alpha_max;
+    let lib = loop_k_max(&lp)?;
     let am1 = wait_for(20, "the redrawn loop region", || async {
         match settled(c).await {
             Err(e) if e.to_string().contains("the page shows an error") => Err(e),
@@ -605,7 +612,7 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
         }
     })
     .await?;
-    assert_eq!(am1, lib, "α_max after typing lowpass:60");
+    assert_eq!(am1, lib, "K_max after typing lowpass:60");
     assert!(
         c.current_url()
             .await?
