@@ -1,13 +1,15 @@
 //! `check` and `region`: the exact analyses of Section V for one loop, through the
 //! library's `System` (the same methods the command line calls).
 
-use hapstab::AffineFamily;
-use hapstab::answer::check_answer;
+use hapstab::System;
+use hapstab::answer::{RegionPaperView, WallUnitsOut, check_answer};
 use hapstab::region::{EdgeKind, Polygon, StableRegion};
 use num_complex::Complex64;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
+use crate::dicts::dict_of;
 use crate::errors::Context;
 use crate::loops::PyLoop;
 use crate::margins::{PyMargins, margins_object};
@@ -189,9 +191,6 @@ pub struct PyRegion {
     /// Stable components as closed counter-clockwise polygons, each an (N, 2) float64 array
     /// of [K in N/m, B in Ns/m] (first vertex not repeated).
     pub polygons: Vec<Py<PyArray2<f64>>>,
-    /// The same polygons in normalized wall units [α, β] (α = KT²/m, β = BT/m with the
-    /// loop's reference mass m; Table I's α, β for the paper's loop).
-    pub polygons_normalized: Vec<Py<PyArray2<f64>>>,
     /// Per polygon, θ in rad of the root pair e^{±iθ} at each vertex on a complex-pair arc
     /// (NaN on the z = ±1 lines), float64 arrays of length N.
     pub thetas: Vec<Py<PyArray1<f64>>>,
@@ -210,18 +209,15 @@ pub struct PyRegion {
     /// A stiffness in N/m within 1e-6 of K_max that the verdict confirms stable at
     /// b_stable_near_k_max.
     pub k_stable_near_k_max: Option<f64>,
-    /// K_max in normalized units (α_max for the paper's loop).
-    pub alpha_max: Option<f64>,
-    /// β at α_max.
-    pub beta_at_alpha_max: Option<f64>,
     /// Total area in (N/m)·(Ns/m).
     pub area: f64,
-    /// Total area in normalized units.
-    pub area_normalized: f64,
-    /// N/m per unit α (m/T²).
-    pub k_per_alpha: f64,
-    /// Ns/m per unit β (m/T).
-    pub b_per_beta: f64,
+    /// The N/m and Ns/m of one wall unit, {"stiffness", "damping"} (m/T² and m/T for the
+    /// paper's plant), as `hapstab boundary --json` gives them.
+    pub wall_units: Py<PyDict>,
+    /// The paper's loop: its normalized view (Table I), {"gamma", "delta", "d",
+    /// "alpha_max", "beta_at_alpha_max", "area"}, as `hapstab boundary --json` gives it;
+    /// None for a loop beyond the paper's.
+    pub normalized: Option<Py<PyDict>>,
 }
 
 #[pymethods]
@@ -251,19 +247,18 @@ fn vertices<'py>(
     PyArray1::from_vec(py, flat).reshape([p.vertices.len(), 2])
 }
 
-fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResult<PyRegion> {
+fn region_object(py: Python<'_>, sys: &System, r: &StableRegion) -> PyResult<PyRegion> {
+    let fam = sys.family();
     let (kpa, bpb) = fam.to_physical(1.0, 1.0);
     let found = !r.polygons.is_empty();
     let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
-    let mut polygons = Vec::new();
-    let mut normalized = Vec::new();
-    for p in &r.polygons {
-        polygons.push(vertices(py, p, (kpa, bpb))?.unbind());
-        normalized.push(vertices(py, p, (1.0, 1.0))?.unbind());
-    }
+    let polygons = r
+        .polygons
+        .iter()
+        .map(|p| Ok(vertices(py, p, (kpa, bpb))?.unbind()))
+        .collect::<PyResult<_>>()?;
     Ok(PyRegion {
         polygons,
-        polygons_normalized: normalized,
         thetas: r
             .polygons
             .iter()
@@ -275,12 +270,17 @@ fn region_object(py: Python<'_>, fam: &AffineFamily, r: &StableRegion) -> PyResu
         k_max_attained: found.then_some(r.alpha_max_attained),
         b_stable_near_k_max: found.then(|| fam.to_physical(0.0, r.beta_stable).1),
         k_stable_near_k_max: found.then(|| fam.to_physical(r.alpha_stable, 0.0).0),
-        alpha_max: found.then_some(r.alpha_max),
-        beta_at_alpha_max: found.then_some(r.beta_at_alpha_max),
         area: r.area * kpa * bpb,
-        area_normalized: r.area,
-        k_per_alpha: kpa,
-        b_per_beta: bpb,
+        wall_units: dict_of(
+            py,
+            &WallUnitsOut {
+                stiffness: kpa,
+                damping: bpb,
+            },
+        )?,
+        normalized: RegionPaperView::of(sys.lp(), r)
+            .map(|n| dict_of(py, &n))
+            .transpose()?,
     })
 }
 
@@ -300,5 +300,5 @@ pub fn region(r#loop: &PyLoop, py: Python<'_>) -> PyResult<PyRegion> {
         hapstab::limits::region_cost_of_degree(fam.degree(), hapstab::limits::core_degree(fam));
     crate::budget::check_loop(cost, lp, fam, "the exact region")?;
     let r = py.detach(|| sys.region()).py()?;
-    region_object(py, fam, &r)
+    region_object(py, &sys, &r)
 }

@@ -2,10 +2,13 @@
 //! either — at B = 0, over the renderable band and over B ≥ 0, from the library's
 //! [`hapstab::kmax::kmax`] (the answer of `hapstab kmax --json`, under the same keys).
 
-use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, RenderableBand};
+use hapstab::answer::{KmaxAnswer, kmax_answer};
+use hapstab::kmax::{KmaxQuery, NoiseModel, RenderableBand};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::analysis::interval_text;
+use crate::dicts::dict_of;
 use crate::errors::{Context, bad};
 use crate::loops::PyLoop;
 use crate::text::num;
@@ -72,10 +75,6 @@ pub struct PyKmax {
     pub b_at_k_max: Option<f64>,
     /// With wall_damping: the stable K interval (lo, hi) in N/m that reaches K_max.
     pub k_interval: Option<(f64, f64)>,
-    /// K_max in normalized units (α_max for the paper's loop).
-    pub alpha_max: Option<f64>,
-    /// β where α_max holds.
-    pub beta_at_alpha_max: Option<f64>,
     /// The paper's loop: linear condition (22), (b + B)/(t_d + T/2) in N/m at the same B.
     pub k_linear: Option<f64>,
     /// Without wall_damping: False where K_max is a supremum, a corner of the region that
@@ -90,6 +89,9 @@ pub struct PyKmax {
     pub k_max_at_zero_damping: Option<f64>,
     /// Without wall_damping and damping_range: the renderable band and K_max over it.
     pub renderable: Option<PyRenderableBand>,
+    /// The paper's loop: the same K_max in its normalized units (Table I), {"alpha_max",
+    /// "beta", "gamma", "delta", "d"}, as `hapstab kmax --json` gives it; None beyond it.
+    pub normalized: Option<Py<PyDict>>,
 }
 
 #[pymethods]
@@ -110,22 +112,22 @@ impl PyKmax {
 }
 
 impl PyKmax {
-    /// The report as Python's object; with a given damping B, `b_at_k_max` is B where a K
-    /// is stable.
-    fn of_report(r: KmaxReport, given_b: Option<f64>) -> Self {
-        PyKmax {
+    /// The library's answer as Python's object; with a given damping B, `b_at_k_max` is B
+    /// where a K is stable.
+    fn of_answer(py: Python<'_>, a: KmaxAnswer, given_b: Option<f64>) -> PyResult<Self> {
+        let r = a.report;
+        Ok(PyKmax {
             k_max: r.k_max,
             b_at_k_max: r.b_at_k_max.or(given_b.filter(|_| r.k_max.is_some())),
             k_interval: r.k_interval.map(|[lo, hi]| (lo, hi)),
-            alpha_max: r.k_max_units,
-            beta_at_alpha_max: r.b_units,
             k_linear: r.k_linear,
             k_max_attained: r.k_max_attained,
             b_stable_near_k_max: r.b_stable_near_k_max,
             k_stable_near_k_max: r.k_stable_near_k_max,
             k_max_at_zero_damping: r.k_max_at_zero_damping,
             renderable: r.renderable.as_ref().map(PyRenderableBand::from),
-        }
+            normalized: a.paper.map(|p| dict_of(py, &p)).transpose()?,
+        })
     }
 }
 
@@ -202,10 +204,10 @@ pub fn kmax(
         _ => hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(fam)),
     };
     crate::budget::check_loop(cost, &r#loop.lp, fam, "K_max")?;
-    let report = py.detach(|| hapstab::kmax::kmax(&sys, q)).py()?;
+    let answer = py.detach(|| kmax_answer(&sys, q)).py()?;
     let given_b = match q {
         KmaxQuery::AtDamping(b) => Some(b),
         _ => None,
     };
-    Ok(PyKmax::of_report(report, given_b))
+    PyKmax::of_answer(py, answer, given_b)
 }

@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 
 mod analysis;
 mod budget;
+mod dicts;
 mod discretize;
 mod errors;
 mod freqresp;

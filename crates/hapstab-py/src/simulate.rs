@@ -14,6 +14,7 @@ use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::dicts::dict_of;
 use crate::errors::{Context, bad};
 use crate::loops::PyLoop;
 use crate::text::num;
@@ -173,12 +174,6 @@ fn human(force: &Bound<'_, PyAny>) -> PyResult<HumanForce> {
         )
     })?;
     Ok(HumanForce::Samples(v.as_array().to_vec()))
-}
-
-fn dict_of<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Py<PyDict>> {
-    let json = serde_json::to_string(v).map_err(|e| bad("result", e))?;
-    let loads = py.import("json")?.getattr("loads")?;
-    Ok(loads.call1((json,))?.cast_into::<PyDict>()?.unbind())
 }
 
 /// The Python object of a run: the library's [`SimulationAnswer`] (the keys of `hapstab

@@ -174,12 +174,14 @@ def test_region_and_kmax(hapstab_cli, server, case):
     r = hs.region(lp)
     bo = cli(hapstab_cli, "boundary", *flags)
     ex = api(server, "api/region", query)["region"]
-    assert ex["alpha_max"] == r.alpha_max, name
     if normalized:
-        assert (r.alpha_max, r.area_normalized) == (bo["alpha_max"], bo["area"]), name
+        view = r.normalized
+        assert ex["alpha_max"] == view["alpha_max"], name
+        assert (view["alpha_max"], view["area"]) == (bo["alpha_max"], bo["area"]), name
         refused(hapstab_cli, "kmax", *flags)
         return
     assert (r.k_max, r.b_at_k_max, r.area) == (bo["k_max"], bo["b_at_k_max"], bo["area"]), name
+    assert (ex["k_max"], ex["b_at_k_max"], ex["area"]) == (r.k_max, r.b_at_k_max, r.area), name
     # K_max at a damping, over a band (the command line's default 0 ≤ B), overall
     at = cli(hapstab_cli, "kmax", *flags, "--wall-damping", "2")
     assert hs.kmax(lp, wall_damping=2.0).k_max == at["k_max"], name

@@ -185,12 +185,15 @@ def test_region(hapstab_cli, i):
     r = hs.region(make())
     b = cli(hapstab_cli, "boundary", *flags)
     if sweep is None:
-        same(r.alpha_max, b["alpha_max"], name)
-        same(r.beta_at_alpha_max, b["beta_at_alpha_max"], name)
-        same(r.area_normalized, b["area"], name)
-        for got, want in zip(r.polygons_normalized, b["polygons"]):
+        # the paper's normalized loop: its view is the command line's answer in α and β, and
+        # with m = T = 1 its polygons in K and B are the command line's in α and β
+        for key in ("alpha_max", "beta_at_alpha_max", "area"):
+            same(r.normalized[key], b[key], (name, key))
+        for got, want in zip(r.polygons, b["polygons"]):
             same_array(got, want, (name, "polygon"))
         return
+    assert r.wall_units == b["wall_units"], name
+    assert r.normalized == b.get("normalized"), name
     for key in ("k_max", "b_at_k_max", "k_max_attained", "b_stable_near_k_max",
                 "k_stable_near_k_max", "area"):
         same(getattr(r, key), b[key], (name, key))

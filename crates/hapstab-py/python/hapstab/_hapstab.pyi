@@ -205,7 +205,6 @@ class Edge:
 class Region:
     polygons: list[Float64Array]
     """(N, 2) arrays of [K in N/m, B in Ns/m], counter-clockwise, first vertex not repeated."""
-    polygons_normalized: list[Float64Array]
     thetas: list[Float64Array]
     edges: list[list[Edge]]
     k_max: Optional[float]
@@ -213,12 +212,11 @@ class Region:
     k_max_attained: Optional[bool]
     b_stable_near_k_max: Optional[float]
     k_stable_near_k_max: Optional[float]
-    alpha_max: Optional[float]
-    beta_at_alpha_max: Optional[float]
     area: float
-    area_normalized: float
-    k_per_alpha: float
-    b_per_beta: float
+    wall_units: dict
+    """N/m and Ns/m of one wall unit: {"stiffness", "damping"} (boundary --json's keys)."""
+    normalized: Optional[dict]
+    """The paper's loop: gamma, delta, d, alpha_max, beta_at_alpha_max, area; else None."""
     def plot(self, ax: Any = None) -> Any:
         """Draws the result (hapstab.plotting; needs matplotlib) and returns the matplotlib Axes."""
 
@@ -226,14 +224,14 @@ class Kmax:
     k_max: Optional[float]
     b_at_k_max: Optional[float]
     k_interval: Optional[Tuple[float, float]]
-    alpha_max: Optional[float]
-    beta_at_alpha_max: Optional[float]
     k_linear: Optional[float]
     k_max_attained: Optional[bool]
     b_stable_near_k_max: Optional[float]
     k_stable_near_k_max: Optional[float]
     k_max_at_zero_damping: Optional[float]
     renderable: Optional[RenderableBand]
+    normalized: Optional[dict]
+    """The paper's loop: alpha_max, beta, gamma, delta, d (kmax --json's keys); else None."""
 
 class RenderableBand:
     """The renderable damping band 0 <= B <= b_max (force noise F_n RMS from position steps

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
 use crate::loop_spec::LoopInput;
+use crate::model::Loop;
 use crate::region::{EdgeKind, StableRegion};
 use crate::system::System;
 
@@ -160,16 +161,21 @@ pub fn region_answer(sys: &System, normalized: bool, r: &StableRegion) -> Region
                     .collect()
             })
             .collect(),
-        normalized: lp
-            .paper_view()
-            .filter(|_| physical)
-            .map(|pp| RegionPaperView {
-                gamma: pp.gamma,
-                delta: pp.delta,
-                d: lp.delay.samples,
-                alpha_max: r.alpha_max,
-                beta_at_alpha_max: r.beta_at_alpha_max,
-                area: r.area,
-            }),
+        normalized: RegionPaperView::of(lp, r).filter(|_| physical),
+    }
+}
+
+impl RegionPaperView {
+    /// The normalized view of the region `r` of the loop `lp` when it is the paper's loop
+    /// ([`Loop::paper_view`]: Table I's γ, δ, d with α_max, its β and the area in α·β).
+    pub fn of(lp: &Loop, r: &StableRegion) -> Option<Self> {
+        lp.paper_view().map(|pp| RegionPaperView {
+            gamma: pp.gamma,
+            delta: pp.delta,
+            d: lp.delay.samples,
+            alpha_max: r.alpha_max,
+            beta_at_alpha_max: r.beta_at_alpha_max,
+            area: r.area,
+        })
     }
 }
