@@ -108,7 +108,7 @@
     $("sum-robust-kmax").textContent = r.k_max == null ? "Robust: no K is stable at B = " + bt + " for every plant of the box."
       : "Robust K_max = " + eng(r.k_max, "N/m", 6) + " at B = " + bt + " for the box (" + r.plants_verified + " random plants verified).";
     if (!show) return;
-    const y = py(r.wall_damping / ph.b_per_beta), x0 = px(r.k_min / ph.k_per_alpha), x1 = px(r.k_max / ph.k_per_alpha);
+    const y = py(r.wall_damping / ph.b_per_unit), x0 = px(r.k_min / ph.k_per_unit), x1 = px(r.k_max / ph.k_per_unit);
     const set = (id, a) => { for (const k in a) $(id).setAttribute(k, a[k]); };
     set("rk-line", { x1: x0, y1: y, x2: x1, y2: y });
     $("rk-dot").setAttribute("d", "M" + x1 + "," + (y - 7) + "L" + (x1 + 7) + "," + y + "L" + x1 + "," + (y + 7) + "L" + (x1 - 7) + "," + y + "Z");

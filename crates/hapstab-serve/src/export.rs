@@ -230,11 +230,8 @@ fn auto_view(out: &RegionOut, pt: Option<&Selected>) -> [f64; 4] {
 fn robust_kmax_segment(out: &RegionOut) -> Option<[[f64; 2]; 2]> {
     let r = &out.robust_kmax.as_ref()?.report;
     let ph = out.physical.as_ref()?;
-    let b = r.wall_damping / ph.b_per_beta;
-    Some([
-        [r.k_min? / ph.k_per_alpha, b],
-        [r.k_max? / ph.k_per_alpha, b],
-    ])
+    let b = r.wall_damping / ph.b_per_unit;
+    Some([[r.k_min? / ph.k_per_unit, b], [r.k_max? / ph.k_per_unit, b]])
 }
 
 /// Every drawn vertex: layer, polygon, vertex and K (N/m), B (Ns/m) in physical mode, α, β
@@ -249,8 +246,8 @@ fn csv(out: &RegionOut, pt: Option<&Selected>, view: [f64; 4]) -> String {
             Some(ph) => writeln!(
                 s,
                 "{layer},{poly},{i},{},{}",
-                a * ph.k_per_alpha,
-                b * ph.b_per_beta
+                a * ph.k_per_unit,
+                b * ph.b_per_unit
             ),
             None => writeln!(s, "{layer},{poly},{i},{a},{b}"),
         };
@@ -360,7 +357,7 @@ impl Frame {
         let (ml, mr, mt, mb) = (80.0, 20.0, 46.0, 56.0);
         let (wf, hf) = (w as f64, h as f64);
         let (sx, sy) = match &out.physical {
-            Some(p) => (p.k_per_alpha, p.b_per_beta),
+            Some(p) => (p.k_per_unit, p.b_per_unit),
             None => (1.0, 1.0),
         };
         Self {
@@ -615,7 +612,7 @@ fn legend_items(out: &RegionOut, pt: Option<&Selected>) -> Vec<(String, &'static
     let am = out.region.max_drawn[0];
     if am.is_finite() {
         let v = match &out.physical {
-            Some(ph) => format!("K_max = {}", eng(am * ph.k_per_alpha, "N/m", 6)),
+            Some(ph) => format!("K_max = {}", eng(am * ph.k_per_unit, "N/m", 6)),
             None => format!("α_max = {}", sig(am, 6)),
         };
         items.push((v, "#111"));

@@ -335,10 +335,10 @@ pub struct PhysicalSpec {
     pub damping: f64,
     /// Effective stiffness k = k_H.
     pub stiffness: f64,
-    /// K per unit α: m/T² (Table I), N/m.
-    pub k_per_alpha: f64,
-    /// B per unit β: m/T, Ns/m.
-    pub b_per_beta: f64,
+    /// N/m of one wall unit a = K/k_per_unit (m/T² for the paper's loop: per unit α).
+    pub k_per_unit: f64,
+    /// Ns/m of one wall unit b = B/b_per_unit (m/T for the paper's loop: per unit β).
+    pub b_per_unit: f64,
 }
 
 /// The loop of a request, built once for every mode: its analysis object, the paper's
@@ -680,8 +680,8 @@ fn physical_spec(p: &Params) -> Result<PlantSpec, ApiError> {
     physical_plant_spec(sys)
 }
 
-/// The [`PlantSpec`] of a physical loop: its units for the page (K = a·k_per_alpha, B =
-/// b·b_per_beta), its static stiffness and, for the paper's loop, its (γ, δ, d) within the
+/// The [`PlantSpec`] of a physical loop: its units for the page (K = a·k_per_unit, B =
+/// b·b_per_unit), its static stiffness and, for the paper's loop, its (γ, δ, d) within the
 /// explorer's bounds.
 fn physical_plant_spec(sys: System) -> Result<PlantSpec, ApiError> {
     let lp = sys.lp();
@@ -710,8 +710,8 @@ fn physical_plant_spec(sys: System) -> Result<PlantSpec, ApiError> {
         mass: lp.plant.reference_mass(lp.period),
         damping: eff.map_or(0.0, |e| e.damping),
         stiffness: static_k,
-        k_per_alpha: s.stiffness,
-        b_per_beta: s.damping,
+        k_per_unit: s.stiffness,
+        b_per_unit: s.damping,
     };
     let paper = lp
         .paper_view()

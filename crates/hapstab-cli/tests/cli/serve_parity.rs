@@ -160,8 +160,8 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
     assert_vertices_are_on_the_boundary(&s, &j);
     // A wall inside: half way to α_max, in N/m and Ns/m.
     let (kpa, bpb) = (
-        j["physical"]["k_per_alpha"].as_f64().unwrap(),
-        j["physical"]["b_per_beta"].as_f64().unwrap(),
+        j["physical"]["k_per_unit"].as_f64().unwrap(),
+        j["physical"]["b_per_unit"].as_f64().unwrap(),
     );
     // the region of a physical loop is sent in N/m and Ns/m
     assert!(j["region"]["alpha_max"].is_null(), "{j}");
@@ -182,8 +182,8 @@ fn general_loop_region_point_and_simulation_match_the_cli() {
 fn assert_vertices_are_on_the_boundary(s: &Server, j: &serde_json::Value) {
     // vertices [K, B] in N/m and Ns/m, asked back in the loop's wall units
     let (kpa, bpb) = (
-        j["physical"]["k_per_alpha"].as_f64().unwrap(),
-        j["physical"]["b_per_beta"].as_f64().unwrap(),
+        j["physical"]["k_per_unit"].as_f64().unwrap(),
+        j["physical"]["b_per_unit"].as_f64().unwrap(),
     );
     let poly: Vec<[f64; 2]> = j["region"]["polygons"][0]
         .as_array()
@@ -371,7 +371,7 @@ fn robust_range_in_arm_stiffness_is_the_gamma_range_and_kmax_robust() {
         ))
         .json();
     assert_eq!(norm["robust"]["polygon"], rob["polygon"]);
-    let kpa = j["physical"]["k_per_alpha"].as_f64().unwrap();
+    let kpa = j["physical"]["k_per_unit"].as_f64().unwrap();
     let k_max = rob["alpha_max"].as_f64().unwrap() * kpa;
     let cli = common::json(&[
         "kmax",

@@ -34,17 +34,17 @@ pub(crate) fn wall_point(p: &Params, spec: &PlantSpec) -> Result<(f64, f64), Api
         };
         let k = p.num_in(
             "wall_stiffness",
-            -MAX_WALL * ph.k_per_alpha,
-            MAX_WALL * ph.k_per_alpha,
+            -MAX_WALL * ph.k_per_unit,
+            MAX_WALL * ph.k_per_unit,
             " N/m",
         )?;
         let b = p.num_in(
             "wall_damping",
-            -MAX_WALL * ph.b_per_beta,
-            MAX_WALL * ph.b_per_beta,
+            -MAX_WALL * ph.b_per_unit,
+            MAX_WALL * ph.b_per_unit,
             " Ns/m",
         )?;
-        return Ok((k / ph.k_per_alpha, b / ph.b_per_beta));
+        return Ok((k / ph.k_per_unit, b / ph.b_per_unit));
     }
     let alpha = p.num_in(
         "alpha",

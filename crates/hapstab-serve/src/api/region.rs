@@ -35,7 +35,7 @@ pub(crate) struct RegionJson {
     /// The region in the user's units, its polygons simplified for drawing.
     #[serde(flatten)]
     pub answer: RegionAnswer,
-    /// The simplified rings in the loop's wall units a = K/k_per_alpha, b = B/b_per_beta (the
+    /// The simplified rings in the loop's wall units a = K/k_per_unit, b = B/b_per_unit (the
     /// plane the page and the export draw in; (α, β) for the paper's loop).
     #[serde(skip)]
     pub drawn: Vec<Vec<[f64; 2]>>,
@@ -111,7 +111,7 @@ pub(crate) struct RegionOut {
     pub physical: Option<PhysicalSpec>,
     /// A loop beyond the paper's: plant, period, delay and velocity estimator (its region is
     /// sent in N/m and Ns/m like any physical loop's; the page draws it in the loop's wall
-    /// units a = K/k_per_alpha, b = B/b_per_beta).
+    /// units a = K/k_per_unit, b = B/b_per_unit).
     #[serde(rename = "loop", skip_serializing_if = "Option::is_none")]
     pub lp: Option<Loop>,
     pub region: RegionJson,

@@ -110,9 +110,9 @@ fn physical_mode_matches_the_library() {
     );
     let j = r.json();
     assert_eq!(j["params"]["d"], 2);
-    let kpa = j["physical"]["k_per_alpha"].as_f64().unwrap();
+    let kpa = j["physical"]["k_per_unit"].as_f64().unwrap();
     assert!((kpa - 1.1 / 1e-6).abs() < 1e-6);
-    assert!((j["physical"]["b_per_beta"].as_f64().unwrap() - 1100.0).abs() < 1e-9);
+    assert!((j["physical"]["b_per_unit"].as_f64().unwrap() - 1100.0).abs() < 1e-9);
 }
 
 #[test]
