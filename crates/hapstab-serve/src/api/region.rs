@@ -9,7 +9,9 @@ use hapstab::boundary::AlphaBeta;
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
 use hapstab::paper::linear::linear_alpha_limit;
-use hapstab::paper::nyquist::{RobustOptions, region_summary, robust_region, unit_circle_pole};
+use hapstab::paper::nyquist::{
+    GammaRange, RobustOptions, region_summary, robust_region, unit_circle_pole,
+};
 use hapstab::region::{Edge, Polygon, StableRegion};
 use hapstab::{Loop, System};
 use serde::Serialize;
@@ -225,7 +227,13 @@ fn robust_out(
         refine_gamma: rr.refine,
         refine_beta_rounds: ROBUST_REFINE_BETA_ROUNDS,
     };
-    let r = robust_region(delta, d, rr.lo, rr.hi, opts).map_err(lib_error)?;
+    let range = GammaRange {
+        delta,
+        d,
+        gamma_lo: rr.lo,
+        gamma_hi: rr.hi,
+    };
+    let r = robust_region(range, opts).map_err(lib_error)?;
     Ok(RobustOut {
         gamma_lo: r.gamma_lo,
         gamma_hi: r.gamma_hi,

@@ -4,7 +4,7 @@
 use anyhow::{Context, Result};
 use hapstab::paper::linear::{ValidityPoint, validity_points};
 use hapstab::paper::nyquist::{
-    PassiveCheck, RobustOptions, RobustRegion, passive_inside_robust, robust_region,
+    GammaRange, PassiveCheck, RobustOptions, RobustRegion, passive_inside_robust, robust_region,
 };
 use rayon::prelude::*;
 
@@ -114,13 +114,23 @@ pub(super) fn run_job(j: Job) -> Result<Out> {
         ),
         Job::Robust(r) => Out::Robust(
             r,
-            Box::new(robust_region(r.delta, r.d, 0.0, r.gamma_hi(), ROBUST_DRAW)?),
+            Box::new(robust_region(
+                GammaRange {
+                    delta: r.delta,
+                    d: r.d,
+                    gamma_lo: 0.0,
+                    gamma_hi: r.gamma_hi(),
+                },
+                ROBUST_DRAW,
+            )?),
         ),
         Job::Passive => Out::Passive(passive_inside_robust(
-            DELTA_NYQUIST,
-            0,
-            0.0,
-            passive_gamma_hi(),
+            GammaRange {
+                delta: DELTA_NYQUIST,
+                d: 0,
+                gamma_lo: 0.0,
+                gamma_hi: passive_gamma_hi(),
+            },
             41,
             passive_options(),
         )?),

@@ -61,7 +61,7 @@ pub use plant_box::{
     robust_stiffness_interval,
 };
 pub use robust::{
-    RobustOptions, RobustRegion, RobustSlice, polygon_area, robust_region,
+    GammaRange, RobustOptions, RobustRegion, RobustSlice, polygon_area, robust_region,
     robust_region_with_progress,
 };
 pub use section::{

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::robust::gamma_samples;
 use super::slice::{Config, refined_slice, unit_configs};
-use super::{Progress, RobustOptions, Ticker, no_progress};
+use super::{GammaRange, Progress, RobustOptions, Ticker, no_progress};
 use crate::boundary::AlphaBeta;
 use crate::error::{Result, non_negative, positive};
 use crate::paper::NormalizedFamily;
@@ -77,32 +77,28 @@ pub struct PassiveCheck {
 /// test.
 pub const PASSIVE_END_GAP: f64 = 1e-6;
 
-/// Checks that the passive triangle of eq. (28) lies in the robust region over
-/// [γ_lo, γ_hi] at d = `d`: at `samples` values of β across (−δ, δ) (ends at
+/// Checks that the passive triangle of eq. (28) lies in the robust region over the range's
+/// γ ∈ [γ_lo, γ_hi] at its δ and d: at `samples` values of β across (−δ, δ) (ends at
 /// ±δ(1 − [`PASSIVE_END_GAP`])) the robust α-interval must contain [0, 2(δ − |β|)]
 /// (Section VIII-A, Fig. 9).
 pub fn passive_inside_robust(
-    delta: f64,
-    d: usize,
-    gamma_lo: f64,
-    gamma_hi: f64,
+    range: GammaRange,
     samples: usize,
     opts: RobustOptions,
 ) -> Result<PassiveCheck> {
-    passive_inside_robust_with_progress(delta, d, gamma_lo, gamma_hi, samples, opts, &no_progress)
+    passive_inside_robust_with_progress(range, samples, opts, &no_progress)
 }
 
 /// [`passive_inside_robust`] reporting each checked β (`samples`, at least 3, in all) to
 /// `progress`.
 pub fn passive_inside_robust_with_progress(
-    delta: f64,
-    d: usize,
-    gamma_lo: f64,
-    gamma_hi: f64,
+    range: GammaRange,
     samples: usize,
     opts: RobustOptions,
     progress: Progress,
 ) -> Result<PassiveCheck> {
+    let (delta, d) = (range.delta, range.d);
+    let (gamma_lo, gamma_hi) = (range.gamma_lo, range.gamma_hi);
     positive(Param::Delta, delta)?;
     check_delay(d)?;
     let (gs, _) = gamma_samples(gamma_lo, gamma_hi, opts.gamma_samples, delta);

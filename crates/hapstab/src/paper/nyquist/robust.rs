@@ -122,40 +122,55 @@ pub(super) fn gamma_samples(lo: f64, hi: f64, n: usize, delta: f64) -> (Vec<f64>
     (gs, degenerate)
 }
 
-/// The robustly stable region over γ ∈ [γ_lo, γ_hi] at fixed δ and d (Section VIII).
-/// See the module documentation for the method.
-pub fn robust_region(
-    delta: f64,
-    d: usize,
-    gamma_lo: f64,
-    gamma_hi: f64,
-    opts: RobustOptions,
-) -> Result<RobustRegion> {
-    robust_region_with_progress(delta, d, gamma_lo, gamma_hi, opts, &no_progress)
+/// The paper's plants of Section VIII: every normalized stiffness γ ∈ [γ_lo, γ_hi] at one
+/// normalized damping δ and delay d (the arm's stiffness unknown within a range).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GammaRange {
+    /// Normalized damping δ = bT/m.
+    pub delta: f64,
+    /// Delay in samples.
+    pub d: usize,
+    /// Lowest normalized stiffness γ = kT²/m.
+    pub gamma_lo: f64,
+    /// Highest normalized stiffness.
+    pub gamma_hi: f64,
+}
+
+impl GammaRange {
+    /// Checks δ ≥ 0, 0 ≤ γ_lo ≤ γ_hi and the delay.
+    fn check(&self) -> Result<()> {
+        non_negative(Param::Delta, self.delta)?;
+        non_negative(Param::GammaLo, self.gamma_lo)?;
+        non_negative(Param::GammaHi, self.gamma_hi)?;
+        check_delay(self.d)?;
+        if self.gamma_hi < self.gamma_lo {
+            return Err(Error::OutOfRange {
+                param: Param::GammaHi,
+                value: self.gamma_hi,
+                range: "[gamma_lo, inf)",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The robustly stable region over the range's γ ∈ [γ_lo, γ_hi] at its δ and d
+/// (Section VIII). See the module documentation for the method.
+pub fn robust_region(range: GammaRange, opts: RobustOptions) -> Result<RobustRegion> {
+    robust_region_with_progress(range, opts, &no_progress)
 }
 
 /// [`robust_region`] reporting each finished slice of the initial β grid
 /// (`opts.beta_samples`, at least 8, in all) to `progress`; the refinement rounds after it
 /// take about as long again.
 pub fn robust_region_with_progress(
-    delta: f64,
-    d: usize,
-    gamma_lo: f64,
-    gamma_hi: f64,
+    range: GammaRange,
     opts: RobustOptions,
     progress: Progress,
 ) -> Result<RobustRegion> {
-    non_negative(Param::Delta, delta)?;
-    non_negative(Param::GammaLo, gamma_lo)?;
-    non_negative(Param::GammaHi, gamma_hi)?;
-    check_delay(d)?;
-    if gamma_hi < gamma_lo {
-        return Err(Error::OutOfRange {
-            param: Param::GammaHi,
-            value: gamma_hi,
-            range: "[gamma_lo, inf)",
-        });
-    }
+    range.check()?;
+    let (delta, d) = (range.delta, range.d);
+    let (gamma_lo, gamma_hi) = (range.gamma_lo, range.gamma_hi);
     let (gs, degenerate_gammas) = gamma_samples(gamma_lo, gamma_hi, opts.gamma_samples, delta);
     let configs = unit_configs(&gs, delta, d)?;
     let bb = configs

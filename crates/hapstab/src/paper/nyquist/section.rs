@@ -6,8 +6,8 @@
 use serde::Serialize;
 
 use super::{
-    PassiveCheck, Progress, RegionSummary, RobustOptions, RobustRegion, gamma_sweep_with_progress,
-    nyquist_gamma, passive_inside_robust_with_progress, passive_region,
+    GammaRange, PassiveCheck, Progress, RegionSummary, RobustOptions, RobustRegion,
+    gamma_sweep_with_progress, nyquist_gamma, passive_inside_robust_with_progress, passive_region,
     robust_region_with_progress,
 };
 use crate::boundary::AlphaBeta;
@@ -196,18 +196,17 @@ pub fn nyquist_regions(input: SweepInput, progress: Progress) -> Result<NyquistR
         input.beta_samples,
         &stage(0),
     )?;
-    let r = robust_region_with_progress(delta, d, 0.0, g_hi, opts, &stage(s0))?;
+    let range = GammaRange {
+        delta,
+        d,
+        gamma_lo: 0.0,
+        gamma_hi: g_hi,
+    };
+    let r = robust_region_with_progress(range, opts, &stage(s0))?;
     let passive = if delta > 0.0 {
         let p = passive_region(delta)?;
-        let check = passive_inside_robust_with_progress(
-            delta,
-            d,
-            0.0,
-            g_hi,
-            PASSIVE_SAMPLES,
-            opts,
-            &stage(s0 + s1),
-        )?;
+        let check =
+            passive_inside_robust_with_progress(range, PASSIVE_SAMPLES, opts, &stage(s0 + s1))?;
         Some(PassiveOut {
             area: p.area(),
             vertices: pairs(&p.vertices),

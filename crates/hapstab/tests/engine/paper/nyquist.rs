@@ -9,9 +9,9 @@ use hapstab::PlantParams;
 use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::nyquist::{
-    BoxOptions, PlantBox, RobustOptions, SweepInput, beta_bound, gamma_sweep, nyquist_gamma,
-    nyquist_regions, nyquist_stiffness, passive_inside_robust, passive_region, region_summary,
-    robust_kmax, robust_region,
+    BoxOptions, GammaRange, PlantBox, RobustOptions, SweepInput, beta_bound, gamma_sweep,
+    nyquist_gamma, nyquist_regions, nyquist_stiffness, passive_inside_robust, passive_region,
+    region_summary, robust_kmax, robust_region,
 };
 use hapstab::stability::{Verdict, roots, schur_stable};
 use hapstab::verdict::decide_coefficients;
@@ -25,6 +25,16 @@ fn fam(gamma: f64, delta: f64, d: usize) -> NormalizedFamily {
 
 fn stable(f: &NormalizedFamily, alpha: f64, beta: f64) -> bool {
     schur_stable(&f.coefficients(alpha, beta))
+}
+
+/// The paper's plants γ ∈ [lo, hi] at δ and d.
+fn range(delta: f64, d: usize, gamma_lo: f64, gamma_hi: f64) -> GammaRange {
+    GammaRange {
+        delta,
+        d,
+        gamma_lo,
+        gamma_hi,
+    }
 }
 
 /// Remark 4: k = π² m/T² + b²/(4m) ≈ 987.0 kN/m for m = 0.1 kg, T = 1 ms, b = 1.5 Ns/m.
@@ -134,7 +144,7 @@ fn robust_region_only_origin_delta0() {
         beta_samples: 81,
         ..Default::default()
     };
-    let r = robust_region(0.0, 0, 0.0, PI2, opts).unwrap();
+    let r = robust_region(range(0.0, 0, 0.0, PI2), opts).unwrap();
     assert!(r.empty, "{:?}", &r.slices[..r.slices.len().min(5)]);
     assert_eq!(r.degenerate_gammas, vec![PI2]);
     // Just below γ = π² (1 − 1e-4, not closer: at 1 − 1e-6 the walls near the origin keep a
@@ -164,13 +174,10 @@ fn passive_inside_robust_delta1() {
         ..Default::default()
     };
     let gn = PI2 + 0.25;
-    let c = passive_inside_robust(1.0, 0, 0.0, gn, 41, opts).unwrap();
+    let c = passive_inside_robust(range(1.0, 0, 0.0, gn), 41, opts).unwrap();
     assert!(c.inside && c.min_right_margin > 0.0, "{c:?}");
     let r = robust_region(
-        1.0,
-        0,
-        0.0,
-        gn,
+        range(1.0, 0, 0.0, gn),
         RobustOptions {
             gamma_samples: 33,
             beta_samples: 61,
@@ -242,7 +249,7 @@ fn nyquist_regions_compose_sweep_robust_and_passive() {
     }
     let g_hi = nyquist_gamma(0.2) * 0.5;
     assert_eq!(r.gamma_nyquist, nyquist_gamma(0.2));
-    let robust = robust_region(0.2, 1, 0.0, g_hi, input.robust_options()).unwrap();
+    let robust = robust_region(range(0.2, 1, 0.0, g_hi), input.robust_options()).unwrap();
     assert_eq!(
         (r.robust.alpha_max, r.robust.area),
         (robust.alpha_max, robust.area)
