@@ -96,8 +96,8 @@ fn write_vertices(
                 ei += 1;
             }
             let (a, b) = match fam {
-                Some(f) => f.to_physical(v.alpha, v.beta),
-                None => (v.alpha, v.beta),
+                Some(f) => f.to_physical(v.a, v.b),
+                None => (v.a, v.b),
             };
             let rec = [
                 pi.to_string(),
@@ -207,9 +207,9 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         for e in &p.edges {
             let v = p.vertices[e.start];
             let at = if rl.normalized {
-                format!("(α, β) = ({}, {})", sig(v.alpha, 6), sig(v.beta, 6))
+                format!("(α, β) = ({}, {})", sig(v.a, 6), sig(v.b, 6))
             } else {
-                let (k, b) = fam.to_physical(v.alpha, v.beta);
+                let (k, b) = fam.to_physical(v.a, v.b);
                 format!("(K, B) = ({}, {})", eng(k, "N/m", 6), eng(b, "Ns/m", 6))
             };
             println!(

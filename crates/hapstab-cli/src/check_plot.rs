@@ -81,11 +81,7 @@ fn wall_zoom(mut fig: Figure, plane: &Plane, r: &StableRegion, at: (f64, f64)) -
         .polygons
         .iter()
         .flat_map(|p| {
-            let pts: Vec<(f64, f64)> = p
-                .vertices
-                .iter()
-                .map(|v| plane.point(v.alpha, v.beta))
-                .collect();
+            let pts: Vec<(f64, f64)> = p.vertices.iter().map(|v| plane.point(v.a, v.b)).collect();
             let n = pts.len();
             (0..n).map(move |i| (pts[i], pts[(i + 1) % n]))
         })

@@ -8,7 +8,7 @@
 //! explorer. A dropped point lies within the tolerance of the segment that replaces it, so
 //! the thinned line stays within the tolerance of the original.
 
-use hapstab::boundary::AlphaBeta;
+use hapstab::boundary::WallPoint;
 use hapstab::region::Polygon;
 
 use crate::clip::segment_distance;
@@ -119,7 +119,7 @@ pub fn simplify_ring(ring: &[(f64, f64)], (sx, sy): (f64, f64), tol: f64) -> Vec
 /// first vertex in the new ring. Each edge (the run between two corners, where two boundary
 /// pieces meet) is thinned on its own by [`douglas_peucker`] to `tol` in (α, β), so every
 /// corner is kept exactly.
-pub fn simplify_polygon(poly: &Polygon, tol: f64) -> (Vec<AlphaBeta>, Vec<usize>) {
+pub fn simplify_polygon(poly: &Polygon, tol: f64) -> (Vec<WallPoint>, Vec<usize>) {
     let n = poly.vertices.len();
     if n == 0 {
         return (Vec::new(), Vec::new());
@@ -139,13 +139,16 @@ pub fn simplify_polygon(poly: &Polygon, tol: f64) -> (Vec<AlphaBeta>, Vec<usize>
         // vertices s ..= e (indices mod n); e is the next edge's first vertex
         let run: Vec<(f64, f64)> = (s..=e.max(s))
             .map(|i| poly.vertices[i % n])
-            .map(|v| (v.alpha, v.beta))
+            .map(|v| (v.a, v.b))
             .collect();
         let simp = douglas_peucker(&run, (1.0, 1.0), tol);
         new_starts.push(out.len());
         // drop the run's last point: it is the next edge's first vertex
         let head = &simp[..simp.len().saturating_sub(1).max(1)];
-        out.extend(head.iter().map(|&(alpha, beta)| AlphaBeta { alpha, beta }));
+        out.extend(
+            head.iter()
+                .map(|&(alpha, beta)| WallPoint { a: alpha, b: beta }),
+        );
     }
     (out, new_starts)
 }

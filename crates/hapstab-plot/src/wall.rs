@@ -61,7 +61,7 @@ pub fn region_figure(plane: &Plane, r: &StableRegion, title: &str) -> Figure {
         .y_label(yl)
         .legend(Legend::Below);
     for (i, p) in r.polygons.iter().enumerate() {
-        let pts = p.vertices.iter().map(|v| plane.point(v.alpha, v.beta));
+        let pts = p.vertices.iter().map(|v| plane.point(v.a, v.b));
         let s = Series::polygon(pts).color(palette::BLUE);
         fig.add(if i == 0 { s.label("stable (exact)") } else { s });
     }

@@ -242,7 +242,7 @@ fn vertices<'py>(
     let flat: Vec<f64> = p
         .vertices
         .iter()
-        .flat_map(|v| [v.alpha * scale.0, v.beta * scale.1])
+        .flat_map(|v| [v.a * scale.0, v.b * scale.1])
         .collect();
     PyArray1::from_vec(py, flat).reshape([p.vertices.len(), 2])
 }

@@ -25,13 +25,16 @@ use serde::Serialize;
 use crate::cayley::CayleyFamily;
 use crate::closed_loop::AffineFamily;
 
-/// A point of the wall plane in wall units (a, b); for the paper's loop (α, β).
+/// A point of the wall plane in wall units (a, b); for the paper's loop (α, β). It is written
+/// as `{"alpha": a, "beta": b}`, the paper's output.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct AlphaBeta {
-    /// Normalized virtual stiffness α (wall units a = K/k_u).
-    pub alpha: f64,
-    /// Normalized virtual damping β (wall units b = B/(k_u T)).
-    pub beta: f64,
+pub struct WallPoint {
+    /// Virtual stiffness in wall units a = K/k_u (α for the paper's loop).
+    #[serde(rename = "alpha")]
+    pub a: f64,
+    /// Virtual damping in wall units b = B/(k_u T) (β for the paper's loop).
+    #[serde(rename = "beta")]
+    pub b: f64,
 }
 
 /// The set of walls with a real root at z = ±1: p0 + a·pk + b·pb = 0.
@@ -50,8 +53,8 @@ pub struct RootLine {
 
 impl RootLine {
     /// p(±1) at wall (a, b).
-    pub fn value(&self, p: AlphaBeta) -> f64 {
-        self.p0 + p.alpha * self.pk + p.beta * self.pb
+    pub fn value(&self, p: WallPoint) -> f64 {
+        self.p0 + p.a * self.pk + p.b * self.pb
     }
 
     /// The a on the line at a given b (None when the line is parallel to the a-axis).
@@ -112,22 +115,22 @@ pub fn minus_one_line(fam: &AffineFamily) -> Option<RootLine> {
 }
 
 /// Solves a·x + b·y = w for complex x, y, w read as plane vectors.
-fn solve_pair(x: Complex64, y: Complex64, w: Complex64) -> Option<AlphaBeta> {
+fn solve_pair(x: Complex64, y: Complex64, w: Complex64) -> Option<WallPoint> {
     let det = (x.conj() * y).im;
     if det == 0.0 {
         return None;
     }
-    let p = AlphaBeta {
-        alpha: (w.conj() * y).im / det,
-        beta: (x.conj() * w).im / det,
+    let p = WallPoint {
+        a: (w.conj() * y).im / det,
+        b: (x.conj() * w).im / det,
     };
-    (p.alpha.is_finite() && p.beta.is_finite()).then_some(p)
+    (p.a.is_finite() && p.b.is_finite()).then_some(p)
 }
 
 /// The boundary point for a complex root pair at angle θ ∈ (0, π): the wall for which
 /// p(e^{iθ}) = 0 (D-decomposition, Section V). None where the two equations are dependent
 /// (the curve runs to infinity there).
-pub fn curve_point(fam: &AffineFamily, theta: f64) -> Option<AlphaBeta> {
+pub fn curve_point(fam: &AffineFamily, theta: f64) -> Option<WallPoint> {
     let (p0, pk, pb) = fam.parts_on_circle(theta);
     solve_pair(pk, pb, -p0)
 }
@@ -135,7 +138,7 @@ pub fn curve_point(fam: &AffineFamily, theta: f64) -> Option<AlphaBeta> {
 /// As [`curve_point`] for z = e^{iθ} given directly (|z| = 1, Im z > 0), which lets callers
 /// that step along the circle avoid a sine and cosine per point. Near z = 1 use
 /// [`curve_point`], which evaluates in the shifted variable.
-pub fn curve_point_at(fam: &AffineFamily, z: Complex64) -> Option<AlphaBeta> {
+pub fn curve_point_at(fam: &AffineFamily, z: Complex64) -> Option<WallPoint> {
     let (p0, pk, pb) = fam.parts_at(z);
     solve_pair(pk, pb, -p0)
 }
@@ -143,7 +146,7 @@ pub fn curve_point_at(fam: &AffineFamily, z: Complex64) -> Option<AlphaBeta> {
 /// The curve's end point at θ = 0 (z = 1) or θ = π (z = −1): the wall with a double root
 /// there, p(±1) = p'(±1) = 0 (the limit of the curve by l'Hôpital's rule). None when the
 /// limit does not exist (the curve runs to infinity).
-pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<AlphaBeta> {
+pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<WallPoint> {
     let (v, s) = if at_plus_one {
         (fam.at_one, fam.slope_at_one)
     } else {
@@ -154,11 +157,11 @@ pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<AlphaBeta> {
     if det == 0.0 {
         return None;
     }
-    let p = AlphaBeta {
-        alpha: (-v[0] * s[2] + v[2] * s[0]) / det,
-        beta: (-v[1] * s[0] + v[0] * s[1]) / det,
+    let p = WallPoint {
+        a: (-v[0] * s[2] + v[2] * s[0]) / det,
+        b: (-v[1] * s[0] + v[0] * s[1]) / det,
     };
-    (p.alpha.is_finite() && p.beta.is_finite()).then_some(p)
+    (p.a.is_finite() && p.b.is_finite()).then_some(p)
 }
 
 /// da/dθ along the curve, analytically (for the largest stable stiffness on an arc); near
@@ -188,39 +191,33 @@ pub fn dalpha_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct WallLine {
     /// The point at t = 0.
-    pub from: AlphaBeta,
+    pub from: WallPoint,
     /// The direction (the point at t = 1 minus `from`).
-    pub dir: AlphaBeta,
+    pub dir: WallPoint,
 }
 
 impl WallLine {
     /// The stiffness axis at damping b: a = t.
     pub fn stiffness_axis(beta: f64) -> Self {
         Self {
-            from: AlphaBeta { alpha: 0.0, beta },
-            dir: AlphaBeta {
-                alpha: 1.0,
-                beta: 0.0,
-            },
+            from: WallPoint { a: 0.0, b: beta },
+            dir: WallPoint { a: 1.0, b: 0.0 },
         }
     }
 
     /// The ray from the origin through a wall: the wall scaled by t.
-    pub fn ray(wall: AlphaBeta) -> Self {
+    pub fn ray(wall: WallPoint) -> Self {
         Self {
-            from: AlphaBeta {
-                alpha: 0.0,
-                beta: 0.0,
-            },
+            from: WallPoint { a: 0.0, b: 0.0 },
             dir: wall,
         }
     }
 
     /// The point at parameter t.
-    pub fn at(&self, t: f64) -> AlphaBeta {
-        AlphaBeta {
-            alpha: self.from.alpha + t * self.dir.alpha,
-            beta: self.from.beta + t * self.dir.beta,
+    pub fn at(&self, t: f64) -> WallPoint {
+        WallPoint {
+            a: self.from.a + t * self.dir.a,
+            b: self.from.b + t * self.dir.b,
         }
     }
 }
@@ -246,8 +243,8 @@ fn crossing_from_parts(
     (p0, pk, pb): (Complex64, Complex64, Complex64),
     line: &WallLine,
 ) -> (f64, f64) {
-    let q = p0 + pk * line.from.alpha + pb * line.from.beta;
-    let d = pk * line.dir.alpha + pb * line.dir.beta;
+    let q = p0 + pk * line.from.a + pb * line.from.b;
+    let d = pk * line.dir.a + pb * line.dir.b;
     let qc = q * d.conj();
     let nd = d.norm_sqr();
     (qc.im, if nd > 0.0 { -qc.re / nd } else { f64::NAN })
@@ -264,8 +261,8 @@ pub(crate) fn crossing_slope(fam: &AffineFamily, line: &WallLine, theta: f64) ->
     };
     let [(p0, d0), (pk, dk), (pb, db)] = parts;
     let iz = Complex64::i() * z;
-    let (fa, fb) = (line.from.alpha, line.from.beta);
-    let (da, db_) = (line.dir.alpha, line.dir.beta);
+    let (fa, fb) = (line.from.a, line.from.b);
+    let (da, db_) = (line.dir.a, line.dir.b);
     let (q, dq) = (p0 + pk * fa + pb * fb, (d0 + dk * fa + db * fb) * iz);
     let (d, dd) = (pk * da + pb * db_, (dk * da + db * db_) * iz);
     (dq * d.conj() + q * dd.conj()).im
@@ -300,7 +297,7 @@ pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
 
 /// The t on a root line where the wall line meets it (None when parallel).
 pub(crate) fn root_line_t(l: &RootLine, line: &WallLine) -> Option<f64> {
-    let t = -l.value(line.from) / (line.dir.alpha * l.pk + line.dir.beta * l.pb);
+    let t = -l.value(line.from) / (line.dir.a * l.pk + line.dir.b * l.pb);
     t.is_finite().then_some(t)
 }
 
@@ -539,7 +536,7 @@ pub fn stable_between(
     // stable where its roots are inside).
     let mut stable_at = |t: f64| {
         let p = line.at(t);
-        crate::verdict::inside_unit_circle(fam, p.alpha, p.beta, &mut coeffs) == Some(true)
+        crate::verdict::inside_unit_circle(fam, p.a, p.b, &mut coeffs) == Some(true)
     };
     let mut out: Vec<Interval> = Vec::new();
     let push = |lo: f64, hi: f64, out: &mut Vec<Interval>| match out.last_mut() {
@@ -554,7 +551,7 @@ pub fn stable_between(
         let mid = 0.5 * (w[0] + w[1]);
         let stable = if w[1] - w[0] <= SLIVER_REL * w[0].abs().max(w[1].abs()) {
             let p = line.at(mid);
-            fam.coefficients_into(p.alpha, p.beta, &mut sliver);
+            fam.coefficients_into(p.a, p.b, &mut sliver);
             let sc = crate::schur_cohn::schur_cohn(&sliver, 1.0, 0.0);
             sc.sure && sc.stable
         } else {
@@ -617,11 +614,8 @@ mod tests {
         let fam = NormalizedFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 2).unwrap();
         for t in [0.01, 0.5, 1.0, 2.0, 3.0] {
             let p = curve_point(&fam, t).unwrap();
-            let v = fam.eval(p.alpha, p.beta, crate::circle::unit(t));
-            assert!(
-                v.norm() < 1e-14 * (1.0 + p.alpha.abs() + p.beta.abs()),
-                "{v}"
-            );
+            let v = fam.eval(p.a, p.b, crate::circle::unit(t));
+            assert!(v.norm() < 1e-14 * (1.0 + p.a.abs() + p.b.abs()), "{v}");
         }
     }
 
@@ -630,12 +624,12 @@ mod tests {
         // Paper's loop: the end at z = 1 lies on α = −γ, the end at z = −1 on the z = −1 line.
         let fam = NormalizedFamily::new(PlantParams::new(1e-3, 0.015).unwrap(), 1).unwrap();
         let e0 = curve_end(&fam, true).unwrap();
-        assert!((e0.alpha + 1e-3).abs() < 1e-12, "{e0:?}");
+        assert!((e0.a + 1e-3).abs() < 1e-12, "{e0:?}");
         let e1 = curve_end(&fam, false).unwrap();
         let line = minus_one_line(&fam).unwrap();
         assert!(line.value(e1).abs() < 1e-12, "{e1:?}");
         // and the curve tends to them
         let near0 = curve_point(&fam, 1e-6).unwrap();
-        assert!((near0.alpha - e0.alpha).abs() < 1e-6 && (near0.beta - e0.beta).abs() < 1e-6);
+        assert!((near0.a - e0.a).abs() < 1e-6 && (near0.b - e0.b).abs() < 1e-6);
     }
 }

@@ -68,12 +68,8 @@ impl CayleyFamily {
     /// angles at which a root of p crosses the circle along the line.
     pub fn line_polynomial(&self, line: &crate::boundary::WallLine) -> Vec<f64> {
         let (f, d) = (line.from, line.dir);
-        let mixed = f.beta * d.alpha - f.alpha * d.beta;
-        poly::weighted_sum_trimmed(&[
-            (d.alpha, &self.p0_pk),
-            (d.beta, &self.p0_pb),
-            (mixed, &self.pb_pk),
-        ])
+        let mixed = f.b * d.a - f.a * d.b;
+        poly::weighted_sum_trimmed(&[(d.a, &self.p0_pk), (d.b, &self.p0_pb), (mixed, &self.pb_pk)])
     }
 
     /// The stiffness axis's crossing polynomial at damping b: [P0, PK] + b·[PB, PK], whose

@@ -60,9 +60,9 @@ pub(crate) fn located_crossings_with_roots(
     for &u in &roots {
         let at = |c: &[f64]| eval_real(c, u).0;
         let (ke, ko, be, bo) = (at(ek), at(ok), at(eb), at(ob));
-        let qe = at(e0) + f.alpha * ke + f.beta * be;
-        let qo = at(o0) + f.alpha * ko + f.beta * bo;
-        let (de, do_) = (d.alpha * ke + d.beta * be, d.alpha * ko + d.beta * bo);
+        let qe = at(e0) + f.a * ke + f.b * be;
+        let qo = at(o0) + f.a * ko + f.b * bo;
+        let (de, do_) = (d.a * ke + d.b * be, d.a * ko + d.b * bo);
         let t = -(qe * de + u * qo * do_) / (de * de + u * do_ * do_);
         let theta = 2.0 * u.sqrt().atan();
         if t.is_finite() && theta > 0.0 && theta < PI {

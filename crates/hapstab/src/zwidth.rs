@@ -11,7 +11,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::boundary::AlphaBeta;
+use crate::boundary::WallPoint;
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::Loop;
@@ -138,9 +138,9 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
             .map(|p| {
                 physical(
                     fam,
-                    AlphaBeta {
-                        alpha: p.alpha,
-                        beta: p.beta,
+                    WallPoint {
+                        a: p.alpha,
+                        b: p.beta,
                     },
                 )
             }),
@@ -155,8 +155,8 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
     })
 }
 
-fn physical(fam: &AffineFamily, p: AlphaBeta) -> Wall {
-    let (k, b) = fam.to_physical(p.alpha, p.beta);
+fn physical(fam: &AffineFamily, p: WallPoint) -> Wall {
+    let (k, b) = fam.to_physical(p.a, p.b);
     Wall {
         stiffness: k,
         damping: b,
@@ -167,9 +167,9 @@ fn k_max_of(fam: &AffineFamily, region: &StableRegion) -> Option<Wall> {
     region.alpha_max.is_finite().then(|| {
         physical(
             fam,
-            AlphaBeta {
-                alpha: region.alpha_max,
-                beta: region.beta_at_alpha_max,
+            WallPoint {
+                a: region.alpha_max,
+                b: region.beta_at_alpha_max,
             },
         )
     })

@@ -59,7 +59,7 @@ pub(super) struct PhysicalOut {
     /// Linear condition (22) for the worst plant at the same B.
     pub(super) k_linear_worst: f64,
     /// K_max and its B normalized with the smallest mass of the box: K T²/m, B T/m.
-    pub(super) normalized_at_min_mass: hapstab::boundary::AlphaBeta,
+    pub(super) normalized_at_min_mass: hapstab::boundary::WallPoint,
     pub(super) plants_sampled: usize,
 }
 

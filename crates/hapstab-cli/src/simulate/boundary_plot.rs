@@ -3,7 +3,7 @@
 //! loop's wall units a, b) for normalized input.
 
 use hapstab::Normalized;
-use hapstab::boundary::AlphaBeta;
+use hapstab::boundary::WallPoint;
 use hapstab::simulation::EmpiricalPoint;
 
 use super::run_args::RunSettings;
@@ -67,10 +67,7 @@ pub(super) fn boundary_plot(
         .y_label(yl)
         .legend(Legend::Below);
     for (i, poly) in region.polygons.iter().enumerate() {
-        let pts = poly
-            .vertices
-            .iter()
-            .map(|v: &AlphaBeta| plane.at(v.alpha, v.beta));
+        let pts = poly.vertices.iter().map(|v: &WallPoint| plane.at(v.a, v.b));
         let mut s = Series::polygon(pts).color(palette::BLUE).alpha(0.18);
         if i == 0 {
             s = s.label("exact linear stable region");

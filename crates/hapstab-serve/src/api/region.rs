@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use hapstab::answer::{RegionAnswer, region_answer};
-use hapstab::boundary::AlphaBeta;
+use hapstab::boundary::WallPoint;
 use hapstab::kmax::{KmaxQuery, KmaxReport, NoiseModel, kmax};
 use hapstab::limits::{Cost, region_cost, region_summary_cost, robust_region_cost};
 use hapstab::paper::linear::linear_alpha_limit;
@@ -164,8 +164,8 @@ pub(crate) fn robust_cost(
     )
 }
 
-pub(super) fn ab(p: &AlphaBeta) -> [f64; 2] {
-    [p.alpha, p.beta]
+pub(super) fn ab(p: &WallPoint) -> [f64; 2] {
+    [p.a, p.b]
 }
 
 /// The exact region `r` of `sys` with its polygons simplified to `tol` relative to its size,

@@ -45,20 +45,10 @@ fn a_loop_with_the_papers_view_is_analysed_as_check_does() {
     let vertices = &lib.polygons[0].vertices;
     for v in vertices.iter().step_by(vertices.len() / 12 + 1) {
         let p = s
-            .get(&format!(
-                "/api/point?{lp}&alpha={}&beta={}",
-                v.alpha, v.beta
-            ))
+            .get(&format!("/api/point?{lp}&alpha={}&beta={}", v.a, v.b))
             .json();
-        let an = Analysis::new(Normalized::new(v.alpha, v.beta, pp.gamma, pp.delta, 1).unwrap())
-            .unwrap();
-        assert_eq!(
-            p["verdict"],
-            an.verdict.as_str(),
-            "({}, {})",
-            v.alpha,
-            v.beta
-        );
+        let an = Analysis::new(Normalized::new(v.a, v.b, pp.gamma, pp.delta, 1).unwrap()).unwrap();
+        assert_eq!(p["verdict"], an.verdict.as_str(), "({}, {})", v.a, v.b);
         let rho = p["spectral_radius"].as_f64().unwrap();
         // (serde_json's float parser may be an ulp off the server's shortest form)
         assert!(

@@ -129,7 +129,7 @@ fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
 fn polygons(r: &StableRegion, f: impl Fn(f64, f64) -> [f64; 2]) -> Vec<Vec<[f64; 2]>> {
     r.polygons
         .iter()
-        .map(|p| p.vertices.iter().map(|v| f(v.alpha, v.beta)).collect())
+        .map(|p| p.vertices.iter().map(|v| f(v.a, v.b)).collect())
         .collect()
 }
 

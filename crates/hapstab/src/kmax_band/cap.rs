@@ -8,7 +8,7 @@ use super::*;
 /// The top of a cap whose ends at stiffness a lie at angles θ1, θ2 (0 or π on the z = ±1
 /// lines): the smooth top of one arc, the corner where two arcs meet, where an arc meets a
 /// line, or where the two lines meet.
-pub(super) fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Option<AlphaBeta> {
+pub(super) fn cap_top(fam: &AffineFamily, a: f64, ends: [(f64, f64); 2]) -> Option<WallPoint> {
     cap_top_with_arcs(fam, a, ends).map(|(p, _)| p)
 }
 
@@ -19,8 +19,8 @@ pub(super) fn cap_top_with_arcs(
     fam: &AffineFamily,
     a: f64,
     ends: [(f64, f64); 2],
-) -> Option<(AlphaBeta, [f64; 2])> {
-    let none = |p: AlphaBeta| (p, [f64::NAN; 2]);
+) -> Option<(WallPoint, [f64; 2])> {
+    let none = |p: WallPoint| (p, [f64::NAN; 2]);
     let on_curve = |t: f64| t > 0.0 && t < std::f64::consts::PI;
     let line_at = |t: f64| {
         if t == 0.0 {
@@ -51,7 +51,7 @@ fn smooth_top(
     a: f64,
     (b1, b2): (f64, f64),
     (t1, t2): (f64, f64),
-) -> Option<(AlphaBeta, [f64; 2])> {
+) -> Option<(WallPoint, [f64; 2])> {
     let (lo, hi) = (t1.min(t2), t1.max(t2));
     let slope = |t: f64| dalpha_dtheta(fam, t);
     if !(slope(lo) > 0.0 && slope(hi) < 0.0) {
@@ -59,14 +59,14 @@ fn smooth_top(
     }
     let above = (1..ARC_SAMPLES).all(|j| {
         let t = lo + (hi - lo) * j as f64 / ARC_SAMPLES as f64;
-        curve_point(fam, t).is_some_and(|p| p.alpha >= a)
+        curve_point(fam, t).is_some_and(|p| p.a >= a)
     });
     if !above {
         return None;
     }
     let t = crate::bracket::sign_change(lo, hi, slope);
     let p = curve_point(fam, t)?;
-    (p.alpha >= a && p.beta >= b1.min(b2) && p.beta <= b1.max(b2)).then_some((p, [t, f64::NAN]))
+    (p.a >= a && p.b >= b1.min(b2) && p.b <= b1.max(b2)).then_some((p, [t, f64::NAN]))
 }
 
 /// Widening steps of [`smooth_from`]'s search for a stationary point around an angle: from
@@ -76,7 +76,7 @@ const SMOOTH_STEPS: usize = 8;
 /// The smooth top of an arc near the angle θ (a neighbouring loop's smooth top): the
 /// stationary point of a(θ) between the nearest angles around θ where da/dθ is positive below
 /// and negative above, by Brent's method; with its angle.
-pub(super) fn smooth_from(fam: &AffineFamily, theta: f64) -> Option<(AlphaBeta, [f64; 2])> {
+pub(super) fn smooth_from(fam: &AffineFamily, theta: f64) -> Option<(WallPoint, [f64; 2])> {
     use std::f64::consts::PI;
     if !(theta > 0.0 && theta < PI) {
         return None;
@@ -97,7 +97,7 @@ pub(super) fn smooth_from(fam: &AffineFamily, theta: f64) -> Option<(AlphaBeta, 
 
 /// Where the arc through θ at stiffness a meets a z = ±1 line, by the secant method on the
 /// line's value along the curve.
-fn arc_meets_line(fam: &AffineFamily, a: f64, theta: f64, l: &RootLine) -> Option<AlphaBeta> {
+fn arc_meets_line(fam: &AffineFamily, a: f64, theta: f64, l: &RootLine) -> Option<WallPoint> {
     let value = |t: f64| curve_point(fam, t).map(|p| l.value(p));
     let h = 1e-6 * theta.min(std::f64::consts::PI - theta);
     let (mut t0, mut t1) = (theta, theta + h);
@@ -110,7 +110,7 @@ fn arc_meets_line(fam: &AffineFamily, a: f64, theta: f64, l: &RootLine) -> Optio
         (t0, v0) = (t1, v1);
         (t1, v1) = (t2, value(t2)?);
         if (t1 - t0).abs() <= SETTLED * t1 || v1 == 0.0 {
-            return curve_point(fam, t1).filter(|p| p.alpha >= a);
+            return curve_point(fam, t1).filter(|p| p.a >= a);
         }
     }
     None
@@ -135,7 +135,7 @@ pub(super) fn cap_corner(
     fam: &AffineFamily,
     a0: f64,
     [t1, t2]: [f64; 2],
-) -> Option<(AlphaBeta, [f64; 2])> {
+) -> Option<(WallPoint, [f64; 2])> {
     let mut a = a0;
     let mut arcs = (arc_at(fam, t1, a)?, arc_at(fam, t2, a)?);
     let mut last = f64::INFINITY;
@@ -146,7 +146,7 @@ pub(super) fn cap_corner(
         if (b2 - b1).abs() > STALLED * gap && s1.abs().max(s2.abs()) > TURNING * slope0 {
             // the arcs do not close in and one steepens: it turns back at its smooth top first
             let steeper = if s1.abs() > s2.abs() { t1 } else { t2 };
-            if let Some(top) = smooth_from(fam, steeper).filter(|(p, _)| p.alpha >= a0) {
+            if let Some(top) = smooth_from(fam, steeper).filter(|(p, _)| p.a >= a0) {
                 return Some(top);
             }
         }
@@ -168,10 +168,7 @@ pub(super) fn cap_corner(
         if step.abs() <= SETTLED * a.abs()
             || (step.abs() >= 0.5 * last && step.abs() <= NEAR * a.abs())
         {
-            let p = AlphaBeta {
-                alpha: a,
-                beta: arcs.0.1,
-            };
+            let p = WallPoint { a, b: arcs.0.1 };
             return Some((p, [arcs.0.0, arcs.1.0]));
         }
         last = step.abs();
@@ -241,8 +238,8 @@ pub(super) fn cap_by_levels(
             return None;
         }
         tried = l.width();
-        let c = cap_top(fam, l.a, l.ends).filter(|c| c.alpha > l.a)?;
-        exact_top(fam, cf, c.alpha, c.beta).map(|a| (a, c.beta))
+        let c = cap_top(fam, l.a, l.ends).filter(|c| c.a > l.a)?;
+        exact_top(fam, cf, c.a, c.b).map(|a| (a, c.b))
     };
     let mut steps = 0;
     // grow the bracket until the cap is gone
@@ -307,8 +304,8 @@ fn arc_at(fam: &AffineFamily, theta: f64, a: f64) -> Option<(f64, f64, f64)> {
         // convergence at a ratio of 1e-7 per step
         let h = SLOPE_STEP * th.min(PI - th);
         let q = curve_point(fam, th + h)?;
-        let (da, db) = ((q.alpha - p.alpha) / h, (q.beta - p.beta) / h);
-        let step = (p.alpha - a) / da;
+        let (da, db) = ((q.a - p.a) / h, (q.b - p.b) / h);
+        let step = (p.a - a) / da;
         let next = th - step;
         if !(next > 0.0 && next < PI) || step.abs() > last {
             return None; // off the arc, or diverging: the arc does not reach a
@@ -316,7 +313,7 @@ fn arc_at(fam: &AffineFamily, theta: f64, a: f64) -> Option<(f64, f64, f64)> {
         // settled: a step at the rounding of a(θ), or one that no longer shrinks near it
         if step.abs() <= SETTLED * th || (step.abs() >= 0.5 * last && step.abs() <= NEAR * th) {
             let p = curve_point(fam, next)?;
-            return Some((next, p.beta, db / da));
+            return Some((next, p.b, db / da));
         }
         th = next;
         last = step.abs();

@@ -32,7 +32,7 @@
 //! [`BandMax::Undecided`], and the region decides it ([`crate::region::alpha_max_within`]).
 
 use crate::boundary::{
-    AlphaBeta, Interval, RootLine, WallLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    Interval, RootLine, WallLine, WallPoint, curve_end, curve_point, curve_point_at, dalpha_dtheta,
     minus_one_line, plus_one_line,
 };
 use crate::cayley::CayleyFamily;
@@ -134,13 +134,13 @@ fn warm_start(
     } else {
         cap::smooth_from(fam, near.arcs[0])?
     };
-    if !(p.beta >= band.0 && p.beta <= band.1) {
+    if !(p.b >= band.0 && p.b <= band.1) {
         return None;
     }
-    let alpha = exact_top(fam, cf, p.alpha, p.beta)?;
+    let alpha = exact_top(fam, cf, p.a, p.b)?;
     let found = Found {
         alpha,
-        beta: p.beta,
+        beta: p.b,
         exact: true,
         arcs,
     };
@@ -197,7 +197,7 @@ fn ascend(
     band: (f64, f64),
     mut first: Option<Certificate>,
 ) -> (BandMax, Option<CurveTop>) {
-    let mut cands: Option<Vec<AlphaBeta>> = None;
+    let mut cands: Option<Vec<WallPoint>> = None;
     for _ in 0..CAP_ROUNDS {
         let cert = first
             .take()
@@ -239,7 +239,7 @@ fn next_top(
     cf: &CayleyFamily,
     found: Found,
     cap: Option<Level>,
-    cands: &mut Option<Vec<AlphaBeta>>,
+    cands: &mut Option<Vec<WallPoint>>,
     band: (f64, f64),
 ) -> Option<Found> {
     let exact = |(alpha, beta): (f64, f64)| Found {
@@ -250,11 +250,11 @@ fn next_top(
     };
     let inside = |b: f64| b >= band.0 && b <= band.1;
     let top = cap.and_then(|c| cap_top_with_arcs(fam, c.a, c.ends));
-    top.filter(|(c, _)| c.alpha > found.alpha && inside(c.beta))
+    top.filter(|(c, _)| c.a > found.alpha && inside(c.b))
         .and_then(|(c, arcs)| {
-            exact_top(fam, cf, c.alpha, c.beta).map(|a| Found {
+            exact_top(fam, cf, c.a, c.b).map(|a| Found {
                 arcs,
-                ..exact((a, c.beta))
+                ..exact((a, c.b))
             })
         })
         .or_else(|| {
@@ -263,7 +263,7 @@ fn next_top(
             highest_candidate(fam, cf, list, Some(found), band).filter(|f| f.alpha > found.alpha)
         })
         .or_else(|| {
-            let guess = top.map_or(f64::NAN, |(c, _)| c.alpha);
+            let guess = top.map_or(f64::NAN, |(c, _)| c.a);
             cap_by_levels(fam, cf, cap?, guess).map(exact)
         })
 }
@@ -281,21 +281,21 @@ fn sorted_candidates(
     (b_lo, b_hi): (f64, f64),
     floor: f64,
     windows: &[(f64, f64)],
-) -> Vec<AlphaBeta> {
+) -> Vec<WallPoint> {
     // located candidates far below the floor or outside the band are not polished
-    let keep = |p: AlphaBeta| {
-        let slack = CORNER_REACH * p.alpha.abs().max(p.beta.abs());
-        p.alpha > floor - slack && p.beta >= b_lo - slack && p.beta <= b_hi + slack
+    let keep = |p: WallPoint| {
+        let slack = CORNER_REACH * p.a.abs().max(p.b.abs());
+        p.a > floor - slack && p.b >= b_lo - slack && p.b <= b_hi + slack
     };
     let (a1, a2) = (&cf.p0_pb, &cf.pb_pk);
     let stationary = poly::mul_diff_trimmed(&derivative(a1), a2, a1, &derivative(a2));
-    let mut cands: Vec<AlphaBeta> = positive_roots_within(&stationary, windows)
+    let mut cands: Vec<WallPoint> = positive_roots_within(&stationary, windows)
         .into_iter()
         .filter_map(|u| curve_point(fam, angle(u)))
         .chain(line_corners(fam, cf, &keep, floor, (b_lo, b_hi), windows))
-        .filter(|p| p.beta >= b_lo && p.beta <= b_hi && p.alpha.is_finite())
+        .filter(|p| p.b >= b_lo && p.b <= b_hi && p.a.is_finite())
         .collect();
-    cands.sort_by(|p, q| q.alpha.total_cmp(&p.alpha));
+    cands.sort_by(|p, q| q.a.total_cmp(&p.a));
     cands
 }
 
@@ -325,9 +325,9 @@ fn top_interval(fam: &AffineFamily, cf: &CayleyFamily, b: f64) -> Option<Interva
 /// one Schur–Cohn recursion instead of a line decomposition).
 fn exact_top(fam: &AffineFamily, cf: &CayleyFamily, a: f64, b: f64) -> Option<f64> {
     let mut coeffs = vec![0.0; fam.degree() + 1];
-    let below = AlphaBeta {
-        alpha: a - 0.5 * CONFIRM_REL * a.abs(),
-        beta: b,
+    let below = WallPoint {
+        a: a - 0.5 * CONFIRM_REL * a.abs(),
+        b,
     };
     if surely_outside(fam, below, &mut coeffs) {
         return None;
@@ -358,36 +358,36 @@ const NO_ARCS: [f64; 2] = [f64::NAN; 2];
 fn highest_candidate(
     fam: &AffineFamily,
     cf: &CayleyFamily,
-    cands: &[AlphaBeta],
+    cands: &[WallPoint],
     floor: Option<Found>,
     band: (f64, f64),
 ) -> Option<Found> {
     let mut best = floor;
     let mut coeffs = vec![0.0; fam.degree() + 1];
     for c in cands {
-        if best.is_some_and(|b| c.alpha <= b.alpha) {
+        if best.is_some_and(|b| c.a <= b.alpha) {
             break;
         }
         if surely_outside(fam, *c, &mut coeffs) {
             continue;
         }
-        let iv = top_interval(fam, cf, c.beta);
+        let iv = top_interval(fam, cf, c.b);
         let at = iv.map(|iv| iv.hi);
         if let Some(iv) = iv.filter(|iv| best.is_none_or(|b| iv.hi > b.alpha)) {
             best = Some(Found {
                 alpha: iv.hi,
-                beta: c.beta,
+                beta: c.b,
                 exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
                 arcs: NO_ARCS,
             });
         }
-        if at.is_some_and(|a| a >= c.alpha - ATTAINED_REL * c.alpha.abs()) {
+        if at.is_some_and(|a| a >= c.a - ATTAINED_REL * c.a.abs()) {
             break;
         }
         if closes_on(fam, cf, *c, band) {
             return Some(Found {
-                alpha: c.alpha,
-                beta: c.beta,
+                alpha: c.a,
+                beta: c.b,
                 exact: false,
                 arcs: NO_ARCS,
             });
@@ -399,8 +399,8 @@ fn highest_candidate(
 /// A root of p at the candidate lies surely outside |z| < 1 + [`CONFIRM_REL`]: the candidate
 /// is not on the stable region's boundary (its pair on the circle aside, every root of a
 /// boundary wall is inside or on the circle).
-fn surely_outside(fam: &AffineFamily, c: AlphaBeta, coeffs: &mut [f64]) -> bool {
-    fam.coefficients_into(c.alpha, c.beta, coeffs);
+fn surely_outside(fam: &AffineFamily, c: WallPoint, coeffs: &mut [f64]) -> bool {
+    fam.coefficients_into(c.a, c.b, coeffs);
     if product_outside(coeffs) {
         return true;
     }
@@ -421,14 +421,14 @@ fn product_outside(c: &[f64]) -> bool {
 
 /// Whether the stable intervals at dampings beside a corner's close on it: a stable interval
 /// at b ± δ (δ = 1e-6 of the corner's size) reaching within 1e-4 of its stiffness.
-fn closes_on(fam: &AffineFamily, cf: &CayleyFamily, c: AlphaBeta, band: (f64, f64)) -> bool {
-    let size = c.alpha.abs().max(c.beta.abs()).max(f64::MIN_POSITIVE);
+fn closes_on(fam: &AffineFamily, cf: &CayleyFamily, c: WallPoint, band: (f64, f64)) -> bool {
+    let size = c.a.abs().max(c.b.abs()).max(f64::MIN_POSITIVE);
     let delta = CONFIRM_REL * size;
-    [c.beta - delta, c.beta + delta]
+    [c.b - delta, c.b + delta]
         .into_iter()
         .filter(|&b| b >= band.0 && b <= band.1)
         .filter_map(|b| top(fam, cf, b))
-        .any(|a| (a - c.alpha).abs() <= 1e-4 * size)
+        .any(|a| (a - c.a).abs() <= 1e-4 * size)
 }
 
 /// What the damping axis at a stiffness just above K_max holds inside the band.
@@ -516,17 +516,17 @@ fn separate_component(
         let step = (w[1] - w[0]) / (HUMP_SAMPLES + 1) as f64;
         // the first sample above the level that may lie on the boundary, inside the band
         let on_hump = hump_samples(fam, w[0], step).find(|p| {
-            p.alpha > level
-                && p.alpha.is_finite()
-                && p.beta >= lo
-                && p.beta <= hi
+            p.a > level
+                && p.a.is_finite()
+                && p.b >= lo
+                && p.b <= hi
                 && !surely_outside(fam, *p, &mut coeffs)
         });
         let Some(p) = on_hump else { continue };
-        if let Some(iv) = top_interval(fam, cf, p.beta).filter(|iv| iv.hi > level) {
+        if let Some(iv) = top_interval(fam, cf, p.b).filter(|iv| iv.hi > level) {
             return Some(Found {
                 alpha: iv.hi,
-                beta: p.beta,
+                beta: p.b,
                 exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
                 arcs: NO_ARCS,
             });
@@ -545,7 +545,7 @@ const WINDOW_SLACK: f64 = 1e-9;
 
 /// The curve's points at θ0 + j·step, j = 1 … [`HUMP_SAMPLES`]: z stepped along the circle by
 /// one rotation (no sine per point) where θ ≥ [`SHIFTED_THETA`], from the shifted form below.
-fn hump_samples(fam: &AffineFamily, theta0: f64, step: f64) -> impl Iterator<Item = AlphaBeta> {
+fn hump_samples(fam: &AffineFamily, theta0: f64, step: f64) -> impl Iterator<Item = WallPoint> {
     let rotation = crate::circle::unit(step);
     let mut z = crate::circle::unit(theta0);
     (1..=HUMP_SAMPLES).filter_map(move |j| {
@@ -562,11 +562,8 @@ fn hump_samples(fam: &AffineFamily, theta0: f64, step: f64) -> impl Iterator<Ite
 /// The damping axis at stiffness a.
 fn damping_axis(alpha: f64) -> WallLine {
     WallLine {
-        from: AlphaBeta { alpha, beta: 0.0 },
-        dir: AlphaBeta {
-            alpha: 0.0,
-            beta: 1.0,
-        },
+        from: WallPoint { a: alpha, b: 0.0 },
+        dir: WallPoint { a: 0.0, b: 1.0 },
     }
 }
 
@@ -583,9 +580,9 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
             alpha_stable: f.alpha - CONFIRM_REL * f.alpha.abs(),
         });
     }
-    let cand = AlphaBeta {
-        alpha: f.alpha,
-        beta: f.beta,
+    let cand = WallPoint {
+        a: f.alpha,
+        b: f.beta,
     };
     confirm_max(fam, cand, band, f.alpha.abs().max(f.beta.abs()))
 }
@@ -596,13 +593,13 @@ fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<Confirmed
 fn line_corners(
     fam: &AffineFamily,
     cf: &CayleyFamily,
-    keep: &dyn Fn(AlphaBeta) -> bool,
+    keep: &dyn Fn(WallPoint) -> bool,
     floor: f64,
     band: (f64, f64),
     windows: &[(f64, f64)],
-) -> Vec<AlphaBeta> {
+) -> Vec<WallPoint> {
     let (a1, a2, b1) = (&cf.p0_pb, &cf.pb_pk, &poly_neg(&cf.p0_pk));
-    let mut out: Vec<AlphaBeta> = Vec::new();
+    let mut out: Vec<WallPoint> = Vec::new();
     let lines: Vec<RootLine> = [plus_one_line(fam), minus_one_line(fam)]
         .into_iter()
         .flatten()
@@ -661,8 +658,8 @@ fn corner_on_line(
     fam: &AffineFamily,
     l: &RootLine,
     theta: f64,
-    keep: &dyn Fn(AlphaBeta) -> bool,
-) -> Option<AlphaBeta> {
+    keep: &dyn Fn(WallPoint) -> bool,
+) -> Option<WallPoint> {
     if !keep(curve_point(fam, theta)?) {
         return None;
     }
@@ -681,13 +678,13 @@ fn corner_on_line(
 }
 
 /// Where the z = 1 and z = −1 lines meet (None when parallel).
-fn lines_meet(l1: &RootLine, l2: &RootLine) -> Option<AlphaBeta> {
+fn lines_meet(l1: &RootLine, l2: &RootLine) -> Option<WallPoint> {
     let det = l1.pk * l2.pb - l1.pb * l2.pk;
-    let p = AlphaBeta {
-        alpha: (-l1.p0 * l2.pb + l1.pb * l2.p0) / det,
-        beta: (-l1.pk * l2.p0 + l1.p0 * l2.pk) / det,
+    let p = WallPoint {
+        a: (-l1.p0 * l2.pb + l1.pb * l2.p0) / det,
+        b: (-l1.pk * l2.p0 + l1.p0 * l2.pk) / det,
     };
-    (p.alpha.is_finite() && p.beta.is_finite()).then_some(p)
+    (p.a.is_finite() && p.b.is_finite()).then_some(p)
 }
 
 fn poly_neg(c: &[f64]) -> Vec<f64> {

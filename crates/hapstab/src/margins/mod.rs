@@ -31,7 +31,7 @@ pub mod report;
 
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, CircleTable, WallLine, line_crossings_tabulated, stable_between};
+use crate::boundary::{CircleTable, WallLine, WallPoint, line_crossings_tabulated, stable_between};
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
 use crate::model::Loop;
@@ -236,7 +236,7 @@ fn frequency_margins(
     (a, b): (f64, f64),
     modes: &[f64],
 ) -> (Margins, GainScan) {
-    let p = AlphaBeta { alpha: a, beta: b };
+    let p = WallPoint { a, b };
     let hz = |theta: f64| theta / (2.0 * std::f64::consts::PI * lp.period);
     let table = CircleTable::on(fam, margin_grid(fam, modes));
     // the factors on two lines and the readings of the response, side by side on one table

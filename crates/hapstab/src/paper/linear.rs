@@ -14,7 +14,7 @@
 
 use serde::Serialize;
 
-use crate::boundary::{AlphaBeta, WallLine, line_crossings, stable_stiffness_intervals};
+use crate::boundary::{WallLine, WallPoint, line_crossings, stable_stiffness_intervals};
 use crate::error::{Error, Result, finite};
 use crate::model::{Loop, PlantModel};
 use crate::paper::NormalizedFamily;
@@ -387,13 +387,13 @@ fn level_lines(fam: &NormalizedFamily, level: f64) -> Vec<WallLine> {
         .map(|s| {
             let q = 1.0 + s * level;
             WallLine {
-                from: AlphaBeta {
-                    alpha: (delta / c - s * level * g) / q,
-                    beta: 0.0,
+                from: WallPoint {
+                    a: (delta / c - s * level * g) / q,
+                    b: 0.0,
                 },
-                dir: AlphaBeta {
-                    alpha: 1.0 / (c * q),
-                    beta: 1.0,
+                dir: WallPoint {
+                    a: 1.0 / (c * q),
+                    b: 1.0,
                 },
             }
         })

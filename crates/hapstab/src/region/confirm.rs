@@ -61,11 +61,11 @@ pub struct ConfirmedMax {
 /// tolerance elsewhere). None when either side disagrees: the exact intervals at b* decide.
 fn attained_locally(
     stable: &mut impl FnMut(f64, f64) -> bool,
-    cand: AlphaBeta,
+    cand: WallPoint,
     delta: f64,
 ) -> Option<f64> {
-    let b = cand.beta;
-    (stable(cand.alpha - delta, b) && !stable(cand.alpha + delta, b)).then_some(cand.alpha)
+    let b = cand.b;
+    (stable(cand.a - delta, b) && !stable(cand.a + delta, b)).then_some(cand.a)
 }
 
 /// The highest finite end of the stable intervals at damping b.
@@ -83,7 +83,7 @@ fn top(fam: &AffineFamily, table: &CircleTable, b: f64) -> Option<f64> {
 /// the verdict.
 pub fn confirm_max(
     fam: &AffineFamily,
-    cand: AlphaBeta,
+    cand: WallPoint,
     band: (f64, f64),
     scale: f64,
 ) -> Option<ConfirmedMax> {
@@ -96,15 +96,11 @@ pub fn confirm_max(
 pub fn confirm_max_tabulated(
     fam: &AffineFamily,
     table: &LazyCircleTable,
-    cand: AlphaBeta,
+    cand: WallPoint,
     (b_lo, b_hi): (f64, f64),
     scale: f64,
 ) -> Option<ConfirmedMax> {
-    let unit = cand
-        .alpha
-        .abs()
-        .max(UNIT_FLOOR * scale)
-        .max(f64::MIN_POSITIVE);
+    let unit = cand.a.abs().max(UNIT_FLOOR * scale).max(f64::MIN_POSITIVE);
     let mut coeffs = vec![0.0; fam.degree() + 1];
     // Every root inside the unit circle, certified (Schur–Cohn or the argument principle), as
     // the region's faces are classified: near a wedge's corner the walls confirmed inside may
@@ -113,28 +109,28 @@ pub fn confirm_max_tabulated(
     let delta = CONFIRM_REL * unit;
     let attained = |t: f64| ConfirmedMax {
         alpha: t,
-        beta: cand.beta,
+        beta: cand.b,
         attained: true,
-        beta_stable: cand.beta,
+        beta_stable: cand.b,
         alpha_stable: t - delta,
     };
     if let Some(t) = attained_locally(&mut stable, cand, delta) {
         return Some(attained(t));
     }
     let table = table.get();
-    let highest = top(fam, table, cand.beta);
-    if let Some(t) = highest.filter(|t| (t - cand.alpha).abs() <= AGREE_REL * unit) {
-        if stable(t + delta, cand.beta) {
+    let highest = top(fam, table, cand.b);
+    if let Some(t) = highest.filter(|t| (t - cand.a).abs() <= AGREE_REL * unit) {
+        if stable(t + delta, cand.b) {
             return None;
         }
-        if stable(t - delta, cand.beta) {
+        if stable(t - delta, cand.b) {
             return Some(attained(t));
         }
     }
-    if highest.is_some_and(|t| t > cand.alpha + AGREE_REL * unit) {
+    if highest.is_some_and(|t| t > cand.a + AGREE_REL * unit) {
         return None;
     }
-    if stable(cand.alpha + delta, cand.beta) {
+    if stable(cand.a + delta, cand.b) {
         return None;
     }
     // Beside a corner the stable intervals shrink to the corner: the nearest damping (by
@@ -145,27 +141,23 @@ pub fn confirm_max_tabulated(
     // whichever is larger: a corner at the wall-free point of an undamped plant (K_max = 0,
     // approached as B → 0) has walls that double precision certifies only 1e-9 of the region
     // away from it.
-    let floor = cand.alpha - CONFIRM_REL * cand.alpha.abs().max(scale);
-    let b_unit = cand
-        .beta
-        .abs()
-        .max(UNIT_FLOOR * scale)
-        .max(f64::MIN_POSITIVE);
+    let floor = cand.a - CONFIRM_REL * cand.a.abs().max(scale);
+    let b_unit = cand.b.abs().max(UNIT_FLOOR * scale).max(f64::MIN_POSITIVE);
     (3..=15)
         .rev()
-        .flat_map(|k| [1.0, -1.0].map(|s| cand.beta + s * b_unit * 10f64.powi(-k)))
+        .flat_map(|k| [1.0, -1.0].map(|s| cand.b + s * b_unit * 10f64.powi(-k)))
         .filter(|&b| b >= b_lo && b <= b_hi)
         .find_map(|b| {
             stable_stiffness_intervals_tabulated(fam, table, b)
                 .iter()
                 .filter(|iv| iv.lo.is_finite() && iv.hi.is_finite() && iv.hi > iv.lo)
                 .flat_map(|iv| (1..=WEDGE_STEPS).map(|j| iv.hi - (iv.hi - iv.lo) * 0.5f64.powi(j)))
-                .find(|&m| m >= floor && m <= cand.alpha && stable(m, b))
+                .find(|&m| m >= floor && m <= cand.a && stable(m, b))
                 .map(|m| (b, m))
         })
         .map(|(b, m)| ConfirmedMax {
-            alpha: cand.alpha,
-            beta: cand.beta,
+            alpha: cand.a,
+            beta: cand.b,
             attained: false,
             beta_stable: b,
             alpha_stable: m,

@@ -65,7 +65,7 @@ pub(super) fn faces(g: &Graph) -> Vec<Vec<(usize, bool)>> {
 }
 
 /// A face as its cycle of half-edges and its vertices.
-pub(super) type Face = (Vec<(usize, bool)>, Vec<AlphaBeta>);
+pub(super) type Face = (Vec<(usize, bool)>, Vec<WallPoint>);
 
 /// Euler's formula for a planar graph with C connected components, counted in boundary
 /// cycles (each component's outer cycle separately): V − E + cycles = 2C. A walk that
@@ -96,7 +96,7 @@ pub(super) fn euler_holds(g: &Graph, cycles: usize) -> bool {
 
 /// True when an island lies inside a face that is not bounded by the island itself: the
 /// face has a hole.
-pub(super) fn has_hole(islands: &[(AlphaBeta, Vec<usize>)], faces: &[Face]) -> bool {
+pub(super) fn has_hole(islands: &[(WallPoint, Vec<usize>)], faces: &[Face]) -> bool {
     islands.iter().any(|(p, edges)| {
         faces
             .iter()
@@ -120,8 +120,7 @@ pub(super) fn stable_faces(
                 return None;
             }
             let ip = interior_point(&pts)?;
-            (inside_unit_circle(fam, ip.alpha, ip.beta, &mut coeffs) == Some(true))
-                .then_some((f, pts))
+            (inside_unit_circle(fam, ip.a, ip.b, &mut coeffs) == Some(true)).then_some((f, pts))
         })
         .collect()
 }
@@ -131,7 +130,7 @@ pub(super) fn stable_faces(
 pub(super) fn island_points(
     g: &Graph,
     cycles: &[Vec<(usize, bool)>],
-) -> Vec<(AlphaBeta, Vec<usize>)> {
+) -> Vec<(WallPoint, Vec<usize>)> {
     cycles
         .iter()
         .filter(|f| {
@@ -146,7 +145,7 @@ pub(super) fn island_points(
         .collect()
 }
 
-pub(super) fn face_points(g: &Graph, f: &[(usize, bool)]) -> Vec<AlphaBeta> {
+pub(super) fn face_points(g: &Graph, f: &[(usize, bool)]) -> Vec<WallPoint> {
     f.iter()
         .flat_map(|&(e, fwd)| {
             let poly = &g.edges[e].2;
@@ -170,7 +169,7 @@ pub(super) fn faces_size(faces: &[Face]) -> f64 {
 /// A point strictly inside a counter-clockwise polygon, as deep inside as a few probes find:
 /// halfway across the face from the midpoint of one of its longest edges, checked by the
 /// even-odd rule; else a grid point inside.
-pub(super) fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
+pub(super) fn interior_point(v: &[WallPoint]) -> Option<WallPoint> {
     let n = v.len();
     let pts: Vec<P> = v.iter().map(|q| P::of(*q)).collect();
     let mut idx: Vec<usize> = (0..n).collect();
@@ -209,9 +208,9 @@ pub(super) fn interior_point(v: &[AlphaBeta]) -> Option<AlphaBeta> {
     let (x0, x1, y0, y1) = bbox(v.iter().map(|p| P::of(*p)))?;
     let m = 24;
     (0..m * m).find_map(|k| {
-        let p = AlphaBeta {
-            alpha: x0 + (x1 - x0) * ((k % m) as f64 + 0.5 + GRID_JITTER) / m as f64,
-            beta: y0 + (y1 - y0) * ((k / m) as f64 + 0.5 + GRID_JITTER_Y) / m as f64,
+        let p = WallPoint {
+            a: x0 + (x1 - x0) * ((k % m) as f64 + 0.5 + GRID_JITTER) / m as f64,
+            b: y0 + (y1 - y0) * ((k / m) as f64 + 0.5 + GRID_JITTER_Y) / m as f64,
         };
         point_in(v, p).then_some(p)
     })

@@ -3,25 +3,25 @@
 
 use super::*;
 
-pub(super) fn shoelace(v: &[AlphaBeta]) -> f64 {
+pub(super) fn shoelace(v: &[WallPoint]) -> f64 {
     let n = v.len();
     let mut s = 0.0;
     for i in 0..n {
         let (p, q) = (v[i], v[(i + 1) % n]);
-        s += p.alpha * q.beta - q.alpha * p.beta;
+        s += p.a * q.b - q.a * p.b;
     }
     0.5 * s
 }
 
-pub(super) fn point_in(v: &[AlphaBeta], p: AlphaBeta) -> bool {
+pub(super) fn point_in(v: &[WallPoint], p: WallPoint) -> bool {
     let n = v.len();
     let mut inside = false;
     let mut j = n.wrapping_sub(1);
     for i in 0..n {
         let (a, b) = (v[i], v[j]);
-        if (a.beta > p.beta) != (b.beta > p.beta) {
-            let x = a.alpha + (p.beta - a.beta) / (b.beta - a.beta) * (b.alpha - a.alpha);
-            if p.alpha < x {
+        if (a.b > p.b) != (b.b > p.b) {
+            let x = a.a + (p.b - a.b) / (b.b - a.b) * (b.a - a.a);
+            if p.a < x {
                 inside = !inside;
             }
         }
@@ -37,18 +37,15 @@ pub(super) struct P {
 }
 
 impl P {
-    pub(super) fn ab(self) -> AlphaBeta {
-        AlphaBeta {
-            alpha: self.x,
-            beta: self.y,
+    pub(super) fn ab(self) -> WallPoint {
+        WallPoint {
+            a: self.x,
+            b: self.y,
         }
     }
 
-    pub(super) fn of(p: AlphaBeta) -> Self {
-        P {
-            x: p.alpha,
-            y: p.beta,
-        }
+    pub(super) fn of(p: WallPoint) -> Self {
+        P { x: p.a, y: p.b }
     }
 
     pub(super) fn finite(self) -> bool {

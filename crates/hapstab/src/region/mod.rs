@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::boundary::{
-    AlphaBeta, LazyCircleTable, RootLine, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    LazyCircleTable, RootLine, WallPoint, curve_end, curve_point, curve_point_at, dalpha_dtheta,
     minus_one_line, plus_one_line,
 };
 use crate::closed_loop::AffineFamily;
@@ -95,7 +95,7 @@ pub struct Edge {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Polygon {
     /// Vertices in counter-clockwise order.
-    pub vertices: Vec<AlphaBeta>,
+    pub vertices: Vec<WallPoint>,
     /// Edges in order; edge i covers vertices edges[i].start ..= edges[i+1].start.
     pub edges: Vec<Edge>,
     /// For each vertex on a complex-pair arc, the angle θ of the root pair e^{±iθ} on the
@@ -110,7 +110,7 @@ impl Polygon {
     }
 
     /// True iff the point lies inside (even-odd rule).
-    pub fn contains(&self, p: AlphaBeta) -> bool {
+    pub fn contains(&self, p: WallPoint) -> bool {
         point_in(&self.vertices, p)
     }
 
@@ -148,7 +148,7 @@ impl StableRegion {
     /// True iff (a, b) lies inside one of the polygons. The polygons follow the exact boundary
     /// to their chord tolerance (`rel_tol` × [`StableRegion::size`]); a wall closer than that
     /// to [`StableRegion::boundary_distance`] is decided by the point test, not by this.
-    pub fn contains(&self, p: AlphaBeta) -> bool {
+    pub fn contains(&self, p: WallPoint) -> bool {
         self.polygons.iter().any(|q| q.contains(p))
     }
 
@@ -164,12 +164,12 @@ impl StableRegion {
         crate::extent::Extent::of(
             self.polygons
                 .iter()
-                .flat_map(|q| q.vertices.iter().map(|v| (v.alpha, v.beta))),
+                .flat_map(|q| q.vertices.iter().map(|v| (v.a, v.b))),
         )
     }
 
     /// Euclidean distance from a wall to the nearest polygon edge (infinite when empty).
-    pub fn boundary_distance(&self, p: AlphaBeta) -> f64 {
+    pub fn boundary_distance(&self, p: WallPoint) -> f64 {
         let q = P::of(p);
         self.polygons
             .iter()
@@ -482,9 +482,9 @@ fn confirmed(
     if r.polygons.is_empty() {
         return Ok(r);
     }
-    let cand = AlphaBeta {
-        alpha: r.alpha_max,
-        beta: r.beta_at_alpha_max,
+    let cand = WallPoint {
+        a: r.alpha_max,
+        b: r.beta_at_alpha_max,
     };
     let size = r.size();
     match confirm_max_tabulated(fam, table, cand, (f64::NEG_INFINITY, f64::INFINITY), size) {
@@ -498,7 +498,7 @@ fn confirmed(
         }
         None => {
             let h = 1e-3 * size;
-            Err((cand.alpha - h, cand.alpha + h, cand.beta - h, cand.beta + h))
+            Err((cand.a - h, cand.a + h, cand.b - h, cand.b + h))
         }
     }
 }

@@ -159,7 +159,7 @@ pub(super) fn alpha_max_of(fam: &AffineFamily, polys: &[Polygon]) -> (f64, f64) 
 pub(super) fn polygon_alpha_max(fam: &AffineFamily, poly: &Polygon) -> (f64, f64) {
     let n = poly.vertices.len();
     let imax = (0..n)
-        .max_by(|&i, &j| poly.vertices[i].alpha.total_cmp(&poly.vertices[j].alpha))
+        .max_by(|&i, &j| poly.vertices[i].a.total_cmp(&poly.vertices[j].a))
         .unwrap_or(0);
     refine_vertex_max(fam, poly, imax)
 }
@@ -185,23 +185,23 @@ pub fn alpha_max_within(
             alpha_stable: region.alpha_stable,
         }));
     }
-    let mut best: Option<AlphaBeta> = None;
+    let mut best: Option<WallPoint> = None;
     let mut offer = |a: f64, b: f64| {
-        if a.is_finite() && best.is_none_or(|p| a > p.alpha) {
-            best = Some(AlphaBeta { alpha: a, beta: b });
+        if a.is_finite() && best.is_none_or(|p| a > p.a) {
+            best = Some(WallPoint { a, b });
         }
     };
     for poly in &region.polygons {
         let v = &poly.vertices;
         let imax = (0..v.len())
-            .filter(|&i| inside(v[i].beta))
-            .max_by(|&i, &j| v[i].alpha.total_cmp(&v[j].alpha));
+            .filter(|&i| inside(v[i].b))
+            .max_by(|&i, &j| v[i].a.total_cmp(&v[j].a));
         if let Some(i) = imax {
             let (a, b) = refine_vertex_max(fam, poly, i);
             if inside(b) {
                 offer(a, b);
             } else {
-                offer(v[i].alpha, v[i].beta);
+                offer(v[i].a, v[i].b);
             }
         }
     }
@@ -226,7 +226,7 @@ pub fn alpha_max_within(
                 "the largest stable stiffness over the damping band, {} at b = {}, is not \
                  confirmed by the exact stable intervals there; the stable intervals at fixed \
                  damping remain available",
-                cand.alpha, cand.beta
+                cand.a, cand.b
             ))
         })
 }
@@ -235,7 +235,7 @@ pub fn alpha_max_within(
 /// da/dθ = 0 solved by Brent's method on the analytic derivative.
 pub(super) fn refine_vertex_max(fam: &AffineFamily, poly: &Polygon, imax: usize) -> (f64, f64) {
     let n = poly.vertices.len();
-    let mut cand = (poly.vertices[imax].alpha, poly.vertices[imax].beta);
+    let mut cand = (poly.vertices[imax].a, poly.vertices[imax].b);
     if poly.edges.iter().any(|e| e.start == imax) {
         return cand; // a corner
     }
@@ -246,9 +246,9 @@ pub(super) fn refine_vertex_max(fam: &AffineFamily, poly: &Polygon, imax: usize)
         if ga.signum() != gb.signum() {
             let t = crate::bracket::sign_change(a, b, |t| dalpha_dtheta(fam, t));
             if let Some(p) = curve_point(fam, t)
-                && p.alpha >= cand.0
+                && p.a >= cand.0
             {
-                cand = (p.alpha, p.beta);
+                cand = (p.a, p.b);
             }
         }
     }

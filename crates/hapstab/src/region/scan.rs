@@ -182,10 +182,10 @@ fn strand_polygon(run: &[Slice], k: usize) -> Option<Polygon> {
     if run.len() < 2 {
         return None;
     }
-    let at = |a: f64, b: f64| AlphaBeta { alpha: a, beta: b };
+    let at = |a: f64, b: f64| WallPoint { a, b };
     let right = run.iter().map(|s| at(s.ivs[k].hi, s.b));
     let left = run.iter().rev().map(|s| at(s.ivs[k].lo, s.b));
-    let vertices: Vec<AlphaBeta> = right.chain(left).collect();
+    let vertices: Vec<WallPoint> = right.chain(left).collect();
     let n = vertices.len();
     let arc = EdgeKind::Complex {
         theta_start: f64::NAN,
@@ -246,11 +246,7 @@ mod tests {
         ];
         let polys = joined(&slices);
         assert_eq!(polys.len(), 4);
-        let inside = |a: f64, b: f64| {
-            polys
-                .iter()
-                .any(|p| p.contains(AlphaBeta { alpha: a, beta: b }))
-        };
+        let inside = |a: f64, b: f64| polys.iter().any(|p| p.contains(WallPoint { a, b }));
         assert!(!inside(2.0, 3.0), "the hole");
         assert!(inside(0.5, 3.0) && inside(3.5, 3.0) && inside(2.0, 1.0) && inside(2.0, 5.0));
         let area: f64 = polys.iter().map(Polygon::area).sum();

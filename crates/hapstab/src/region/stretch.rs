@@ -73,14 +73,8 @@ fn along_a(&(fam, table): &Tabled<'_>, b: f64) -> Option<(f64, f64, f64)> {
 /// The same along the damping axis at stiffness a.
 fn along_b(&(fam, table): &Tabled<'_>, a: f64) -> Option<(f64, f64, f64)> {
     let line = WallLine {
-        from: AlphaBeta {
-            alpha: a,
-            beta: 0.0,
-        },
-        dir: AlphaBeta {
-            alpha: 0.0,
-            beta: 1.0,
-        },
+        from: WallPoint { a, b: 0.0 },
+        dir: WallPoint { a: 0.0, b: 1.0 },
     };
     span(&stable_between(
         fam,
@@ -141,8 +135,8 @@ pub(super) fn stretch(slices: Option<SliceBox>) -> Option<(f64, f64)> {
 pub(super) fn unstretched(mut r: StableRegion, (sx, sy): (f64, f64)) -> StableRegion {
     for poly in &mut r.polygons {
         for v in &mut poly.vertices {
-            v.alpha *= sx;
-            v.beta *= sy;
+            v.a *= sx;
+            v.b *= sy;
         }
     }
     r.alpha_max *= sx;

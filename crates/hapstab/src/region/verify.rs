@@ -9,7 +9,7 @@ use super::*;
 /// 10⁴–10⁵ vertices is indexed with three small allocations, where a vector per bucket of
 /// copied edges cost more in fresh memory pages than every point test together.
 pub(super) struct EdgeIndex<'a> {
-    vertices: Vec<&'a [AlphaBeta]>,
+    vertices: Vec<&'a [WallPoint]>,
     /// First edge number of each polygon (edge i of polygon j is starts[j] + i).
     starts: Vec<u32>,
     y0: f64,
@@ -24,7 +24,7 @@ const EDGE_BUCKETS: usize = 256;
 
 impl<'a> EdgeIndex<'a> {
     pub(super) fn new(region: &'a StableRegion) -> Self {
-        let vertices: Vec<&[AlphaBeta]> = region
+        let vertices: Vec<&[WallPoint]> = region
             .polygons
             .iter()
             .map(|p| p.vertices.as_slice())
@@ -39,7 +39,7 @@ impl<'a> EdgeIndex<'a> {
             .iter()
             .map(|v| {
                 v.iter()
-                    .map(|q| (((q.beta - y0) * per).max(0.0) as usize).min(nb - 1) as u16)
+                    .map(|q| (((q.b - y0) * per).max(0.0) as usize).min(nb - 1) as u16)
                     .collect()
             })
             .collect();
@@ -209,14 +209,8 @@ fn ray_suspects(fam: &AffineFamily, (x0, x1, y0, y1): BoxF) -> Vec<(P, bool)> {
                 (crate::boundary::WallLine::stiffness_axis(v), false),
                 (
                     crate::boundary::WallLine {
-                        from: AlphaBeta {
-                            alpha: v,
-                            beta: 0.0,
-                        },
-                        dir: AlphaBeta {
-                            alpha: 0.0,
-                            beta: 1.0,
-                        },
+                        from: WallPoint { a: v, b: 0.0 },
+                        dir: WallPoint { a: 0.0, b: 1.0 },
                     },
                     true,
                 ),
@@ -249,18 +243,13 @@ fn ray_suspects(fam: &AffineFamily, (x0, x1, y0, y1): BoxF) -> Vec<(P, bool)> {
 }
 
 /// A polygon vertex outside the box (beyond a rounding slack of its size), if any.
-pub(super) fn vertex_outside(region: &StableRegion, (x0, x1, y0, y1): BoxF) -> Option<AlphaBeta> {
+pub(super) fn vertex_outside(region: &StableRegion, (x0, x1, y0, y1): BoxF) -> Option<WallPoint> {
     let slack = 1e-9 * (x1 - x0).max(y1 - y0);
     region
         .polygons
         .iter()
         .flat_map(|q| q.vertices.iter())
-        .find(|v| {
-            v.alpha < x0 - slack
-                || v.alpha > x1 + slack
-                || v.beta < y0 - slack
-                || v.beta > y1 + slack
-        })
+        .find(|v| v.a < x0 - slack || v.a > x1 + slack || v.b < y0 - slack || v.b > y1 + slack)
         .copied()
 }
 

@@ -9,7 +9,7 @@
 //! A longer run: `HAPSTAB_EXTREME_CASES=1000000 cargo test -p hapstab --release --test engine extremes::`.
 
 use hapstab::AffineFamily;
-use hapstab::boundary::{AlphaBeta, stable_stiffness_intervals};
+use hapstab::boundary::{WallPoint, stable_stiffness_intervals};
 use hapstab::model::{Delay, Loop, MAX_PERIOD, MIN_PERIOD, Plant, VelocityEstimator};
 use hapstab::paper::PlantParams;
 use hapstab::params::Effective;
@@ -67,9 +67,9 @@ fn msd_family(
 }
 
 /// A wall the point test decides stable lies in the loop's region, or the region is refused.
-fn stable_wall_in_region_or_refused(fam: &AffineFamily, w: AlphaBeta) {
-    let mut c = fam.coefficients(w.alpha, w.beta);
-    assert_eq!(verdict_at(fam, w.alpha, w.beta, &mut c), Verdict::Stable);
+fn stable_wall_in_region_or_refused(fam: &AffineFamily, w: WallPoint) {
+    let mut c = fam.coefficients(w.a, w.b);
+    assert_eq!(verdict_at(fam, w.a, w.b, &mut c), Verdict::Stable);
     if let Ok(r) = stable_region(fam) {
         assert!(r.contains(w), "{w:?} outside {} polygons", r.polygons.len());
     }
@@ -88,11 +88,11 @@ fn region_agrees_on_a_grid(
     let mut c = fam.coefficients(0.0, 0.0);
     for i in 0..n {
         for j in 0..n {
-            let w = AlphaBeta {
-                alpha: a0 + (a1 - a0) * (i as f64 + 0.37) / n as f64,
-                beta: b0 + (b1 - b0) * (j as f64 + 0.61) / n as f64,
+            let w = WallPoint {
+                a: a0 + (a1 - a0) * (i as f64 + 0.37) / n as f64,
+                b: b0 + (b1 - b0) * (j as f64 + 0.61) / n as f64,
             };
-            let v = verdict_at(fam, w.alpha, w.beta, &mut c);
+            let v = verdict_at(fam, w.a, w.b, &mut c);
             if v != Verdict::Marginal && r.contains(w) != (v == Verdict::Stable) {
                 assert!(r.boundary_distance(w) <= band, "{v:?} at {w:?}");
             }
@@ -189,17 +189,17 @@ proptest! {
         };
         prop_assert!(r.area.is_finite());
         for p in &r.polygons {
-            prop_assert!(p.vertices.iter().all(|v| v.alpha.is_finite() && v.beta.is_finite()));
+            prop_assert!(p.vertices.iter().all(|v| v.a.is_finite() && v.b.is_finite()));
         }
         let verdict = verdict_at(&fam, a, b, &mut fam.coefficients(a, b));
         if verdict == Verdict::Marginal {
             return Ok(());
         }
         let stable = verdict == Verdict::Stable;
-        let inside = r.contains(AlphaBeta { alpha: a, beta: b });
+        let inside = r.contains(WallPoint { a, b });
         if stable != inside {
             // only allowed within the polygon's chord tolerance of its boundary
-            let w = AlphaBeta { alpha: a, beta: b };
+            let w = WallPoint { a, b };
             let (dist, tol) = (r.boundary_distance(w), DEFAULT_REL_TOL * r.size());
             prop_assert!(
                 dist <= tol,
@@ -222,22 +222,17 @@ fn undamped_corner_at_extreme_gamma() {
         Delay::samples(3).unwrap(),
         VelocityEstimator::Backward,
     );
-    let w = AlphaBeta {
-        alpha: -0.18875524752594028,
-        beta: -0.2914861175691367,
+    let w = WallPoint {
+        a: -0.18875524752594028,
+        b: -0.2914861175691367,
     };
     assert_eq!(
-        verdict_at(
-            &fam,
-            w.alpha,
-            w.beta,
-            &mut fam.coefficients(w.alpha, w.beta)
-        ),
+        verdict_at(&fam, w.a, w.b, &mut fam.coefficients(w.a, w.b)),
         Verdict::Stable
     );
     // the exact boundary at this damping (stable intervals) is 0.11 away in α
-    let ivs = stable_stiffness_intervals(&fam, w.beta);
-    assert!(ivs.iter().any(|iv| iv.lo < w.alpha && w.alpha < iv.hi));
+    let ivs = stable_stiffness_intervals(&fam, w.b);
+    assert!(ivs.iter().any(|iv| iv.lo < w.a && w.a < iv.hi));
     let r = stable_region(&fam).unwrap();
     if !r.contains(w) {
         assert!(r.boundary_distance(w) <= DEFAULT_REL_TOL * r.size());
@@ -264,13 +259,7 @@ fn region_far_smaller_than_its_curve_is_right_or_refused() {
         delay,
         VelocityEstimator::Average { samples: 15 },
     );
-    stable_wall_in_region_or_refused(
-        &fam,
-        AlphaBeta {
-            alpha: 0.0,
-            beta: 0.0,
-        },
-    );
+    stable_wall_in_region_or_refused(&fam, WallPoint { a: 0.0, b: 0.0 });
 }
 
 /// Refusals of the region stay rare over the random loops of the property above (the same
@@ -334,9 +323,9 @@ fn thin_region_is_not_called_empty() {
         Delay::samples(5).unwrap(),
         VelocityEstimator::LowPass { cutoff_hz: 1.0 },
     );
-    let w = AlphaBeta {
-        alpha: 0.0027542652682587252,
-        beta: 0.0,
+    let w = WallPoint {
+        a: 0.0027542652682587252,
+        b: 0.0,
     };
     stable_wall_in_region_or_refused(&fam, w);
 }
@@ -356,13 +345,7 @@ fn region_holds_the_stable_wall_free_point() {
         delay,
         VelocityEstimator::Average { samples: 18 },
     );
-    stable_wall_in_region_or_refused(
-        &fam,
-        AlphaBeta {
-            alpha: 0.0,
-            beta: 0.0,
-        },
-    );
+    stable_wall_in_region_or_refused(&fam, WallPoint { a: 0.0, b: 0.0 });
 }
 
 /// Undamped plants whose poles sit at e^{±iπ/4}…e^{±iπ/2} (γ = π²/16, π²/4): the boundary

@@ -23,7 +23,7 @@ fn two_mass_family() -> AffineFamily {
 /// boundary.
 #[test]
 fn wall_map_agrees_with_the_region() {
-    use hapstab::boundary::AlphaBeta;
+    use hapstab::boundary::WallPoint;
     for (name, lp) in general_loops().into_iter().skip(6) {
         let fam = family(&lp);
         let r = hapstab::region::stable_region(&fam).unwrap();
@@ -34,9 +34,9 @@ fn wall_map_agrees_with_the_region() {
         let mut agree = 0;
         for iy in 0..y.n {
             for ix in 0..x.n {
-                let p = AlphaBeta {
-                    alpha: x.value(ix),
-                    beta: y.value(iy),
+                let p = WallPoint {
+                    a: x.value(ix),
+                    b: y.value(iy),
                 };
                 agree += (map.is_stable(ix, iy) == r.contains(p)) as usize;
             }

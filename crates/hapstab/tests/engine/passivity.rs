@@ -429,7 +429,7 @@ fn passive_region_of_the_paper_loop_is_the_triangle() {
         let near = r
             .vertices
             .iter()
-            .map(|w| (w.stiffness - v.alpha).hypot(w.damping - v.beta))
+            .map(|w| (w.stiffness - v.a).hypot(w.damping - v.b))
             .fold(f64::INFINITY, f64::min);
         assert!(near < 1e-6 * delta, "corner {v:?} missing ({near})");
     }

@@ -3,7 +3,7 @@
 //! vertices) and from the independent grid method.
 
 use crate::common::general::{family, general_loops};
-use hapstab::boundary::{AlphaBeta, stable_stiffness_intervals};
+use hapstab::boundary::{WallPoint, stable_stiffness_intervals};
 use hapstab::map::{Axis, AxisRange, MapKind};
 use hapstab::paper::NormalizedFamily;
 use hapstab::paper::map::{MapSpec, compute_map};
@@ -43,11 +43,11 @@ fn vertices_lie_on_the_boundary() {
             let n = v.len();
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for p in v {
-                lo = lo.min(p.alpha.min(p.beta));
-                hi = hi.max(p.alpha.max(p.beta));
+                lo = lo.min(p.a.min(p.b));
+                hi = hi.max(p.a.max(p.b));
             }
             let size = hi - lo;
-            let corners: Vec<AlphaBeta> = poly.corners().iter().map(|&i| v[i]).collect();
+            let corners: Vec<WallPoint> = poly.corners().iter().map(|&i| v[i]).collect();
             let step = (n / 300).max(1);
             let mut c = vec![0.0; d + 4];
             let mut checked = 0;
@@ -62,7 +62,7 @@ fn vertices_lie_on_the_boundary() {
                 } else {
                     num_complex::Complex64::from_polar(1.0, th)
                 };
-                let res = fam.eval(p.alpha, p.beta, z).norm();
+                let res = fam.eval(p.a, p.b, z).norm();
                 assert!(res < 1e-12, "γ={g} δ={dl} d={d} corner {i}: |p| = {res}");
             }
             for i in (1..n).step_by(step) {
@@ -75,14 +75,14 @@ fn vertices_lie_on_the_boundary() {
                 // (ε^{1/2}): check the residual at the vertex's θ there, as at the corners.
                 let at_corner = corners
                     .iter()
-                    .any(|q| (q.alpha - p.alpha).hypot(q.beta - p.beta) < 1e-6 * size);
+                    .any(|q| (q.a - p.a).hypot(q.b - p.b) < 1e-6 * size);
                 if at_corner {
                     let z = num_complex::Complex64::from_polar(1.0, poly.thetas[i]);
-                    let res = fam.eval(p.alpha, p.beta, z).norm();
+                    let res = fam.eval(p.a, p.b, z).norm();
                     assert!(res < 1e-12, "γ={g} δ={dl} d={d} vertex {i}: |p| = {res}");
                     continue;
                 }
-                fam.coefficients_into(p.alpha, p.beta, &mut c);
+                fam.coefficients_into(p.a, p.b, &mut c);
                 let rho = spectral_radius_schur(&c);
                 assert!(
                     (rho - 1.0).abs() < 1e-9,
@@ -91,21 +91,21 @@ fn vertices_lie_on_the_boundary() {
                 // inward/outward by 1e-6 of the size along the normal, away from corners
                 let near_corner = corners
                     .iter()
-                    .any(|q| (q.alpha - p.alpha).hypot(q.beta - p.beta) < 1e-4 * size);
+                    .any(|q| (q.a - p.a).hypot(q.b - p.b) < 1e-4 * size);
                 if near_corner {
                     continue;
                 }
                 let (a, b) = (v[(i + n - 1) % n], v[(i + 1) % n]);
-                let (tx, ty) = (b.alpha - a.alpha, b.beta - a.beta);
+                let (tx, ty) = (b.a - a.a, b.b - a.b);
                 let l = tx.hypot(ty);
                 let (nx, ny) = (-ty / l, tx / l); // left normal = inward for ccw
                 let h = 1e-6 * size;
-                fam.coefficients_into(p.alpha + h * nx, p.beta + h * ny, &mut c);
+                fam.coefficients_into(p.a + h * nx, p.b + h * ny, &mut c);
                 assert!(
                     schur_stable(&c),
                     "γ={g} δ={dl} d={d} vertex {i}: inward unstable"
                 );
-                fam.coefficients_into(p.alpha - h * nx, p.beta - h * ny, &mut c);
+                fam.coefficients_into(p.a - h * nx, p.b - h * ny, &mut c);
                 assert!(
                     !schur_stable(&c),
                     "γ={g} δ={dl} d={d} vertex {i}: outward stable"
@@ -198,10 +198,10 @@ fn grid_map_agrees_with_polygons() {
             f64::NEG_INFINITY,
         );
         for p in r.polygons.iter().flat_map(|p| &p.vertices) {
-            a0 = a0.min(p.alpha);
-            a1 = a1.max(p.alpha);
-            b0 = b0.min(p.beta);
-            b1 = b1.max(p.beta);
+            a0 = a0.min(p.a);
+            a1 = a1.max(p.a);
+            b0 = b0.min(p.b);
+            b1 = b1.max(p.b);
         }
         let (pa, pb) = (0.1 * (a1 - a0), 0.1 * (b1 - b0));
         let n = 200;
@@ -221,10 +221,8 @@ fn grid_map_agrees_with_polygons() {
                     let v = &poly.vertices;
                     for k in 0..v.len() {
                         let (p, q) = (v[k], v[(k + 1) % v.len()]);
-                        if (p.beta > b) != (q.beta > b) {
-                            xs.push(
-                                p.alpha + (b - p.beta) / (q.beta - p.beta) * (q.alpha - p.alpha),
-                            );
+                        if (p.b > b) != (q.b > b) {
+                            xs.push(p.a + (b - p.b) / (q.b - p.b) * (q.a - p.a));
                         }
                     }
                 }
@@ -251,9 +249,9 @@ fn grid_map_agrees_with_polygons() {
                     continue;
                 }
                 compared += 1;
-                let p = AlphaBeta {
-                    alpha: spec.x.value(ix as usize),
-                    beta: spec.y.value(iy as usize),
+                let p = WallPoint {
+                    a: spec.x.value(ix as usize),
+                    b: spec.y.value(iy as usize),
                 };
                 assert_eq!(
                     m.is_stable(ix as usize, iy as usize),
@@ -276,11 +274,7 @@ fn paper_range_and_large_delay() {
                 // the left boundary is the z = 1 line α = −γ
                 let p = &r.polygons[0];
                 assert!(p.edges.iter().any(|e| e.kind == EdgeKind::ZPlusOne));
-                let amin = p
-                    .vertices
-                    .iter()
-                    .map(|v| v.alpha)
-                    .fold(f64::INFINITY, f64::min);
+                let amin = p.vertices.iter().map(|v| v.a).fold(f64::INFINITY, f64::min);
                 assert!((amin + g).abs() < 1e-15, "{amin}");
             }
         }
@@ -305,7 +299,7 @@ fn chords_follow_the_curve_to_1e9_of_the_size() {
         let (fam, r) = region(g, dl, d);
         for poly in &r.polygons {
             let v = &poly.vertices;
-            let ext = |f: fn(&AlphaBeta) -> f64| {
+            let ext = |f: fn(&WallPoint) -> f64| {
                 let (lo, hi) = v
                     .iter()
                     .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
@@ -313,7 +307,7 @@ fn chords_follow_the_curve_to_1e9_of_the_size() {
                     });
                 hi - lo
             };
-            let size = ext(|p| p.alpha).max(ext(|p| p.beta));
+            let size = ext(|p| p.a).max(ext(|p| p.b));
             let corners = poly.corners();
             let mut worst: f64 = 0.0;
             for i in 0..v.len() {
@@ -330,12 +324,12 @@ fn chords_follow_the_curve_to_1e9_of_the_size() {
                 }
                 let m = hapstab::boundary::curve_point(&fam, 0.5 * (ta + tb)).unwrap();
                 let (a, b) = (v[i], v[j]);
-                let (tx, ty) = (b.alpha - a.alpha, b.beta - a.beta);
+                let (tx, ty) = (b.a - a.a, b.b - a.b);
                 let l = tx.hypot(ty);
                 if l == 0.0 {
                     continue;
                 }
-                let dev = ((m.alpha - a.alpha) * ty - (m.beta - a.beta) * tx).abs() / l;
+                let dev = ((m.a - a.a) * ty - (m.b - a.b) * tx).abs() / l;
                 worst = worst.max(dev / size);
             }
             assert!(
@@ -382,8 +376,8 @@ fn general_region_vertices_lie_on_the_boundary() {
             let n = v.len();
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for p in v {
-                lo = lo.min(p.alpha.min(p.beta));
-                hi = hi.max(p.alpha.max(p.beta));
+                lo = lo.min(p.a.min(p.b));
+                hi = hi.max(p.a.max(p.b));
             }
             let size = hi - lo;
             let corners: Vec<usize> = poly.corners();
@@ -395,24 +389,24 @@ fn general_region_vertices_lie_on_the_boundary() {
                 // the radius as `check` computes it (roots near z = 1 polished in w = z − 1: a
                 // vertex near θ = 0 has a pair of roots crowding z = 1, which the bisection on
                 // the z-coefficients resolves only to about 1e-7)
-                let rho = hapstab::stability::Analysis::of_family(&fam, p.alpha, p.beta)
+                let rho = hapstab::stability::Analysis::of_family(&fam, p.a, p.b)
                     .unwrap()
                     .spectral_radius;
                 assert!((rho - 1.0).abs() < 1e-9, "{name} vertex {i}: ρ = {rho}");
                 let near_corner = corners
                     .iter()
-                    .any(|&j| (v[j].alpha - p.alpha).hypot(v[j].beta - p.beta) < 1e-4 * size);
+                    .any(|&j| (v[j].a - p.a).hypot(v[j].b - p.b) < 1e-4 * size);
                 if near_corner {
                     continue;
                 }
                 let (a, b) = (v[(i + n - 1) % n], v[(i + 1) % n]);
-                let (tx, ty) = (b.alpha - a.alpha, b.beta - a.beta);
+                let (tx, ty) = (b.a - a.a, b.b - a.b);
                 let l = tx.hypot(ty);
                 let (nx, ny) = (-ty / l, tx / l);
                 let h = 1e-6 * size;
-                fam.coefficients_into(p.alpha + h * nx, p.beta + h * ny, &mut c);
+                fam.coefficients_into(p.a + h * nx, p.b + h * ny, &mut c);
                 assert!(schur_stable(&c), "{name} vertex {i}: inward unstable");
-                fam.coefficients_into(p.alpha - h * nx, p.beta - h * ny, &mut c);
+                fam.coefficients_into(p.a - h * nx, p.b - h * ny, &mut c);
                 assert!(!schur_stable(&c), "{name} vertex {i}: outward stable");
                 checked += 1;
             }
@@ -432,7 +426,7 @@ fn general_region_vertices_lie_on_the_boundary() {
 /// The polygons agree with a direct grid of Schur–Cohn tests away from the boundary.
 #[test]
 fn general_region_agrees_with_a_grid() {
-    use hapstab::boundary::AlphaBeta;
+    use hapstab::boundary::WallPoint;
     use hapstab::stability::schur_stable;
     for (name, lp) in general_loops() {
         let fam = family(&lp);
@@ -440,10 +434,10 @@ fn general_region_agrees_with_a_grid() {
         let pts = r.polygons.iter().flat_map(|p| p.vertices.iter());
         let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
         for p in pts {
-            x0 = x0.min(p.alpha);
-            x1 = x1.max(p.alpha);
-            y0 = y0.min(p.beta);
-            y1 = y1.max(p.beta);
+            x0 = x0.min(p.a);
+            x1 = x1.max(p.a);
+            y0 = y0.min(p.b);
+            y1 = y1.max(p.b);
         }
         let (w, h) = (x1 - x0, y1 - y0);
         let n = 80;
@@ -456,7 +450,7 @@ fn general_region_agrees_with_a_grid() {
                 fam.coefficients_into(a, b, &mut c);
                 let s = schur_stable(&c);
                 stable_seen += s as usize;
-                let inside = r.contains(AlphaBeta { alpha: a, beta: b });
+                let inside = r.contains(WallPoint { a, b });
                 assert_eq!(s, inside, "{name} at ({a}, {b})");
             }
         }

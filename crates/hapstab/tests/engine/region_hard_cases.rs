@@ -9,7 +9,7 @@
 //! spectral radii of single walls quoted from its fixture.
 
 use hapstab::AffineFamily;
-use hapstab::boundary::{AlphaBeta, stable_stiffness_intervals};
+use hapstab::boundary::{WallPoint, stable_stiffness_intervals};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, TwoMass, VelocityEstimator};
 use hapstab::params::{Arm, Effective};
 use hapstab::region::{CONFIRM_REL, StableRegion, alpha_max_within, stable_region};
@@ -109,10 +109,10 @@ fn undamped_two_mass_k_max_is_the_intervals_maximum() {
     // B = 38 541 Ns/m was the wrong answer, where the referee finds ρ = 1.69625
     assert!(k > 8.8e5 && k < 1e6, "K_max = {k} at B = {b}");
     let (a, bb) = fam.to_units(1.558e8, 38541.1);
-    assert!(!r.contains(AlphaBeta { alpha: a, beta: bb }));
+    assert!(!r.contains(WallPoint { a, b: bb }));
     // the referee: (−1.74e6 N/m, 746 Ns/m) is unstable, ρ = 1.1408
     let (a, bb) = fam.to_units(-1.74e6, 746.0);
-    assert!(!r.contains(AlphaBeta { alpha: a, beta: bb }));
+    assert!(!r.contains(WallPoint { a, b: bb }));
     for p in &r.polygons {
         assert!(p.area() > 0.0);
     }
@@ -142,7 +142,7 @@ fn undamped_two_mass_with_a_fractional_delay_is_not_empty() {
     // the referee: (689.65 N/m, 0.67492 Ns/m) is stable, ρ = 0.999992306
     let (a, b) = fam.to_units(689.65, 0.67492);
     assert!(
-        r.contains(AlphaBeta { alpha: a, beta: b }),
+        r.contains(WallPoint { a, b }),
         "{} polygons",
         r.polygons.len()
     );
@@ -166,7 +166,7 @@ fn undamped_two_mass_one_sample_delay_is_bounded() {
     for p in &r.polygons {
         assert!(p.area() > 0.0);
         assert!(
-            p.vertices.iter().all(|v| v.beta.abs() < b_max),
+            p.vertices.iter().all(|v| v.b.abs() < b_max),
             "B beyond 1e6 Ns/m"
         );
     }
@@ -200,7 +200,7 @@ fn two_branches_close_together_leave_no_false_hole() {
     }
     let inside = |k: f64, b: f64| {
         let (a, bb) = fam.to_units(k, b);
-        r.contains(AlphaBeta { alpha: a, beta: bb })
+        r.contains(WallPoint { a, b: bb })
     };
     assert!(inside(20867.0, 605.9));
     assert!(!inside(20866.99, 606.01));

@@ -26,7 +26,7 @@
 
 use hapstab::AffineFamily;
 use hapstab::System;
-use hapstab::boundary::AlphaBeta;
+use hapstab::boundary::WallPoint;
 use hapstab::map::{MapKind, wall_map_points};
 use hapstab::model::{Delay, Loop, Plant, PlantModel, VelocityEstimator};
 use hapstab::params::Wall;
@@ -319,7 +319,7 @@ fn check_region(t: &mut Tally, c: &Case, sys: &System) {
         let Ok((alpha, beta)) = sys.wall_units(wall) else {
             continue;
         };
-        let p = AlphaBeta { alpha, beta };
+        let p = WallPoint { a: alpha, b: beta };
         if r.boundary_distance(p) <= tol {
             t.region_excepted += 1;
             continue;

@@ -46,7 +46,7 @@ pub fn region(key: Key) -> Result<Region> {
     let rings: Vec<Vec<(f64, f64)>> = r
         .polygons
         .iter()
-        .map(|p| p.vertices.iter().map(|v| (v.alpha, v.beta)).collect())
+        .map(|p| p.vertices.iter().map(|v| (v.a, v.b)).collect())
         .collect();
     let (alpha_min, beta_min, beta_max) = extent(&rings);
     Ok(Region {

@@ -87,7 +87,7 @@ pub(super) fn nyquist_panel(
         );
     } else {
         f.add(
-            Series::polygon(rob.polygon.iter().map(|p| (p.alpha, p.beta)))
+            Series::polygon(rob.polygon.iter().map(|p| (p.a, p.b)))
                 .color(palette::GREY)
                 .alpha(0.35)
                 .no_outline()
@@ -97,7 +97,7 @@ pub(super) fn nyquist_panel(
     if passive {
         let p = passive_region(delta)?;
         f.add(
-            Series::polygon(p.vertices.iter().map(|v| (v.alpha, v.beta)))
+            Series::polygon(p.vertices.iter().map(|v| (v.a, v.b)))
                 .color(palette::GREEN)
                 .alpha(0.55)
                 .label("passive (28)"),

@@ -7,7 +7,7 @@ use serde::Serialize;
 use super::robust::gamma_samples;
 use super::slice::{Config, refined_slice, unit_configs};
 use super::{GammaRange, Progress, RobustOptions, Ticker, no_progress};
-use crate::boundary::AlphaBeta;
+use crate::boundary::WallPoint;
 use crate::error::{Result, non_negative, positive};
 use crate::paper::NormalizedFamily;
 use crate::paper::PlantParams;
@@ -21,13 +21,13 @@ pub struct PassiveRegion {
     pub delta: f64,
     /// Vertices (0, −δ), (2δ, 0), (0, δ): counter-clockwise with α as abscissa, first vertex
     /// not repeated.
-    pub vertices: Vec<AlphaBeta>,
+    pub vertices: Vec<WallPoint>,
 }
 
 impl PassiveRegion {
     /// True iff the point satisfies eq. (28): α ≥ 0 and δ > α/2 + |β|.
-    pub fn contains(&self, p: AlphaBeta) -> bool {
-        p.alpha >= 0.0 && self.delta > p.alpha / 2.0 + p.beta.abs()
+    pub fn contains(&self, p: WallPoint) -> bool {
+        p.a >= 0.0 && self.delta > p.a / 2.0 + p.b.abs()
     }
 
     /// Area 2δ² of the triangle.
@@ -44,7 +44,7 @@ impl PassiveRegion {
 /// Colgate's passive region of eq. (28) as a polygon (Section VIII-A, Fig. 9).
 pub fn passive_region(delta: f64) -> Result<PassiveRegion> {
     non_negative(Param::Delta, delta)?;
-    let p = |alpha, beta| AlphaBeta { alpha, beta };
+    let p = |alpha, beta| WallPoint { a: alpha, b: beta };
     Ok(PassiveRegion {
         delta,
         vertices: vec![p(0.0, -delta), p(2.0 * delta, 0.0), p(0.0, delta)],
@@ -166,17 +166,8 @@ mod tests {
     fn passive_triangle() {
         let p = passive_region(1.0).unwrap();
         assert!((polygon_area(&p.vertices) - p.area()).abs() < 1e-15);
-        assert!(p.contains(AlphaBeta {
-            alpha: 0.5,
-            beta: 0.2
-        }));
-        assert!(!p.contains(AlphaBeta {
-            alpha: 1.7,
-            beta: 0.2
-        }));
-        assert!(!p.contains(AlphaBeta {
-            alpha: -0.1,
-            beta: 0.0
-        }));
+        assert!(p.contains(WallPoint { a: 0.5, b: 0.2 }));
+        assert!(!p.contains(WallPoint { a: 1.7, b: 0.2 }));
+        assert!(!p.contains(WallPoint { a: -0.1, b: 0.0 }));
     }
 }

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use super::search::golden_max;
 use super::slice::{Config, refined_slice};
 use super::{Progress, Ticker, beta_bound, no_progress};
-use crate::boundary::AlphaBeta;
+use crate::boundary::WallPoint;
 use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::paper::NormalizedFamily;
 use crate::paper::PlantParams;
@@ -133,7 +133,7 @@ pub struct RobustKmax {
     /// The plant (m, b, k) that limits K at the optimum.
     pub worst_plant: [f64; 3],
     /// α_max and β there measured in the minimum mass of the box: K T²/m_min, B T/m_min.
-    pub normalized_at_min_mass: AlphaBeta,
+    pub normalized_at_min_mass: WallPoint,
     /// Number of plants sampled (before refinement).
     pub plants_sampled: usize,
 }
@@ -296,9 +296,9 @@ pub fn robust_kmax_with_progress(
         damping_at_max: b_opt,
         stiffness_min: lo,
         worst_plant: worst,
-        normalized_at_min_mass: AlphaBeta {
-            alpha: hi * t * t / m_ref,
-            beta: b_opt * t / m_ref,
+        normalized_at_min_mass: WallPoint {
+            a: hi * t * t / m_ref,
+            b: b_opt * t / m_ref,
         },
         plants_sampled: configs.len(),
     })

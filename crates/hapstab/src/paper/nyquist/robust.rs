@@ -8,7 +8,7 @@ use serde::Serialize;
 use super::search::bisect_pred;
 use super::slice::{Config, Slice, refined_slice, robust_at, unit_configs};
 use super::{DEGENERATE_OFFSET, Progress, Ticker, beta_bound, no_progress, unit_circle_pole};
-use crate::boundary::AlphaBeta;
+use crate::boundary::WallPoint;
 use crate::error::{Error, Result, non_negative};
 use crate::paper::NormalizedFamily;
 use crate::paper::PlantParams;
@@ -76,7 +76,7 @@ pub struct RobustRegion {
     pub multiple_intervals: bool,
     /// The polygon through the slice ends: upper ends ascending in β, then lower ends
     /// descending (counter-clockwise with α as abscissa). Empty when the region is empty.
-    pub polygon: Vec<AlphaBeta>,
+    pub polygon: Vec<WallPoint>,
     /// Area of the polygon (shoelace).
     pub area: f64,
     /// Largest robust α over the slices (NaN when empty).
@@ -88,7 +88,7 @@ pub struct RobustRegion {
 }
 
 /// Shoelace area of a polygon (positive for counter-clockwise).
-pub fn polygon_area(v: &[AlphaBeta]) -> f64 {
+pub fn polygon_area(v: &[WallPoint]) -> f64 {
     let n = v.len();
     if n < 3 {
         return 0.0;
@@ -96,7 +96,7 @@ pub fn polygon_area(v: &[AlphaBeta]) -> f64 {
     let mut s = 0.0;
     for i in 0..n {
         let (p, q) = (v[i], v[(i + 1) % n]);
-        s += p.alpha * q.beta - q.alpha * p.beta;
+        s += p.a * q.b - q.a * p.b;
     }
     0.5 * s
 }
@@ -330,17 +330,16 @@ fn region_of_slices(
     slices: Vec<RobustSlice>,
     multiple_intervals: bool,
 ) -> RobustRegion {
-    let mut polygon: Vec<AlphaBeta> = slices
+    let mut polygon: Vec<WallPoint> = slices
         .iter()
-        .map(|s| AlphaBeta {
-            alpha: s.hi,
-            beta: s.beta,
-        })
+        .map(|s| WallPoint { a: s.hi, b: s.beta })
         .collect();
-    polygon.extend(slices.iter().rev().map(|s| AlphaBeta {
-        alpha: s.lo,
-        beta: s.beta,
-    }));
+    polygon.extend(
+        slices
+            .iter()
+            .rev()
+            .map(|s| WallPoint { a: s.lo, b: s.beta }),
+    );
     let area = if polygon.len() >= 3 {
         polygon_area(&polygon)
     } else {

@@ -10,7 +10,7 @@ use super::{
     gamma_sweep_with_progress, nyquist_gamma, passive_inside_robust_with_progress, passive_region,
     robust_region_with_progress,
 };
-use crate::boundary::AlphaBeta;
+use crate::boundary::WallPoint;
 use crate::error::Result;
 use crate::limits::{Cost, gamma_sweep_cost, passive_check_cost, robust_region_cost};
 
@@ -173,8 +173,8 @@ pub struct NyquistRegions {
 }
 
 /// Vertices as [alpha, beta] pairs, as every command writes polygons.
-fn pairs(v: &[AlphaBeta]) -> Vec<[f64; 2]> {
-    v.iter().map(|p| [p.alpha, p.beta]).collect()
+fn pairs(v: &[WallPoint]) -> Vec<[f64; 2]> {
+    v.iter().map(|p| [p.a, p.b]).collect()
 }
 
 /// Section VIII for the input (module doc): the sweep ([`gamma_sweep_with_progress`]), the
