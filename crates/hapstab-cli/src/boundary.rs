@@ -152,7 +152,7 @@ fn figure(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion) -> hapstab_pl
     let mut fig =
         wall_plot::region_figure(&plane, r, "Stable region").subtitle(wall_plot::loop_line(rl));
     if !r.polygons.is_empty() {
-        let at = plane.point(r.alpha_max, r.beta_at_alpha_max);
+        let at = plane.point(r.a_max, r.b_at_a_max);
         let name = if rl.normalized { "α_max" } else { "K_max" };
         wall_plot::mark(
             &mut fig,
@@ -183,8 +183,8 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         if !empty {
             println!(
                 "α_max = {} at β = {}",
-                sig(r.alpha_max, 6),
-                sig(r.beta_at_alpha_max, 6)
+                sig(r.a_max, 6),
+                sig(r.b_at_a_max, 6)
             );
             println!("area  = {} (in α·β)", sig(r.area, 6));
         }

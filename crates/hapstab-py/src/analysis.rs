@@ -251,7 +251,7 @@ fn region_object(py: Python<'_>, sys: &System, r: &StableRegion) -> PyResult<PyR
     let fam = sys.family();
     let (kpa, bpb) = fam.to_physical(1.0, 1.0);
     let found = !r.polygons.is_empty();
-    let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    let (k, b) = fam.to_physical(r.a_max, r.b_at_a_max);
     let polygons = r
         .polygons
         .iter()
@@ -267,9 +267,9 @@ fn region_object(py: Python<'_>, sys: &System, r: &StableRegion) -> PyResult<PyR
         edges: r.polygons.iter().map(edges).collect(),
         k_max: found.then_some(k),
         b_at_k_max: found.then_some(b),
-        k_max_attained: found.then_some(r.alpha_max_attained),
-        b_stable_near_k_max: found.then(|| fam.to_physical(0.0, r.beta_stable).1),
-        k_stable_near_k_max: found.then(|| fam.to_physical(r.alpha_stable, 0.0).0),
+        k_max_attained: found.then_some(r.a_max_attained),
+        b_stable_near_k_max: found.then(|| fam.to_physical(0.0, r.b_stable).1),
+        k_stable_near_k_max: found.then(|| fam.to_physical(r.a_stable, 0.0).0),
         area: r.area * kpa * bpb,
         wall_units: dict_of(
             py,

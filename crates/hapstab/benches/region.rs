@@ -31,7 +31,7 @@ fn bench_region(c: &mut Criterion) {
             |b, fam| {
                 b.iter(|| {
                     let r = stable_region(black_box(fam)).expect("region");
-                    black_box((r.alpha_max, r.beta_at_alpha_max, r.polygons.len()))
+                    black_box((r.a_max, r.b_at_a_max, r.polygons.len()))
                 })
             },
         );
@@ -52,7 +52,7 @@ fn bench_region(c: &mut Criterion) {
                     // discretization, family, region and K_max from scratch
                     let fam = AffineFamily::of_loop(black_box(lp)).expect("family");
                     let r = stable_region(&fam).expect("region");
-                    black_box(fam.to_physical(r.alpha_max, r.beta_at_alpha_max))
+                    black_box(fam.to_physical(r.a_max, r.b_at_a_max))
                 })
             },
         );

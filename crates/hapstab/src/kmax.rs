@@ -202,7 +202,7 @@ pub fn renderable_band(sys: &System, noise: NoiseModel) -> Result<Option<Rendera
     };
     let b_max = noise.force_noise * 12f64.sqrt() / (noise.position_resolution * gain);
     let best = sys.k_max_within(0.0, sys.damping_units(b_max)?)?;
-    let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
+    let phys = best.map(|p| fam.to_physical(p.a, p.b));
     Ok(Some(RenderableBand {
         noise,
         velocity_noise_gain: gain,
@@ -269,20 +269,20 @@ fn within(sys: &System, lo: f64, hi: f64) -> Result<KmaxReport> {
         }
     };
     let best: Option<ConfirmedMax> = sys.k_max_within(units(lo)?, units(hi)?)?;
-    let phys = best.map(|p| fam.to_physical(p.alpha, p.beta));
+    let phys = best.map(|p| fam.to_physical(p.a, p.b));
     let at_zero = sys.k_max_at_damping(0.0);
     let supremum = best.filter(|p| !p.attained);
     Ok(KmaxReport {
         k_max: phys.map(|p| p.0),
         b_at_k_max: phys.map(|p| p.1),
         k_max_attained: best.map(|p| p.attained),
-        b_stable_near_k_max: supremum.map(|p| fam.to_physical(0.0, p.beta_stable).1),
-        k_stable_near_k_max: supremum.map(|p| fam.to_physical(p.alpha_stable, 0.0).0),
+        b_stable_near_k_max: supremum.map(|p| fam.to_physical(0.0, p.b_stable).1),
+        k_stable_near_k_max: supremum.map(|p| fam.to_physical(p.a_stable, 0.0).0),
         k_max_at_zero_damping: at_zero.map(|i| fam.to_physical(i.hi, 0.0).0),
         k_interval: None,
         k_linear: phys.and_then(|p| sys.linear_k(p.1)),
         renderable: None,
-        k_max_units: best.map(|p| p.alpha),
-        b_units: best.map(|p| p.beta),
+        k_max_units: best.map(|p| p.a),
+        b_units: best.map(|p| p.b),
     })
 }

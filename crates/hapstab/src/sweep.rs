@@ -678,11 +678,11 @@ fn band_kmax(
     let (answer, top) = k_max_band_near(fam, b0, b1, *near);
     *near = top;
     Ok(match answer {
-        BandMax::Max(p) => Some((p.alpha, p.beta)),
+        BandMax::Max(p) => Some((p.a, p.b)),
         BandMax::NoneStable => None,
         BandMax::Undecided => {
             let r = stable_region_with(fam, SWEEP_REL_TOL)?;
-            alpha_max_within(fam, &r, b0, b1)?.map(|p| (p.alpha, p.beta))
+            alpha_max_within(fam, &r, b0, b1)?.map(|p| (p.a, p.b))
         }
     })
 }

@@ -249,20 +249,17 @@ mod tests {
     fn k_max_within_a_band() {
         let sys = paper_system();
         let r = sys.region().unwrap();
-        let b_star = r.beta_at_alpha_max;
+        let b_star = r.b_at_a_max;
         // a band holding the overall maximum gives the region's (to rounding: the band's
         // K_max comes without the polygon)
         let p = sys.k_max_within(0.0, 2.0 * b_star).unwrap().unwrap();
         let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
-        assert!(
-            close(p.alpha, r.alpha_max) && close(p.beta, b_star),
-            "{p:?} vs {r:?}"
-        );
+        assert!(close(p.a, r.a_max) && close(p.b, b_star), "{p:?} vs {r:?}");
         // a band below it is limited by its upper edge, where K_max at that damping holds
         let p = sys.k_max_within(0.0, 0.5 * b_star).unwrap().unwrap();
         let at_edge = sys.k_max_at_damping(0.5 * b_star).unwrap();
-        assert!(p.alpha < r.alpha_max);
-        assert_eq!((p.alpha, p.beta), (at_edge.hi, 0.5 * b_star));
+        assert!(p.a < r.a_max);
+        assert_eq!((p.a, p.b), (at_edge.hi, 0.5 * b_star));
         // no stable wall with a damping beyond the region
         assert!(sys.k_max_within(10.0, 20.0).unwrap().is_none());
     }

@@ -135,15 +135,7 @@ pub fn zwidth(lp: &Loop, dampings: Option<&[f64]>) -> Result<ZWidth> {
         k_max: k_max_of(fam, &region),
         k_max_nonnegative_damping: sys
             .k_max_within_region(&region, 0.0, f64::INFINITY)?
-            .map(|p| {
-                physical(
-                    fam,
-                    WallPoint {
-                        a: p.alpha,
-                        b: p.beta,
-                    },
-                )
-            }),
+            .map(|p| physical(fam, WallPoint { a: p.a, b: p.b })),
         passive_inside_stable: passive.as_ref().map(|p| passive_inside(&sys, &sw, p)),
         k_max_passive_with_arm: b_dev
             .and(lp.plant.effective_damping())
@@ -164,12 +156,12 @@ fn physical(fam: &AffineFamily, p: WallPoint) -> Wall {
 }
 
 fn k_max_of(fam: &AffineFamily, region: &StableRegion) -> Option<Wall> {
-    region.alpha_max.is_finite().then(|| {
+    region.a_max.is_finite().then(|| {
         physical(
             fam,
             WallPoint {
-                a: region.alpha_max,
-                b: region.beta_at_alpha_max,
+                a: region.a_max,
+                b: region.b_at_a_max,
             },
         )
     })

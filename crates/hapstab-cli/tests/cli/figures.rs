@@ -44,7 +44,7 @@ fn kmax_by_default_keeps_the_damping_non_negative() {
     let sys = hapstab::System::of(&lp).unwrap();
     let fam = sys.family();
     let best = sys.k_max_within(0.0, f64::INFINITY).unwrap().unwrap();
-    let (k, b) = fam.to_physical(best.alpha, best.beta);
+    let (k, b) = fam.to_physical(best.a, best.b);
     let v = json(&["kmax", "--delay", "200"]);
     let (k_cli, b_cli) = (f(&v["k_max"]), f(&v["b_at_k_max"]));
     assert!(b_cli >= 0.0, "B = {b_cli}");
@@ -59,7 +59,7 @@ fn kmax_by_default_keeps_the_damping_non_negative() {
         .k_max_within(f64::NEG_INFINITY, f64::INFINITY)
         .unwrap()
         .unwrap();
-    assert!(free.beta < 0.0 && free.alpha > best.alpha);
+    assert!(free.b < 0.0 && free.a > best.a);
     // K_max at B = 0 (the plant's own damping only)
     let at0 = sys.k_max_at_damping(0.0).unwrap();
     let k0 = fam.to_physical(at0.hi, 0.0).0;
@@ -73,7 +73,7 @@ fn kmax_damping_range_bounds_the_damping() {
     let fam = sys.family();
     let hi = sys.damping_units(50.0).unwrap();
     let best = sys.k_max_within(0.0, hi).unwrap().unwrap();
-    let (k, b) = fam.to_physical(best.alpha, best.beta);
+    let (k, b) = fam.to_physical(best.a, best.b);
     let v = json(&["kmax", "--damping-range", "0:50"]);
     assert!((f(&v["k_max"]) - k).abs() <= 1e-12 * k);
     assert!((f(&v["b_at_k_max"]) - b).abs() <= 1e-9 * 50.0);
@@ -318,7 +318,7 @@ fn boundary_plot_is_in_k_and_b_with_k_max_marked() {
     let sys = hapstab::System::of(&lp).unwrap();
     let fam = sys.family();
     let r = sys.region().unwrap();
-    let want = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    let want = fam.to_physical(r.a_max, r.b_at_a_max);
     assert_at(&svg, "K_max", WHOLE, want);
     // PNG by the extension
     let png = dir.path().join("region.png");
@@ -356,7 +356,7 @@ fn boundary_plot_of_the_normalized_loop_is_in_alpha_and_beta() {
     .unwrap();
     let sys = hapstab::System::of(&lp).unwrap();
     let r = sys.region().unwrap();
-    assert_at(&svg, "α_max", WHOLE, (r.alpha_max, r.beta_at_alpha_max));
+    assert_at(&svg, "α_max", WHOLE, (r.a_max, r.b_at_a_max));
 }
 
 #[test]
@@ -421,7 +421,7 @@ fn kmax_plot_marks_k_max_within_the_damping_range() {
     let best = sys.k_max_within(0.0, hi).unwrap().unwrap();
     // the markers sit at their points (K_max's circle, B = 0's triangle); tags on a damping
     // line are lifted off it
-    let k_max_at = fam.to_physical(best.alpha, best.beta);
+    let k_max_at = fam.to_physical(best.a, best.b);
     assert_marker_at(&svg, VERMILLION, WHOLE, k_max_at);
     let at0 = sys.k_max_at_damping(0.0).unwrap();
     let b0_at = (fam.to_physical(at0.hi, 0.0).0, 0.0);

@@ -193,11 +193,11 @@ fn region_json(sys: &System, normalized: bool, r: &StableRegion, tol: f64) -> Re
         .collect();
     let simplified = StableRegion {
         polygons,
-        alpha_max: r.alpha_max,
-        beta_at_alpha_max: r.beta_at_alpha_max,
-        alpha_max_attained: r.alpha_max_attained,
-        beta_stable: r.beta_stable,
-        alpha_stable: r.alpha_stable,
+        a_max: r.a_max,
+        b_at_a_max: r.b_at_a_max,
+        a_max_attained: r.a_max_attained,
+        b_stable: r.b_stable,
+        a_stable: r.a_stable,
         area: r.area,
     };
     RegionJson {
@@ -207,7 +207,7 @@ fn region_json(sys: &System, normalized: bool, r: &StableRegion, tol: f64) -> Re
             .iter()
             .map(|p| p.vertices.iter().map(ab).collect())
             .collect(),
-        max_drawn: [r.alpha_max, r.beta_at_alpha_max],
+        max_drawn: [r.a_max, r.b_at_a_max],
         empty: r.polygons.is_empty(),
         vertices_exact: r.polygons.iter().map(|p| p.vertices.len()).sum(),
         vertices_sent: simplified.polygons.iter().map(|p| p.vertices.len()).sum(),

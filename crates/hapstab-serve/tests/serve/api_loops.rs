@@ -34,11 +34,11 @@ fn a_loop_with_the_papers_view_is_analysed_as_check_does() {
     // K_max = α_max·m/T²
     assert_eq!(
         j["region"]["normalized"]["alpha_max"].as_f64().unwrap(),
-        lib.alpha_max
+        lib.a_max
     );
     let k_max = j["region"]["k_max"].as_f64().unwrap();
     assert!(
-        (k_max - lib.alpha_max * 1.1 / 1e-6).abs() <= 1e-12 * k_max,
+        (k_max - lib.a_max * 1.1 / 1e-6).abs() <= 1e-12 * k_max,
         "{k_max}"
     );
     assert!(j["region"]["alpha_max"].is_null(), "{j}");

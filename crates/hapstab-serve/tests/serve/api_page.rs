@@ -26,15 +26,12 @@ fn export_svg_csv_json() {
         .find(|l| l.starts_with("alpha_max,"))
         .unwrap();
     let am: f64 = amax_row.split(',').nth(3).unwrap().parse().unwrap();
-    assert_eq!(am, lib.alpha_max);
+    assert_eq!(am, lib.a_max);
     assert!(r.body.lines().any(|l| l.starts_with("point,")));
     assert!(r.body.lines().filter(|l| l.starts_with("region,")).count() > 10);
     let r = s.get(&format!("{base}&format=json&view=-0.01,0.2,-0.1,1.2"));
     assert_eq!(r.status, 200);
-    assert_eq!(
-        raw_number(&r.body, "\"region\":", "alpha_max"),
-        lib.alpha_max
-    );
+    assert_eq!(raw_number(&r.body, "\"region\":", "alpha_max"), lib.a_max);
     let j = r.json();
     assert_eq!(j["view"][1].as_f64(), Some(0.2));
     assert_eq!(j["point"]["verdict"], "stable");
@@ -49,11 +46,7 @@ fn export_of_a_physical_loop_is_in_newtons() {
     let base = format!("/api/export?{PAPER_LOOP}");
     let lp =
         hapstab::Loop::paper(hapstab::Effective::new(1.1, 7.5, 350.0).unwrap(), 1e-3, 1).unwrap();
-    let k_max = hapstab::System::of(&lp)
-        .unwrap()
-        .region()
-        .unwrap()
-        .alpha_max
+    let k_max = hapstab::System::of(&lp).unwrap().region().unwrap().a_max
         * hapstab::AffineFamily::of_loop(&lp).unwrap().scale.stiffness;
     let r = s.get(&format!("{base}&format=csv"));
     assert_eq!(r.status, 200, "{}", r.body);

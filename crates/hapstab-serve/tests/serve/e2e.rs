@@ -43,7 +43,7 @@ use serve_support::Server;
 fn library_alpha_max(gamma: f64, delta: f64, d: usize) -> f64 {
     stable_region(&NormalizedFamily::new(PlantParams::new(gamma, delta).unwrap(), d).unwrap())
         .unwrap()
-        .alpha_max
+        .a_max
 }
 
 /// (γ, δ) of the command line's default plant: a PHANToM-like device held by a typical arm,
@@ -569,7 +569,7 @@ fn two_mass_loop(estimator: &str) -> Loop {
 fn loop_k_max(lp: &Loop) -> R<f64> {
     let sys = hapstab::System::of(lp)?;
     let r = sys.region()?;
-    Ok(sys.family().to_physical(r.alpha_max, r.beta_at_alpha_max).0)
+    Ok(sys.family().to_physical(r.a_max, r.b_at_a_max).0)
 }
 
 /// The URL of the two-mass loop (arm defaults: the typical arm).

@@ -105,14 +105,14 @@ pub struct RegionAnswer {
 }
 
 fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
-    let (k_max, b_at_k_max) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    let (k_max, b_at_k_max) = fam.to_physical(r.a_max, r.b_at_a_max);
     let (kpa, bpb) = fam.to_physical(1.0, 1.0);
     PhysicalRegion {
         k_max,
         b_at_k_max,
-        k_max_attained: r.alpha_max_attained,
-        b_stable_near_k_max: fam.to_physical(0.0, r.beta_stable).1,
-        k_stable_near_k_max: fam.to_physical(r.alpha_stable, 0.0).0,
+        k_max_attained: r.a_max_attained,
+        b_stable_near_k_max: fam.to_physical(0.0, r.b_stable).1,
+        k_stable_near_k_max: fam.to_physical(r.a_stable, 0.0).0,
         area: r.area * kpa * bpb,
         polygons: polygons(r, |a, b| {
             let (k, b) = fam.to_physical(a, b);
@@ -143,8 +143,8 @@ pub fn region_answer(sys: &System, normalized: bool, r: &StableRegion) -> Region
         input: LoopInput::new(lp, normalized, None),
         physical: physical.then(|| physical_region(fam, r)),
         units: (!physical).then(|| NormalizedRegion {
-            alpha_max: r.alpha_max,
-            beta_at_alpha_max: r.beta_at_alpha_max,
+            alpha_max: r.a_max,
+            beta_at_alpha_max: r.b_at_a_max,
             area: r.area,
             polygons: polygons(r, |a, b| [a, b]),
         }),
@@ -173,8 +173,8 @@ impl RegionPaperView {
             gamma: pp.gamma,
             delta: pp.delta,
             d: lp.delay.samples,
-            alpha_max: r.alpha_max,
-            beta_at_alpha_max: r.beta_at_alpha_max,
+            alpha_max: r.a_max,
+            beta_at_alpha_max: r.b_at_a_max,
             area: r.area,
         })
     }

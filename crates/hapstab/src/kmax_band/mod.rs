@@ -573,11 +573,11 @@ fn damping_axis(alpha: f64) -> WallLine {
 fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<ConfirmedMax> {
     if f.exact {
         return Some(ConfirmedMax {
-            alpha: f.alpha,
-            beta: f.beta,
+            a: f.alpha,
+            b: f.beta,
             attained: true,
-            beta_stable: f.beta,
-            alpha_stable: f.alpha - CONFIRM_REL * f.alpha.abs(),
+            b_stable: f.beta,
+            a_stable: f.alpha - CONFIRM_REL * f.alpha.abs(),
         });
     }
     let cand = WallPoint {

@@ -43,17 +43,17 @@ const AGREE_REL: f64 = 1e-9;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ConfirmedMax {
     /// The largest stable stiffness (a supremum where `attained` is false), wall units.
-    pub alpha: f64,
-    /// The damping at which it is reached or approached.
-    pub beta: f64,
-    /// True when stiffnesses up to K_max·(1 − 1e-6) are stable at `beta` itself.
+    pub a: f64,
+    /// The damping at which it is reached or approached, wall units.
+    pub b: f64,
+    /// True when stiffnesses up to K_max·(1 − 1e-6) are stable at `b` itself.
     pub attained: bool,
-    /// A damping at which `alpha_stable` is stable: `beta` when attained, else one beside it.
-    pub beta_stable: f64,
+    /// A damping at which `a_stable` is stable: `b` when attained, else one beside it.
+    pub b_stable: f64,
     /// A stiffness confirmed stable at `beta_stable` by the verdict: K_max·(1 − 1e-6) when
     /// attained, else the middle of the wedge's interval there (within 1e-9 of K_max where
     /// the wedge allows, at most 1e-6 below it).
-    pub alpha_stable: f64,
+    pub a_stable: f64,
 }
 
 /// K_max attained at b* by the verdict alone: (K_max − δ, b*) stable and (K_max + δ, b*) not,
@@ -108,11 +108,11 @@ pub fn confirm_max_tabulated(
     let mut stable = |a: f64, b: f64| inside_unit_circle(fam, a, b, &mut coeffs) == Some(true);
     let delta = CONFIRM_REL * unit;
     let attained = |t: f64| ConfirmedMax {
-        alpha: t,
-        beta: cand.b,
+        a: t,
+        b: cand.b,
         attained: true,
-        beta_stable: cand.b,
-        alpha_stable: t - delta,
+        b_stable: cand.b,
+        a_stable: t - delta,
     };
     if let Some(t) = attained_locally(&mut stable, cand, delta) {
         return Some(attained(t));
@@ -156,10 +156,10 @@ pub fn confirm_max_tabulated(
                 .map(|m| (b, m))
         })
         .map(|(b, m)| ConfirmedMax {
-            alpha: cand.a,
-            beta: cand.b,
+            a: cand.a,
+            b: cand.b,
             attained: false,
-            beta_stable: b,
-            alpha_stable: m,
+            b_stable: b,
+            a_stable: m,
         })
 }

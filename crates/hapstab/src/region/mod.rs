@@ -127,19 +127,19 @@ pub struct StableRegion {
     /// Stable components (possibly none).
     pub polygons: Vec<Polygon>,
     /// Largest stable a (α_max for the paper's loop; NaN when the region is empty).
-    pub alpha_max: f64,
-    /// b at which α_max is reached, or approached where it is a supremum (NaN when empty).
-    pub beta_at_alpha_max: f64,
-    /// True when α_max is attained at `beta_at_alpha_max` (stiffnesses up to α_max·(1 − 1e-6)
-    /// are stable there); false where α_max is a corner that only that one damping touches,
-    /// a supremum approached as b → `beta_at_alpha_max` ([`confirm_max`]).
-    pub alpha_max_attained: bool,
-    /// A damping at which `alpha_stable` is stable: `beta_at_alpha_max` when attained, one
-    /// beside it for a supremum (NaN when empty).
-    pub beta_stable: f64,
-    /// A stiffness the verdict confirms stable at `beta_stable`, within 1e-6 of α_max
-    /// ([`ConfirmedMax::alpha_stable`]; NaN when empty).
-    pub alpha_stable: f64,
+    pub a_max: f64,
+    /// b at which a_max is reached, or approached where it is a supremum (NaN when empty).
+    pub b_at_a_max: f64,
+    /// True when a_max is attained at `b_at_a_max` (stiffnesses up to a_max·(1 − 1e-6) are
+    /// stable there); false where a_max is a corner that only that one damping touches, a
+    /// supremum approached as b → `b_at_a_max` ([`confirm_max`]).
+    pub a_max_attained: bool,
+    /// A damping at which `a_stable` is stable: `b_at_a_max` when attained, one beside it
+    /// for a supremum (NaN when empty).
+    pub b_stable: f64,
+    /// A stiffness the verdict confirms stable at `b_stable`, within 1e-6 of a_max
+    /// ([`ConfirmedMax::a_stable`]; NaN when empty).
+    pub a_stable: f64,
     /// Total area of the stable region in wall units.
     pub area: f64,
 }
@@ -187,11 +187,11 @@ impl StableRegion {
         let area = polygons.iter().map(Polygon::area).sum();
         Self {
             polygons,
-            alpha_max,
-            beta_at_alpha_max: beta,
-            alpha_max_attained: false,
-            beta_stable: f64::NAN,
-            alpha_stable: f64::NAN,
+            a_max: alpha_max,
+            b_at_a_max: beta,
+            a_max_attained: false,
+            b_stable: f64::NAN,
+            a_stable: f64::NAN,
             area,
         }
     }
@@ -199,11 +199,11 @@ impl StableRegion {
     pub(super) fn empty() -> Self {
         Self {
             polygons: Vec::new(),
-            alpha_max: f64::NAN,
-            beta_at_alpha_max: f64::NAN,
-            alpha_max_attained: false,
-            beta_stable: f64::NAN,
-            alpha_stable: f64::NAN,
+            a_max: f64::NAN,
+            b_at_a_max: f64::NAN,
+            a_max_attained: false,
+            b_stable: f64::NAN,
+            a_stable: f64::NAN,
             area: 0.0,
         }
     }
@@ -483,17 +483,17 @@ fn confirmed(
         return Ok(r);
     }
     let cand = WallPoint {
-        a: r.alpha_max,
-        b: r.beta_at_alpha_max,
+        a: r.a_max,
+        b: r.b_at_a_max,
     };
     let size = r.size();
     match confirm_max_tabulated(fam, table, cand, (f64::NEG_INFINITY, f64::INFINITY), size) {
         Some(c) => {
-            r.alpha_max = c.alpha;
-            r.beta_at_alpha_max = c.beta;
-            r.alpha_max_attained = c.attained;
-            r.beta_stable = c.beta_stable;
-            r.alpha_stable = c.alpha_stable;
+            r.a_max = c.a;
+            r.b_at_a_max = c.b;
+            r.a_max_attained = c.attained;
+            r.b_stable = c.b_stable;
+            r.a_stable = c.a_stable;
             Ok(r)
         }
         None => {

@@ -176,13 +176,13 @@ pub fn alpha_max_within(
     b_hi: f64,
 ) -> Result<Option<ConfirmedMax>> {
     let inside = |b: f64| b >= b_lo && b <= b_hi;
-    if inside(region.beta_at_alpha_max) && inside(region.beta_stable) {
+    if inside(region.b_at_a_max) && inside(region.b_stable) {
         return Ok(Some(ConfirmedMax {
-            alpha: region.alpha_max,
-            beta: region.beta_at_alpha_max,
-            attained: region.alpha_max_attained,
-            beta_stable: region.beta_stable,
-            alpha_stable: region.alpha_stable,
+            a: region.a_max,
+            b: region.b_at_a_max,
+            attained: region.a_max_attained,
+            b_stable: region.b_stable,
+            a_stable: region.a_stable,
         }));
     }
     let mut best: Option<WallPoint> = None;

@@ -139,10 +139,10 @@ pub(super) fn unstretched(mut r: StableRegion, (sx, sy): (f64, f64)) -> StableRe
             v.b *= sy;
         }
     }
-    r.alpha_max *= sx;
-    r.alpha_stable *= sx;
-    r.beta_at_alpha_max *= sy;
-    r.beta_stable *= sy;
+    r.a_max *= sx;
+    r.a_stable *= sx;
+    r.b_at_a_max *= sy;
+    r.b_stable *= sy;
     r.area *= sx * sy;
     r
 }

@@ -304,7 +304,7 @@ fn paper_regions_resolve_over_the_explorer_ranges() {
                 let fam = AffineFamily::of_loop(&lp).unwrap();
                 let r = stable_region(&fam)
                     .unwrap_or_else(|e| panic!("γ = {g}, δ = {dl}, d = {d}: {e}"));
-                let a = (-g - 1.0, r.alpha_max + 1.0);
+                let a = (-g - 1.0, r.a_max + 1.0);
                 let b = (-3.0 * g - 10.0, 3.0 * g + 10.0);
                 region_agrees_on_a_grid(&fam, &r, a, b, 12);
             }

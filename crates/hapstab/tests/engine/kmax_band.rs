@@ -96,42 +96,36 @@ fn check_band(i: usize, fam: &AffineFamily, (lo, hi): (f64, f64)) -> Option<bool
     let region = stable_region(fam).ok()?;
     let reference = alpha_max_within(fam, &region, lo, hi);
     match (fast, reference) {
-        (BandMax::Max(m), Ok(Some(r))) if !close(m.alpha, r.alpha) && m.alpha > r.alpha => {
+        (BandMax::Max(m), Ok(Some(r))) if !close(m.a, r.a) && m.a > r.a => {
             // the region's polygon missed the top: the θ scan's exact interval at the fast
             // answer's damping must reach it, and the verdict must confirm it
-            let line = WallLine::stiffness_axis(m.beta);
+            let line = WallLine::stiffness_axis(m.b);
             let scan = stable_between(fam, &line, &scanned_line_crossings(fam, &line));
             let t = top(&scan).unwrap_or(f64::NAN);
             assert!(
-                close(t, m.alpha),
+                close(t, m.a),
                 "loop {i}: {m:?} vs region {r:?}, scan {scan:?}"
             );
-            let d = BESIDE * m.alpha.abs();
+            let d = BESIDE * m.a.abs();
             assert!(
-                inside(fam, m.alpha - d, m.beta),
+                inside(fam, m.a - d, m.b),
                 "loop {i}: {m:?} not stable below"
             );
             eprintln!(
                 "loop {i}: the region's K_max {} is below the top {} at b = {}",
-                r.alpha, m.alpha, m.beta
+                r.a, m.a, m.b
             );
             Some(true)
         }
         (BandMax::Max(m), Ok(Some(r))) => {
-            assert!(close(m.alpha, r.alpha), "loop {i}: {m:?} vs region {r:?}");
+            assert!(close(m.a, r.a), "loop {i}: {m:?} vs region {r:?}");
             assert_eq!(m.attained, r.attained, "loop {i}: {m:?} vs region {r:?}");
             if m.attained {
-                let d = BESIDE * m.alpha.abs();
-                assert!(
-                    inside(fam, m.alpha - d, m.beta),
-                    "loop {i}: below not stable"
-                );
-                assert!(!inside(fam, m.alpha + d, m.beta), "loop {i}: above stable");
+                let d = BESIDE * m.a.abs();
+                assert!(inside(fam, m.a - d, m.b), "loop {i}: below not stable");
+                assert!(!inside(fam, m.a + d, m.b), "loop {i}: above stable");
             } else {
-                assert!(
-                    inside(fam, m.alpha_stable, m.beta_stable),
-                    "loop {i}: {m:?}"
-                );
+                assert!(inside(fam, m.a_stable, m.b_stable), "loop {i}: {m:?}");
             }
             Some(true)
         }
@@ -154,10 +148,7 @@ fn check_warm_start(i: usize, fam: &AffineFamily, (lo, hi): (f64, f64), cold: Ba
     };
     match (k_max_band_near(fam, lo, hi, Some(near)).0, cold) {
         (BandMax::Max(w), BandMax::Max(c)) => {
-            assert!(
-                close(w.alpha, c.alpha),
-                "loop {i}: warm {w:?} vs cold {c:?}"
-            );
+            assert!(close(w.a, c.a), "loop {i}: warm {w:?} vs cold {c:?}");
         }
         (w, c) => assert_eq!(w, c, "loop {i}"),
     }
@@ -215,14 +206,9 @@ fn a_cap_far_above_its_level_closes_on_the_regions_top() {
     let want = alpha_max_within(&fam, &region, f64::NEG_INFINITY, f64::INFINITY)
         .unwrap()
         .unwrap();
-    assert!(
-        close(fast.alpha, want.alpha),
-        "{} vs {}",
-        fast.alpha,
-        want.alpha
-    );
-    assert!(inside(&fam, fast.alpha * (1.0 - BESIDE), fast.beta));
-    assert!(!inside(&fam, fast.alpha * (1.0 + BESIDE), fast.beta));
+    assert!(close(fast.a, want.a), "{} vs {}", fast.a, want.a);
+    assert!(inside(&fam, fast.a * (1.0 - BESIDE), fast.b));
+    assert!(!inside(&fam, fast.a * (1.0 + BESIDE), fast.b));
 }
 
 /// The warm start a sweep uses: each loop's search started from the previous loop's top on the
@@ -265,19 +251,13 @@ fn the_warm_start_from_the_previous_top_gives_the_cold_answer() {
                 panic!("{name} {j}: warm search undecided");
             };
             assert!(
-                close(warm.alpha, cold.alpha),
+                close(warm.a, cold.a),
                 "{name} {j}: {} vs {}",
-                warm.alpha,
-                cold.alpha
+                warm.a,
+                cold.a
             );
-            assert!(
-                inside(fam, warm.alpha * (1.0 - BESIDE), warm.beta),
-                "{name} {j}"
-            );
-            assert!(
-                !inside(fam, warm.alpha * (1.0 + BESIDE), warm.beta),
-                "{name} {j}"
-            );
+            assert!(inside(fam, warm.a * (1.0 - BESIDE), warm.b), "{name} {j}");
+            assert!(!inside(fam, warm.a * (1.0 + BESIDE), warm.b), "{name} {j}");
             handed += usize::from(top.is_some());
             near = top;
         }

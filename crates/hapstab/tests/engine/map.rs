@@ -27,8 +27,8 @@ fn wall_map_agrees_with_the_region() {
     for (name, lp) in general_loops().into_iter().skip(6) {
         let fam = family(&lp);
         let r = hapstab::region::stable_region(&fam).unwrap();
-        let x = AxisRange::new(Axis::Alpha, -0.2 * r.alpha_max, 1.2 * r.alpha_max, 120).unwrap();
-        let b = r.beta_at_alpha_max.abs().max(0.05);
+        let x = AxisRange::new(Axis::Alpha, -0.2 * r.a_max, 1.2 * r.a_max, 120).unwrap();
+        let b = r.b_at_a_max.abs().max(0.05);
         let y = AxisRange::new(Axis::Beta, -2.0 * b, 3.0 * b, 100).unwrap();
         let map = wall_map(&fam, x, y, MapKind::Stability, &|_| {}).unwrap();
         let mut agree = 0;

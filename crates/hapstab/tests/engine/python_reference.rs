@@ -170,10 +170,10 @@ fn check_at(sys: &System, w: Wall) -> Value {
 fn region_of(sys: &System) -> Value {
     let fam = sys.family();
     let r = sys.region().unwrap();
-    let (k, b) = fam.to_physical(r.alpha_max, r.beta_at_alpha_max);
+    let (k, b) = fam.to_physical(r.a_max, r.b_at_a_max);
     json!({
-        "alpha_max": r.alpha_max,
-        "beta_at_alpha_max": r.beta_at_alpha_max,
+        "alpha_max": r.a_max,
+        "beta_at_alpha_max": r.b_at_a_max,
         "k_max": k,
         "b_at_k_max": b,
         "vertices": r.polygons.iter().map(|p| p.vertices.len()).collect::<Vec<_>>(),
@@ -254,8 +254,8 @@ fn reference(rng: &mut StdRng, id: usize, kind: &str, lp: &Loop, extra: Value) -
     let blo = sys.damping_units(band.0).unwrap();
     let bhi = sys.damping_units(band.1).unwrap();
     let within = sys.k_max_within(blo, bhi).unwrap().map(|p| {
-        let (k, b) = fam.to_physical(p.alpha, p.beta);
-        json!({"alpha_max": p.alpha, "k_max": k, "b_at_k_max": b})
+        let (k, b) = fam.to_physical(p.a, p.b);
+        json!({"alpha_max": p.a, "k_max": k, "b_at_k_max": b})
     });
     json!({
         "id": id,

@@ -123,14 +123,14 @@ fn alpha_max_pure_mass_closed_form() {
     let beta = 2.0 * 2f64.sqrt() - 2.0;
     let alpha = 2.0 * beta * (2.0 - beta) / (2.0 + beta);
     assert!(
-        (r.alpha_max - alpha).abs() < 1e-12 * alpha,
+        (r.a_max - alpha).abs() < 1e-12 * alpha,
         "{} vs {alpha}",
-        r.alpha_max
+        r.a_max
     );
     assert!(
-        (r.beta_at_alpha_max - beta).abs() < 1e-12 * beta,
+        (r.b_at_a_max - beta).abs() < 1e-12 * beta,
         "{} vs {beta}",
-        r.beta_at_alpha_max
+        r.b_at_a_max
     );
     // area: ∫₀² 2β(2 − β)/(2 + β) dβ = 12 − 16 ln 2
     let area = 12.0 - 16.0 * 2f64.ln();
@@ -142,22 +142,22 @@ fn alpha_max_is_a_maximum_of_the_intervals() {
     // α_max agrees with the exact interval at its β, and no interval at nearby β exceeds it.
     for &(g, dl, d) in CASES {
         let (fam, r) = region(g, dl, d);
-        let iv = stable_stiffness_intervals(&fam, r.beta_at_alpha_max);
+        let iv = stable_stiffness_intervals(&fam, r.b_at_a_max);
         let hi = iv.iter().map(|i| i.hi).fold(f64::NEG_INFINITY, f64::max);
         assert!(
-            (hi - r.alpha_max).abs() < 1e-10 * r.alpha_max.abs().max(1e-12),
+            (hi - r.a_max).abs() < 1e-10 * r.a_max.abs().max(1e-12),
             "γ={g} δ={dl} d={d}: {hi} vs {}",
-            r.alpha_max
+            r.a_max
         );
         for k in 1..=20 {
-            let db = r.beta_at_alpha_max.abs().max(1e-3) * 0.02 * k as f64;
-            for b in [r.beta_at_alpha_max - db, r.beta_at_alpha_max + db] {
+            let db = r.b_at_a_max.abs().max(1e-3) * 0.02 * k as f64;
+            for b in [r.b_at_a_max - db, r.b_at_a_max + db] {
                 for i in stable_stiffness_intervals(&fam, b) {
                     assert!(
-                        i.hi <= r.alpha_max * (1.0 + 1e-12) + 1e-300,
+                        i.hi <= r.a_max * (1.0 + 1e-12) + 1e-300,
                         "β={b}: {} > {}",
                         i.hi,
-                        r.alpha_max
+                        r.a_max
                     );
                 }
             }
@@ -169,13 +169,13 @@ fn alpha_max_is_a_maximum_of_the_intervals() {
 fn alpha_max_shrinks_with_delay_and_grows_with_damping() {
     for &g in &[0.0, 0.001] {
         for &dl in &[0.0, 0.005, 0.015, 0.1] {
-            let am: Vec<f64> = (0..5).map(|d| region(g, dl, d).1.alpha_max).collect();
+            let am: Vec<f64> = (0..5).map(|d| region(g, dl, d).1.a_max).collect();
             assert!(am.windows(2).all(|w| w[1] < w[0]), "γ={g} δ={dl}: {am:?}");
         }
         for d in 0..4 {
             let am: Vec<f64> = [0.0, 0.005, 0.015, 0.1]
                 .iter()
-                .map(|&dl| region(g, dl, d).1.alpha_max)
+                .map(|&dl| region(g, dl, d).1.a_max)
                 .collect();
             assert!(am.windows(2).all(|w| w[1] > w[0]), "γ={g} d={d}: {am:?}");
         }
@@ -283,12 +283,9 @@ fn paper_range_and_large_delay() {
     let (fam, r) = region(0.001, 0.015, 1000);
     let el = t.elapsed();
     assert!(el.as_secs_f64() < 2.0, "d = 1000 took {el:?}");
-    assert!(r.alpha_max > 0.0 && r.alpha_max < 1e-3);
-    let iv = stable_stiffness_intervals(&fam, r.beta_at_alpha_max);
-    assert!(
-        iv.iter()
-            .any(|i| (i.hi - r.alpha_max).abs() < 1e-9 * r.alpha_max)
-    );
+    assert!(r.a_max > 0.0 && r.a_max < 1e-3);
+    let iv = stable_stiffness_intervals(&fam, r.b_at_a_max);
+    assert!(iv.iter().any(|i| (i.hi - r.a_max).abs() < 1e-9 * r.a_max));
 }
 
 #[test]
@@ -413,12 +410,12 @@ fn general_region_vertices_lie_on_the_boundary() {
         }
         assert!(checked > 50, "{name}: {checked}");
         // α_max is the top of the exact stable interval at its damping
-        let iv = hapstab::boundary::stable_stiffness_intervals(&fam, r.beta_at_alpha_max);
+        let iv = hapstab::boundary::stable_stiffness_intervals(&fam, r.b_at_a_max);
         let top = iv.iter().map(|i| i.hi).fold(f64::NEG_INFINITY, f64::max);
         assert!(
-            (top - r.alpha_max).abs() < 1e-9 * r.alpha_max.abs().max(1e-12),
+            (top - r.a_max).abs() < 1e-9 * r.a_max.abs().max(1e-12),
             "{name}: α_max {} vs interval top {top}",
-            r.alpha_max
+            r.a_max
         );
     }
 }
@@ -469,17 +466,17 @@ fn stiffness_maximum_within_a_damping_band() {
         let fam = family(&lp);
         let r = stable_region(&fam).unwrap();
         // a band around the maximum returns it
-        let b = r.beta_at_alpha_max;
+        let b = r.b_at_a_max;
         let p = alpha_max_within(&fam, &r, b - 0.01, b + 0.01)
             .unwrap()
             .unwrap();
-        assert_eq!((p.alpha, p.beta), (r.alpha_max, b), "{name}");
+        assert_eq!((p.a, p.b), (r.a_max, b), "{name}");
         // a band below the maximum: compare with a scan of exact intervals
         let (lo, hi) = (b - 0.5 * b.abs().max(0.05), b - 0.1 * b.abs().max(0.05));
         let Some(p) = alpha_max_within(&fam, &r, lo, hi).unwrap() else {
             continue;
         };
-        assert!(p.beta >= lo && p.beta <= hi, "{name}: {p:?}");
+        assert!(p.b >= lo && p.b <= hi, "{name}: {p:?}");
         let scan = (0..=400)
             .map(|i| lo + (hi - lo) * i as f64 / 400.0)
             .flat_map(|bb| {
@@ -489,17 +486,17 @@ fn stiffness_maximum_within_a_damping_band() {
             })
             .filter(|h| h.is_finite())
             .fold(f64::NEG_INFINITY, f64::max);
-        let tol = 1e-9 * r.alpha_max.abs();
-        assert!(p.alpha >= scan - tol, "{name}: {} < scan {scan}", p.alpha);
+        let tol = 1e-9 * r.a_max.abs();
+        assert!(p.a >= scan - tol, "{name}: {} < scan {scan}", p.a);
         // and it is attained: the exact interval at its damping reaches it
-        let top = stable_stiffness_intervals(&fam, p.beta)
+        let top = stable_stiffness_intervals(&fam, p.b)
             .iter()
             .map(|iv| iv.hi)
             .fold(f64::NEG_INFINITY, f64::max);
         assert!(
-            (top - p.alpha).abs() <= 1e-7 * r.alpha_max.abs(),
+            (top - p.a).abs() <= 1e-7 * r.a_max.abs(),
             "{name}: {top} vs {}",
-            p.alpha
+            p.a
         );
     }
 }

@@ -330,8 +330,8 @@ fn check_region(t: &mut Tally, c: &Case, sys: &System) {
                 "{}; region ({} polygons, a_max = {:e} at b = {:e}) {} it, boundary distance {:.2e} (tolerance {tol:.2e})",
                 describe(c, w),
                 r.polygons.len(),
-                r.alpha_max,
-                r.beta_at_alpha_max,
+                r.a_max,
+                r.b_at_a_max,
                 if inside { "contains" } else { "excludes" },
                 r.boundary_distance(p)
             )

@@ -254,7 +254,7 @@ fn zwidth_agrees_with_kmax_and_the_region_bit_for_bit() {
         let z = zwidth(&lp, Some(&dampings)).unwrap();
         let sys = System::of(&lp).unwrap();
         let r = sys.region().unwrap();
-        let (k, b) = sys.family().to_physical(r.alpha_max, r.beta_at_alpha_max);
+        let (k, b) = sys.family().to_physical(r.a_max, r.b_at_a_max);
         let zk = z.k_max.unwrap();
         assert_eq!((zk.stiffness, zk.damping), (k, b), "{lp:?}");
         for row in &z.table {

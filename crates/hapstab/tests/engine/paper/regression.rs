@@ -73,18 +73,18 @@ fn general_engine_reproduces_the_paper_engine() {
         }
         let r = stable_region(&fam).unwrap();
         assert!(
-            close(r.alpha_max, p.alpha_max, 1e-12),
+            close(r.a_max, p.alpha_max, 1e-12),
             "point {i} (γ={} δ={} d={}): α_max {} vs {}",
             p.gamma,
             p.delta,
             p.d,
-            r.alpha_max,
+            r.a_max,
             p.alpha_max
         );
         assert!(
-            close(r.beta_at_alpha_max, p.beta_at_alpha_max, 1e-6),
+            close(r.b_at_a_max, p.beta_at_alpha_max, 1e-6),
             "point {i}: β at α_max {} vs {}",
-            r.beta_at_alpha_max,
+            r.b_at_a_max,
             p.beta_at_alpha_max
         );
     }
