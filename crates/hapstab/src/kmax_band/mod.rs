@@ -88,7 +88,7 @@ pub fn k_max_band(fam: &AffineFamily, b_lo: f64, b_hi: f64) -> BandMax {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurveTop {
     /// The top's stiffness, wall units.
-    pub alpha: f64,
+    pub a: f64,
     /// The angles of the two arcs that meet there; of a smooth top, its angle and NaN.
     pub arcs: [f64; 2],
 }
@@ -130,7 +130,7 @@ fn warm_start(
     band: (f64, f64),
 ) -> Option<(BandMax, Option<CurveTop>)> {
     let (p, arcs) = if near.arcs[1].is_finite() {
-        cap::cap_corner(fam, near.alpha, near.arcs)?
+        cap::cap_corner(fam, near.a, near.arcs)?
     } else {
         cap::smooth_from(fam, near.arcs[0])?
     };
@@ -139,12 +139,12 @@ fn warm_start(
     }
     let alpha = exact_top(fam, cf, p.a, p.b)?;
     let found = Found {
-        alpha,
-        beta: p.b,
+        a: alpha,
+        b: p.b,
         exact: true,
         arcs,
     };
-    match certificate(fam, cf, found.alpha, band) {
+    match certificate(fam, cf, found.a, band) {
         c @ Certificate::Holds { .. } => Some(ascend(fam, cf, found, band, Some(c))),
         _ => None,
     }
@@ -170,8 +170,8 @@ fn start(fam: &AffineFamily, cf: &CayleyFamily, (b_lo, b_hi): (f64, f64)) -> Sta
         .max_by(|p, q| p.0.hi.total_cmp(&q.0.hi));
     if let Some((iv, b)) = edge {
         return Start::Found(Found {
-            alpha: iv.hi,
-            beta: b,
+            a: iv.hi,
+            b,
             exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
             arcs: NO_ARCS,
         });
@@ -201,7 +201,7 @@ fn ascend(
     for _ in 0..CAP_ROUNDS {
         let cert = first
             .take()
-            .unwrap_or_else(|| certificate(fam, cf, found.alpha, band));
+            .unwrap_or_else(|| certificate(fam, cf, found.a, band));
         let cap = match cert {
             Certificate::Holds { thetas, roots } => {
                 match separate_component(fam, cf, found, (thetas, &roots), band) {
@@ -213,7 +213,7 @@ fn ascend(
                         let answer =
                             confirmed(fam, found, band).map_or(BandMax::Undecided, BandMax::Max);
                         let top = found.arcs[0].is_finite().then_some(CurveTop {
-                            alpha: found.alpha,
+                            a: found.a,
                             arcs: found.arcs,
                         });
                         return (answer, top);
@@ -243,14 +243,14 @@ fn next_top(
     band: (f64, f64),
 ) -> Option<Found> {
     let exact = |(alpha, beta): (f64, f64)| Found {
-        alpha,
-        beta,
+        a: alpha,
+        b: beta,
         exact: true,
         arcs: NO_ARCS,
     };
     let inside = |b: f64| b >= band.0 && b <= band.1;
     let top = cap.and_then(|c| cap_top_with_arcs(fam, c.a, c.ends));
-    top.filter(|(c, _)| c.a > found.alpha && inside(c.b))
+    top.filter(|(c, _)| c.a > found.a && inside(c.b))
         .and_then(|(c, arcs)| {
             exact_top(fam, cf, c.a, c.b).map(|a| Found {
                 arcs,
@@ -258,9 +258,9 @@ fn next_top(
             })
         })
         .or_else(|| {
-            let list = cands
-                .get_or_insert_with(|| sorted_candidates(fam, cf, band, found.alpha, &WHOLE_AXIS));
-            highest_candidate(fam, cf, list, Some(found), band).filter(|f| f.alpha > found.alpha)
+            let list =
+                cands.get_or_insert_with(|| sorted_candidates(fam, cf, band, found.a, &WHOLE_AXIS));
+            highest_candidate(fam, cf, list, Some(found), band).filter(|f| f.a > found.a)
         })
         .or_else(|| {
             let guess = top.map_or(f64::NAN, |(c, _)| c.a);
@@ -340,9 +340,9 @@ fn exact_top(fam: &AffineFamily, cf: &CayleyFamily, a: f64, b: f64) -> Option<f6
 /// A found top of the region.
 #[derive(Debug, Clone, Copy)]
 struct Found {
-    alpha: f64,
-    beta: f64,
-    /// The top of the exact stable interval at `beta` (see [`exact_top`]); false for a
+    a: f64,
+    b: f64,
+    /// The top of the exact stable interval at `b` (see [`exact_top`]); false for a
     /// corner that the region only closes on (a supremum).
     exact: bool,
     /// Where it is a top on the curve: the angles of the two arcs that meet there, or of a
@@ -365,7 +365,7 @@ fn highest_candidate(
     let mut best = floor;
     let mut coeffs = vec![0.0; fam.degree() + 1];
     for c in cands {
-        if best.is_some_and(|b| c.a <= b.alpha) {
+        if best.is_some_and(|b| c.a <= b.a) {
             break;
         }
         if surely_outside(fam, *c, &mut coeffs) {
@@ -373,10 +373,10 @@ fn highest_candidate(
         }
         let iv = top_interval(fam, cf, c.b);
         let at = iv.map(|iv| iv.hi);
-        if let Some(iv) = iv.filter(|iv| best.is_none_or(|b| iv.hi > b.alpha)) {
+        if let Some(iv) = iv.filter(|iv| best.is_none_or(|b| iv.hi > b.a)) {
             best = Some(Found {
-                alpha: iv.hi,
-                beta: c.b,
+                a: iv.hi,
+                b: c.b,
                 exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
                 arcs: NO_ARCS,
             });
@@ -386,8 +386,8 @@ fn highest_candidate(
         }
         if closes_on(fam, cf, *c, band) {
             return Some(Found {
-                alpha: c.a,
-                beta: c.b,
+                a: c.a,
+                b: c.b,
                 exact: false,
                 arcs: NO_ARCS,
             });
@@ -493,7 +493,7 @@ fn separate_component(
     (lo, hi): (f64, f64),
 ) -> Option<Found> {
     use std::f64::consts::PI;
-    let level = found.alpha + CERTIFY_REL * found.alpha.abs().max(f64::MIN_POSITIVE);
+    let level = found.a + CERTIFY_REL * found.a.abs().max(f64::MIN_POSITIVE);
     let mut thetas: Vec<f64> = level_thetas
         .into_iter()
         .filter(|&t| t > 0.0 && t < PI)
@@ -525,8 +525,8 @@ fn separate_component(
         let Some(p) = on_hump else { continue };
         if let Some(iv) = top_interval(fam, cf, p.b).filter(|iv| iv.hi > level) {
             return Some(Found {
-                alpha: iv.hi,
-                beta: p.b,
+                a: iv.hi,
+                b: p.b,
                 exact: iv.lo < iv.hi - CONFIRM_REL * iv.hi.abs(),
                 arcs: NO_ARCS,
             });
@@ -535,7 +535,7 @@ fn separate_component(
     // an island whose boundary the samples miss: its top, bottom or sides are among the
     // curve's stationary points and corners
     let cands = sorted_candidates(fam, cf, (lo, hi), level, &windows);
-    highest_candidate(fam, cf, &cands, Some(found), (lo, hi)).filter(|f| f.alpha > level)
+    highest_candidate(fam, cf, &cands, Some(found), (lo, hi)).filter(|f| f.a > level)
 }
 
 /// Relative slack by which a hump's ends in u (u = tan²(θ/2)) must reach into a window of
@@ -573,18 +573,15 @@ fn damping_axis(alpha: f64) -> WallLine {
 fn confirmed(fam: &AffineFamily, f: Found, band: (f64, f64)) -> Option<ConfirmedMax> {
     if f.exact {
         return Some(ConfirmedMax {
-            a: f.alpha,
-            b: f.beta,
+            a: f.a,
+            b: f.b,
             attained: true,
-            b_stable: f.beta,
-            a_stable: f.alpha - CONFIRM_REL * f.alpha.abs(),
+            b_stable: f.b,
+            a_stable: f.a - CONFIRM_REL * f.a.abs(),
         });
     }
-    let cand = WallPoint {
-        a: f.alpha,
-        b: f.beta,
-    };
-    confirm_max(fam, cand, band, f.alpha.abs().max(f.beta.abs()))
+    let cand = WallPoint { a: f.a, b: f.b };
+    confirm_max(fam, cand, band, f.a.abs().max(f.b.abs()))
 }
 
 /// The corners on the z = ±1 lines (item 3 of the module doc): where the curve meets each

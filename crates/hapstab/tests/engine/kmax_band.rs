@@ -143,7 +143,7 @@ fn check_warm_start(i: usize, fam: &AffineFamily, (lo, hi): (f64, f64), cold: Ba
         return;
     };
     let near = CurveTop {
-        alpha: top.alpha * (1.0 - 1e-3),
+        a: top.a * (1.0 - 1e-3),
         arcs: top.arcs.map(|t| t * (1.0 + 1e-4)),
     };
     match (k_max_band_near(fam, lo, hi, Some(near)).0, cold) {
