@@ -66,17 +66,17 @@ impl BoundaryRow {
         let (k, b) = self.scale?;
         let p = &self.point;
         Some(PhysicalRow {
-            wall_damping: p.beta * b,
-            k_linear: p.alpha_linear.map(|x| x * k),
-            k_simulated: p.alpha_simulated.map(|x| x * k),
-            k_unstable: p.alpha_unstable.map(|x| x * k),
+            wall_damping: p.b * b,
+            k_linear: p.a_linear.map(|x| x * k),
+            k_simulated: p.a_simulated.map(|x| x * k),
+            k_unstable: p.a_unstable.map(|x| x * k),
             ratio: self.ratio,
             inconclusive: p.inconclusive.map(|i| PhysicalInconclusive {
-                wall_stiffness: i.alpha * k,
+                wall_stiffness: i.a * k,
                 outcome: i.outcome,
             }),
             censored: p.censored,
-            k_max: p.alpha_max * k,
+            k_max: p.a_max * k,
             runs: p.runs,
         })
     }
@@ -182,7 +182,7 @@ impl ExactOut {
 
 /// A row with its physical scale: K = a·k, B = b·kb (None in normalized mode).
 pub(super) fn boundary_row(p: &EmpiricalPoint, scale: Option<(f64, f64)>) -> BoundaryRow {
-    let ratio = match (p.alpha_simulated, p.alpha_linear) {
+    let ratio = match (p.a_simulated, p.a_linear) {
         (Some(s), Some(l)) if l.is_finite() && l > 0.0 => Some(s / l),
         _ => None,
     };
@@ -233,30 +233,30 @@ pub(super) fn write_boundary_csv(path: &Path, rows: &[BoundaryRow]) -> Result<()
     for r in rows {
         let p = match r.physical() {
             Some(q) => EmpiricalPoint {
-                beta: q.wall_damping,
-                alpha_linear: q.k_linear,
-                alpha_simulated: q.k_simulated,
-                alpha_unstable: q.k_unstable,
+                b: q.wall_damping,
+                a_linear: q.k_linear,
+                a_simulated: q.k_simulated,
+                a_unstable: q.k_unstable,
                 inconclusive: q.inconclusive.map(|i| InconclusiveRun {
-                    alpha: i.wall_stiffness,
+                    a: i.wall_stiffness,
                     outcome: i.outcome,
                 }),
                 censored: q.censored,
-                alpha_max: q.k_max,
+                a_max: q.k_max,
                 runs: q.runs,
             },
             None => r.point,
         };
         w.write_record([
-            num(p.beta),
-            opt(p.alpha_linear),
-            opt(p.alpha_simulated),
-            opt(p.alpha_unstable),
+            num(p.b),
+            opt(p.a_linear),
+            opt(p.a_simulated),
+            opt(p.a_unstable),
             opt(r.ratio),
             p.censored.to_string(),
-            num(p.alpha_max),
+            num(p.a_max),
             p.runs.to_string(),
-            opt(p.inconclusive.map(|i| i.alpha)),
+            opt(p.inconclusive.map(|i| i.a)),
             p.inconclusive
                 .map_or("", |i| i.outcome.as_str())
                 .to_string(),

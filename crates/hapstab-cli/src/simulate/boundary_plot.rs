@@ -89,18 +89,18 @@ fn add_simulated(
     let pick = |keep: &dyn Fn(&EmpiricalPoint) -> Option<f64>| -> Vec<(f64, f64)> {
         points
             .iter()
-            .filter_map(|p| keep(p).map(|a| plane.at(a, p.beta)))
+            .filter_map(|p| keep(p).map(|a| plane.at(a, p.b)))
             .collect()
     };
-    let found = pick(&|p| p.alpha_simulated.filter(|_| !p.censored));
-    let censored = pick(&|p| p.alpha_simulated.filter(|_| p.censored));
-    let none = pick(&|p| p.alpha_unstable.filter(|_| p.alpha_simulated.is_none()));
-    let inconclusive = pick(&|p| p.inconclusive.map(|i| i.alpha));
+    let found = pick(&|p| p.a_simulated.filter(|_| !p.censored));
+    let censored = pick(&|p| p.a_simulated.filter(|_| p.censored));
+    let none = pick(&|p| p.a_unstable.filter(|_| p.a_simulated.is_none()));
+    let inconclusive = pick(&|p| p.inconclusive.map(|i| i.a));
     let mut curve: Vec<(f64, f64)> = points
         .iter()
-        .map(|p| match (p.alpha_simulated, p.censored) {
-            (Some(a), false) => plane.at(a, p.beta),
-            _ => (f64::NAN, plane.at(0.0, p.beta).1),
+        .map(|p| match (p.a_simulated, p.censored) {
+            (Some(a), false) => plane.at(a, p.b),
+            _ => (f64::NAN, plane.at(0.0, p.b).1),
         })
         .collect();
     curve.sort_by(|a, b| a.1.total_cmp(&b.1));

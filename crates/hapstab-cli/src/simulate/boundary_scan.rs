@@ -87,8 +87,8 @@ pub(super) fn boundary_points(
         .map(|&beta| {
             let search = BoundarySearch {
                 template: template.clone(),
-                betas: vec![beta],
-                alpha_max: a.alpha_max,
+                dampings: vec![beta],
+                a_max: a.alpha_max,
                 grid: a.grid,
                 rel_tolerance: a.rel_tol,
                 stable_when,

@@ -71,22 +71,22 @@ fn row_note(p: &hapstab::simulation::EmpiricalPoint, k_per: Option<f64>) -> Stri
         Some(k) => format!("K = {}", eng(alpha * k, "N/m", 4)),
         None => format!("α = {}", sig(alpha, 6)),
     };
-    if let Some(i) = p.inconclusive.filter(|i| {
-        p.alpha_unstable.is_none_or(|u| i.alpha < u)
-            && p.alpha_simulated.is_none_or(|s| i.alpha > s)
-    }) {
+    if let Some(i) = p
+        .inconclusive
+        .filter(|i| p.a_unstable.is_none_or(|u| i.a < u) && p.a_simulated.is_none_or(|s| i.a > s))
+    {
         let what = match i.outcome {
             Outcome::Separated => "left the wall",
             _ => "undecided",
         };
-        format!("{what} at {}: no verdict beyond", at(i.alpha))
-    } else if p.alpha_simulated.is_none() {
-        p.alpha_unstable.map_or_else(
+        format!("{what} at {}: no verdict beyond", at(i.a))
+    } else if p.a_simulated.is_none() {
+        p.a_unstable.map_or_else(
             || "unstable".into(),
             |u| format!("unstable already at {}", at(u)),
         )
     } else if p.censored {
-        format!("stable up to scan end {}", at(p.alpha_max))
+        format!("stable up to scan end {}", at(p.a_max))
     } else {
         String::new()
     }
@@ -121,9 +121,9 @@ fn print_table(o: &SimboundaryOut, k_per: Option<f64>) {
         } else {
             println!(
                 "{:>10} {:>14} {:>14} {:>8}  {note}",
-                sig(p.beta, 6),
-                f(p.alpha_linear, 8),
-                f(p.alpha_simulated, 8),
+                sig(p.b, 6),
+                f(p.a_linear, 8),
+                f(p.a_simulated, 8),
                 f(r.ratio, 4)
             );
         }
@@ -164,8 +164,8 @@ pub(super) fn print_simboundary(
     if s.effects.quantization.is_some()
         && o.input.stable_when == StableWhen::Decaying
         && o.points.iter().any(|r| {
-            r.point.alpha_simulated.is_none()
-                && r.point.alpha_unstable.is_some()
+            r.point.a_simulated.is_none()
+                && r.point.a_unstable.is_some()
                 && r.point.inconclusive.is_none()
         })
     {

@@ -28,21 +28,22 @@ pub const MIN_REL_TOLERANCE: f64 = 1e-6;
 /// Most bisection steps per β: more than [`MIN_REL_TOLERANCE`] needs from any bracket.
 pub const MAX_BISECTION_STEPS: usize = 64;
 
-/// An empirical stability-boundary search: for each β the largest α whose
-/// simulated run is stable, with everything else taken from a template run.
+/// An empirical stability-boundary search: for each damping b the largest stiffness a whose
+/// simulated run is stable, in the loop's wall units (α and β for the paper's loop), with
+/// everything else taken from a template run.
 #[derive(Debug, Clone)]
 pub struct BoundarySearch {
-    /// Template run (plant, delay, effects, human force, initial state, duration); its α
-    /// and β are replaced.
+    /// Template run (plant, delay, effects, human force, initial state, duration); its wall
+    /// is replaced.
     pub template: Config,
-    /// Normalized virtual damping values β (Table I).
-    pub betas: Vec<f64>,
-    /// Upper end of the α scan; default 3× the linear boundary at that β (or 2 if the
-    /// linear loop is unstable there).
-    pub alpha_max: Option<f64>,
-    /// Coarse scan points in (0, alpha_max] before bisection (>= 2).
+    /// Virtual damping values b in wall units (β of Table I for the paper's loop).
+    pub dampings: Vec<f64>,
+    /// Upper end of the stiffness scan; default 3× the linear boundary at that b (or 2 if
+    /// the linear loop is unstable there).
+    pub a_max: Option<f64>,
+    /// Coarse scan points in (0, a_max] before bisection (>= 2).
     pub grid: usize,
-    /// Bisection stops when the bracket is below this fraction of α
+    /// Bisection stops when the bracket is below this fraction of a
     /// (>= [`MIN_REL_TOLERANCE`]).
     pub rel_tolerance: f64,
     /// Stability criterion.
@@ -53,32 +54,39 @@ pub struct BoundarySearch {
 /// (`separated`), or the run did not settle (`undecided`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct InconclusiveRun {
-    /// Normalized stiffness α of the run.
-    pub alpha: f64,
+    /// Stiffness of the run in wall units (α for the paper's loop).
+    #[serde(rename = "alpha")]
+    pub a: f64,
     /// `separated` or `undecided`.
     pub outcome: Outcome,
 }
 
-/// One β of an empirical boundary.
+/// One damping of an empirical boundary, in wall units (written with the paper's names α
+/// and β, which they are for the paper's loop).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct EmpiricalPoint {
-    /// Normalized virtual damping β.
-    pub beta: f64,
-    /// The exact linear boundary α at this β (Section V), if the linear loop is stable for
-    /// small α > 0.
-    pub alpha_linear: Option<f64>,
-    /// The simulated boundary: the largest α found stable below every α that was not
+    /// Virtual damping b.
+    #[serde(rename = "beta")]
+    pub b: f64,
+    /// The exact linear boundary a at this b (Section V), if the linear loop is stable for
+    /// small a > 0.
+    #[serde(rename = "alpha_linear")]
+    pub a_linear: Option<f64>,
+    /// The simulated boundary: the largest a found stable below every a that was not
     /// (None if the first grid point is not stable).
-    pub alpha_simulated: Option<f64>,
-    /// Smallest α found unstable (None if no run was unstable).
-    pub alpha_unstable: Option<f64>,
-    /// Smallest α whose run was inconclusive (separated or undecided), if any: no evidence
+    #[serde(rename = "alpha_simulated")]
+    pub a_simulated: Option<f64>,
+    /// Smallest a found unstable (None if no run was unstable).
+    #[serde(rename = "alpha_unstable")]
+    pub a_unstable: Option<f64>,
+    /// Smallest a whose run was inconclusive (separated or undecided), if any: no evidence
     /// of stability, so the scan does not go beyond the first one.
     pub inconclusive: Option<InconclusiveRun>,
-    /// True if every α up to the scan end was stable (the boundary lies beyond).
+    /// True if every a up to the scan end was stable (the boundary lies beyond).
     pub censored: bool,
-    /// Upper end of the α scan.
-    pub alpha_max: f64,
+    /// Upper end of the stiffness scan.
+    #[serde(rename = "alpha_max")]
+    pub a_max: f64,
     /// Number of simulated runs.
     pub runs: usize,
 }
@@ -131,8 +139,8 @@ impl Scan {
                 self.unstable = Some(self.unstable.map_or(alpha, |u| u.min(alpha)))
             }
             RunClass::Inconclusive(outcome) => {
-                if self.inconclusive.is_none_or(|i| alpha < i.alpha) {
-                    self.inconclusive = Some(InconclusiveRun { alpha, outcome });
+                if self.inconclusive.is_none_or(|i| alpha < i.a) {
+                    self.inconclusive = Some(InconclusiveRun { a: alpha, outcome });
                 }
             }
         }
@@ -168,7 +176,7 @@ fn bisect(
 
 fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
     let alpha_linear = search.template.model.exact_upper_a(beta)?;
-    let alpha_max = match search.alpha_max {
+    let alpha_max = match search.a_max {
         Some(a) => positive(Param::AlphaMax, a)?,
         None => match alpha_linear {
             Some(a) if a.is_finite() => 3.0 * a,
@@ -205,13 +213,13 @@ fn boundary_at(search: &BoundarySearch, beta: f64) -> Result<EmpiricalPoint> {
         }
     };
     Ok(EmpiricalPoint {
-        beta,
-        alpha_linear,
-        alpha_simulated,
-        alpha_unstable: scan.unstable,
+        b: beta,
+        a_linear: alpha_linear,
+        a_simulated: alpha_simulated,
+        a_unstable: scan.unstable,
         inconclusive: scan.inconclusive,
         censored: first_bad.is_none(),
-        alpha_max,
+        a_max: alpha_max,
         runs,
     })
 }
@@ -243,11 +251,11 @@ pub fn empirical_boundary(search: &BoundarySearch) -> Result<Vec<EmpiricalPoint>
     if let StableWhen::AmplitudeBelow(a) = search.stable_when {
         positive(Param::AmplitudeThreshold, a)?;
     }
-    for &b in &search.betas {
+    for &b in &search.dampings {
         finite(Param::Beta, b)?;
     }
     search
-        .betas
+        .dampings
         .par_iter()
         .map(|&b| boundary_at(search, b))
         .collect()

@@ -492,27 +492,27 @@ fn empirical_boundary_brackets_the_exact_one() {
     tpl.initial.velocity = 0.05;
     let search = BoundarySearch {
         template: tpl.clone(),
-        betas: betas.clone(),
-        alpha_max: Some(1.0),
+        dampings: betas.clone(),
+        a_max: Some(1.0),
         grid: 8,
         rel_tolerance: 1e-4,
         stable_when: StableWhen::Decaying,
     };
     for pt in empirical_boundary(&search).unwrap() {
-        let b = pt.beta;
+        let b = pt.b;
         let expect = 2.0 * b * (2.0 - b) / (2.0 + b);
-        let (lo, hi) = (pt.alpha_simulated.unwrap(), pt.alpha_unstable.unwrap());
+        let (lo, hi) = (pt.a_simulated.unwrap(), pt.a_unstable.unwrap());
         assert!(
             lo <= expect && expect <= hi,
             "beta {b}: [{lo}, {hi}] vs {expect}"
         );
         // The bisection ends at the first run that is not stable: unstable, or undecided
         // within the marginal band around the exact boundary (|ρ − 1| tiny).
-        let end = pt.inconclusive.map_or(hi, |i| i.alpha.min(hi));
+        let end = pt.inconclusive.map_or(hi, |i| i.a.min(hi));
         assert!(end - lo <= 1e-4 * end, "{pt:?}");
         if let Some(i) = pt.inconclusive {
             assert_eq!(i.outcome, Outcome::Undecided, "{pt:?}");
-            assert!(rel(i.alpha, expect) < 1e-3, "{pt:?}");
+            assert!(rel(i.a, expect) < 1e-3, "{pt:?}");
         }
     }
     let mut uni = search;
@@ -523,14 +523,10 @@ fn empirical_boundary_brackets_the_exact_one() {
     uni.template.human = HumanForce::Constant(1.0);
     uni.rel_tolerance = 1e-2;
     for pt in empirical_boundary(&uni).unwrap() {
-        let lin = pt.alpha_linear.unwrap();
-        let sim = pt.alpha_simulated.unwrap();
-        assert!(
-            sim <= lin * (1.0 + 1e-2),
-            "beta {}: {sim} vs {lin}",
-            pt.beta
-        );
-        assert!(sim > 0.5 * lin, "beta {}: {sim} vs {lin}", pt.beta);
+        let lin = pt.a_linear.unwrap();
+        let sim = pt.a_simulated.unwrap();
+        assert!(sim <= lin * (1.0 + 1e-2), "beta {}: {sim} vs {lin}", pt.b);
+        assert!(sim > 0.5 * lin, "beta {}: {sim} vs {lin}", pt.b);
     }
 }
 
@@ -595,17 +591,17 @@ fn quantization_sustains_limit_cycles_inside_the_linear_region() {
         tpl.initial.position = 1e-3;
         let mut search = BoundarySearch {
             template: tpl,
-            betas: vec![0.1],
-            alpha_max: None,
+            dampings: vec![0.1],
+            a_max: None,
             grid: 8,
             rel_tolerance: 1e-2,
             stable_when: StableWhen::Decaying,
         };
         let pt = empirical_boundary(&search).unwrap()[0];
-        assert_eq!(pt.alpha_simulated, None, "{pt:?}");
+        assert_eq!(pt.a_simulated, None, "{pt:?}");
         search.stable_when = StableWhen::AmplitudeBelow(20.0 * q);
         let pt = empirical_boundary(&search).unwrap()[0];
-        let (sim, lin) = (pt.alpha_simulated.unwrap(), pt.alpha_linear.unwrap());
+        let (sim, lin) = (pt.a_simulated.unwrap(), pt.a_linear.unwrap());
         assert!(sim > 0.8 * lin && sim <= lin * (1.0 + 1e-2), "{pt:?}");
     }
 }
