@@ -58,8 +58,8 @@ impl RootLine {
     }
 
     /// The a on the line at a given b (None when the line is parallel to the a-axis).
-    pub fn alpha_at(&self, beta: f64) -> Option<f64> {
-        let a = -(self.p0 + beta * self.pb) / self.pk;
+    pub fn stiffness_at(&self, b: f64) -> Option<f64> {
+        let a = -(self.p0 + b * self.pb) / self.pk;
         a.is_finite().then_some(a)
     }
 }
@@ -166,7 +166,7 @@ pub fn curve_end(fam: &AffineFamily, at_plus_one: bool) -> Option<WallPoint> {
 
 /// da/dθ along the curve, analytically (for the largest stable stiffness on an arc); near
 /// z = 1 in the shifted variable.
-pub fn dalpha_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
+pub fn da_dtheta(fam: &AffineFamily, theta: f64) -> f64 {
     let z = crate::circle::unit(theta);
     let iz = Complex64::i() * z;
     // near z = 1 from the shifted form (w = e^{iθ} − 1 without cancellation), as the curve
@@ -198,9 +198,9 @@ pub struct WallLine {
 
 impl WallLine {
     /// The stiffness axis at damping b: a = t.
-    pub fn stiffness_axis(beta: f64) -> Self {
+    pub fn stiffness_axis(b: f64) -> Self {
         Self {
-            from: WallPoint { a: 0.0, b: beta },
+            from: WallPoint { a: 0.0, b },
             dir: WallPoint { a: 1.0, b: 0.0 },
         }
     }
@@ -288,8 +288,8 @@ fn scan_thetas(fam: &AffineFamily) -> Vec<f64> {
 
 /// All a at which, for fixed b, p(z) has a root on the unit circle (D-decomposition along
 /// the stiffness, Section V); see [`line_crossings`].
-pub fn alpha_crossings(fam: &AffineFamily, beta: f64) -> Vec<f64> {
-    line_crossings(fam, &WallLine::stiffness_axis(beta))
+pub fn stiffness_crossings(fam: &AffineFamily, b: f64) -> Vec<f64> {
+    line_crossings(fam, &WallLine::stiffness_axis(b))
         .into_iter()
         .map(|c| c.t)
         .collect()

@@ -53,7 +53,7 @@ fn smooth_top(
     (t1, t2): (f64, f64),
 ) -> Option<(WallPoint, [f64; 2])> {
     let (lo, hi) = (t1.min(t2), t1.max(t2));
-    let slope = |t: f64| dalpha_dtheta(fam, t);
+    let slope = |t: f64| da_dtheta(fam, t);
     if !(slope(lo) > 0.0 && slope(hi) < 0.0) {
         return None;
     }
@@ -81,7 +81,7 @@ pub(super) fn smooth_from(fam: &AffineFamily, theta: f64) -> Option<(WallPoint, 
     if !(theta > 0.0 && theta < PI) {
         return None;
     }
-    let slope = |t: f64| dalpha_dtheta(fam, t);
+    let slope = |t: f64| da_dtheta(fam, t);
     let mut h = 1e-3 * theta.min(PI - theta);
     let (lo, hi) = (0..SMOOTH_STEPS).find_map(|_| {
         let (lo, hi) = (

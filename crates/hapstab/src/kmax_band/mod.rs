@@ -32,7 +32,7 @@
 //! [`BandMax::Undecided`], and the region decides it ([`crate::region::alpha_max_within`]).
 
 use crate::boundary::{
-    Interval, RootLine, WallLine, WallPoint, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    Interval, RootLine, WallLine, WallPoint, curve_end, curve_point, curve_point_at, da_dtheta,
     minus_one_line, plus_one_line,
 };
 use crate::cayley::CayleyFamily;

@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::boundary::{
-    LazyCircleTable, RootLine, WallPoint, curve_end, curve_point, curve_point_at, dalpha_dtheta,
+    LazyCircleTable, RootLine, WallPoint, curve_end, curve_point, curve_point_at, da_dtheta,
     minus_one_line, plus_one_line,
 };
 use crate::closed_loop::AffineFamily;

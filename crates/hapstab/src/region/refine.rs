@@ -242,9 +242,9 @@ pub(super) fn refine_vertex_max(fam: &AffineFamily, poly: &Polygon, imax: usize)
     let (t0, t1) = (poly.thetas[(imax + n - 1) % n], poly.thetas[(imax + 1) % n]);
     if t0.is_finite() && t1.is_finite() {
         let (a, b) = (t0.min(t1), t0.max(t1));
-        let (ga, gb) = (dalpha_dtheta(fam, a), dalpha_dtheta(fam, b));
+        let (ga, gb) = (da_dtheta(fam, a), da_dtheta(fam, b));
         if ga.signum() != gb.signum() {
-            let t = crate::bracket::sign_change(a, b, |t| dalpha_dtheta(fam, t));
+            let t = crate::bracket::sign_change(a, b, |t| da_dtheta(fam, t));
             if let Some(p) = curve_point(fam, t)
                 && p.a >= cand.0
             {
