@@ -13,7 +13,6 @@ use serde::{Deserialize, Serialize};
 pub use crate::delay::Delay;
 use crate::error::{Error, Result, at_most, finite, non_negative, positive};
 use crate::lowpass_design::{Family, NamedLowPass};
-use crate::paper::PlantParams;
 use crate::param::Param;
 use crate::params::{Effective, MAX_DELAY};
 
@@ -756,27 +755,6 @@ impl Loop {
             Delay::samples(d)?,
             VelocityEstimator::Backward,
         )
-    }
-
-    /// The paper's loop in normalized units (Table I): m = 1, T = 1, so that the wall's
-    /// (K, B) are exactly (α, β) and the plant is 1/(s² + δs + γ).
-    pub fn normalized(pp: PlantParams, d: usize) -> Result<Self> {
-        let pp = PlantParams::new(pp.gamma, pp.delta)?;
-        Self::paper(Effective::new(1.0, pp.delta, pp.gamma)?, 1.0, d)
-    }
-
-    /// The (γ, δ) of Table I when the plant is the paper's mass-spring-damper without lag and
-    /// the velocity is the backward difference: the loops that have the paper's normalized
-    /// view. None otherwise.
-    pub fn paper_view(&self) -> Option<PlantParams> {
-        match (&self.plant.model, &self.velocity) {
-            (PlantModel::MassSpringDamper(e), VelocityEstimator::Backward)
-                if self.plant.force_lag == 0.0 && self.delay.fraction == 0.0 =>
-            {
-                PlantParams::from_physical(e, self.period).ok()
-            }
-            _ => None,
-        }
     }
 
     /// The delay time t_d in seconds.

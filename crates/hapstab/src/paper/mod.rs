@@ -26,8 +26,8 @@ use serde::Serialize;
 
 use crate::closed_loop::AffineFamily;
 use crate::error::Result;
-use crate::model::Loop;
-use crate::params::check_delay;
+use crate::model::{Loop, PlantModel, VelocityEstimator};
+use crate::params::{Effective, check_delay};
 use crate::stability::Analysis;
 use crate::verdict::{Verdict, decide};
 
@@ -87,6 +87,30 @@ impl NormalizedFamily {
     /// stiffness part PK = N(z)·z of p(z) (eq. 9 divided by −2c1γ).
     pub fn numerator_constant(&self) -> f64 {
         self.family.pk.get(1).copied().unwrap_or(0.0)
+    }
+}
+
+/// The paper's normalized view of a loop: the façade's two hooks on [`Loop`].
+impl Loop {
+    /// The paper's loop in normalized units (Table I): m = 1, T = 1, so that the wall's
+    /// (K, B) are exactly (α, β) and the plant is 1/(s² + δs + γ).
+    pub fn normalized(pp: PlantParams, d: usize) -> Result<Self> {
+        let pp = PlantParams::new(pp.gamma, pp.delta)?;
+        Self::paper(Effective::new(1.0, pp.delta, pp.gamma)?, 1.0, d)
+    }
+
+    /// The (γ, δ) of Table I when the plant is the paper's mass-spring-damper without lag and
+    /// the velocity is the backward difference: the loops that have the paper's normalized
+    /// view. None otherwise.
+    pub fn paper_view(&self) -> Option<PlantParams> {
+        match (&self.plant.model, &self.velocity) {
+            (PlantModel::MassSpringDamper(e), VelocityEstimator::Backward)
+                if self.plant.force_lag == 0.0 && self.delay.fraction == 0.0 =>
+            {
+                PlantParams::from_physical(e, self.period).ok()
+            }
+            _ => None,
+        }
     }
 }
 
