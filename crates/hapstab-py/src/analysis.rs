@@ -2,7 +2,7 @@
 //! library's `System` (the same methods the command line calls).
 
 use hapstab::System;
-use hapstab::answer::{RegionPaperView, WallUnitsOut, check_answer};
+use hapstab::answer::{PhysicalRegion, RegionPaperView, check_answer};
 use hapstab::region::{EdgeKind, Polygon, StableRegion};
 use num_complex::Complex64;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
@@ -234,50 +234,38 @@ impl PyRegion {
     }
 }
 
-fn vertices<'py>(
-    py: Python<'py>,
-    p: &Polygon,
-    scale: (f64, f64),
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let flat: Vec<f64> = p
-        .vertices
-        .iter()
-        .flat_map(|v| [v.a * scale.0, v.b * scale.1])
-        .collect();
-    PyArray1::from_vec(py, flat).reshape([p.vertices.len(), 2])
+/// An (N, 2) float64 array of [K, B] rows.
+fn rows<'py>(py: Python<'py>, ring: &[[f64; 2]]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = ring.iter().flatten().copied().collect();
+    PyArray1::from_vec(py, flat).reshape([ring.len(), 2])
 }
 
+/// The region `r` of `sys` as Python's object: the library's answer in N/m and Ns/m
+/// ([`PhysicalRegion`] and [`RegionPaperView`], the numbers of `hapstab boundary --json`) with None where it has NaN
+/// (nothing stable), the vertices' angles and the edges.
 fn region_object(py: Python<'_>, sys: &System, r: &StableRegion) -> PyResult<PyRegion> {
-    let fam = sys.family();
-    let (kpa, bpb) = fam.to_physical(1.0, 1.0);
+    let ph = PhysicalRegion::of(sys.family(), r);
     let found = !r.polygons.is_empty();
-    let (k, b) = fam.to_physical(r.a_max, r.b_at_a_max);
-    let polygons = r
-        .polygons
-        .iter()
-        .map(|p| Ok(vertices(py, p, (kpa, bpb))?.unbind()))
-        .collect::<PyResult<_>>()?;
+    let some = |x: f64| found.then_some(x);
     Ok(PyRegion {
-        polygons,
+        polygons: ph
+            .polygons
+            .iter()
+            .map(|ring| Ok(rows(py, ring)?.unbind()))
+            .collect::<PyResult<_>>()?,
         thetas: r
             .polygons
             .iter()
             .map(|p| PyArray1::from_slice(py, &p.thetas).unbind())
             .collect(),
         edges: r.polygons.iter().map(edges).collect(),
-        k_max: found.then_some(k),
-        b_at_k_max: found.then_some(b),
-        k_max_attained: found.then_some(r.a_max_attained),
-        b_stable_near_k_max: found.then(|| fam.to_physical(0.0, r.b_stable).1),
-        k_stable_near_k_max: found.then(|| fam.to_physical(r.a_stable, 0.0).0),
-        area: r.area * kpa * bpb,
-        wall_units: dict_of(
-            py,
-            &WallUnitsOut {
-                stiffness: kpa,
-                damping: bpb,
-            },
-        )?,
+        k_max: some(ph.k_max),
+        b_at_k_max: some(ph.b_at_k_max),
+        k_max_attained: found.then_some(ph.k_max_attained),
+        b_stable_near_k_max: some(ph.b_stable_near_k_max),
+        k_stable_near_k_max: some(ph.k_stable_near_k_max),
+        area: ph.area,
+        wall_units: dict_of(py, &ph.wall_units)?,
         normalized: RegionPaperView::of(sys.lp(), r)
             .map(|n| dict_of(py, &n))
             .transpose()?,

@@ -29,7 +29,7 @@ use hapstab_plot::simplify::simplify_polygon;
 const EMPTY_CHECK_SLICES: usize = 64;
 
 /// The exact stable region (Section V) as sent to the page: the library's region answer
-/// ([`hapstab::answer::region::RegionAnswer`], the keys of `hapstab boundary --json`: K and B
+/// ([`hapstab::answer::RegionAnswer`], the keys of `hapstab boundary --json`: K and B
 /// for a physical loop, α and β for normalized input) of the polygons simplified for drawing,
 /// with the simplification's figures.
 #[derive(Debug, Clone, Serialize)]
@@ -184,6 +184,7 @@ fn region_json(sys: &System, normalized: bool, r: &StableRegion, tol: f64) -> Re
                 .zip(starts)
                 .map(|(e, start)| Edge { start, ..*e })
                 .collect();
+            // the drawn ring has no per-vertex angles: the answer does not carry them
             Polygon {
                 vertices,
                 edges,

@@ -104,24 +104,28 @@ pub struct RegionAnswer {
     pub normalized: Option<RegionPaperView>,
 }
 
-fn physical_region(fam: &AffineFamily, r: &StableRegion) -> PhysicalRegion {
-    let (k_max, b_at_k_max) = fam.to_physical(r.a_max, r.b_at_a_max);
-    let (kpa, bpb) = fam.to_physical(1.0, 1.0);
-    PhysicalRegion {
-        k_max,
-        b_at_k_max,
-        k_max_attained: r.a_max_attained,
-        b_stable_near_k_max: fam.to_physical(0.0, r.b_stable).1,
-        k_stable_near_k_max: fam.to_physical(r.a_stable, 0.0).0,
-        area: r.area * kpa * bpb,
-        polygons: polygons(r, |a, b| {
-            let (k, b) = fam.to_physical(a, b);
-            [k, b]
-        }),
-        wall_units: WallUnitsOut {
-            stiffness: kpa,
-            damping: bpb,
-        },
+impl PhysicalRegion {
+    /// The region `r` of the family `fam` in N/m and Ns/m (its wall units times
+    /// [`AffineFamily::to_physical`]; NaN where the region is empty).
+    pub fn of(fam: &AffineFamily, r: &StableRegion) -> Self {
+        let (k_max, b_at_k_max) = fam.to_physical(r.a_max, r.b_at_a_max);
+        let (kpa, bpb) = fam.to_physical(1.0, 1.0);
+        PhysicalRegion {
+            k_max,
+            b_at_k_max,
+            k_max_attained: r.a_max_attained,
+            b_stable_near_k_max: fam.to_physical(0.0, r.b_stable).1,
+            k_stable_near_k_max: fam.to_physical(r.a_stable, 0.0).0,
+            area: r.area * kpa * bpb,
+            polygons: polygons(r, |a, b| {
+                let (k, b) = fam.to_physical(a, b);
+                [k, b]
+            }),
+            wall_units: WallUnitsOut {
+                stiffness: kpa,
+                damping: bpb,
+            },
+        }
     }
 }
 
@@ -141,7 +145,7 @@ pub fn region_answer(sys: &System, normalized: bool, r: &StableRegion) -> Region
     let physical = !normalized;
     RegionAnswer {
         input: LoopInput::new(lp, normalized, None),
-        physical: physical.then(|| physical_region(fam, r)),
+        physical: physical.then(|| PhysicalRegion::of(fam, r)),
         units: (!physical).then(|| NormalizedRegion {
             alpha_max: r.a_max,
             beta_at_alpha_max: r.b_at_a_max,
