@@ -20,6 +20,8 @@ const TAYLOR_REL: f64 = 1e-17;
 const TAYLOR_NORM: f64 = 0.5;
 /// Taylor terms at most (‖As‖ ≤ 1/2 needs about 20).
 const TAYLOR_TERMS: usize = 40;
+/// Orders up to this one work in stack buffers.
+const SMALL_ORDER: usize = 6;
 
 /// E(h) = e^{Ah} − I and Ψ(h) = ∫₀ʰ e^{As} ds of the square matrix `a` (module doc).
 pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
@@ -33,20 +35,38 @@ pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
         k += 1;
     }
     let s = h * 0.5_f64.powi(k);
-    let flat: Vec<f64> = a.iter().flatten().copied().collect();
-    let mut psi = psi_series(&flat, n, s);
-    let mut e = vec![0.0; n * n];
-    mul_into(&mut e, &flat, &psi, n);
-    let (mut two_plus_e, mut next) = (vec![0.0; n * n], vec![0.0; n * n]);
+    // Five n × n work buffers, on the stack for the plants' usual orders.
+    let mut small = [0.0; 5 * SMALL_ORDER * SMALL_ORDER];
+    let mut large = Vec::new();
+    let buf: &mut [f64] = if n <= SMALL_ORDER {
+        &mut small[..5 * n * n]
+    } else {
+        large.resize(5 * n * n, 0.0);
+        &mut large
+    };
+    let (flat, rest) = buf.split_at_mut(n * n);
+    let (mut psi, rest) = rest.split_at_mut(n * n);
+    let (mut e, rest) = rest.split_at_mut(n * n);
+    let (mut next, scaled) = rest.split_at_mut(n * n);
+    for (x, row) in flat.chunks_mut(n).zip(a) {
+        x.copy_from_slice(row);
+    }
+    scaled
+        .iter_mut()
+        .zip(flat.iter())
+        .for_each(|(x, a)| *x = a * s);
+    psi_series(scaled, n, s, psi, e, next);
+    mul_into(e, flat, psi, n);
+    let two_plus_e = scaled;
     for _ in 0..k {
-        two_plus_e.copy_from_slice(&e);
-        add_diagonal(&mut two_plus_e, n, 2.0);
-        mul_into(&mut next, &two_plus_e, &psi, n);
+        two_plus_e.copy_from_slice(e);
+        add_diagonal(two_plus_e, n, 2.0);
+        mul_into(next, two_plus_e, psi, n);
         std::mem::swap(&mut psi, &mut next);
-        mul_into(&mut next, &e, &two_plus_e, n);
+        mul_into(next, e, two_plus_e, n);
         std::mem::swap(&mut e, &mut next);
     }
-    (rows(&e, n), rows(&psi, n))
+    (rows(e, n), rows(psi, n))
 }
 
 /// E(s + t) = E(s) + E(t) + E(s)·E(t) of E(s) = e^{As} − I and E(t): the doubling of the
@@ -63,31 +83,48 @@ pub fn exp_joined(e_s: &Mat, e_t: &Mat) -> Mat {
     rows(&out, n)
 }
 
-/// Ψ(s) = s Σ_j (As)^j/(j + 1)! for ‖As‖ ≤ 1/2 (row-major, order n).
-fn psi_series(a: &[f64], n: usize, s: f64) -> Vec<f64> {
-    let as_: Vec<f64> = a.iter().map(|x| x * s).collect();
-    let mut term = vec![0.0; n * n]; // (As)^j / (j+1)!
-    add_diagonal(&mut term, n, 1.0);
-    let mut sum = term.clone();
-    let mut next = vec![0.0; n * n];
+/// Ψ(s) = s Σ_j (As)^j/(j + 1)! into `sum`, for ‖As‖ ≤ 1/2 given as `as_` (row-major, order
+/// n; `term` and `next` are work buffers).
+fn psi_series(as_: &[f64], n: usize, s: f64, sum: &mut [f64], term: &mut [f64], next: &mut [f64]) {
+    // term = (As)^j / (j+1)!
+    let (mut term, mut next) = (term, next);
+    term.fill(0.0);
+    add_diagonal(term, n, 1.0);
+    sum.copy_from_slice(term);
     for j in 1..TAYLOR_TERMS {
-        mul_into(&mut next, &as_, &term, n);
+        mul_into(next, as_, term, n);
         std::mem::swap(&mut term, &mut next);
         let f = 1.0 / (j + 1) as f64;
         term.iter_mut().for_each(|x| *x *= f);
-        let tn = norm1(&term, n);
-        sum.iter_mut().zip(&term).for_each(|(x, t)| *x += t);
-        if tn <= TAYLOR_REL * norm1(&sum, n) {
+        let tn = norm1(term, n);
+        sum.iter_mut().zip(term.iter()).for_each(|(x, t)| *x += t);
+        if tn <= TAYLOR_REL * norm1(sum, n) {
             break;
         }
     }
     sum.iter_mut().for_each(|x| *x *= s);
-    sum
 }
 
 /// out = x·y for row-major square matrices of order n (the summation order of
 /// [`poly::mat_mul`], zero entries of x skipped).
 fn mul_into(out: &mut [f64], x: &[f64], y: &[f64], n: usize) {
+    // The plants' usual orders get loops the compiler unrolls (the same operations).
+    match n {
+        2 => mul_fixed::<2>(out, x, y),
+        3 => mul_fixed::<3>(out, x, y),
+        4 => mul_fixed::<4>(out, x, y),
+        _ => mul_order(out, x, y, n),
+    }
+}
+
+/// [`mul_into`] for the order N known at compile time.
+fn mul_fixed<const N: usize>(out: &mut [f64], x: &[f64], y: &[f64]) {
+    mul_order(out, x, y, N);
+}
+
+/// [`mul_into`]'s loops for order n.
+#[inline(always)]
+fn mul_order(out: &mut [f64], x: &[f64], y: &[f64], n: usize) {
     out.fill(0.0);
     for i in 0..n {
         let row = &mut out[i * n..(i + 1) * n];

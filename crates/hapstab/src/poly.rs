@@ -267,23 +267,41 @@ fn hessenberg(mut a: Mat) -> Mat {
 /// (Hyman's method). O(n³), backward stable for the small orders of haptic plants.
 pub fn char_poly(a: &Mat) -> Vec<f64> {
     let n = a.len();
-    let h = hessenberg(a.clone());
-    // q[j] = det(wI − H[0..j, 0..j]), q[0] = 1.
-    let mut q: Vec<Vec<f64>> = vec![vec![1.0]];
+    let reduced;
+    let h = if n > 2 {
+        reduced = hessenberg(a.clone());
+        &reduced
+    } else {
+        a
+    };
+    // Row j of q (stride n + 1) holds q_j(w) = det(wI − H[0..j, 0..j]), q_0 = 1.
+    let stride = n + 1;
+    let mut q = vec![0.0; stride * stride];
+    q[0] = 1.0;
     for j in 0..n {
         // Expansion along column j: (w − h_jj) q_j − Σ_{i<j} h_ij (Π_{k=i+1..j} h_{k,k−1}) q_i.
-        let mut next = mul(&[-h[j][j], 1.0], &q[j]);
+        let (done, rest) = q.split_at_mut((j + 1) * stride);
+        let next = &mut rest[..=j + 1];
+        let qj = &done[j * stride..=j * stride + j];
+        next[0] = -h[j][j] * qj[0];
+        for m in 1..=j {
+            next[m] = -h[j][j] * qj[m] + qj[m - 1];
+        }
+        next[j + 1] = qj[j];
         let mut prod = 1.0;
         for i in (0..j).rev() {
             prod *= h[i + 1][i];
             if prod == 0.0 {
                 break;
             }
-            next = add_scaled(&next, -h[i][j] * prod, &q[i]);
+            let c = -h[i][j] * prod;
+            for (x, qi) in next.iter_mut().zip(&done[i * stride..=i * stride + i]) {
+                *x += c * qi;
+            }
         }
-        q.push(next);
     }
-    q.pop().unwrap_or_else(|| vec![1.0])
+    q.drain(..n * stride);
+    q
 }
 
 #[cfg(test)]

@@ -18,6 +18,7 @@ mod map;
 mod margins;
 mod margins_delay;
 mod margins_property;
+mod matrix_exp;
 mod paper;
 mod passivity;
 mod passivity_quantized;
