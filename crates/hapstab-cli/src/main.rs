@@ -2,11 +2,6 @@
 //! the library and formats output; every analysis lives in the `hapstab` crate, the figures'
 //! machinery in `hapstab-plot` and the explorer of `hapstab serve` in `hapstab-serve`.
 
-/// mimalloc: an analysis forms many small vectors (a map over the plant's parameters, one
-/// exact family per point), where it allocates about twice as fast as the system's malloc.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 mod boundary;
 mod budget;
 mod check;
