@@ -6,7 +6,6 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use assert_cmd::Command;
 use hapstab::boundary::stable_stiffness_intervals;
 use hapstab::is_stable;
 use hapstab::paper::NormalizedFamily;
@@ -280,24 +279,10 @@ fn check_png(path: &Path) {
 #[test]
 fn paper_writes_figures_report_and_verdicts_that_independent_checks_confirm() {
     let dir = tempfile::tempdir().unwrap();
-    let out = Command::cargo_bin("hapstab")
-        .unwrap()
-        .args(["paper", "--json", "--out"])
-        .arg(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     // no progress bar off a terminal: standard error stays empty
-    assert!(
-        out.stderr.is_empty(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let summary: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let dir_arg = dir.path().to_str().unwrap();
+    let out = crate::common::quiet_stdout_in(dir.path(), &["paper", "--json", "--out", dir_arg]);
+    let summary: Value = serde_json::from_slice(&out).unwrap();
     assert!(summary["seconds"].as_f64().unwrap() > 0.0);
     assert_eq!(summary["claims"].as_array().unwrap().len(), 11);
     let files: Vec<&str> = summary["files"]

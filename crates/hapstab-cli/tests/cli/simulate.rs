@@ -13,18 +13,9 @@ use serde_json::Value;
 
 /// Runs with `--json`, asserting success and an empty stderr (no progress bar).
 pub(crate) fn json(args: &[&str]) -> Value {
-    let out = hapstab().args(args).arg("--json").output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(
-        out.stderr.is_empty(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    let mut all = args.to_vec();
+    all.push("--json");
+    serde_json::from_slice(&common::quiet_stdout_in(&std::env::temp_dir(), &all)).unwrap()
 }
 
 /// `simulate` with its CSV and plot in `dir` (named `name`).

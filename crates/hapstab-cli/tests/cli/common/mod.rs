@@ -23,6 +23,25 @@ pub fn stdout_in(dir: &std::path::Path, args: &[&str]) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
+/// Runs the binary in `dir`, asserting success and an empty standard error (no progress bar
+/// off a terminal, no warning), and returns its standard output.
+pub fn quiet_stdout_in(dir: &std::path::Path, args: &[&str]) -> Vec<u8> {
+    let out = hapstab().current_dir(dir).args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "hapstab {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        out.stderr.is_empty(),
+        "hapstab {}: standard error not empty: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
 /// [`stdout_in`] the system's temporary directory.
 pub fn stdout(args: &[&str]) -> String {
     stdout_in(&std::env::temp_dir(), args)
