@@ -594,7 +594,15 @@ async fn drive_loop(c: &Client, base: &str, shot: &Path) -> R<()> {
     assert_two_mass_form(c).await?;
     assert_speaks_k_and_b(
         c,
-        &["region-card", "lg-amax", "lg-click", "xlabel", "ylabel"],
+        &[
+            "region-card",
+            "lg-amax",
+            "lg-click",
+            "xlabel",
+            "ylabel",
+            "linear-formula",
+            "passive-formula",
+        ],
     )
     .await?;
     // Type another estimator: the region is redrawn for it.
