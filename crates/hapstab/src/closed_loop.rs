@@ -95,12 +95,11 @@ impl AffineFamily {
     pub fn new(dl: &DiscreteLoop) -> Self {
         let den_w = dl.denominator_shifted();
         let (num_w, k) = dl.numerator_shifted(&den_w);
-        let den = poly::taylor_shift(&den_w, -1.0);
-        let num = poly::taylor_shift(&num_w, -1.0);
         let (vn, vd) = (&dl.velocity_num, &dl.velocity_den);
-        let p0_core = poly::mul(&den, vd);
-        let pk = poly::mul(&num, vd);
-        let pb = poly::mul(&num, vn);
+        // the parts in z: D(z) = D(w)|_{w = z − 1}, N(z) likewise
+        let p0_core = poly::with_taylor_shift(&den_w, -1.0, |den| poly::mul(den, vd));
+        let (pk, pb) =
+            poly::with_taylor_shift(&num_w, -1.0, |num| (poly::mul(num, vd), poly::mul(num, vn)));
         // Values and slopes at z = 1 from the shifted forms (product rule).
         let (d1, dd1) = at_zero(&den_w);
         let (n1, dn1) = at_zero(&num_w);
@@ -126,12 +125,13 @@ impl AffineFamily {
             dn1 * vn1 + n1 * dvn1,
         ];
         let shifted = (vd.len().max(vn.len()) <= MAX_SHIFTED_FILTER).then(|| {
-            let (vd_w, vn_w) = (poly::taylor_shift(vd, 1.0), poly::taylor_shift(vn, 1.0));
-            let mut parts = ShiftedParts {
-                p0_core: poly::mul(&den_w, &vd_w),
-                pk: poly::mul(&num_w, &vd_w),
-                pb: poly::mul(&num_w, &vn_w),
-            };
+            let mut parts = poly::with_taylor_shift(vd, 1.0, |vd_w| {
+                poly::with_taylor_shift(vn, 1.0, |vn_w| ShiftedParts {
+                    p0_core: poly::mul(&den_w, vd_w),
+                    pk: poly::mul(&num_w, vd_w),
+                    pb: poly::mul(&num_w, vn_w),
+                })
+            });
             // The values at w = 0 are the parts at z = 1, exactly as `at_one` forms them (the
             // static stiffness where det(E) rounds): a wall on the z = 1 line then has its
             // root at z = 1 exactly in the shifted form, as in the loop.

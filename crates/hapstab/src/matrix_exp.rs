@@ -25,9 +25,30 @@ const SMALL_ORDER: usize = 6;
 
 /// E(h) = e^{Ah} − I and Ψ(h) = ∫₀ʰ e^{As} ds of the square matrix `a` (module doc).
 pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
+    with_exp(a, h, |e, psi, n| (rows(e, n), rows(psi, n)))
+}
+
+/// E(h) = e^{Ah} − I and the input Ψ(h)·b of a force held over h (the zero-order hold's
+/// Γ = Ψ(h)B, eq. 6), without forming Ψ's rows: [`exp_and_integral`] followed by
+/// [`poly::mat_vec`], the same operations.
+pub fn exp_and_input(a: &Mat, h: f64, b: &[f64]) -> (Mat, Vec<f64>) {
+    with_exp(a, h, |e, psi, n| {
+        let input = psi
+            .chunks(n.max(1))
+            .take(n)
+            .map(|row| row.iter().zip(b).map(|(r, v)| r * v).sum())
+            .collect();
+        (rows(e, n), input)
+    })
+}
+
+/// Computes E(h) and Ψ(h) (module doc) into row-major work buffers and hands them, with the
+/// order n, to `done`.
+fn with_exp<R>(a: &Mat, h: f64, done: impl FnOnce(&[f64], &[f64], usize) -> R) -> R {
     let n = a.len();
     if h == 0.0 {
-        return (vec![vec![0.0; n]; n], vec![vec![0.0; n]; n]);
+        let zero = vec![0.0; n * n];
+        return done(&zero, &zero, n);
     }
     let norm = poly::norm1(a) * h;
     let mut k = 0;
@@ -66,7 +87,7 @@ pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
         mul_into(next, e, two_plus_e, n);
         std::mem::swap(&mut e, &mut next);
     }
-    (rows(e, n), rows(psi, n))
+    done(e, psi, n)
 }
 
 /// E(s + t) = E(s) + E(t) + E(s)·E(t) of E(s) = e^{As} − I and E(t): the doubling of the
@@ -86,13 +107,36 @@ pub fn exp_joined(e_s: &Mat, e_t: &Mat) -> Mat {
 /// Ψ(s) = s Σ_j (As)^j/(j + 1)! into `sum`, for ‖As‖ ≤ 1/2 given as `as_` (row-major, order
 /// n; `term` and `next` are work buffers).
 fn psi_series(as_: &[f64], n: usize, s: f64, sum: &mut [f64], term: &mut [f64], next: &mut [f64]) {
+    // The plants' usual orders get loops the compiler unrolls (the same operations).
+    match n {
+        2 => psi_fixed::<2>(as_, s, sum, term, next),
+        3 => psi_fixed::<3>(as_, s, sum, term, next),
+        4 => psi_fixed::<4>(as_, s, sum, term, next),
+        _ => psi_order(as_, n, s, sum, term, next),
+    }
+}
+
+/// [`psi_series`] for the order N known at compile time.
+fn psi_fixed<const N: usize>(
+    as_: &[f64],
+    s: f64,
+    sum: &mut [f64],
+    term: &mut [f64],
+    next: &mut [f64],
+) {
+    psi_order(as_, N, s, sum, term, next);
+}
+
+/// [`psi_series`]'s loop for order n.
+#[inline(always)]
+fn psi_order(as_: &[f64], n: usize, s: f64, sum: &mut [f64], term: &mut [f64], next: &mut [f64]) {
     // term = (As)^j / (j+1)!
     let (mut term, mut next) = (term, next);
     term.fill(0.0);
     add_diagonal(term, n, 1.0);
     sum.copy_from_slice(term);
     for j in 1..TAYLOR_TERMS {
-        mul_into(next, as_, term, n);
+        mul_order(next, as_, term, n);
         std::mem::swap(&mut term, &mut next);
         let f = 1.0 / (j + 1) as f64;
         term.iter_mut().for_each(|x| *x *= f);
@@ -141,6 +185,7 @@ fn mul_order(out: &mut [f64], x: &[f64], y: &[f64], n: usize) {
 }
 
 /// m += c·I.
+#[inline(always)]
 fn add_diagonal(m: &mut [f64], n: usize, c: f64) {
     for i in 0..n {
         m[i * n + i] += c;
@@ -148,6 +193,7 @@ fn add_diagonal(m: &mut [f64], n: usize, c: f64) {
 }
 
 /// The largest absolute column sum.
+#[inline(always)]
 fn norm1(m: &[f64], n: usize) -> f64 {
     (0..n)
         .map(|j| (0..n).map(|i| m[i * n + j].abs()).sum::<f64>())

@@ -14,8 +14,8 @@ pub fn mul(a: &[f64], b: &[f64]) -> Vec<f64> {
         if x == 0.0 {
             continue;
         }
-        for (j, &y) in b.iter().enumerate() {
-            out[i + j] += x * y;
+        for (o, &y) in out[i..].iter_mut().zip(b) {
+            *o += x * y;
         }
     }
     out
@@ -166,16 +166,35 @@ pub fn eval_real(c: &[f64], x: f64) -> (f64, f64) {
 /// The Taylor shift q(z) = p(z + s): the coefficients of p in powers of (z − s) read as a
 /// polynomial in z. Used to convert the shifted (delta-like) form in w = z − 1 to z (s = −1).
 pub fn taylor_shift(p: &[f64], s: f64) -> Vec<f64> {
+    let mut c = p.to_vec();
+    taylor_shift_in_place(&mut c, s);
+    c
+}
+
+/// [`taylor_shift`] in a stack buffer for polynomials of up to 32 coefficients, handed to
+/// `f` (the same operations without an allocation).
+pub fn with_taylor_shift<R>(p: &[f64], s: f64, f: impl FnOnce(&[f64]) -> R) -> R {
+    const SMALL: usize = 32;
+    if p.len() > SMALL {
+        return f(&taylor_shift(p, s));
+    }
+    let mut buf = [0.0; SMALL];
+    let c = &mut buf[..p.len()];
+    c.copy_from_slice(p);
+    taylor_shift_in_place(c, s);
+    f(c)
+}
+
+/// [`taylor_shift`] of the coefficients in `c`, in place.
+fn taylor_shift_in_place(c: &mut [f64], s: f64) {
     // Repeated synthetic division (Horner) by (z − s): exact for s = ±1 up to one rounding
     // per multiply-add.
-    let mut c = p.to_vec();
     let n = c.len();
     for i in 0..n {
         for j in (i..n.saturating_sub(1)).rev() {
             c[j] += s * c[j + 1];
         }
     }
-    c
 }
 
 /// A dense row-major square matrix of small order (the plant's state dimension).
@@ -265,15 +284,22 @@ fn hessenberg(mut a: Mat) -> Mat {
 /// The characteristic polynomial det(wI − A), monic, ascending coefficients: Householder
 /// reduction to Hessenberg form, then the row recurrence of the leading principal minors
 /// (Hyman's method). O(n³), backward stable for the small orders of haptic plants.
-pub fn char_poly(a: &Mat) -> Vec<f64> {
-    let n = a.len();
-    let reduced;
-    let h = if n > 2 {
-        reduced = hessenberg(a.clone());
-        &reduced
+///
+/// The rows may be any slices (a [`Mat`], or borrowed rows of a work buffer).
+pub fn char_poly<R: AsRef<[f64]>>(a: &[R]) -> Vec<f64> {
+    if a.len() > 2 {
+        let owned: Mat = a.iter().map(|r| r.as_ref().to_vec()).collect();
+        minors(&hessenberg(owned))
     } else {
-        a
-    };
+        minors(a)
+    }
+}
+
+/// det(wI − H) of an upper Hessenberg matrix by the row recurrence of its leading principal
+/// minors (Hyman's method; [`char_poly`]).
+fn minors<R: AsRef<[f64]>>(h: &[R]) -> Vec<f64> {
+    let n = h.len();
+    let h = |i: usize, j: usize| h[i].as_ref()[j];
     // Row j of q (stride n + 1) holds q_j(w) = det(wI − H[0..j, 0..j]), q_0 = 1.
     let stride = n + 1;
     let mut q = vec![0.0; stride * stride];
@@ -283,18 +309,18 @@ pub fn char_poly(a: &Mat) -> Vec<f64> {
         let (done, rest) = q.split_at_mut((j + 1) * stride);
         let next = &mut rest[..=j + 1];
         let qj = &done[j * stride..=j * stride + j];
-        next[0] = -h[j][j] * qj[0];
+        next[0] = -h(j, j) * qj[0];
         for m in 1..=j {
-            next[m] = -h[j][j] * qj[m] + qj[m - 1];
+            next[m] = -h(j, j) * qj[m] + qj[m - 1];
         }
         next[j + 1] = qj[j];
         let mut prod = 1.0;
         for i in (0..j).rev() {
-            prod *= h[i + 1][i];
+            prod *= h(i + 1, i);
             if prod == 0.0 {
                 break;
             }
-            let c = -h[i][j] * prod;
+            let c = -h(i, j) * prod;
             for (x, qi) in next.iter_mut().zip(&done[i * stride..=i * stride + i]) {
                 *x += c * qi;
             }

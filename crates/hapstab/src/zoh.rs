@@ -346,21 +346,38 @@ impl DiscreteLoop {
             return vec![0.0];
         }
         let s = poly::norm1(&self.phi_minus_identity).max(1.0) / (gn * cn);
-        let m: Mat = self
-            .phi_minus_identity
-            .iter()
-            .enumerate()
-            .map(|(i, row)| {
-                row.iter()
-                    .zip(&self.c)
-                    .map(|(e, c)| e - s * g[i] * c)
-                    .collect()
-            })
-            .collect();
-        let full = poly::char_poly(&m);
-        let mut num: Vec<f64> = full.iter().zip(den).map(|(f, d)| (f - d) / s).collect();
+        let entry = |i: usize, j: usize| self.phi_minus_identity[i][j] - s * g[i] * self.c[j];
+        let mut num = self.char_poly_of(entry);
+        num.truncate(den.len());
+        for (f, d) in num.iter_mut().zip(den) {
+            *f = (*f - d) / s;
+        }
         num.pop(); // the monic leading terms cancel exactly
         num
+    }
+
+    /// det(wI − M) of the n × n matrix with entries `entry(i, j)` ([`poly::char_poly`]),
+    /// formed in a stack buffer for the plants' usual orders.
+    fn char_poly_of(&self, entry: impl Fn(usize, usize) -> f64) -> Vec<f64> {
+        const SMALL: usize = 6;
+        let n = self.order();
+        if n > SMALL {
+            let m: Mat = (0..n)
+                .map(|i| (0..n).map(|j| entry(i, j)).collect())
+                .collect();
+            return poly::char_poly(&m);
+        }
+        let mut buf = [[0.0; SMALL]; SMALL];
+        for (i, row) in buf.iter_mut().enumerate().take(n) {
+            for (j, x) in row.iter_mut().enumerate().take(n) {
+                *x = entry(i, j);
+            }
+        }
+        let mut rows: [&[f64]; SMALL] = [&[]; SMALL];
+        for (r, row) in rows.iter_mut().zip(&buf).take(n) {
+            *r = &row[..n];
+        }
+        poly::char_poly(&rows[..n])
     }
 
     /// The plant's numerator N(w) in the shifted variable: C adj(wI − E)Γ0 when λ = 0,
@@ -564,8 +581,8 @@ fn observable_start(ss: &StateSpace, position: f64, velocity: f64) -> Vec<f64> {
 /// E(λ) ([`crate::matrix_exp::exp_joined`]), so that two exponentials serve where three did.
 fn held_over_sample(a: &Mat, b: &[f64], lambda: f64) -> (Mat, Vec<f64>, Vec<f64>) {
     if lambda == 0.0 {
-        let (e1, psi1) = exp_and_integral(a, 1.0);
-        return (e1, poly::mat_vec(&psi1, b), vec![0.0; b.len()]);
+        let (e1, gamma0) = crate::matrix_exp::exp_and_input(a, 1.0, b);
+        return (e1, gamma0, vec![0.0; b.len()]);
     }
     let ([e_rest, e_l], g0, g1) = split_parts(a, b, lambda);
     (crate::matrix_exp::exp_joined(&e_rest, &e_l), g0, g1)
@@ -584,10 +601,9 @@ pub fn split_hold(a: &Mat, psi1: &Mat, b: &[f64], lambda: f64) -> (Vec<f64>, Vec
 
 /// For 0 < λ < 1: [E(1 − λ), E(λ)] and the inputs (Γ0, Γ1) of [`split_hold`].
 fn split_parts(a: &Mat, b: &[f64], lambda: f64) -> ([Mat; 2], Vec<f64>, Vec<f64>) {
-    let (e_rest, psi_rest) = exp_and_integral(a, 1.0 - lambda);
-    let (e_l, psi_l) = exp_and_integral(a, lambda);
-    let g0 = poly::mat_vec(&psi_rest, b);
-    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &poly::mat_vec(&psi_l, b));
+    let (e_rest, g0) = crate::matrix_exp::exp_and_input(a, 1.0 - lambda, b);
+    let (e_l, psi_l_b) = crate::matrix_exp::exp_and_input(a, lambda, b);
+    let g1 = poly::mat_vec(&add_identity(&e_rest, 1.0), &psi_l_b);
     ([e_rest, e_l], g0, g1)
 }
 
