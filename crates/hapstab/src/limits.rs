@@ -32,10 +32,10 @@ pub const POINT_TEST_SECONDS: f64 = 100e-9;
 /// measured with `map` at d = 1000, 0.36 ms per stable point).
 pub const POINT_TEST_SECONDS_PER_N2: f64 = 0.4e-9;
 /// Core-seconds of forming one plant's exact family for a map whose axes change the plant
-/// (γ or δ): the discretization and the parts of p(z), about 1.45 µs (measured with
+/// (γ or δ): the discretization and the parts of p(z), about 1.2 µs (measured with
 /// `map --x gamma:0:0.05:400 --y delta:0:0.5:400 --alpha 0.15 --beta 0.3 --delay 2`,
-/// 0.23–0.24 core-seconds for 160 000 plants and their tests) — [`plants_cost`].
-pub const PLANT_FAMILY_SECONDS: f64 = 1.5e-6;
+/// 0.19–0.20 core-seconds for 160 000 plants and their tests) — [`plants_cost`].
+pub const PLANT_FAMILY_SECONDS: f64 = 1.25e-6;
 /// Core-seconds of the roots of a polynomial ([`roots_cost`]): a fixed 20 µs ...
 pub const ROOTS_SECONDS: f64 = 20e-6;
 /// ... plus 40 ns per n² (Aberth–Ehrlich: O(n²) per sweep; measured with `check`, 0.19
