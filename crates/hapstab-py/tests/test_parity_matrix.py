@@ -1,8 +1,8 @@
 """The parity matrix, Python against the command line: for every kind of loop of the
 command line's matrix against the explorer (crates/hapstab-cli/tests/cli/serve_parity_matrix.rs:
 the paper's loop in physical and normalized units, a device without an arm, a two-mass device,
-a transfer function of order 5, the estimators average, low-pass and IIR, an actuator lag and a
-fractional delay), every analysis — check with its margins, K_max at a damping, over a band and
+a transfer function of order 5, the estimators average, low-pass, Butterworth and IIR, an
+actuator lag and a fractional delay), every analysis — check with its margins, K_max at a damping, over a band and
 overall, the stable region, the map, passivity, the sweep, the Z-width and the simulated
 contact — gives from Python the numbers of `hapstab … --json`, bit for bit where both compute
 the same thing. The explorer's API answers the command line's objects bit for bit (the Rust
@@ -73,6 +73,8 @@ KINDS = [
      ["--velocity", "average:3", "--delay", "1"], ("window", 1, 5, 5), 2.0),
     ("estimator lowpass:100", lambda: paper_device(velocity="lowpass:100"),
      ["--velocity", "lowpass:100"], ("cutoff", 50, 250, 5), 2.0),
+    ("estimator butterworth:2:150", lambda: paper_device(velocity="butterworth:2:150"),
+     ["--velocity", "butterworth:2:150"], ("cutoff", 50, 250, 5), 2.0),
     ("estimator iir", lambda: paper_device(velocity="iir:0.5,0,-0.5/1,-0.2"),
      ["--velocity", "iir:0.5,0,-0.5/1,-0.2"], ("period", 0.0005, 0.0015, 5), 2.0),
     ("force lag", lambda: paper_device(delay_samples=1, force_lag=4e-4),

@@ -1,10 +1,11 @@
 //! The parity matrix of the command line and the explorer: for every kind of loop (the
 //! paper's loop in physical and in normalized units, a device without an arm, a two-mass
-//! device, a transfer function of order 5, the velocity estimators average, low-pass and IIR,
-//! an actuator lag and a fractional delay), every analysis both front ends have — check with
-//! its margins, K_max at one damping, over a band and overall, the stable region, the map,
-//! passivity, the sweep, the Z-width and the simulated contact — gives the same numbers, bit
-//! for bit: `hapstab … --json` against `hapstab serve`'s API on the same loop.
+//! device, a transfer function of order 5, the velocity estimators average, low-pass,
+//! Butterworth and IIR, an actuator lag and a fractional delay), every analysis both front
+//! ends have — check with its margins, K_max at one damping, over a band and overall, the
+//! stable region, the map, passivity, the sweep, the Z-width and the simulated contact —
+//! gives the same numbers, bit for bit: `hapstab … --json` against `hapstab serve`'s API on
+//! the same loop.
 //!
 //! Numbers are compared as f64 with `==` after parsing both texts exactly (serde_json's
 //! `float_roundtrip`, which the library turns on); the only keys skipped are wall-clock times
@@ -122,6 +123,13 @@ fn kinds() -> Vec<Kind> {
             "estimator lowpass:100",
             &["--velocity", "lowpass:100"],
             with(&format!("d=0&estimator={}", enc("lowpass:100"))),
+            "cutoff:50:250:5",
+            b2,
+        ),
+        kind(
+            "estimator butterworth:2:150",
+            &["--velocity", "butterworth:2:150"],
+            with(&format!("d=0&estimator={}", enc("butterworth:2:150"))),
             "cutoff:50:250:5",
             b2,
         ),
