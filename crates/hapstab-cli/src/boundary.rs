@@ -8,7 +8,7 @@ use hapstab::answer::{PhysicalRegion, RegionAnswer, region_answer};
 use hapstab::region::{EdgeKind, StableRegion};
 use serde::Serialize;
 
-use crate::model::{LoopArgs, ResolvedLoop, describe_loop};
+use crate::model::{LoopArgs, ResolvedLoop, print_loop};
 use crate::output::{csv_num, eng, print_json, sig};
 use crate::wall_plot;
 use hapstab_plot::{Marker, palette};
@@ -190,9 +190,7 @@ fn print_text(rl: &ResolvedLoop, fam: &AffineFamily, r: &StableRegion, out: &Bou
         }
     } else {
         println!("stable region of the loop");
-        for line in describe_loop(&rl.lp) {
-            println!("{line}");
-        }
+        print_loop(&rl.lp);
     }
     if empty {
         println!("empty: no wall (K, B) makes this loop stable");

@@ -11,7 +11,7 @@ use hapstab::params::Wall;
 use serde::Serialize;
 
 use crate::model::{
-    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop, resolve_loop_wall,
+    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, print_loop_and_wall, resolve_loop_wall,
 };
 use crate::output::{eng, print_json, radius_text, sig};
 use crate::wall_plot;
@@ -111,14 +111,7 @@ pub fn run(a: &CheckArgs) -> Result<()> {
 
 fn print_text(rl: &ResolvedLoop, w: Wall, o: &CheckAnswer) {
     if !rl.normalized {
-        for line in describe_loop(&rl.lp) {
-            println!("{line}");
-        }
-        println!(
-            "wall      K = {}, B = {}",
-            eng(w.stiffness, "N/m", 6),
-            eng(w.damping, "Ns/m", 6)
-        );
+        print_loop_and_wall(&rl.lp, w);
     }
     // physical input speaks K, B; the paper's normalized view stays in the JSON
     if let (Some(p), true) = (&o.paper, rl.normalized) {

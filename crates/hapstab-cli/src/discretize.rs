@@ -12,7 +12,7 @@ use hapstab::zoh::DiscreteTf;
 use serde::Serialize;
 
 use crate::model::{
-    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
+    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, print_loop,
     resolve_loop_wall,
 };
 use crate::output::{descending, poly_text, print_json, sig};
@@ -134,9 +134,7 @@ fn fraction(prefix: &str, num: &str, den: &str) -> [String; 3] {
 fn print_text(rl: &ResolvedLoop, w: Wall, o: &DiscretizeOut) {
     let units = !rl.normalized;
     if units {
-        for line in describe_loop(&rl.lp) {
-            println!("{line}");
-        }
+        print_loop(&rl.lp);
     }
     let p = &o.plant;
     let prefix = if p.delay > 0 {

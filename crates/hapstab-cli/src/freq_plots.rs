@@ -14,7 +14,7 @@ use hapstab::params::Wall;
 use serde::Serialize;
 
 use crate::model::{
-    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop,
+    LoopArgs, LoopInput, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, print_loop_and_wall,
     resolve_loop_wall,
 };
 use crate::output::{csv_num, eng, print_json, sig};
@@ -127,14 +127,7 @@ fn run(a: &FreqArgs, kind: Kind) -> Result<()> {
     if a.json {
         return print_json(&json_out(&rl, w, &fr, plot, a.csv.clone()));
     }
-    for line in describe_loop(&rl.lp) {
-        println!("{line}");
-    }
-    println!(
-        "wall      K = {}, B = {}",
-        eng(w.stiffness, "N/m", 6),
-        eng(w.damping, "Ns/m", 6)
-    );
+    print_loop_and_wall(&rl.lp, w);
     print_summary(&fr, kind);
     if !plot.is_empty() {
         println!("plot      {}", files_text(&plot));

@@ -15,7 +15,7 @@ use hapstab::passivity::{DeviceDamping, Passivity, PassivityVerdict};
 use serde::Serialize;
 
 use crate::model::{
-    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, describe_loop, resolve_loop_wall,
+    LoopArgs, NON_PAPER_PLANT_FLAGS, ResolvedLoop, WallArgs, print_loop, resolve_loop_wall,
 };
 use crate::output::{eng, print_json, sig};
 
@@ -113,9 +113,7 @@ fn print_text(rl: &ResolvedLoop, w: Wall, o: &PassivityAnswer) {
         }
     };
     if !rl.normalized {
-        for line in describe_loop(&rl.lp) {
-            println!("{line}");
-        }
+        print_loop(&rl.lp);
     }
     let (what, k, b, area_unit) = if rl.normalized {
         ("δ", "α", "β", "")

@@ -12,7 +12,7 @@ use hapstab::sweep::SweepParam;
 use serde::Serialize;
 use std::path::PathBuf;
 
-use crate::model::{LoopArgs, LoopInput, describe_loop};
+use crate::model::{LoopArgs, LoopInput, print_loop};
 use crate::output::{csv_num, eng, print_json, sig};
 
 /// Arguments of `hapstab population`.
@@ -180,9 +180,7 @@ fn print_loop_and_population(
     n: usize,
     seed: u64,
 ) {
-    for line in describe_loop(&rl.lp) {
-        println!("{line}");
-    }
+    print_loop(&rl.lp);
     let who = match pop {
         Population::SectionIv => {
             "Section IV: m_H ∈ [0.5, 2] kg, k_H/m_H ∈ [0, 710] s⁻², b_H/m_H ∈ [0, 12.6] s⁻¹"

@@ -5,7 +5,7 @@ use anyhow::{Result, bail};
 use hapstab::robust::{BoxSide, RobustOptions};
 use hapstab_serve::robust_box::{answer, cost, text_lines};
 
-use crate::model::{LoopArgs, describe_loop};
+use crate::model::{LoopArgs, print_loop};
 use crate::output::print_json;
 
 /// Runs the robust K_max of the resolved loop over the box at damping B (default 0).
@@ -27,9 +27,7 @@ pub fn run(
     if json {
         return print_json(&out);
     }
-    for line in describe_loop(&rl.lp) {
-        println!("{line}");
-    }
+    print_loop(&rl.lp);
     for line in text_lines(sides, &out.report) {
         println!("{line}");
     }

@@ -10,7 +10,7 @@ use hapstab::answer::{SweepAnswer, sweep_answer};
 use hapstab::sweep::{KmaxAt, SweepParam, SweepPoint, SweepRange};
 use serde::Serialize;
 
-use crate::model::{LoopArgs, describe_loop};
+use crate::model::{LoopArgs, print_loop};
 use crate::output::{csv_num, csv_opt, eng, print_json, sig};
 use hapstab_plot::{Figure, Legend, Marker, Series, palette};
 
@@ -127,9 +127,7 @@ fn value_text(p: SweepParam, v: f64) -> String {
 
 fn print_text(lp: &hapstab::Loop, out: &SweepOut) {
     let o = &out.answer;
-    for line in describe_loop(lp) {
-        println!("{line}");
-    }
+    print_loop(lp);
     let at = match o.input.k_max_at {
         KmaxAt::Overall => "over every damping B".to_string(),
         KmaxAt::Damping { damping } => format!("at B = {}", eng(damping, "Ns/m", 6)),

@@ -4,16 +4,14 @@
 use hapstab::kmax::{KmaxReport, RenderableBand};
 
 use super::{DampingRange, KmaxOut, band_text};
-use crate::model::{ResolvedLoop, describe_loop};
+use crate::model::{ResolvedLoop, print_loop};
 use crate::output::eng;
 use crate::wall_plot;
 
 /// The human-readable answer of `kmax`: the loop, K_max with where it is reached (or why no
 /// stiffness is stable), the plot's files, and over a damping band K_max at B = 0 as well.
 pub(super) fn print_text(rl: &ResolvedLoop, out: &KmaxOut, band: DampingRange, over_band: bool) {
-    for line in describe_loop(&rl.lp) {
-        println!("{line}");
-    }
+    print_loop(&rl.lp);
     let r = &out.answer.report;
     // the pure spring first: the number a device renders without virtual damping
     if over_band {

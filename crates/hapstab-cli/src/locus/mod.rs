@@ -16,7 +16,7 @@ use hapstab::locus::root_locus;
 use num_complex::Complex64;
 use serde::Serialize;
 
-use crate::model::{DEFAULT_WALL, LoopArgs, LoopInput, describe_loop};
+use crate::model::{DEFAULT_WALL, LoopArgs, LoopInput, print_loop};
 use crate::output::{print_json, sig};
 use crate::wall_plot::files_text;
 use csv_file::write_csv;
@@ -135,9 +135,7 @@ pub fn run(a: &LocusArgs) -> Result<()> {
             csv: a.csv.clone(),
         });
     }
-    for line in describe_loop(&rl.lp) {
-        println!("{line}");
-    }
+    print_loop(&rl.lp);
     print_summary(&locus, crossing.as_ref());
     if !plot.is_empty() {
         println!("plot      {}", files_text(&plot));

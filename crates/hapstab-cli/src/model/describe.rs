@@ -1,11 +1,29 @@
 //! The loop in words, one line per part, for the text output of the commands.
 
 use hapstab::model::{Loop, PlantModel as LibPlantModel};
+use hapstab::params::Wall;
 
-use crate::output::{poly_text, sig};
+use crate::output::{eng, poly_text, sig};
+
+/// Prints the loop in words ([`describe_loop`]), one line per part.
+pub fn print_loop(lp: &Loop) {
+    for line in describe_loop(lp) {
+        println!("{line}");
+    }
+}
+
+/// Prints the loop in words and the wall's K and B ([`print_loop`]).
+pub fn print_loop_and_wall(lp: &Loop, w: Wall) {
+    print_loop(lp);
+    println!(
+        "wall      K = {}, B = {}",
+        eng(w.stiffness, "N/m", 6),
+        eng(w.damping, "Ns/m", 6)
+    );
+}
 
 /// The loop in words, one line per part (for the text output of the commands).
-pub fn describe_loop(lp: &Loop) -> Vec<String> {
+fn describe_loop(lp: &Loop) -> Vec<String> {
     let mut out = vec![format!("plant     {}", plant_text(&lp.plant.model))];
     if lp.plant.force_lag > 0.0 {
         out.push(format!(

@@ -5,7 +5,7 @@
 //! - [`point`]: one parameter point from plant and wall flags ([`resolve_point`]);
 //! - [`loop_args`]: the general loop's flags ([`LoopArgs`]) resolved to a [`ResolvedLoop`];
 //! - [`wall_args`]: the wall flags ([`WallArgs`]) in the loop's units ([`resolve_loop_wall`]);
-//! - [`describe`]: the loop in words for the text outputs ([`describe_loop`]).
+//! - [`describe`]: the loop in words for text output ([`print_loop`], [`print_loop_and_wall`]).
 
 mod describe;
 mod flags;
@@ -18,7 +18,7 @@ use hapstab::System;
 use hapstab::model::Loop;
 use hapstab::params::Wall;
 
-pub use describe::describe_loop;
+pub use describe::{print_loop, print_loop_and_wall};
 pub use flags::{LOOP_FLAGS, NON_PAPER_PLANT_FLAGS, PHYSICAL_PLANT_FLAGS};
 pub use hapstab::loop_spec::LoopInput;
 pub use hapstab::loop_spec::{DEFAULT_PERIOD, DEFAULT_WALL};

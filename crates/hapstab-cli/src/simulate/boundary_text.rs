@@ -7,7 +7,7 @@ use hapstab::simulation::{Outcome, StableWhen};
 use super::boundary_out::SimboundaryOut;
 use super::run_args::RunSettings;
 use super::{Units, describe_effects};
-use crate::model::{ResolvedLoop, describe_loop};
+use crate::model::{ResolvedLoop, print_loop};
 use crate::output::{eng, sig};
 
 /// The loop of a boundary search: in physical units the loop in words (and, beyond the
@@ -21,9 +21,7 @@ fn print_boundary_loop(o: &SimboundaryOut, rl: &ResolvedLoop, units: Units) {
             rl.lp.delay.samples
         ),
         _ => {
-            for line in describe_loop(&rl.lp) {
-                println!("{line}");
-            }
+            print_loop(&rl.lp);
             if let Some(w) = o.wall_units {
                 println!(
                     "units     a = K/k_u, b = B/(k_u·T) with k_u = {} N/m, k_u·T = {} Ns/m (the a and b of --alpha/--beta)",

@@ -7,7 +7,7 @@ use hapstab::simulation::{Contact, Outcome, RunResult};
 use super::run::{SimLoop, SimulateOut};
 use super::run_args::RunSettings;
 use super::{Units, describe_effects};
-use crate::model::describe_loop;
+use crate::model::print_loop_and_wall;
 use crate::output::{eng, sig};
 
 /// A frequency in Hz (physical) or cycles per sample (normalized).
@@ -58,14 +58,7 @@ fn print_model(o: &SimulateOut, sl: &SimLoop, units: Units) {
     let normalized = o.normalized.as_ref();
     if units.physical || normalized.is_none() {
         // physical input speaks K, B and the loop
-        for line in describe_loop(&sl.rl.lp) {
-            println!("{line}");
-        }
-        println!(
-            "wall      K = {}, B = {}",
-            eng(sl.wall.stiffness, "N/m", 6),
-            eng(sl.wall.damping, "Ns/m", 6)
-        );
+        print_loop_and_wall(&sl.rl.lp, sl.wall);
     }
     // physical input speaks K, B; the paper's normalized view stays in the JSON
     let (Some(n), false) = (normalized, units.physical) else {

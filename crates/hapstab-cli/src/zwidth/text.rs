@@ -4,7 +4,7 @@
 use hapstab::answer::ZwidthLoop as LoopOut;
 use hapstab::zwidth::ZWidth;
 
-use crate::model::{LoopInput, describe_loop};
+use crate::model::{self, LoopInput};
 use crate::output::{eng, sig};
 
 pub(super) fn kn(x: f64) -> String {
@@ -20,9 +20,7 @@ pub(super) fn print_loop(o: &LoopOut, titled: bool) {
         println!("== {} ==", o.label);
     }
     if let LoopInput::Physical { lp, .. } = &o.input {
-        for line in describe_loop(lp) {
-            println!("{line}");
-        }
+        model::print_loop(lp);
     }
     let z = &o.zwidth;
     match z.k_max {
