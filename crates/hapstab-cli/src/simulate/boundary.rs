@@ -18,7 +18,8 @@ use super::boundary_out::{
 };
 use super::boundary_plot::{Plane, boundary_plot};
 use super::boundary_scan::{
-    beta_values, boundary_points, boundary_template, boundary_warnings, check_boundary_args,
+    ScanRange, beta_values, boundary_points, boundary_template, boundary_warnings,
+    check_boundary_args,
 };
 use super::boundary_text::print_simboundary;
 use super::run_args::RunSettings;
@@ -34,19 +35,34 @@ pub struct SimboundaryArgs {
     pub(super) lp: LoopArgs,
     #[command(flatten)]
     pub(super) run: RunArgs,
-    /// Smallest normalized damping β = BT/m (for other plants the wall unit b = B·T/m with m
-    /// the plant's reference mass) [default: 10 % of the exact region's top].
-    #[arg(long, allow_hyphen_values = true)]
+    /// Smallest wall damping B in Ns/m (a loop in physical units) [default: 10 % of the exact
+    /// region's top].
+    #[arg(long, value_name = "NS_PER_M", allow_hyphen_values = true)]
+    pub(super) wall_damping_min: Option<f64>,
+    /// Largest wall damping B in Ns/m [default: 90 % of the exact region's top].
+    #[arg(long, value_name = "NS_PER_M", allow_hyphen_values = true)]
+    pub(super) wall_damping_max: Option<f64>,
+    /// Upper end of the stiffness scan in N/m [default: 3× the exact linear boundary at each
+    /// damping].
+    #[arg(long, value_name = "N_PER_M", allow_hyphen_values = true)]
+    pub(super) wall_stiffness_max: Option<f64>,
+    /// Smallest normalized damping β = BT/m, in place of --wall-damping-min (for other
+    /// plants the wall unit b = B·T/m with m the plant's reference mass).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "wall_damping_min")]
     pub(super) beta_min: Option<f64>,
-    /// Largest β [default: 90 % of the exact region's top].
-    #[arg(long, allow_hyphen_values = true)]
+    /// Largest β, in place of --wall-damping-max.
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "wall_damping_max")]
     pub(super) beta_max: Option<f64>,
-    /// Number of β values, evenly spaced.
+    /// Number of dampings (B or β values), evenly spaced.
     #[arg(long, value_name = "N", default_value_t = 8)]
     pub(super) beta_count: usize,
-    /// Upper end of the α scan (wall unit a = K·T²/m for other plants) [default: 3× the
-    /// exact linear boundary at each β].
-    #[arg(long, allow_hyphen_values = true)]
+    /// Upper end of the α scan (wall unit a = K·T²/m for other plants), in place of
+    /// --wall-stiffness-max.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "wall_stiffness_max"
+    )]
     pub(super) alpha_max: Option<f64>,
     /// Coarse α scan points before bisection.
     #[arg(long, value_name = "N", default_value_t = 12)]
@@ -125,17 +141,18 @@ pub fn run_simboundary(a: &SimboundaryArgs) -> Result<()> {
     let region_cost = hapstab::limits::region_cost_of_degree(n, hapstab::limits::core_degree(fam));
     crate::budget::check_loop(&a.lp, &rl.lp, region_cost, "the exact region")?;
     let region = sys.region()?;
-    let betas = beta_values(a, &region)?;
-    // every β: the α grid's runs and a bisection of about log2(1/rel-tol) more
-    let runs = betas.len() as f64 * (a.grid as f64 + (1.0 / a.rel_tol).log2().max(1.0));
-    check_run_budget(&a.lp, &rl.lp, &template, runs, "the boundary's runs")?;
-    let points = boundary_points(a, &template, &betas, stable_when)?;
     let scale = match (&pm, units.physical) {
         (Some(pm), _) => pm
             .physical
             .map(|(eff, s)| (eff.mass / (s.period * s.period), eff.mass / s.period)),
         (None, _) => Some((fam.scale.stiffness, fam.scale.damping)),
     };
+    let range = ScanRange::of(a, scale.filter(|_| units.physical))?;
+    let betas = beta_values(a, &range, &region)?;
+    // every β: the α grid's runs and a bisection of about log2(1/rel-tol) more
+    let runs = betas.len() as f64 * (a.grid as f64 + (1.0 / a.rel_tol).log2().max(1.0));
+    check_run_budget(&a.lp, &rl.lp, &template, runs, "the boundary's runs")?;
+    let points = boundary_points(a, range.a_max, &template, &betas, stable_when)?;
     let rows: Vec<BoundaryRow> = points.iter().map(|p| boundary_row(p, scale)).collect();
     if let Some(path) = &a.csv {
         write_boundary_csv(path, &rows)?;

@@ -67,6 +67,11 @@ pub(super) fn check_boundary_args(a: &SimboundaryArgs) -> Result<StableWhen> {
     {
         bail!("--alpha-max must be a positive number (got {m})");
     }
+    if let Some(m) = a.wall_stiffness_max
+        && !(m.is_finite() && m > 0.0)
+    {
+        bail!("--wall-stiffness-max must be a positive number of N/m (got {m})");
+    }
     Ok(match a.stable_amplitude {
         None => StableWhen::Decaying,
         Some(m) if m.is_finite() && m > 0.0 => StableWhen::AmplitudeBelow(m),
@@ -74,9 +79,62 @@ pub(super) fn check_boundary_args(a: &SimboundaryArgs) -> Result<StableWhen> {
     })
 }
 
-/// The simulated boundary at each β, in parallel, with a progress bar on a terminal.
+/// The scan's range in the loop's wall units: the dampings' ends and the top of the stiffness
+/// scan, from the physical flags (K in N/m, B in Ns/m) or the normalized ones (α, β).
+pub(super) struct ScanRange {
+    /// Smallest damping b.
+    pub b_min: Option<f64>,
+    /// Largest damping b.
+    pub b_max: Option<f64>,
+    /// Top of the stiffness scan a.
+    pub a_max: Option<f64>,
+    /// Ns/m per unit of b when the dampings were given in Ns/m.
+    pub b_unit: Option<f64>,
+}
+
+impl ScanRange {
+    /// The range of the flags; `per_unit` = (N/m, Ns/m) per wall unit for a loop in physical
+    /// units, None for normalized input, which takes only α and β.
+    pub(super) fn of(a: &SimboundaryArgs, per_unit: Option<(f64, f64)>) -> Result<Self> {
+        let physical = [
+            ("--wall-damping-min", a.wall_damping_min),
+            ("--wall-damping-max", a.wall_damping_max),
+            ("--wall-stiffness-max", a.wall_stiffness_max),
+        ];
+        let Some((k_unit, b_unit)) = per_unit else {
+            if let Some((flag, _)) = physical.iter().find(|(_, v)| v.is_some()) {
+                bail!(
+                    "{flag} needs a loop in physical units (normalized input takes --beta-min, --beta-max and --alpha-max)"
+                );
+            }
+            return Ok(Self {
+                b_min: a.beta_min,
+                b_max: a.beta_max,
+                a_max: a.alpha_max,
+                b_unit: None,
+            });
+        };
+        if let Some((flag, Some(v))) = physical
+            .iter()
+            .find(|(_, v)| v.is_some_and(|x| !x.is_finite()))
+        {
+            bail!("{flag} must be a finite number (got {v})");
+        }
+        Ok(Self {
+            b_min: a.wall_damping_min.map(|b| b / b_unit).or(a.beta_min),
+            b_max: a.wall_damping_max.map(|b| b / b_unit).or(a.beta_max),
+            a_max: a.wall_stiffness_max.map(|k| k / k_unit).or(a.alpha_max),
+            b_unit: (a.wall_damping_min.is_some() || a.wall_damping_max.is_some())
+                .then_some(b_unit),
+        })
+    }
+}
+
+/// The simulated boundary at each β, in parallel, with a progress bar on a terminal; the
+/// stiffness scan of each reaches `a_max` (wall units) where given.
 pub(super) fn boundary_points(
     a: &SimboundaryArgs,
+    a_max: Option<f64>,
     template: &Config,
     betas: &[f64],
     stable_when: StableWhen,
@@ -88,7 +146,7 @@ pub(super) fn boundary_points(
             let search = BoundarySearch {
                 template: template.clone(),
                 dampings: vec![beta],
-                a_max: a.alpha_max,
+                a_max,
                 grid: a.grid,
                 rel_tolerance: a.rel_tol,
                 stable_when,
@@ -134,9 +192,11 @@ pub(super) fn boundary_warnings(points: &[EmpiricalPoint], s: &RunSettings) -> V
     w
 }
 
-/// The β values: the flags, or 10 %–90 % of the exact region's β extent above 0.
+/// The dampings b (wall units): the range's, or 10 %–90 % of the exact region's extent in b
+/// above 0.
 pub(super) fn beta_values(
     a: &SimboundaryArgs,
+    range: &ScanRange,
     region: &hapstab::region::StableRegion,
 ) -> Result<Vec<f64>> {
     let top = region
@@ -144,13 +204,22 @@ pub(super) fn beta_values(
         .map(|e| e.y_max)
         .filter(|t| t.is_finite() && *t > 0.0)
         .unwrap_or(1.0);
-    let lo = a.beta_min.unwrap_or(0.1 * top);
-    let hi = a.beta_max.unwrap_or(0.9 * top);
+    let lo = range.b_min.unwrap_or(0.1 * top);
+    let hi = range.b_max.unwrap_or(0.9 * top);
+    // the ends in the flags' units: B in Ns/m, or β
+    let (lo_flag, hi_flag, unit, shown) = match range.b_unit {
+        Some(u) => ("--wall-damping-min", "--wall-damping-max", " Ns/m", u),
+        None => ("--beta-min", "--beta-max", "", 1.0),
+    };
     if !(lo.is_finite() && hi.is_finite()) {
-        bail!("--beta-min/--beta-max must be finite (got {lo}, {hi})");
+        bail!("{lo_flag}/{hi_flag} must be finite (got {lo}, {hi})");
     }
     if hi < lo {
-        bail!("--beta-max ({hi}) must be >= --beta-min ({lo})");
+        bail!(
+            "{hi_flag} ({}{unit}) must be >= {lo_flag} ({}{unit})",
+            hi * shown,
+            lo * shown
+        );
     }
     let n = a.beta_count;
     Ok(hapstab::grid::evenly_spaced(lo, hi, n))

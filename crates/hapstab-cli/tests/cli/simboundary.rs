@@ -195,3 +195,101 @@ fn simboundary_of_a_general_loop_brackets_the_exact_boundary() {
         );
     }
 }
+
+/// A loop in physical units takes its scan in Ns/m and N/m: B from 40 to 60 Ns/m and K up to
+/// 200 kN/m of the device without arm (m = 0.1 kg, T = 1 ms) are β = B·T/m from 0.4 to 0.6
+/// and α = K·T²/m up to 2 (Table I), the same runs to the bit.
+#[test]
+fn simboundary_takes_its_range_in_the_users_units() {
+    let run = |range: &[&str]| {
+        let mut args = vec![
+            "simboundary",
+            "--no-arm",
+            "--beta-count",
+            "2",
+            "--duration-samples",
+            "1000",
+            "--rel-tol",
+            "0.05",
+        ];
+        args.extend_from_slice(range);
+        let mut v = json(&args);
+        v["points"].take()
+    };
+    let physical = run(&[
+        "--wall-damping-min",
+        "40",
+        "--wall-damping-max",
+        "60",
+        "--wall-stiffness-max",
+        "2e5",
+    ]);
+    let normalized = run(&["--beta-min", "0.4", "--beta-max", "0.6", "--alpha-max", "2"]);
+    // the same runs; the scan's top echoed in N/m, 2e5 up to a rounding of α·m/T²
+    let (mut physical, mut normalized) = (physical, normalized);
+    for (p, n) in physical
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .zip(normalized.as_array_mut().unwrap())
+    {
+        let (kp, kn) = (f(&p["k_max"]), f(&n["k_max"]));
+        assert!(
+            (kp - 2e5).abs() <= 1e-10 && (kn - 2e5).abs() <= 1e-10,
+            "{kp} {kn}"
+        );
+        p["k_max"].take();
+        n["k_max"].take();
+    }
+    assert_eq!(physical, normalized);
+    let bs: Vec<f64> = physical
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| f(&p["wall_damping"]))
+        .collect();
+    assert_eq!(bs.len(), 2);
+    assert!(
+        (bs[0] - 40.0).abs() < 1e-9 && (bs[1] - 60.0).abs() < 1e-9,
+        "{bs:?}"
+    );
+}
+
+/// The physical range flags are refused beside their normalized twins, for normalized input
+/// and reversed, in one line naming the flag (and the values in Ns/m), exit 2.
+#[test]
+fn simboundary_refuses_a_bad_range_in_one_line() {
+    for (args, needle) in [
+        (
+            &["--wall-damping-min", "40", "--beta-min", "0.4"][..],
+            "--wall-damping-min",
+        ),
+        (
+            &[
+                "--gamma",
+                "0.001",
+                "--delta",
+                "0.01",
+                "--wall-stiffness-max",
+                "1e5",
+            ][..],
+            "--wall-stiffness-max needs a loop in physical units",
+        ),
+        (
+            &["--wall-damping-min", "60", "--wall-damping-max", "40"][..],
+            "--wall-damping-max (40 Ns/m) must be >= --wall-damping-min (60 Ns/m)",
+        ),
+    ] {
+        let out = common::hapstab()
+            .arg("simboundary")
+            .args(args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            err.contains(needle) && err.trim().lines().count() == 1,
+            "{err}"
+        );
+    }
+}
