@@ -12,7 +12,7 @@
 //! E is formed without I, so that e^{Ah} − I keeps its digits when ‖Ah‖ is small (the ZOH's
 //! Φ − I near z = 1). The work runs on row-major buffers reused through the doublings.
 
-use crate::poly::{self, Mat};
+use crate::poly::{self, Mat, SMALL_ORDER};
 
 /// Taylor terms are summed until they fall below this fraction of the sum: one ulp.
 const TAYLOR_REL: f64 = 1e-17;
@@ -20,8 +20,6 @@ const TAYLOR_REL: f64 = 1e-17;
 const TAYLOR_NORM: f64 = 0.5;
 /// Taylor terms at most (‖As‖ ≤ 1/2 needs about 20).
 const TAYLOR_TERMS: usize = 40;
-/// Orders up to this one work in stack buffers.
-const SMALL_ORDER: usize = 6;
 
 /// E(h) = e^{Ah} − I and Ψ(h) = ∫₀ʰ e^{As} ds of the square matrix `a` (module doc).
 pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
@@ -33,12 +31,7 @@ pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
 /// [`poly::mat_vec`], the same operations.
 pub fn exp_and_input(a: &Mat, h: f64, b: &[f64]) -> (Mat, Vec<f64>) {
     with_exp(a, h, |e, psi, n| {
-        let input = psi
-            .chunks(n.max(1))
-            .take(n)
-            .map(|row| row.iter().zip(b).map(|(r, v)| r * v).sum())
-            .collect();
-        (rows(e, n), input)
+        (rows(e, n), poly::rows_times(psi.chunks(n.max(1)), b))
     })
 }
 

@@ -228,10 +228,19 @@ pub fn mat_mul(a: &Mat, b: &Mat) -> Mat {
 
 /// Matrix–vector product.
 pub fn mat_vec(a: &Mat, x: &[f64]) -> Vec<f64> {
-    a.iter()
-        .map(|row| row.iter().zip(x).map(|(r, v)| r * v).sum())
+    rows_times(a.iter().map(Vec::as_slice), x)
+}
+
+/// The product of the matrix with the given rows and x (the rows of a [`Mat`] or of a
+/// row-major work buffer; [`mat_vec`]).
+pub fn rows_times<'a>(rows: impl Iterator<Item = &'a [f64]>, x: &[f64]) -> Vec<f64> {
+    rows.map(|row| row.iter().zip(x).map(|(r, v)| r * v).sum())
         .collect()
 }
+
+/// Orders up to this one are formed in stack buffers where a hot path builds small matrices
+/// (the matrix exponential, the numerator's determinant).
+pub const SMALL_ORDER: usize = 6;
 
 /// The 1-norm (largest absolute column sum).
 pub fn norm1(a: &Mat) -> f64 {

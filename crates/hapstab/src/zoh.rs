@@ -359,7 +359,7 @@ impl DiscreteLoop {
     /// det(wI − M) of the n × n matrix with entries `entry(i, j)` ([`poly::char_poly`]),
     /// formed in a stack buffer for the plants' usual orders.
     fn char_poly_of(&self, entry: impl Fn(usize, usize) -> f64) -> Vec<f64> {
-        const SMALL: usize = 6;
+        const SMALL: usize = poly::SMALL_ORDER;
         let n = self.order();
         if n > SMALL {
             let m: Mat = (0..n)

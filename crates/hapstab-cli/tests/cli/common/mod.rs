@@ -11,8 +11,8 @@ pub fn hapstab() -> Command {
     Command::cargo_bin("hapstab").unwrap()
 }
 
-/// Runs the binary in `dir`, asserting success, and returns its standard output.
-pub fn stdout_in(dir: &std::path::Path, args: &[&str]) -> String {
+/// Runs the binary in `dir`, asserting success, and returns what it wrote.
+fn succeeded_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
     let out = hapstab().current_dir(dir).args(args).output().unwrap();
     assert!(
         out.status.success(),
@@ -20,19 +20,18 @@ pub fn stdout_in(dir: &std::path::Path, args: &[&str]) -> String {
         args.join(" "),
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8(out.stdout).unwrap()
+    out
+}
+
+/// Runs the binary in `dir`, asserting success, and returns its standard output.
+pub fn stdout_in(dir: &std::path::Path, args: &[&str]) -> String {
+    String::from_utf8(succeeded_in(dir, args).stdout).unwrap()
 }
 
 /// Runs the binary in `dir`, asserting success and an empty standard error (no progress bar
 /// off a terminal, no warning), and returns its standard output.
 pub fn quiet_stdout_in(dir: &std::path::Path, args: &[&str]) -> Vec<u8> {
-    let out = hapstab().current_dir(dir).args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "hapstab {}: {}",
-        args.join(" "),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = succeeded_in(dir, args);
     assert!(
         out.stderr.is_empty(),
         "hapstab {}: standard error not empty: {}",
