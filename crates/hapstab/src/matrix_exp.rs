@@ -27,8 +27,8 @@ pub fn exp_and_integral(a: &Mat, h: f64) -> (Mat, Mat) {
 }
 
 /// E(h) = e^{Ah} − I and the input Ψ(h)·b of a force held over h (the zero-order hold's
-/// Γ = Ψ(h)B, eq. 6), without forming Ψ's rows: [`exp_and_integral`] followed by
-/// [`poly::mat_vec`], the same operations.
+/// Γ0 = Ψ(1 − λ)B of [`crate::zoh`], which generalizes the paper's eq. (2)), without forming
+/// Ψ's rows: [`exp_and_integral`] followed by [`poly::mat_vec`], the same operations.
 pub fn exp_and_input(a: &Mat, h: f64, b: &[f64]) -> (Mat, Vec<f64>) {
     with_exp(a, h, |e, psi, n| {
         (rows(e, n), poly::rows_times(psi.chunks(n.max(1)), b))
